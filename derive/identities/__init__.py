@@ -1,0 +1,1 @@
+"""Reusable first-principles steps shared by mechanisms."""

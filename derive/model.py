@@ -1,0 +1,97 @@
+"""Derivations as data: named steps, each with its rule, inputs and a check that ran.
+
+The audit report is rendered from these records only, so everything a reader
+should learn about how a formula was obtained must be stored here.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import sympy as sp
+
+
+@dataclass(frozen=True)
+class Check:
+    """Evidence that a step is right: a symbolic identity or a sampled numeric check."""
+
+    kind: str  # "symbolic" | "numeric"
+    claim: str  # what was checked, in words
+    passed: bool
+    max_error: float | None = None  # numeric checks: worst error seen
+    tolerance: float | None = None
+    samples: int | None = None
+
+    def summary(self) -> str:
+        if self.kind == "symbolic":
+            return f"symbolic identity: {'proven' if self.passed else 'FAILED'}"
+        return (f"numeric, {self.samples} samples: max error {self.max_error:.2e} "
+                f"(tolerance {self.tolerance:.0e}) {'passed' if self.passed else 'FAILED'}")
+
+
+@dataclass(frozen=True)
+class Step:
+    """One derived quantity."""
+
+    name: str  # identifier, also used to cross-reference depends_on
+    title: str
+    rule: str  # the first-principles rule applied
+    depends_on: tuple[str, ...]
+    result: Any  # SymPy expression, Matrix, or a dict of them
+    checks: tuple[Check, ...]
+    source: str = ""  # where the seed states it (e.g. "seed 000, formula (6)")
+    note: str = ""
+
+    @property
+    def passed(self) -> bool:
+        return all(c.passed for c in self.checks)
+
+
+@dataclass(frozen=True)
+class Finding:
+    """A seed claim compared with what the derivation gives."""
+
+    topic: str
+    seed_says: str
+    derived: str
+    verdict: str  # "reproduced" | "wrong in seed" | "not reproducible" | "clarified"
+    evidence: str
+
+
+@dataclass
+class Derivation:
+    """Ordered steps for one mechanism; append-only while deriving."""
+
+    mechanism: str
+    title: str
+    seed: str
+    symbols: dict[str, sp.Symbol]
+    steps: list[Step] = field(default_factory=list)
+    findings: list[Finding] = field(default_factory=list)
+    decisions: list[tuple[str, str]] = field(default_factory=list)  # (decision, measured reason)
+
+    def add(self, step: Step) -> Step:
+        missing = [d for d in step.depends_on if d not in self.names()]
+        if missing:
+            raise ValueError(f"step {step.name!r} depends on unknown steps {missing}")
+        if step.name in self.names():
+            raise ValueError(f"duplicate step {step.name!r}")
+        if not step.passed:
+            failed = [c.claim for c in step.checks if not c.passed]
+            raise AssertionError(f"derivation step {step.name!r} failed its checks: {failed}")
+        self.steps.append(step)
+        return step
+
+    def names(self) -> list[str]:
+        return [s.name for s in self.steps]
+
+    def __getitem__(self, name: str) -> Step:
+        for s in self.steps:
+            if s.name == name:
+                return s
+        raise KeyError(name)
+
+    @property
+    def all_passed(self) -> bool:
+        return all(s.passed for s in self.steps)
