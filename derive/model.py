@@ -70,6 +70,7 @@ class Derivation:
     steps: list[Step] = field(default_factory=list)
     findings: list[Finding] = field(default_factory=list)
     decisions: list[tuple[str, str]] = field(default_factory=list)  # (decision, measured reason)
+    exports: dict[str, Any] = field(default_factory=dict)  # checked expressions the kernels are built from
 
     def add(self, step: Step) -> Step:
         missing = [d for d in step.depends_on if d not in self.names()]

@@ -41,6 +41,7 @@ JOINT_NAMES = ("theta1", "theta2", "theta3")
 POSE_NAMES = ("psi", "theta", "phi")
 
 a1, a2, b1, b2 = sp.symbols("alpha1 alpha2 beta1 beta2", real=True)
+A3S, KPS = sp.symbols("alpha3 kappa", positive=True)  # platform cone angle, platform triangle interior angle
 th = sp.symbols("theta1:4", real=True)
 psi, nu, phi = sp.symbols("psi theta phi", real=True)
 zeta, eta = sp.symbols("zeta eta", real=True)
@@ -255,7 +256,7 @@ def _inverse_kinematics(dv: Derivation) -> None:
         tuple(checks), source="seed 000, formulas (15)-(19)",
         note="Compact form with v_i = (Rz(delta_i) Rx(pi - beta1))^T Zi3, the platform axis seen from the "
              "branch frame. A2..C3 are A1..C1 with the branch rotation applied (recorded, not printed)."))
-    dv.kernels_ik_abc = {k: abc[k] for k in sorted(abc)}  # type: ignore[attr-defined]
+    dv.exports["ik_abc"] = abc
 
     t = sp.Symbol("t", real=True)
     A, B, C = sp.symbols("A B C", real=True)
@@ -305,10 +306,12 @@ def _forward_kinematics(dv: Derivation) -> None:
     z13 = chain * E_Z
     a3 = alpha3_of(b2)
     kap = kappa_of(a3)
-    a3s = sp.Symbol("alpha3", positive=True)
+    a3s = A3S
+    # Built with symbols alpha3, kappa (design constants); checks substitute their design relations.
     z23s = chain * rot_z(eta) * rot_x(a3s) * E_Z
-    z23 = z23s.subs(a3s, a3)
-    z33 = chain * rot_z(eta + kap) * rot_x(a3) * E_Z
+    z33s = chain * rot_z(eta + KPS) * rot_x(a3s) * E_Z
+    on_design = {A3S: a3, KPS: kap}
+    z23, z33 = z23s.subs(on_design), z33s.subs(on_design)
     fk_ranges = {th[0]: ANGLE, zeta: ANGLE, eta: ANGLE, **DESIGN_RANGES}
     dv.add(Step(
         "fk_quadrilateral", "Z13 from the spherical quadrilateral (Z, Z11, Z12, Z13)",
@@ -322,7 +325,7 @@ def _forward_kinematics(dv: Derivation) -> None:
         "fk_pentagon", "Z23 and Z33 from the spherical pentagons",
         "pentagon (Z, Z11, Z12, Z13, Z23) with exterior angle eta at Z13; for Z33 the exterior angle is "
         "eta' = eta + kappa (kappa the interior angle of the platform triangle at Z13)",
-        ("fk_quadrilateral", "kappa"), {"Z23": z23, "Z33": z33, "eta_prime": eta + sp.Symbol("kappa")},
+        ("fk_quadrilateral", "kappa"), {"Z23": z23s, "Z33": z33s, "eta_prime": eta + KPS},
         (symbolic_identity(polygon_vertex([sp.pi - b1, a1, a2, a3s], [th[0], zeta, eta]), z23s,
                            "pentagon vertex"),
          numeric_identity(sp.Matrix([z13.dot(z23), z23.dot(z33), z33.dot(z13)]),
@@ -350,22 +353,24 @@ def _forward_kinematics(dv: Derivation) -> None:
     cE, sE = sp.symbols("cE sE", real=True)
     coef = {}
     checks = []
-    for k, (zi3, i) in enumerate(((z23, 1), (z33, 2)), start=1):
+    for k, (zi3, i) in enumerate(((z23s, 1), (z33s, 2)), start=1):
         loop = middle_axis(i, th[i]).dot(zi3) - sp.cos(a2)
         lin = loop.subs({sp.cos(zeta): c_, sp.sin(zeta): s_})
         f0, fc, fs = affine_cs_coefficients(sp.expand(lin), c_, s_)
         D[k], E[k], F[k] = fc, fs, f0
-        checks.append(numeric_identity(fc * sp.cos(zeta) + fs * sp.sin(zeta) + f0, loop,
+        checks.append(numeric_identity((fc * sp.cos(zeta) + fs * sp.sin(zeta) + f0).subs(on_design),
+                                       loop.subs(on_design),
                                        f"D{k} cos zeta + E{k} sin zeta + F{k} = Z{i + 1}2 . Z{i + 1}3 - cos alpha2",
                                        {**fk_ranges, th[i]: ANGLE}))
     # Each of D, E, F is affine in (cos eta, sin eta): split it for the polynomial step.
     for k in (1, 2):
         for nm, ex in (("D", D[k]), ("E", E[k]), ("F", F[k])):
-            e2 = sp.expand(sp.expand_trig(ex.subs(eta, sp.Symbol("eta_")).subs(sp.Symbol("eta_"), eta)))
+            e2 = sp.expand(sp.expand_trig(ex))
             e2 = e2.subs({sp.cos(eta): cE, sp.sin(eta): sE})
             e0, ec, es = affine_cs_coefficients(e2, cE, sE)
             coef[f"{nm}{k}"] = (e0, ec, es)
-            checks.append(numeric_identity(e0 + ec * sp.cos(eta) + es * sp.sin(eta), ex,
+            checks.append(numeric_identity((e0 + ec * sp.cos(eta) + es * sp.sin(eta)).subs(on_design),
+                                           ex.subs(on_design),
                                            f"{nm}{k} = {nm}{k}_0 + {nm}{k}_c cos eta + {nm}{k}_s sin eta",
                                            {**fk_ranges, th[1]: ANGLE, th[2]: ANGLE}, samples=60))
     dv.add(Step(
@@ -376,15 +381,15 @@ def _forward_kinematics(dv: Derivation) -> None:
         {"D1": D[1], "E1": E[1], "F1": F[1]}, tuple(checks), source="seed 000, formulas (35)-(36)",
         note="i = 1 is the loop of branch 2 (with Z23), i = 2 that of branch 3 (with Z33); D2, E2, F2 are "
              "D1, E1, F1 with theta2 -> theta3, delta 120 -> 240 deg and eta -> eta + kappa."))
-    dv.fk_def = coef  # type: ignore[attr-defined]
+    dv.exports["fk_def"] = coef
 
     d1, e1, f1, d2, e2, f2 = sp.symbols("D1 E1 F1 D2 E2 F2", real=True)
     nc, ns, den = cramer_cs(d1, e1, f1, d2, e2, f2)
     ident = elimination_identity(d1, e1, f1, d2, e2, f2)
     # numeric check of the identity at genuine assemblies: build R from (theta1, zeta, eta), get theta2/theta3
     f_def = sp.lambdify((th[0], th[1], th[2], zeta, eta, a1, a2, b1, b2),
-                        [D[1], E[1], F[1], D[2], E[2], F[2]], "numpy")
-    f_abc = sp.lambdify((psi, nu, phi, a1, a2, b1, b2), [dv.kernels_ik_abc[k] for k in  # type: ignore[attr-defined]
+                        [v.subs(on_design) for v in (D[1], E[1], F[1], D[2], E[2], F[2])], "numpy")
+    f_abc = sp.lambdify((psi, nu, phi, a1, a2, b1, b2), [dv.exports["ik_abc"][k] for k in
                         ("A2", "B2", "C2", "A3", "B3", "C3")], "numpy")
     f_R = sp.lambdify((th[0], zeta, eta, a1, a2, b1, b2), Rfk, "numpy")
 
@@ -434,7 +439,8 @@ def _forward_kinematics(dv: Derivation) -> None:
     qpoly = {nm: c[0] + c[1] * x + c[2] * x**2 for nm, c in qd_sym.items()}
     Kx = sp.expand(elimination_identity(*(qpoly[n] for n in ("D1", "E1", "F1", "D2", "E2", "F2"))))
     deg = sp.Poly(Kx, x).degree()
-    coef_np = {k: sp.lambdify((th[0], th[1], th[2], a1, a2, b1, b2), list(v), "numpy") for k, v in coef.items()}
+    coef_np = {k: sp.lambdify((th[0], th[1], th[2], a1, a2, b1, b2), [c.subs(on_design) for c in v], "numpy")
+               for k, v in coef.items()}
 
     def k_poly_err(rng):
         des = _rand_design(rng)
@@ -506,7 +512,7 @@ def _forward_kinematics(dv: Derivation) -> None:
         note="At sin theta = 0 only psi + phi (theta = 0) or psi - phi (theta = pi) is defined: the generated "
              "code then returns phi = 0, psi = the whole in-plane angle, and sets the GIMBAL flag. Near it "
              "(the seed's t = 0.1 s row, theta ~ 0.01 deg) psi and phi are separately ill-conditioned."))
-    dv.fk_rotation = Rfk  # type: ignore[attr-defined]
+    dv.exports["fk_chain"] = chain
 
 
 # ------------------------------------------------------------------------------ rates
@@ -545,7 +551,7 @@ def _rates(dv: Derivation) -> None:
         note="Inverse (serial) singularity: some Jq_ii = det[Zi1, Zi2, Zi3] = 0, the IK branch's double root "
              "(Ai^2 + Bi^2 = Ci^2). Direct (parallel) singularity: det Jx = 0, rows Zi2 x Zi3 coplanar, where "
              "FK assembly modes merge. The generated code reports both, normalised to [0, 1]."))
-    dv.kernel_jacobians = (sp.Matrix(jq), jx)  # type: ignore[attr-defined]
+    dv.exports["jacobians"] = (sp.Matrix(jq), jx)
     Em = zxz_rate_matrix(psi, nu)
     ed = sp.Matrix(sp.symbols("psid thetad phid", real=True))
     Rz = rot_zxz(psi, nu, phi)
@@ -564,7 +570,7 @@ def _rates(dv: Derivation) -> None:
          symbolic_identity(sp.simplify(Em.det()), -sp.sin(nu), "det E = -sin theta (Euler rates undefined at "
                                                               "theta = 0, pi)")),
         note="The generated rate functions work with w; Euler-angle rates are offered where sin theta != 0."))
-    dv.kernel_euler_rate = Em  # type: ignore[attr-defined]
+    dv.exports["euler_rate_matrix"] = Em
     # Accelerations: d/dt (Jq qdot - Jx w) = 0.
     wvec = wv
     jq_dot = []
@@ -602,4 +608,72 @@ def _rates(dv: Derivation) -> None:
         (numeric_predicate(acc_err, "Jq' and Jx' match central differences along a constant-rate motion",
                            samples=20, tol=1e-7),),
         ))
-    dv.kernel_jacobian_rates = (sp.Matrix(jq_dot), jx_dot)  # type: ignore[attr-defined]
+    dv.exports["jacobian_rates"] = (sp.Matrix(jq_dot), jx_dot)
+
+
+# ------------------------------------------------------------------------------ kernels for codegen
+DESIGN_CONSTANTS = (ca1, sa1, ca2, sa2, cb1, sb1, *sp.symbols("cb2 sb2", real=True), ca3, sa3, ck, sk, *G,
+                    sp.Symbol("cth0", real=True))
+_cb2, _sb2 = DESIGN_CONSTANTS[6], DESIGN_CONSTANTS[7]
+
+
+def _to_constants(e):
+    """Replace trigonometric functions of design angles by the precomputed constants."""
+    rep = {sp.cos(a1): ca1, sp.sin(a1): sa1, sp.cos(a2): ca2, sp.sin(a2): sa2, sp.cos(b1): cb1,
+           sp.sin(b1): sb1, sp.cos(b2): _cb2, sp.sin(b2): _sb2, sp.cos(A3S): ca3, sp.sin(A3S): sa3,
+           sp.cos(KPS): ck, sp.sin(KPS): sk}
+    out = sp.sympify(e).xreplace(rep)
+    bad = {f for f in out.atoms(sp.Function) if f.free_symbols & {a1, a2, b1, b2, A3S, KPS}}
+    if bad:
+        raise ValueError(f"design angle left after constant substitution: {bad}")
+    return out
+
+
+def kernels(dv: Derivation):
+    """Straight-line kernels the solvers are assembled from (all expressions come from checked steps)."""
+    from ..lower import Kernel
+
+    params = ("params", (a1, a2, b1, b2))
+    dc = ("dc", DESIGN_CONSTANTS)
+    cos_a3 = cos_angle_between_cone_axes(b2)
+    design_vals = {
+        "ca1": sp.cos(a1), "sa1": sp.sin(a1), "ca2": sp.cos(a2), "sa2": sp.sin(a2),
+        "cb1": sp.cos(b1), "sb1": sp.sin(b1), "cb2": sp.cos(b2), "sb2": sp.sin(b2),
+        "ca3": cos_a3, "sa3": sp.sqrt(1 - cos_a3**2),
+        # cos kappa = ca3 / (1 + ca3); sin kappa = sqrt(1 + 2 ca3) / (1 + ca3) and 1 + 2 ca3 = 3 cos^2 beta2
+        "ck": cos_a3 / (1 + cos_a3), "sk": sp.sqrt(3) * sp.cos(b2) / (1 + cos_a3),
+        **{str(g): v for g, v in zip(G, g_matrix(), strict=True)},
+        "cth0": dv["home_angle"].result["cos_theta0"],
+    }
+    abc = dv.exports["ik_abc"]
+    coef = dv.exports["fk_def"]
+    chain = dv.exports["fk_chain"]
+    jq, jx = dv.exports["jacobians"]
+    jqd, jxd = dv.exports["jacobian_rates"]
+    em = dv.exports["euler_rate_matrix"]
+    ij = [(i, j) for i in range(3) for j in range(3)]
+    return [
+        Kernel("design_constants", "Per-design constants: trig of the design angles, alpha3, kappa, the constant "
+               "platform rotation G and cos(theta0).", (params,),
+               tuple((str(s), design_vals[str(s)]) for s in DESIGN_CONSTANTS)),
+        Kernel("ik_abc", "IK loop coefficients (A_i, B_i, C_i) of A cos theta_i + B sin theta_i + C = 0.",
+               (("pose", (psi, nu, phi)), dc),
+               tuple((f"{n}{i}", _to_constants(abc[f"{n}{i}"])) for i in (1, 2, 3) for n in "ABC")),
+        Kernel("fk_def", "FK loop coefficients: D_k, E_k, F_k (k = 1, 2) each as (const, cos eta, sin eta).",
+               (("q", th), dc),
+               tuple((f"{n}{k}_{part}", _to_constants(coef[f"{n}{k}"][j])) for k in (1, 2) for n in "DEF"
+                     for j, part in enumerate(("0", "c", "s")))),
+        Kernel("fk_rotation", "Platform rotation R = Rx(pi - beta1) Rz(theta1) Rx(alpha1) Rz(zeta) Rx(alpha2) "
+               "Rz(eta) G.", (("tze", (th[0], zeta, eta)), dc),
+               tuple((f"r{i}{j}", _to_constants((chain * rot_z(eta) * G)[i, j])) for i, j in ij)),
+        Kernel("jacobians", "Loop Jacobians: jq_i = det[Zi1, Zi2, Zi3], jx row i = Zi2 x Zi3 (jq qdot = jx w).",
+               (("q", th), ("rot", tuple(Rm)), dc),
+               tuple((f"jq{i + 1}", _to_constants(jq[i])) for i in range(3))
+               + tuple((f"jx{i}{j}", _to_constants(jx[i, j])) for i, j in ij)),
+        Kernel("jacobian_rates", "Time derivatives of jq and jx along (qdot, w).",
+               (("q", th), ("rot", tuple(Rm)), ("qd", tuple(qd)), ("w", tuple(wv)), dc),
+               tuple((f"jqd{i + 1}", _to_constants(jqd[i])) for i in range(3))
+               + tuple((f"jxd{i}{j}", _to_constants(jxd[i, j])) for i, j in ij)),
+        Kernel("euler_rate_matrix", "E(psi, theta) with w = E (psidot, thetadot, phidot).",
+               (("pose", (psi, nu, phi)),), tuple((f"e{i}{j}", em[i, j]) for i, j in ij)),
+    ]

@@ -1,0 +1,64 @@
+"""Kernels: named SymPy expression blocks, lowered to straight-line code per target.
+
+A kernel has grouped inputs (each group a C array / Python sequence) and named
+outputs. Lowering runs canonical CSE, folds irrational constants to floats and
+prints each assignment with the target's printer. The result is plain data the
+templates loop over.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+
+from .printers import CPrinter, NumpyPrinter, PyMathPrinter
+
+
+@dataclass(frozen=True)
+class Kernel:
+    name: str
+    doc: str
+    inputs: tuple[tuple[str, tuple[sp.Symbol, ...]], ...]  # (group name, symbols in order)
+    outputs: tuple[tuple[str, sp.Expr], ...]
+
+    @property
+    def n_out(self) -> int:
+        return len(self.outputs)
+
+
+@dataclass(frozen=True)
+class Lowered:
+    name: str
+    doc: str
+    unpack: tuple[tuple[str, str, int], ...]  # (symbol name, group, index): only inputs actually used
+    temps: tuple[tuple[str, str], ...]  # (temp name, code)
+    outputs: tuple[tuple[str, str], ...]  # (output name, code)
+    groups: tuple[str, ...]
+    n_out: int
+    ops: int  # operation count after CSE, for the audit
+
+
+def _fold_constants(e: sp.Expr) -> sp.Expr:
+    """Irrational constants (sqrt(3)/2 ...) become 17-digit floats so no target recomputes them."""
+    return e.replace(lambda a: a.is_number and not a.is_Rational and a.free_symbols == set(),
+                     lambda a: sp.Float(sp.N(a, 25), 17))
+
+
+def cse_kernel(kernel: Kernel):
+    exprs = [_fold_constants(sp.sympify(e)) for _, e in kernel.outputs]
+    temps, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("t"), order="canonical")
+    return temps, reduced
+
+
+def lower(kernel: Kernel, target: str) -> Lowered:
+    printer = {"c": CPrinter(), "python": PyMathPrinter(), "numpy": NumpyPrinter()}[target]
+    temps, reduced = cse_kernel(kernel)
+    used = set().union(*(sp.sympify(e).free_symbols for _, e in temps), *(e.free_symbols for e in reduced))
+    unpack = tuple((s.name, g, i) for g, syms in kernel.inputs for i, s in enumerate(syms) if s in used)
+    ops = sum(sp.count_ops(e) for _, e in temps) + sum(sp.count_ops(e) for e in reduced)
+    return Lowered(
+        kernel.name, kernel.doc, unpack,
+        tuple((str(t), printer.doprint(e)) for t, e in temps),
+        tuple((n, printer.doprint(e)) for (n, _), e in zip(kernel.outputs, reduced, strict=True)),
+        tuple(g for g, _ in kernel.inputs), kernel.n_out, int(ops))
