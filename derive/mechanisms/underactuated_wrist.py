@@ -36,6 +36,7 @@ SEED = "seed 000: 'Kinematics analysis of a novel underactuated robot wrist', Pr
 
 # Paper design (alpha1 = alpha2 = 60 deg, beta1 = 30 deg, beta2 = 43.89 deg).
 DESIGN_NAMES = ("alpha1", "alpha2", "beta1", "beta2")
+VECTORISED_KERNELS = ("ik_abc", "axes")
 DESIGN_DEFAULT_DEG = (60.0, 60.0, 30.0, 43.89)
 JOINT_NAMES = ("theta1", "theta2", "theta3")
 POSE_NAMES = ("psi", "theta", "phi")
@@ -652,6 +653,9 @@ def kernels(dv: Derivation):
     jqd, jxd = dv.exports["jacobian_rates"]
     em = dv.exports["euler_rate_matrix"]
     ij = [(i, j) for i in range(3) for j in range(3)]
+    cq = sp.symbols("c1:4", real=True)
+    sq = sp.symbols("s1:4", real=True)
+    cs_sub = {**{sp.cos(th[i]): cq[i] for i in range(3)}, **{sp.sin(th[i]): sq[i] for i in range(3)}}
     return [
         Kernel("design_constants", "Per-design constants: trig of the design angles, alpha3, kappa, the constant "
                "platform rotation G and cos(theta0).", (params,),
@@ -674,6 +678,23 @@ def kernels(dv: Derivation):
                (("q", th), ("rot", tuple(Rm)), ("qd", tuple(qd)), ("w", tuple(wv)), dc),
                tuple((f"jqd{i + 1}", _to_constants(jqd[i])) for i in range(3))
                + tuple((f"jxd{i}{j}", _to_constants(jxd[i, j])) for i, j in ij)),
+        Kernel("axes", "Middle axes Zi2 from (cos theta_i, sin theta_i) and platform axes Zi3 = R p_i, for the "
+               "singularity measures (no trigonometry needed once the IK roots are known).",
+               (("c", cq), ("s", sq), ("rot", tuple(Rm)), dc),
+               tuple((f"z{i + 1}2_{ax}", _to_constants(middle_axis(i, th[i]).xreplace(cs_sub)[j]))
+                     for i in range(3) for j, ax in enumerate("xyz"))
+               + tuple((f"z{i + 1}3_{ax}", _to_constants((Rm * platform_axis_home(i))[j]))
+                       for i in range(3) for j, ax in enumerate("xyz"))),
         Kernel("euler_rate_matrix", "E(psi, theta) with w = E (psidot, thetadot, phidot).",
                (("pose", (psi, nu, phi)),), tuple((f"e{i}{j}", em[i, j]) for i, j in ij)),
     ]
+
+
+def extra_context(ks) -> dict:
+    """Default design evaluated at generation time, so C needs no initialiser call for it."""
+    k = next(k for k in ks if k.name == "design_constants")
+    params = [math.radians(v) for v in DESIGN_DEFAULT_DEG]
+    f = sp.lambdify([s for s in k.inputs[0][1]], [e for _, e in k.outputs], "math")
+    consts = [float(v) for v in f(*params)]
+    return {"default_params": [repr(p) for p in params], "default_constants": [repr(c) for c in consts],
+            "default_theta0": repr(math.acos(max(-1.0, min(1.0, consts[-1]))))}

@@ -1,0 +1,127 @@
+"""regenerate / check / audit: mechanism -> derivation -> kernels -> rendered files in generated/."""
+
+from __future__ import annotations
+
+import difflib
+import filecmp
+import hashlib
+import json
+import math
+import shutil
+import tempfile
+from pathlib import Path
+
+from .lower import lower
+from .mechanisms import REGISTRY
+from .render import ROOT, header_lines, render, tool_versions
+
+GENERATED = ROOT / "generated"
+TOLERANCES = {"singular": "1e-6", "gimbal": "1e-10", "tangent": "1e-12", "fk_residual": "1e-10",
+              "fk_duplicate": "1e-7"}
+
+
+def _write(path: Path, text: str | bytes) -> Path:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    data = text.encode() if isinstance(text, str) else text
+    path.write_bytes(data)
+    return path
+
+
+def _context(mod, dv) -> dict:
+    ks = mod.kernels(dv)
+    return {
+        "header": "\n".join(header_lines()),
+        "header_lines": header_lines(),
+        "kernels": [lower(k, "python") for k in ks],
+        "vkernels": [lower(k, "numpy") for k in ks if k.name in mod.VECTORISED_KERNELS],
+        "ckernels": [lower(k, "c") for k in ks],
+        "design_default": [repr(math.radians(v)) for v in mod.DESIGN_DEFAULT_DEG],
+        "n_design_constants": len(mod.DESIGN_CONSTANTS),
+        "tol": TOLERANCES,
+        **mod.extra_context(ks),
+    }
+
+
+def generate_code(out: Path, names=None) -> tuple[list[Path], dict]:
+    written, derivations = [], {}
+    for name, mod in sorted(REGISTRY.items()):
+        if names and name not in names:
+            continue
+        dv = mod.derive()
+        derivations[name] = dv
+        ctx = _context(mod, dv)
+        written.append(_write(out / "python" / "wristkin" / f"{name}.py", render(f"python/{name}.py.jinja", **ctx)))
+        written.append(_write(out / "c" / f"{name}.h", render(f"c/{name}.h.jinja", **ctx)))
+        written.append(_write(out / "c" / f"{name}.c", render(f"c/{name}.c.jinja", **ctx)))
+    written.append(_write(out / "python" / "wristkin" / "__init__.py",
+                          render("python/__init__.py.jinja", header=header_lines(), names=sorted(REGISTRY))))
+    written.append(_write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja",
+                                                                  header=header_lines())))
+    return written, derivations
+
+
+def _manifest(out: Path) -> Path:
+    files = sorted(p for p in out.rglob("*") if p.is_file() and p.name != "MANIFEST.json"
+                   and "__pycache__" not in p.parts)
+    entries = {p.relative_to(out).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest() for p in files}
+    return _write(out / "MANIFEST.json", json.dumps({"tools": tool_versions(), "files": entries},
+                                                    sort_keys=True, indent=2) + "\n")
+
+
+def regenerate(out_dir: Path = GENERATED) -> list[Path]:
+    out = Path(out_dir)
+    for sub in ("python", "c", "casadi", "audit"):
+        if (out / sub).exists():
+            shutil.rmtree(out / sub)
+    written, derivations = generate_code(out)
+    written += _post_code_products(out, derivations)
+    written.append(_manifest(out))
+    return written
+
+
+def _post_code_products(out: Path, derivations: dict) -> list[Path]:
+    """CasADi functions and audit reports (they import the freshly generated solvers)."""
+    extra: list[Path] = []
+    try:
+        from . import to_casadi
+    except ImportError:
+        to_casadi = None
+    if to_casadi is not None and hasattr(to_casadi, "build"):
+        for name, dv in derivations.items():
+            extra += to_casadi.build(name, dv, out / "casadi")
+    try:
+        from . import audit
+    except ImportError:
+        audit = None
+    if audit is not None and hasattr(audit, "write_reports"):
+        extra += audit.write_reports(derivations, out)
+    return extra
+
+
+def check(out_dir: Path = GENERATED) -> tuple[bool, str]:
+    """Regenerate into a temp dir and compare with out_dir; returns (ok, unified diff)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        fresh = Path(tmp) / "generated"
+        regenerate(fresh)
+        diffs = []
+        a_files = {p.relative_to(out_dir).as_posix() for p in Path(out_dir).rglob("*")
+                   if p.is_file() and "__pycache__" not in p.parts}
+        b_files = {p.relative_to(fresh).as_posix() for p in fresh.rglob("*") if p.is_file()}
+        for rel in sorted(a_files | b_files):
+            a, b = Path(out_dir) / rel, fresh / rel
+            if rel not in a_files or rel not in b_files:
+                diffs.append(f"only in {'fresh' if rel in b_files else 'committed'}: {rel}\n")
+            elif not filecmp.cmp(a, b, shallow=False):
+                try:
+                    diffs.extend(difflib.unified_diff(a.read_text().splitlines(True), b.read_text().splitlines(True),
+                                                      f"committed/{rel}", f"fresh/{rel}", n=1))
+                except UnicodeDecodeError:
+                    diffs.append(f"binary file differs: {rel}\n")
+        return not diffs, "".join(diffs)
+
+
+def audit(names: list[str] | None = None) -> list[Path]:
+    """Regenerate everything (the audit depends on freshly generated solvers) and return report paths."""
+    written = regenerate(GENERATED)
+    return [p for p in written if p.parent.name == "audit" and p.suffix == ".md"
+            and (not names or p.stem in names)]

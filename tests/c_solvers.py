@@ -1,0 +1,108 @@
+"""ctypes bindings of the generated C solvers, with results in the Python module's layout.
+
+Used by the C tests and by the benchmarks ("generated C through the Python binding").
+"""
+
+from __future__ import annotations
+
+import ctypes
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from cbuild import compile_shared, load
+
+ROOT = Path(__file__).resolve().parent.parent
+C_DIR = ROOT / "generated" / "c"
+
+
+def _solutions_struct(max_n: int, n_values: int, n_aux: int):
+    class S(ctypes.Structure):
+        _fields_ = [("count", ctypes.c_int), ("status", ctypes.c_int), ("valid", ctypes.c_int * max_n),
+                    ("flags", ctypes.c_uint * max_n), ("values", (ctypes.c_double * n_values) * max_n),
+                    ("aux", (ctypes.c_double * n_aux) * max_n)]
+    return S
+
+
+@dataclass
+class CResult:
+    rc: int
+    count: int
+    status: int
+    valid: np.ndarray
+    flags: np.ndarray
+    values: np.ndarray
+    aux: np.ndarray
+
+
+class UnderactuatedWristC:
+    """Thin wrapper: same verbs and result layout as wristkin.underactuated_wrist."""
+
+    def __init__(self, extra_flags=()):
+        so = compile_shared([C_DIR / "underactuated_wrist.c"], [C_DIR], "underactuated_wrist",
+                            extra_flags=list(extra_flags))
+        self.lib = load(so)
+        self.IK = _solutions_struct(8, 3, 5)
+        self.FK = _solutions_struct(8, 3, 13)
+
+        class Design(ctypes.Structure):
+            _fields_ = [("params", ctypes.c_double * 4), ("c", ctypes.c_double * 23), ("theta0", ctypes.c_double)]
+        self.Design = Design
+        dp = ctypes.POINTER(Design)
+        d3 = ctypes.POINTER(ctypes.c_double)
+        L = self.lib
+        L.wk_underactuated_wrist_design_init.argtypes = [d3, dp]
+        L.wk_underactuated_wrist_ik.argtypes = [d3, dp, ctypes.POINTER(self.IK)]
+        L.wk_underactuated_wrist_fk.argtypes = [d3, dp, ctypes.POINTER(self.FK)]
+        L.wk_underactuated_wrist_ik_batch.argtypes = [ctypes.c_size_t, d3, dp, ctypes.POINTER(self.IK)]
+        L.wk_underactuated_wrist_fk_batch.argtypes = [ctypes.c_size_t, d3, dp, ctypes.POINTER(self.FK)]
+        L.wk_underactuated_wrist_select_ik.argtypes = [ctypes.POINTER(self.IK), d3, d3, d3]
+        L.wk_underactuated_wrist_jacobians.argtypes = [d3, d3, dp, d3, d3]
+        L.wk_underactuated_wrist_angular_velocity.argtypes = [d3, d3, d3, dp, d3]
+        L.wk_underactuated_wrist_angular_acceleration.argtypes = [d3, d3, d3, d3, dp, d3]
+
+    @staticmethod
+    def _arr(v, n=None):
+        a = np.ascontiguousarray(v, dtype=float)
+        if n is not None and a.size != n:
+            raise ValueError("wrong size")
+        return a, a.ctypes.data_as(ctypes.POINTER(ctypes.c_double))
+
+    def design(self, params=None):
+        d = self.Design()
+        if params is None:
+            rc = self.lib.wk_underactuated_wrist_design_init(None, ctypes.byref(d))
+        else:
+            a, p = self._arr(params, 4)
+            rc = self.lib.wk_underactuated_wrist_design_init(p, ctypes.byref(d))
+        return rc, d
+
+    def _call(self, fn, struct, v, design):
+        a, p = self._arr(v, 3)
+        out = struct()
+        rc = fn(p, None if design is None else ctypes.byref(design), ctypes.byref(out))
+        return rc, out
+
+    @staticmethod
+    def _result(rc, out):
+        return CResult(rc, out.count, out.status, np.array(out.valid[:], dtype=bool), np.array(out.flags[:]),
+                       np.array([list(r) for r in out.values]), np.array([list(r) for r in out.aux]))
+
+    def ik(self, pose, design=None) -> CResult:
+        return self._result(*self._call(self.lib.wk_underactuated_wrist_ik, self.IK, pose, design))
+
+    def fk(self, joints, design=None) -> CResult:
+        return self._result(*self._call(self.lib.wk_underactuated_wrist_fk, self.FK, joints, design))
+
+    def ik_raw(self, pose_ptr, out):
+        return self.lib.wk_underactuated_wrist_ik(pose_ptr, None, out)
+
+    def batch(self, verb, rows, design=None):
+        rows = np.ascontiguousarray(rows, dtype=float)
+        struct = self.IK if verb == "ik" else self.FK
+        outs = (struct * len(rows))()
+        fn = getattr(self.lib, f"wk_underactuated_wrist_{verb}_batch")
+        rc = fn(len(rows), rows.ctypes.data_as(ctypes.POINTER(ctypes.c_double)),
+                None if design is None else ctypes.byref(design), outs)
+        return rc, outs
