@@ -698,3 +698,9 @@ def extra_context(ks) -> dict:
     consts = [float(v) for v in f(*params)]
     return {"default_params": [repr(p) for p in params], "default_constants": [repr(c) for c in consts],
             "default_theta0": repr(math.acos(max(-1.0, min(1.0, consts[-1]))))}
+
+
+def audit_numbers(dv, solver, audit_dir):
+    from .underactuated_wrist_audit import audit_numbers as run
+
+    return run(dv, solver, audit_dir)

@@ -1,0 +1,60 @@
+"""Audit reports rendered from derivation records and numeric findings (never written by hand)."""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+from pathlib import Path
+
+import sympy as sp
+
+from .mechanisms import REGISTRY
+from .render import header_lines, render
+
+MAX_PRINT_OPS = 160  # larger expressions are summarised by their size instead of printed
+
+
+def _fmt(value) -> str:
+    if isinstance(value, sp.MatrixBase | sp.Basic):
+        if sp.count_ops(value) > MAX_PRINT_OPS:
+            return f"({int(sp.count_ops(value))} operations; emitted as a kernel, not printed)"
+        return sp.sstr(value)
+    return str(value)
+
+
+def step_view(step) -> dict:
+    results = step.result.items() if isinstance(step.result, dict) else [("result", step.result)]
+    return {"name": step.name, "title": step.title, "rule": step.rule, "depends_on": ", ".join(step.depends_on),
+            "source": step.source, "note": step.note, "results": [(k, _fmt(v)) for k, v in results],
+            "checks": [c.summary() + f" — {c.claim}" for c in step.checks] or ["definition (no check needed)"]}
+
+
+def load_generated(out: Path, name: str):
+    """Import the freshly generated solver from `out` (not whatever is installed)."""
+    path = out / "python" / "wristkin" / f"{name}.py"
+    mod_name = f"_wristkin_audit_{name}"
+    spec = importlib.util.spec_from_file_location(mod_name, path)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[mod_name] = mod
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def write_reports(derivations: dict, out: Path) -> list[Path]:
+    written = []
+    for name, dv in sorted(derivations.items()):
+        mech = REGISTRY[name]
+        solver = load_generated(out, name)
+        audit_dir = out / "audit"
+        audit_dir.mkdir(parents=True, exist_ok=True)
+        numeric = mech.audit_numbers(dv, solver, audit_dir) if hasattr(mech, "audit_numbers") else {}
+        text = render("audit/report.md.jinja", header=header_lines(), dv=dv,
+                      steps=[step_view(s) for s in dv.steps], findings=dv.findings + numeric.get("findings", []),
+                      decisions=dv.decisions + numeric.get("decisions", []), numeric=numeric,
+                      n_checks=sum(len(s.checks) for s in dv.steps),
+                      n_symbolic=sum(c.kind == "symbolic" for s in dv.steps for c in s.checks))
+        path = audit_dir / f"{name}.md"
+        path.write_text(text)
+        written.append(path)
+        written += numeric.get("files", [])
+    return written
