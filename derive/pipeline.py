@@ -100,7 +100,8 @@ def check(out_dir: Path = GENERATED) -> tuple[bool, str]:
         diffs = []
         a_files = {p.relative_to(out_dir).as_posix() for p in Path(out_dir).rglob("*")
                    if p.is_file() and "__pycache__" not in p.parts}
-        b_files = {p.relative_to(fresh).as_posix() for p in fresh.rglob("*") if p.is_file()}
+        b_files = {p.relative_to(fresh).as_posix() for p in fresh.rglob("*")
+                   if p.is_file() and "__pycache__" not in p.parts}
         for rel in sorted(a_files | b_files):
             a, b = Path(out_dir) / rel, fresh / rel
             if rel not in a_files or rel not in b_files:

@@ -12,10 +12,11 @@ Two layers:
   p = (alpha1, alpha2, beta1, beta2) as an explicit input). Outputs are densified.
 
 `write_casadi(functions, out_dir)` serialises them with `casadi.FileSerializer` into one file
-`<out_dir>/casadi/underactuated_wrist.casadi` (a single packed list of Functions, sorted by name)
-plus a JSON index. The bytes are a pure function of the expression graphs: the same kernels give
-the same file in any process (checked across PYTHONHASHSEED values), so the file can sit under
-the drift check of generated/.
+`<out_dir>/underactuated_wrist.casadi` (a single packed list of Functions, sorted by name) plus a
+JSON index `<out_dir>/underactuated_wrist.json`; the pipeline passes out_dir = generated/casadi.
+The bytes are a pure function of the expression graphs: the same kernels give the same file in
+any process (checked across PYTHONHASHSEED values), so the file can sit under the drift check of
+generated/ (the format is CasADi's, so it changes with the pinned casadi version).
 
 Conventions (as in docs/API.md): angles in radians; e = (psi, theta, phi) are ZXZ Euler angles,
 R = Rz(psi) Rx(theta) Rz(phi); q = (theta1, theta2, theta3) the exterior joint angles; loop i is
@@ -207,7 +208,10 @@ def to_sx(exprs, symbol_map: Mapping[sp.Symbol, object]) -> ca.SX:
     conv = _Converter(symbol_map)
     if isinstance(exprs, sp.MatrixBase):
         rows = [[conv(exprs[i, j]) for j in range(exprs.cols)] for i in range(exprs.rows)]
-        out = ca.vertcat(*[ca.horzcat(*r) for r in rows]) if rows and rows[0] else ca.SX(exprs.rows, exprs.cols)
+        if rows and rows[0]:
+            out = ca.vertcat(*[ca.horzcat(*r) for r in rows])
+        else:
+            out = ca.SX(exprs.rows, exprs.cols)
     elif isinstance(exprs, Iterable) and not isinstance(exprs, sp.Basic | str):
         items = [conv(x) for x in exprs]
         out = ca.vertcat(*items) if items else ca.SX(0, 1)
@@ -255,8 +259,9 @@ def _mat3(out: Mapping[str, ca.SX], prefix: str) -> ca.SX:
 
 FUNCTION_DOCS = {
     "uw_loop": "g_i = A_i cos q_i + B_i sin q_i + C_i = Zi2(q_i) . (R(e) p_i) - cos(alpha2), i = 1..3.",
-    "uw_ik_branch": "Closed-form IK per branch: q_i = atan2(B_i, A_i) + sigma_i acos(-C_i / sqrt(A_i^2 + B_i^2)), "
-                    "sigma_i = +/-1; not wrapped (q_i in (-2 pi, 2 pi]); NaN where branch i is unreachable.",
+    "uw_ik_branch": "Closed-form IK per branch: q_i = atan2(B_i, A_i) + sigma_i acos(-C_i / "
+                    "sqrt(A_i^2 + B_i^2)), sigma_i = +/-1; not wrapped (q_i in (-2 pi, 2 pi]); "
+                    "NaN where branch i is unreachable.",
     "uw_fk_rotation": "R = Rx(pi - beta1) Rz(theta1) Rx(alpha1) Rz(zeta) Rx(alpha2) Rz(eta) G for "
                       "tze = (theta1, zeta, eta).",
     "uw_jacobians": "jq_i = det[Zi1, Zi2, Zi3], row i of jx = Zi2 x Zi3, with R = R(e): jq * qdot = jx @ w.",
@@ -335,7 +340,8 @@ def casadi_functions(dv=None, kernels=None) -> dict[str, ca.Function]:
         ("uw_jacobians", [q, e, p], [jq, jx], ["q", "e", "p"], ["jq", "jx"]),
         ("uw_rates", [q, e, qd, qdd, p], [w, wdot, ed, edd], ["q", "e", "qd", "qdd", "p"],
          ["w", "wdot", "ed", "edd"]),
-        ("uw_loop_jac", [q, e, p], [ca.jacobian(g, q), ca.jacobian(g, e)], ["q", "e", "p"], ["dg_dq", "dg_de"]),
+        ("uw_loop_jac", [q, e, p], [ca.jacobian(g, q), ca.jacobian(g, e)], ["q", "e", "p"],
+         ["dg_dq", "dg_de"]),
         ("uw_singularity", [q, e, p], [jq[0] * jq[1] * jq[2], ca.det(jx)], ["q", "e", "p"],
          ["det_jq", "det_jx"]),
     ]
@@ -364,6 +370,13 @@ def load_casadi(path) -> dict[str, ca.Function]:
     return {f.name(): f for f in fs}
 
 
+def _load_bytes(blob: bytes) -> dict[str, ca.Function]:
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "f.casadi"
+        path.write_bytes(blob)
+        return load_casadi(path)
+
+
 def _io(f: ca.Function, kind: str) -> list[dict]:
     n = f.n_in() if kind == "in" else f.n_out()
     name = f.name_in if kind == "in" else f.name_out
@@ -390,14 +403,18 @@ def index_json(functions: Mapping[str, ca.Function], blob: bytes, file_name: str
 
 
 def write_casadi(functions: Mapping[str, ca.Function], out_dir, name: str = MECHANISM) -> list[Path]:
-    """Write `<out_dir>/casadi/<name>.casadi` and `<name>.json` (index); return both paths.
+    """Write `<out_dir>/<name>.casadi` and `<out_dir>/<name>.json` (index); return both paths.
 
-    Files are only rewritten when their bytes change.
+    out_dir is the CasADi directory itself (the pipeline passes generated/casadi).
+
+    Self-check before writing: the bytes, loaded back and serialised again, give the same bytes
+    (serialisation is a function of the expression graphs alone). Files are only rewritten when
+    their bytes change.
     """
     blob = serialize_functions(functions)
-    if serialize_functions(functions) != blob:
-        raise RuntimeError("CasADi serialisation is not byte-deterministic")
-    out = Path(out_dir) / "casadi"
+    if serialize_functions(_load_bytes(blob)) != blob:
+        raise RuntimeError("CasADi serialisation does not round-trip to the same bytes")
+    out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths = [out / f"{name}.casadi", out / f"{name}.json"]
     contents = [blob, index_json(functions, blob, paths[0].name).encode()]
@@ -411,7 +428,7 @@ def write_casadi(functions: Mapping[str, ca.Function], out_dir, name: str = MECH
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description="Write the underactuated wrist's CasADi functions.")
-    ap.add_argument("--out", default="generated", help="generated root (files go to OUT/casadi/)")
+    ap.add_argument("--out", default="generated/casadi", help="output directory")
     args = ap.parse_args(argv)
     from .mechanisms import underactuated_wrist as uw
     dv = uw.derive()

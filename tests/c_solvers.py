@@ -47,7 +47,7 @@ class UnderactuatedWristC:
         self.FK = _solutions_struct(8, 3, 13)
 
         class Design(ctypes.Structure):
-            _fields_ = [("params", ctypes.c_double * 4), ("c", ctypes.c_double * 23), ("theta0", ctypes.c_double)]
+            _fields_ = [("params", ctypes.c_double * 4), ("c", ctypes.c_double * 22), ("theta0", ctypes.c_double)]
         self.Design = Design
         dp = ctypes.POINTER(Design)
         d3 = ctypes.POINTER(ctypes.c_double)

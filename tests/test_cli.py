@@ -609,3 +609,4 @@ def test_real_cli_does_not_import_sympy():
                           cwd=REPO_ROOT, stdin=subprocess.DEVNULL, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert "underactuated_wrist ik" in proc.stdout
+

@@ -1,0 +1,102 @@
+# wristkin: derive robot-wrist kinematics with SymPy and generate Python and C99 solvers.
+#
+# On a fresh machine (Debian: python3 with venv and pip, gcc, make):
+#   make all     create .venv, install the project, regenerate generated/, run the demo
+#   make test    the full test suite (what CI runs, through .ci/run)
+#
+# Every target that needs Python depends on the venv stamp, so each one works on its own.
+
+SHELL := /bin/bash
+.SHELLFLAGS := -eu -o pipefail -c
+.DEFAULT_GOAL := all
+# One step at a time even under `make -j`: `all` must regenerate before the demo runs.
+.NOTPARALLEL:
+
+PYTHON3 ?= python3
+VENV ?= .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.wristkin-installed
+# gcc unless CC is given on the command line or in the environment (make's own default is cc).
+ifeq ($(origin CC),default)
+CC := gcc
+endif
+CSTRICT := -std=c99 -pedantic -Wall -Wextra -Werror
+PYTEST_ARGS ?=
+
+export PIP_DISABLE_PIP_VERSION_CHECK := 1
+export PIP_NO_INPUT := 1
+export MPLBACKEND := Agg
+
+DEMO_POSE := -35.99 0.26 38.93
+DEMO_JOINTS := 137.92 138.44 137.82
+
+.PHONY: all setup venv regenerate check-generated demo test lint bench clean distclean help
+
+all: venv regenerate demo
+
+setup: all
+
+help:
+	@echo "make all              venv + regenerate + demo (the README's first command)"
+	@echo "make test             the full pytest suite, incl. drift check and C compile tests"
+	@echo "make regenerate       rebuild generated/ from the derivations"
+	@echo "make check-generated  regenerate into a temp dir and diff against generated/"
+	@echo "make demo             IK and FK of the paper's design on the command line"
+	@echo "make lint             ruff on hand-written and generated Python; gcc $(CSTRICT) on generated C"
+	@echo "make bench            benchmarks (bench/run.py)"
+	@echo "make clean            remove caches and build outputs (keeps .venv)"
+	@echo "make distclean        clean + remove .venv"
+
+venv: $(STAMP)
+
+# Re-install when the dependency pins change. A venv left half-made (no pip) is rebuilt.
+# generated/python/wristkin must exist for the editable install (it is committed; mkdir
+# only covers a checkout where it has not been generated yet).
+$(STAMP): pyproject.toml
+	@command -v $(PYTHON3) >/dev/null || { echo "error: $(PYTHON3) not found" >&2; exit 1; }
+	@if ! $(PY) -m pip --version >/dev/null 2>&1; then \
+		echo "creating $(VENV)"; rm -rf $(VENV); \
+		$(PYTHON3) -m venv $(VENV) || { echo "error: '$(PYTHON3) -m venv' failed (Debian: apt-get install python3-venv)" >&2; exit 1; }; \
+	fi
+	mkdir -p generated/python/wristkin
+	$(PY) -m pip install -e '.[dev]'
+	touch $@
+
+regenerate: $(STAMP)
+	@TIMEFORMAT='regenerate: wall time %1R s'; time $(PY) -m derive.cli regenerate
+
+check-generated: $(STAMP)
+	$(PY) -m derive.cli check
+
+demo: $(STAMP)
+	$(VENV)/bin/wristkin ik underactuated_wrist --pose $(DEMO_POSE)
+	$(VENV)/bin/wristkin fk underactuated_wrist --joints $(DEMO_JOINTS)
+
+# pytest exit code 5 means no tests were collected: that is a failure, not a pass.
+test: $(STAMP)
+	@rc=0; $(PY) -m pytest -q $(PYTEST_ARGS) || rc=$$?; \
+	if [ $$rc -eq 5 ]; then echo "error: pytest collected no tests (exit code 5)" >&2; fi; \
+	exit $$rc
+
+# All three checks run; the target fails if any of them failed.
+lint: $(STAMP)
+	@rc=0; \
+	echo "ruff check $(wildcard derive tests bench)"; $(PY) -m ruff check $(wildcard derive tests bench) || rc=1; \
+	echo "ruff check generated/python"; $(PY) -m ruff check generated/python || rc=1; \
+	csrc="$(wildcard generated/c/*.c)"; \
+	if [ -z "$$csrc" ]; then echo "error: no generated/c/*.c: run make regenerate" >&2; rc=1; fi; \
+	for f in $$csrc; do \
+		echo "$(CC) $(CSTRICT) -Igenerated/c -c $$f"; \
+		$(CC) $(CSTRICT) -Igenerated/c -c "$$f" -o /dev/null || rc=1; \
+	done; \
+	exit $$rc
+
+bench: $(STAMP)
+	$(PY) bench/run.py
+
+clean:
+	rm -rf build .pytest_cache .ruff_cache .mypy_cache .hypothesis *.egg-info
+	find . -path ./$(VENV) -prune -o -name __pycache__ -type d -exec rm -rf {} +
+
+distclean: clean
+	rm -rf $(VENV)
