@@ -19,6 +19,7 @@ degree, strictly ascending, and the status bits as expected.
 from __future__ import annotations
 
 import ctypes
+import functools
 import math
 import os
 import platform
@@ -406,11 +407,18 @@ def _suite(seed):
     return cases
 
 
-RANDOM_CASES = gen_random(random.Random(20240611), 2500)
-HARD_CASES = _suite(7)
+@functools.cache
+def random_cases():
+    return gen_random(random.Random(20240611), 2500)
 
 
-def _float_cases():
+@functools.cache
+def hard_cases():
+    return _suite(7)
+
+
+@functools.cache
+def float_cases():
     """Float (non-exact) roots: mpmath reference; random, clustered 1e-7 and 1e-5, magnitudes."""
     rng = random.Random(99)
     out = []
@@ -432,18 +440,18 @@ def _float_cases():
 
 
 def test_random_exact_roots_c(clib):
-    for case in RANDOM_CASES:
+    for case in random_cases():
         check(case, c_roots(clib, case.coef), "C")
 
 
 def test_random_exact_roots_python():
-    for case in RANDOM_CASES[:1200]:
+    for case in random_cases()[:1200]:
         check(case, py_roots(case.coef), "Python")
 
 
 @pytest.mark.parametrize("impl", ["C", "Python"])
 def test_clustered_multiple_touching_magnitudes(clib, impl):
-    for case in HARD_CASES:
+    for case in hard_cases():
         check(case, c_roots(clib, case.coef) if impl == "C" else py_roots(case.coef), impl)
 
 
@@ -477,7 +485,7 @@ def test_near_double_pair_resolved_or_flagged(clib):
 
 @pytest.mark.parametrize("impl", ["C", "Python"])
 def test_float_coefficients_against_mpmath(clib, impl):
-    for case in _float_cases():
+    for case in float_cases():
         check(case, c_roots(clib, case.coef) if impl == "C" else py_roots(case.coef), impl)
 
 
@@ -542,6 +550,55 @@ def test_tol_touch_parameter(clib):
         assert res[1] == [FLAG_DOUBLE] and res[0][0] == pytest.approx(0.375, abs=1e-6), res
 
 
+@functools.cache
+def coefficient_vectors():
+    """Arbitrary coefficient vectors (not built from roots): (mode, coefficients)."""
+    rng = random.Random(3)
+    out = []
+    for t in range(3000):
+        n = rng.randint(1, 8)
+        mode = t % 4
+        if mode == 0:
+            coef = [rng.choice((-1, 1)) * 10 ** rng.uniform(-300, 300) for _ in range(n + 1)]
+        elif mode == 1:
+            coef = [rng.gauss(0, 1) * 10 ** rng.uniform(-20, 20) for _ in range(n + 1)]
+        elif mode == 2:
+            pool = (0.0, 1.0, -1.0, 1e-300, 1e300, 5e-324, rng.gauss(0, 1))
+            coef = [rng.choice(pool) for _ in range(n + 1)]
+        else:
+            coef = [rng.gauss(0, 1) for _ in range(n + 1)]
+        out.append((mode, coef))
+    return out
+
+
+def test_random_coefficients_backward_error(clib):
+    """Arbitrary coefficient vectors, including 1e+-20 and 1e+-300 magnitudes, zeros and subnormals:
+    every returned root has a tiny normwise backward error (componentwise too, where normalising by
+    max|k| does not underflow), nothing is NaN, no search hits its cap."""
+    for mode, coef in coefficient_vectors():
+        n = len(coef) - 1
+        res = c_roots(clib, coef)
+        roots, flags, status = res
+        ctx = (mode, coef, res)
+        assert py_roots(coef) == res or not _gcc_x86_64(), ctx
+        assert not status & (ST_MAXIT | ST_BAD) and len(roots) <= n, ctx
+        assert all(math.isfinite(x) for x in roots), ctx
+        assert all(b > a for a, b in zip(roots, roots[1:], strict=False)), ctx
+        mx = max(map(abs, coef))
+        k = len(coef)
+        while k > 1 and abs(coef[k - 1]) <= 1e-14 * mx:
+            k -= 1
+        c = [Fraction(v) for v in coef[:k]]
+        for x, f in zip(roots, flags, strict=True):
+            fx = Fraction(x)
+            val = abs(sum(ci * fx**i for i, ci in enumerate(c)))
+            normwise = val / (max(map(abs, c)) * sum(abs(fx) ** i for i in range(len(c))))
+            assert normwise <= (1.01 * TOL_TOUCH if f else 1e-14), ctx
+            if mode in (1, 3) and not f:
+                assert val <= 64 * k * EPS * sum(abs(ci) * abs(fx) ** i for i, ci in enumerate(c)), ctx
+
+
+@functools.cache
 def _gcc_x86_64() -> bool:
     try:
         out = subprocess.run([cbuild.compiler(), "--version"], capture_output=True, text=True).stdout
@@ -553,7 +610,7 @@ def _gcc_x86_64() -> bool:
 @pytest.mark.skipif(not _gcc_x86_64(),
                     reason="bit-identical C/Python needs no FMA contraction (gcc -std=c99 on x86-64)")
 def test_c_and_python_agree_bitwise(clib):
-    for case in RANDOM_CASES[:1200] + HARD_CASES:
+    for case in random_cases()[:1200] + hard_cases():
         assert c_roots(clib, case.coef) == tuple(py_roots(case.coef)), case.label
 
 
@@ -588,10 +645,11 @@ def test_sanitizers_asan_ubsan(clib):
     r = subprocess.run([str(exe)], capture_output=True, text=True, env=env, timeout=300)
     assert r.returncode == 0, r.stderr[-3000:]
     # the test suites' polynomials: same results as the -O2 shared library, bit for bit
-    cases = RANDOM_CASES + HARD_CASES + _float_cases()
+    cases = [case.coef for case in random_cases() + hard_cases() + float_cases()]
+    cases += [coef for _, coef in coefficient_vectors()]
     with tempfile.NamedTemporaryFile("w", suffix=".txt", delete=False) as fh:
-        for case in cases:
-            fh.write(f"{len(case.coef) - 1} " + " ".join(repr(v) for v in case.coef) + "\n")
+        for coef in cases:
+            fh.write(f"{len(coef) - 1} " + " ".join(repr(v) for v in coef) + "\n")
         path = fh.name
     try:
         r = subprocess.run([str(exe), path], capture_output=True, text=True, env=env, timeout=300)
@@ -600,9 +658,9 @@ def test_sanitizers_asan_ubsan(clib):
     assert r.returncode == 0, r.stderr[-3000:]
     lines = r.stdout.splitlines()
     assert len(lines) == len(cases)
-    for case, line in zip(cases, lines, strict=True):
+    for coef, line in zip(cases, lines, strict=True):
         tok = line.split()
         cnt, status = int(tok[0]), int(tok[1])
         got = ([float.fromhex(t) for t in tok[2::2]], [int(t) for t in tok[3::2]], status)
         assert cnt == len(got[0])
-        assert got == c_roots(clib, case.coef), case.label
+        assert got == c_roots(clib, coef), coef

@@ -192,6 +192,11 @@ def loop_residuals(thetas: Sequence[float] | np.ndarray, R: np.ndarray,
 # --------------------------------------------------------------------------------------------
 
 
+def _brent(f: Callable[[float], float], a: float, b: float) -> float:
+    """brentq to full double precision."""
+    return brentq(f, a, b, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+
+
 @dataclass(frozen=True)
 class _Root:
     x: float
@@ -223,7 +228,7 @@ def _periodic_roots(fvec: Callable[[np.ndarray], np.ndarray], n: int, touch_tol:
         if v[k] == 0.0:
             roots.append(_Root(a, False))
         elif v[k] * v[j] < 0.0:
-            roots.append(_Root(brentq(f, a, a + h, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200), False))
+            roots.append(_Root(_brent(f, a, a + h), False))
     av = np.abs(v)
     for k in range(n):
         km, kp = (k - 1) % n, (k + 1) % n
@@ -240,8 +245,8 @@ def _periodic_roots(fvec: Callable[[np.ndarray], np.ndarray], n: int, touch_tol:
         if abs(fm) <= touch_tol and (merge_touching or sgn * fm >= 0.0):
             roots.append(_Root(xm, True))
         elif sgn * fm < 0.0:
-            roots.append(_Root(brentq(f, lo, xm, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200), False))
-            roots.append(_Root(brentq(f, xm, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200), False))
+            roots.append(_Root(_brent(f, lo, xm), False))
+            roots.append(_Root(_brent(f, xm, hi), False))
     roots.sort(key=lambda r: r.x)
     return roots
 
@@ -422,7 +427,10 @@ class _Sweep:
         return self.c2 * self.Z2[0] + self.s2 * (np.cos(zeta) * self.a + np.sin(zeta) * self.b)
 
     def disc(self, zeta: np.ndarray) -> np.ndarray:
-        """D(zeta) >= 0 iff cone(Z22, alpha2) and cone(Z13, alpha3) meet: D = (1-G^2) - (ca^2+cb^2-2G ca cb)."""
+        """D >= 0 iff cone(Z22, alpha2) and cone(Z13, alpha3) meet; D = (1-G^2) - (ca^2+cb^2-2G ca cb).
+
+        G = Z13 . Z22, ca = cos(alpha2), cb = cos(alpha3).
+        """
         G = self.z13(zeta) @ self.Z2[1]
         ca, cb = self.c2, self.c3
         return (1.0 - G * G) - (ca * ca + cb * cb - 2.0 * G * ca * cb)
@@ -561,7 +569,7 @@ def _random_rotations(n: int, seed: int) -> np.ndarray:
 
 
 def fk_reference_multistart(thetas: Sequence[float], design: WristDesign | Mapping[str, float] | None = None,
-                            starts: int = 400, seed: int = 20240611, res_tol: float = 1e-10,
+                            starts: int = 300, seed: int = 20240611, res_tol: float = 1e-10,
                             dedupe_tol: float = 1e-7) -> FKResult:
     """Independent slow FK: multistart scipy ``least_squares`` over SO(3).
 
@@ -572,11 +580,15 @@ def fk_reference_multistart(thetas: Sequence[float], design: WristDesign | Mappi
     """
     d = as_design(design)
     th = np.asarray(thetas, dtype=float)
+    Z2 = middle_axes(th, d)
+    P = platform_axes(d)
+    c2 = math.cos(d.alpha2)
     starts_R = np.concatenate([np.eye(3)[None], _random_rotations(starts, seed)])
     found: list[np.ndarray] = []
     for Rk in starts_R:
         def fun(w: np.ndarray, Rk=Rk) -> np.ndarray:
-            return loop_residuals(th, Rk @ expm_so3(w), d)
+            R = Rk @ expm_so3(w)
+            return np.array([Z2[i] @ (R @ P[i]) - c2 for i in range(3)])
 
         sol = least_squares(fun, np.zeros(3), method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
                             max_nfev=400)
@@ -588,3 +600,93 @@ def fk_reference_multistart(thetas: Sequence[float], design: WristDesign | Mappi
     mats = _sort_rotations(_dedupe(found, dedupe_tol))
     res = [float(np.max(np.abs(loop_residuals(th, M, d)))) for M in mats]
     return FKResult(mats, res, {"starts": len(starts_R), "converged": len(found)})
+
+
+# --------------------------------------------------------------------------------------------
+# Census of FK solution counts (source of tests/reference/fk_count_cases.json)
+# --------------------------------------------------------------------------------------------
+
+
+def fk_jacobian(thetas: Sequence[float], R: np.ndarray,
+                design: WristDesign | Mapping[str, float] | None = None) -> np.ndarray:
+    """d(loop residuals)/dw for R expm(skew(w)) at w = 0; rows p_i x (R^T Z_i2). Singular = FK singular."""
+    d = as_design(design)
+    return np.cross(platform_axes(d), middle_axes(thetas, d) @ np.asarray(R, dtype=float))
+
+
+def fk_count_census(n_samples: int = 2000, seed: int = 2024, per_count: int = 5, stability_step: float = 1e-3,
+                    design: WristDesign | Mapping[str, float] | None = None) -> dict:
+    """Seeded random search over joint space ([0, 2pi)^3, uniform) for FK solution counts.
+
+    Returns the count distribution and, for every count seen, up to ``per_count`` example
+    triples (in sampling order) whose count is unchanged when any single theta_i moves by
+    +-stability_step (so the example is not sitting next to a count-changing boundary).
+    Cases are sorted by (count, sample_index); with the default seed the first case of each
+    count is the first sample with that count (the cases other tests pick with ``next(...)``).
+    """
+    d = as_design(design)
+    thetas = np.random.default_rng(seed).uniform(0.0, TWO_PI, size=(n_samples, 3))
+    results = [fk_reference(t, d) for t in thetas]
+    dist: dict[int, int] = {}
+    for r in results:
+        dist[r.count] = dist.get(r.count, 0) + 1
+    cases: list[dict] = []
+    taken: dict[int, int] = {}
+    for k, (t, r) in enumerate(zip(thetas, results, strict=True)):
+        if taken.get(r.count, 0) >= per_count:
+            continue
+        stable = all(fk_reference(t + sgn * stability_step * np.eye(3)[i], d).count == r.count
+                     for i in range(3) for sgn in (1.0, -1.0))
+        if not stable:
+            continue
+        taken[r.count] = taken.get(r.count, 0) + 1
+        sig = [float(np.linalg.svd(fk_jacobian(t, M, d), compute_uv=False)[-1]) for M in r.rotations]
+        cases.append({
+            "sample_index": k,
+            "joints": [float(x) for x in t],
+            "thetas_deg": [round(math.degrees(x), 6) for x in t],
+            "count": r.count,
+            "min_jacobian_sigma": min(sig) if sig else None,
+            "solutions_zxz_deg": [[round(math.degrees(a), 6) for a in euler_from_rotation(M)[:3]]
+                                  for M in r.rotations],
+        })
+    cases.sort(key=lambda c: (c["count"], c["sample_index"]))
+    return {
+        "seed": seed,
+        "n_samples": n_samples,
+        "sampling": "theta_i ~ Uniform[0, 2pi) i.i.d.: numpy default_rng(seed).uniform(0, 2pi, (n, 3))",
+        "stability_step_rad": stability_step,
+        "distribution": {str(c): dist[c] for c in sorted(dist)},
+        "cases": cases,
+    }
+
+
+def write_count_fixtures(path: str, census: dict, design: WristDesign | Mapping[str, float] | None = None
+                         ) -> None:
+    """Write a census (see :func:`fk_count_census`) as the JSON fixtures file."""
+    import json
+
+    d = as_design(design)
+    doc = {
+        "note": ("FK real-solution counts for the underactuated 3-DOF spherical wrist, paper design. "
+                 "Produced by fk_reference (geometric sweep + Gauss-Newton polish) in "
+                 "tests/reference/underactuated_wrist.py via fk_count_census / write_count_fixtures; "
+                 "NOT from the closed-form derivation. joints are the exterior angles theta_i in "
+                 "radians (motor angles Phi_i = theta_i - theta0). solutions_zxz_deg = (psi, theta, phi) "
+                 "of R = Rz(psi) Rx(theta) Rz(phi). Cases are chosen so the count is unchanged when any "
+                 "theta_i moves by +-stability_step_rad."),
+        "design_deg": {k: math.degrees(getattr(d, k)) for k in ("alpha1", "alpha2", "beta1", "beta2")},
+        "design_rad": {k: getattr(d, k) for k in ("alpha1", "alpha2", "beta1", "beta2")},
+        **census,
+    }
+    with open(path, "w") as fh:
+        json.dump(doc, fh, indent=1)
+        fh.write("\n")
+
+
+if __name__ == "__main__":  # regenerate the fixtures: python tests/reference/underactuated_wrist.py
+    import os
+
+    out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "fk_count_cases.json")
+    write_count_fixtures(out, fk_count_census())
+    print("wrote", out)
