@@ -17,7 +17,7 @@ from .render import ROOT, header_lines, render, tool_versions
 
 GENERATED = ROOT / "generated"
 TOLERANCES = {"singular": "1e-6", "gimbal": "1e-10", "tangent": "1e-12", "fk_residual": "1e-10",
-              "fk_duplicate": "1e-7"}
+              "fk_duplicate": "1e-7", "fk_fold": "1e-8", "touch": "1e-8"}
 
 
 def _write(path: Path, text: str | bytes) -> Path:

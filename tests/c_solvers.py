@@ -10,7 +10,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-
 from cbuild import compile_shared, load
 
 ROOT = Path(__file__).resolve().parent.parent

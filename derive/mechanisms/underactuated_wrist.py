@@ -22,13 +22,12 @@ from ..identities.polynomial import (
     weierstrass,
 )
 from ..identities.spherical import (
-    cone_axes,
     cos_angle_between_cone_axes,
     equilateral_interior_angle_cos,
     polygon_vertex,
     triangle_direction_cosines,
 )
-from ..model import Check, Derivation, Finding, Step
+from ..model import Check, Derivation, Step
 
 NAME = "underactuated_wrist"
 TITLE = "Underactuated 3-DOF spherical wrist (2 motors + 1 sensed passive branch)"

@@ -35,7 +35,7 @@ def _closest(sol, printed):
 
 
 def _table2(solver):
-    rows, findings = [], []
+    rows = []
     reproduced = []
     for t, inp, printed in TABLE2:
         inp_used = list(inp)
@@ -105,7 +105,7 @@ def audit_numbers(dv, solver, audit_dir: Path) -> dict:
                 f"{', '.join(f'{v:.2f}°' for v in home_rot)} (θ = 0), not the identity"),
         Finding("FK polynomial degree", "Ki coefficients of a quartic", "degree 8 in x = tan(η/2) "
                 "(a trigonometric quartic in η)", "wrong in seed",
-                f"K(x) is built from quartic products (step fk_polynomial); 8 real modes occur, e.g. θ = "
+                "K(x) is built from quartic products (step fk_polynomial); 8 real modes occur, e.g. θ = "
                 + ("—" if q8 is None else ", ".join(f"{math.degrees(v):.3f}°" for v in q8))
                 + f"; census of 3000 random joint triples: {census}"),
         Finding("Table 2 rows", "7 rows, t = 0…5 s", "rows " + ", ".join(f"{t:g}" for t, ok in reproduced if ok)
