@@ -35,7 +35,7 @@ SEED = "seed 000: 'Kinematics analysis of a novel underactuated robot wrist', Pr
 
 # Paper design (alpha1 = alpha2 = 60 deg, beta1 = 30 deg, beta2 = 43.89 deg).
 DESIGN_NAMES = ("alpha1", "alpha2", "beta1", "beta2")
-VECTORISED_KERNELS = ("ik_abc", "axes")
+VECTORISED_KERNELS = ("ik_abc", "middle_axes", "platform_axes")
 DESIGN_DEFAULT_DEG = (60.0, 60.0, 30.0, 43.89)
 JOINT_NAMES = ("theta1", "theta2", "theta3")
 POSE_NAMES = ("psi", "theta", "phi")
@@ -248,6 +248,18 @@ def _inverse_kinematics(dv: Derivation) -> None:
         want = sp.Matrix([compact["A"], compact["B"], compact["C"]]).subs(dict(zip(vsym, v, strict=True)))
         checks.append(numeric_identity(got, want, f"compact form of A{i + 1}, B{i + 1}, C{i + 1}",
                                        {psi: ANGLE, nu: ANGLE, phi: ANGLE, **DESIGN_RANGES}))
+    # The same compact form with R given by its entries: what the solvers evaluate (trig of the pose once).
+    abc_rot = {}
+    for i in range(3):
+        v = (rot_z(DELTA[i]) * rot_x(sp.pi - b1)).T * (Rm * platform_axis_home(i))
+        vals = sp.Matrix([compact["A"], compact["B"], compact["C"]]).subs(dict(zip(vsym, v, strict=True)))
+        abc_rot.update({f"A{i + 1}": vals[0], f"B{i + 1}": vals[1], f"C{i + 1}": vals[2]})
+        on_euler = dict(zip(Rm, rot_zxz(psi, nu, phi), strict=True))
+        checks.append(numeric_identity(vals.subs(on_euler),
+                                       sp.Matrix([abc[f"A{i + 1}"], abc[f"B{i + 1}"], abc[f"C{i + 1}"]]),
+                                       f"A{i + 1}, B{i + 1}, C{i + 1} from the entries of R",
+                                       {psi: ANGLE, nu: ANGLE, phi: ANGLE, **DESIGN_RANGES}))
+    dv.exports["ik_abc_rot"] = abc_rot
     dv.add(Step(
         "ik_loop_coefficients", "IK loop equations Ai cos theta_i + Bi sin theta_i + Ci = 0",
         "fixed angle alpha2 between middle and platform axes: Zi2 . Zi3 = cos alpha2; Zi2 is affine in "
@@ -659,9 +671,11 @@ def kernels(dv: Derivation):
         Kernel("design_constants", "Per-design constants: trig of the design angles, alpha3, kappa, the constant "
                "platform rotation G and cos(theta0).", (params,),
                tuple((str(s), design_vals[str(s)]) for s in DESIGN_CONSTANTS)),
-        Kernel("ik_abc", "IK loop coefficients (A_i, B_i, C_i) of A cos theta_i + B sin theta_i + C = 0.",
-               (("pose", (psi, nu, phi)), dc),
-               tuple((f"{n}{i}", _to_constants(abc[f"{n}{i}"])) for i in (1, 2, 3) for n in "ABC")),
+        Kernel("ik_abc", "IK loop coefficients (A_i, B_i, C_i) of A cos theta_i + B sin theta_i + C = 0, from the "
+               "entries of R (compact form -sa1 v_y, sa1 v_x, ca1 v_z - ca2 with v = (Rz(delta_i) Rx(pi - beta1))^T R p_i).",
+               (("rot", tuple(Rm)), dc),
+               tuple((f"{n}{i}", _to_constants(dv.exports["ik_abc_rot"][f"{n}{i}"])) for i in (1, 2, 3)
+                     for n in "ABC")),
         Kernel("fk_def", "FK loop coefficients: D_k, E_k, F_k (k = 1, 2) each as (const, cos eta, sin eta).",
                (("q", th), dc),
                tuple((f"{n}{k}_{part}", _to_constants(coef[f"{n}{k}"][j])) for k in (1, 2) for n in "DEF"
@@ -677,13 +691,16 @@ def kernels(dv: Derivation):
                (("q", th), ("rot", tuple(Rm)), ("qd", tuple(qd)), ("w", tuple(wv)), dc),
                tuple((f"jqd{i + 1}", _to_constants(jqd[i])) for i in range(3))
                + tuple((f"jxd{i}{j}", _to_constants(jxd[i, j])) for i, j in ij)),
-        Kernel("axes", "Middle axes Zi2 from (cos theta_i, sin theta_i) and platform axes Zi3 = R p_i, for the "
-               "singularity measures (no trigonometry needed once the IK roots are known).",
-               (("c", cq), ("s", sq), ("rot", tuple(Rm)), dc),
+        Kernel("middle_axes", "Middle axes Zi2 from (cos theta_i, sin theta_i): no trigonometry once IK roots are known.",
+               (("c", cq), ("s", sq), dc),
                tuple((f"z{i + 1}2_{ax}", _to_constants(middle_axis(i, th[i]).xreplace(cs_sub)[j]))
-                     for i in range(3) for j, ax in enumerate("xyz"))
-               + tuple((f"z{i + 1}3_{ax}", _to_constants((Rm * platform_axis_home(i))[j]))
-                       for i in range(3) for j, ax in enumerate("xyz"))),
+                     for i in range(3) for j, ax in enumerate("xyz"))),
+        Kernel("platform_axes", "Platform axes Zi3 = R p_i.", (("rot", tuple(Rm)), dc),
+               tuple((f"z{i + 1}3_{ax}", _to_constants((Rm * platform_axis_home(i))[j]))
+                     for i in range(3) for j, ax in enumerate("xyz"))),
+        Kernel("base_axes", "Base axes Zi1 (constant per design).", (dc,),
+               tuple((f"z{i + 1}1_{ax}", _to_constants(base_axis(i)[j])) for i in range(3)
+                     for j, ax in enumerate("xyz"))),
         Kernel("euler_rate_matrix", "E(psi, theta) with w = E (psidot, thetadot, phidot).",
                (("pose", (psi, nu, phi)),), tuple((f"e{i}{j}", em[i, j]) for i, j in ij)),
     ]
