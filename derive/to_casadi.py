@@ -306,7 +306,8 @@ def casadi_functions(dv=None, kernels=None) -> dict[str, ca.Function]:
     dc_out = _kernel_sx(K["design_constants"], {pname: _elems(p)})
     dc = [dc_out[name] for name, _ in K["design_constants"].outputs]
 
-    abc = _kernel_sx(K["ik_abc"], {"pose": _elems(e), "dc": dc})
+    # ik_abc takes the entries of R (row-major), built here from the ZXZ angles
+    abc = _kernel_sx(K["ik_abc"], {"rot": _elems(rotation_zxz(e)), "dc": dc})
     A = [abc[f"A{i}"] for i in (1, 2, 3)]
     B = [abc[f"B{i}"] for i in (1, 2, 3)]
     C = [abc[f"C{i}"] for i in (1, 2, 3)]
