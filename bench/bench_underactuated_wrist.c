@@ -1,7 +1,7 @@
 /* Per-call timing of the generated underactuated-wrist IK and FK in a plain C loop.
  *
  * Inputs are pre-generated from fixed seeds (xorshift64*, one stream each for IK and FK), so every run times the same calls:
- *   IK poses: psi, phi uniform in (-pi, pi), theta uniform in (0, 0.6)
+ *   IK poses: first FK mode of joint triples uniform in [0, 2pi)^3 (all reachable)
  *   FK joints: uniform in [0, 2pi)
  * A checksum over the outputs keeps the calls from being optimised away.
  * Prints one JSON object on stdout: ns per call for IK and FK, the call counts and the checksum.
@@ -92,13 +92,19 @@ int main(int argc, char **argv)
         free(joints);
         return 1;
     }
-    for (i = 0; i < n_ik; ++i) {
-        poses[3 * i + 0] = -PI + 2.0 * PI * uniform01(&ik_state);
-        poses[3 * i + 1] = 0.6 * uniform01(&ik_state);
-        poses[3 * i + 2] = -PI + 2.0 * PI * uniform01(&ik_state);
-        if (poses[3 * i + 1] == 0.0) {
-            poses[3 * i + 1] = 1e-9; /* open interval (0, 0.6) */
-        }
+    /* IK poses: the first FK assembly mode of random joint triples, so every pose is reachable and the
+       whole workspace is covered (triples with no assembly mode are skipped) */
+    for (i = 0; i < n_ik;) {
+        double q[3];
+        wk_underactuated_wrist_fk_solutions fk;
+        q[0] = 2.0 * PI * uniform01(&ik_state);
+        q[1] = 2.0 * PI * uniform01(&ik_state);
+        q[2] = 2.0 * PI * uniform01(&ik_state);
+        if (wk_underactuated_wrist_fk(q, NULL, &fk) != WK_OK || fk.count == 0) continue;
+        poses[3 * i + 0] = fk.values[0][0];
+        poses[3 * i + 1] = fk.values[0][1];
+        poses[3 * i + 2] = fk.values[0][2];
+        ++i;
     }
     for (i = 0; i < 3 * n_fk; ++i) {
         joints[i] = 2.0 * PI * uniform01(&fk_state);

@@ -260,12 +260,19 @@ def test_batch_equals_scalar(uw, uw_c):
         np.testing.assert_allclose(b.values[i], s.values, atol=1e-12, equal_nan=True)
         np.testing.assert_allclose(b.aux[i], s.aux, atol=1e-9, equal_nan=True)
         assert np.array_equal(b.flags[i], s.flags)
-    joints = rng.uniform(0, 2 * math.pi, (10, 3))
-    fb = uw.fk_batch(joints)
+    cases = json.loads((HERE / "reference" / "fk_count_cases.json").read_text())["cases"]
+    joints = np.vstack([rng.uniform(0, 2 * math.pi, (300, 3)), [c["joints"] for c in cases]])
+    fb = uw.fk_batch(joints)  # vectorised: eigenvalues + vectorised polish, a different path from fk
     rc, outs = uw_c.batch("fk", joints)
     assert rc == 0
     for i, q in enumerate(joints):
-        assert fb.count[i] == uw.fk(q).count == outs[i].count
+        s = uw.fk(q)
+        assert fb.count[i] == s.count == outs[i].count and fb.status[i] == s.status
+        assert np.array_equal(fb.flags[i], s.flags)
+        np.testing.assert_allclose(fb.aux[i], s.aux, atol=1e-9, equal_nan=True)
+    with pytest.raises(uw.InvalidInput):
+        uw.fk_batch([[0.0, math.nan, 0.0]])
+    assert uw.fk_batch(np.empty((0, 3))).values.shape == (0, uw.MAX_FK, 3)
 
 
 def test_select_is_continuous_along_a_motion(uw, uw_c):
@@ -345,7 +352,9 @@ def test_fk_exactly_at_a_double_root(uw, uw_c):
     for s in (lo, hi):
         q = q2 + s * (q4 - q2)
         expected = ref.fk_reference(q).rotations
-        for sol in (uw.fk(q), uw_c.fk(q)):
+        fb = uw.fk_batch(q[None, :])
+        batch_row = uw.Solutions(fb.values[0], fb.valid[0], fb.flags[0], fb.aux[0], int(fb.status[0]), "")
+        for sol in (uw.fk(q), uw_c.fk(q), batch_row):
             rots = [sol.aux[k, :9].reshape(3, 3) for k in np.flatnonzero(sol.valid)]
             for r in expected:  # none missed
                 assert min(np.max(np.abs(r - x)) for x in rots) < 1e-4

@@ -35,7 +35,7 @@ SEED = "seed 000: 'Kinematics analysis of a novel underactuated robot wrist', Pr
 
 # Paper design (alpha1 = alpha2 = 60 deg, beta1 = 30 deg, beta2 = 43.89 deg).
 DESIGN_NAMES = ("alpha1", "alpha2", "beta1", "beta2")
-VECTORISED_KERNELS = ("ik_abc", "middle_axes", "platform_axes")
+VECTORISED_KERNELS = ("ik_abc", "middle_axes", "platform_axes", "base_axes", "fk_def", "fk_rotation")
 DESIGN_DEFAULT_DEG = (60.0, 60.0, 30.0, 43.89)
 JOINT_NAMES = ("theta1", "theta2", "theta3")
 POSE_NAMES = ("psi", "theta", "phi")
