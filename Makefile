@@ -92,7 +92,7 @@ lint: $(STAMP)
 	exit $$rc
 
 bench: $(STAMP)
-	$(PY) bench/run.py
+	$(PY) bench/run.py --regenerate
 
 clean:
 	rm -rf build .pytest_cache .ruff_cache .mypy_cache .hypothesis *.egg-info

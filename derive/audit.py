@@ -52,7 +52,9 @@ def write_reports(derivations: dict, out: Path) -> list[Path]:
         audit_dir = out / "audit"
         audit_dir.mkdir(parents=True, exist_ok=True)
         numeric = mech.audit_numbers(dv, solver, audit_dir) if hasattr(mech, "audit_numbers") else {}
-        text = render("audit/report.md.jinja", header=header_lines(), dv=dv,
+        from .pipeline import TOLERANCES
+
+        text = render("audit/report.md.jinja", header=header_lines(), dv=dv, tolerances=sorted(TOLERANCES.items()),
                       steps=[step_view(s) for s in dv.steps], findings=dv.findings + numeric.get("findings", []),
                       decisions=dv.decisions + numeric.get("decisions", []), numeric=numeric,
                       n_checks=sum(len(s.checks) for s in dv.steps),

@@ -657,7 +657,6 @@ def kernels(dv: Derivation):
         **{str(g): v for g, v in zip(G, g_matrix(), strict=True)},
         "cth0": dv["home_angle"].result["cos_theta0"],
     }
-    abc = dv.exports["ik_abc"]
     coef = dv.exports["fk_def"]
     chain = dv.exports["fk_chain"]
     jq, jx = dv.exports["jacobians"]
@@ -671,8 +670,9 @@ def kernels(dv: Derivation):
         Kernel("design_constants", "Per-design constants: trig of the design angles, alpha3, kappa, the constant "
                "platform rotation G and cos(theta0).", (params,),
                tuple((str(s), design_vals[str(s)]) for s in DESIGN_CONSTANTS)),
-        Kernel("ik_abc", "IK loop coefficients (A_i, B_i, C_i) of A cos theta_i + B sin theta_i + C = 0, from the "
-               "entries of R (compact form -sa1 v_y, sa1 v_x, ca1 v_z - ca2 with v = (Rz(delta_i) Rx(pi - beta1))^T R p_i).",
+        Kernel("ik_abc", "IK loop coefficients (A_i, B_i, C_i) of A cos theta_i + B sin theta_i + C = 0, from "
+               "the entries of R (compact form -sa1 v_y, sa1 v_x, ca1 v_z - ca2 with "
+               "v = (Rz(delta_i) Rx(pi - beta1))^T R p_i).",
                (("rot", tuple(Rm)), dc),
                tuple((f"{n}{i}", _to_constants(dv.exports["ik_abc_rot"][f"{n}{i}"])) for i in (1, 2, 3)
                      for n in "ABC")),
@@ -691,7 +691,8 @@ def kernels(dv: Derivation):
                (("q", th), ("rot", tuple(Rm)), ("qd", tuple(qd)), ("w", tuple(wv)), dc),
                tuple((f"jqd{i + 1}", _to_constants(jqd[i])) for i in range(3))
                + tuple((f"jxd{i}{j}", _to_constants(jxd[i, j])) for i, j in ij)),
-        Kernel("middle_axes", "Middle axes Zi2 from (cos theta_i, sin theta_i): no trigonometry once IK roots are known.",
+        Kernel("middle_axes", "Middle axes Zi2 from (cos theta_i, sin theta_i): no trigonometry once IK roots "
+               "are known.",
                (("c", cq), ("s", sq), dc),
                tuple((f"z{i + 1}2_{ax}", _to_constants(middle_axis(i, th[i]).xreplace(cs_sub)[j]))
                      for i in range(3) for j, ax in enumerate("xyz"))),
