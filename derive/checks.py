@@ -6,7 +6,7 @@ symbolic route is too slow or SymPy cannot decide, with the tolerance stated.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable
 
 import numpy as np
 import sympy as sp
@@ -56,10 +56,3 @@ def identity(lhs, rhs, claim: str, ranges: dict[sp.Symbol, tuple[float, float]],
         checks.append(symbolic_identity(lhs, rhs, claim))
     checks.append(numeric_identity(lhs, rhs, claim, ranges, samples, tol))
     return tuple(checks)
-
-
-def free_names(exprs: Iterable) -> Sequence[str]:
-    out: set[str] = set()
-    for e in exprs:
-        out |= {s.name for s in _as_matrix(e).free_symbols}
-    return sorted(out)

@@ -39,12 +39,6 @@ def triangle_direction_cosines(s12, c12, s23, c23, s2, c2) -> sp.Matrix:
     return sp.Matrix([s23 * s2, -(s12 * c23 + c12 * s23 * c2), c12 * c23 - s12 * s23 * c2])
 
 
-def cone_axes(half_angle, n: int = 3, flip: bool = False) -> list[sp.Matrix]:
-    """n unit axes evenly spaced (2 pi / n, counter-clockwise about +Z) on a cone about Z."""
-    tilt = sp.pi - half_angle if flip else half_angle
-    return [rot_z(2 * sp.pi * k / n) * rot_x(tilt) * E_Z for k in range(n)]
-
-
 def cos_angle_between_cone_axes(half_angle) -> sp.Expr:
     """Cosine of the angle between two of three axes 120 deg apart on a cone of given half-angle."""
     return 1 - sp.Rational(3, 2) * sp.sin(half_angle) ** 2
@@ -53,10 +47,3 @@ def cos_angle_between_cone_axes(half_angle) -> sp.Expr:
 def equilateral_interior_angle_cos(side) -> sp.Expr:
     """cos of the interior angle of an equilateral spherical triangle (law of cosines for sides)."""
     return sp.cos(side) / (1 + sp.cos(side))
-
-
-def interior_angle(vertex, a, b) -> sp.Expr:
-    """Angle at `vertex` between the great-circle arcs towards a and b (numeric-friendly)."""
-    ta = a - vertex * (vertex.dot(a))
-    tb = b - vertex * (vertex.dot(b))
-    return sp.atan2(vertex.dot(ta.cross(tb)), ta.dot(tb))

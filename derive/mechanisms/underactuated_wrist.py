@@ -93,10 +93,6 @@ def kappa_of(alpha3):
 
 
 # ---------------------------------------------------------------- numeric helpers (checks only)
-def _np(e, syms):
-    return sp.lambdify(syms, e, "numpy")
-
-
 def _rand_design(rng):
     return [rng.uniform(*DESIGN_RANGES[s]) for s in (a1, a2, b1, b2)]
 
