@@ -51,7 +51,9 @@ def write_reports(derivations: dict, out: Path) -> list[Path]:
         solver = load_generated(out, name)
         audit_dir = out / "audit"
         audit_dir.mkdir(parents=True, exist_ok=True)
-        numeric = mech.audit_numbers(dv, solver, audit_dir) if hasattr(mech, "audit_numbers") else {}
+        numeric = {"summary": [], "sections": [], "findings": [], "decisions": [], "files": []}
+        if hasattr(mech, "audit_numbers"):
+            numeric.update(mech.audit_numbers(dv, solver, audit_dir))
         from .pipeline import TOLERANCES
 
         text = render("audit/report.md.jinja", header=header_lines(), dv=dv, tolerances=sorted(TOLERANCES.items()),

@@ -17,7 +17,8 @@ from .render import ROOT, header_lines, render, tool_versions
 
 GENERATED = ROOT / "generated"
 TOLERANCES = {"singular": "1e-6", "gimbal": "1e-10", "tangent": "1e-12", "fk_residual": "1e-10",
-              "fk_duplicate": "1e-7", "fk_fold": "1e-8", "touch": "1e-8"}
+              "fk_duplicate": "1e-7", "fk_fold": "1e-8", "touch": "1e-8", "degenerate": "1e-12",
+              "ik_verify": "1e-9", "rotation": "1e-9"}
 
 
 def _write(path: Path, text: str | bytes) -> Path:
@@ -29,17 +30,23 @@ def _write(path: Path, text: str | bytes) -> Path:
 
 def _context(mod, dv) -> dict:
     ks = mod.kernels(dv)
-    return {
+    ctx = {
         "header": "\n".join(header_lines()),
         "header_lines": header_lines(),
         "kernels": [lower(k, "python") for k in ks],
         "vkernels": [lower(k, "numpy") for k in ks if k.name in mod.VECTORISED_KERNELS],
         "ckernels": [lower(k, "c") for k in ks],
-        "design_default": [repr(math.radians(v)) for v in mod.DESIGN_DEFAULT_DEG],
-        "n_design_constants": len(mod.DESIGN_CONSTANTS),
         "tol": TOLERANCES,
-        **mod.extra_context(ks),
     }
+    if hasattr(mod, "DESIGN_DEFAULT_DEG"):
+        ctx["design_default"] = [repr(math.radians(v)) for v in mod.DESIGN_DEFAULT_DEG]
+        ctx["n_design_constants"] = len(mod.DESIGN_CONSTANTS)
+    ctx.update(mod.extra_context(ks))
+    return ctx
+
+
+def _templates(name: str, mod) -> tuple[str, str, str]:
+    return getattr(mod, "TEMPLATES", (f"python/{name}.py.jinja", f"c/{name}.h.jinja", f"c/{name}.c.jinja"))
 
 
 def generate_code(out: Path, names=None) -> tuple[list[Path], dict]:
@@ -50,9 +57,10 @@ def generate_code(out: Path, names=None) -> tuple[list[Path], dict]:
         dv = mod.derive()
         derivations[name] = dv
         ctx = _context(mod, dv)
-        written.append(_write(out / "python" / "wristkin" / f"{name}.py", render(f"python/{name}.py.jinja", **ctx)))
-        written.append(_write(out / "c" / f"{name}.h", render(f"c/{name}.h.jinja", **ctx)))
-        written.append(_write(out / "c" / f"{name}.c", render(f"c/{name}.c.jinja", **ctx)))
+        t_py, t_h, t_c = _templates(name, mod)
+        written.append(_write(out / "python" / "wristkin" / f"{name}.py", render(t_py, **ctx)))
+        written.append(_write(out / "c" / f"{name}.h", render(t_h, **ctx)))
+        written.append(_write(out / "c" / f"{name}.c", render(t_c, **ctx)))
     written.append(_write(out / "python" / "wristkin" / "__init__.py",
                           render("python/__init__.py.jinja", header=header_lines(), names=sorted(REGISTRY))))
     written.append(_write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja",
@@ -85,9 +93,12 @@ def _post_code_products(out: Path, derivations: dict) -> list[Path]:
     from . import audit, to_casadi
 
     for name, dv in derivations.items():
+        kernels = REGISTRY[name].kernels(dv)
         if name == "underactuated_wrist":
-            fns = to_casadi.casadi_functions(dv, REGISTRY[name].kernels(dv))
-            extra += list(to_casadi.write_casadi(fns, out / "casadi"))
+            fns = to_casadi.casadi_functions(dv, kernels)
+        else:
+            fns = to_casadi.serial_functions(name, kernels)
+        extra += list(to_casadi.write_casadi(fns, out / "casadi", name=name))
     extra += audit.write_reports(derivations, out)
     return extra
 

@@ -105,3 +105,57 @@ class UnderactuatedWristC:
         rc = fn(len(rows), rows.ctypes.data_as(ctypes.POINTER(ctypes.c_double)),
                 None if design is None else ctypes.byref(design), outs)
         return rc, outs
+
+
+class SerialC:
+    """ctypes wrapper for a generated serial-chain mechanism (same layout as its Python module)."""
+
+    def __init__(self, name: str, n_joints: int, max_ik: int, n_params: int, extra_flags=()):
+        so = compile_shared([C_DIR / f"{name}.c"], [C_DIR], name, extra_flags=list(extra_flags))
+        self.lib = load(so)
+        self.name, self.n, self.max_ik = name, n_joints, max_ik
+        self.IK = _solutions_struct(max_ik, n_joints, 1)
+        self.FK = _solutions_struct(1, 12, 1)
+
+        class Design(ctypes.Structure):
+            _fields_ = [("params", ctypes.c_double * n_params)]
+        self.Design = Design
+        d = ctypes.POINTER(ctypes.c_double)
+        getattr(self.lib, f"wk_{name}_ik").argtypes = [d, ctypes.POINTER(Design), ctypes.POINTER(self.IK)]
+        getattr(self.lib, f"wk_{name}_fk").argtypes = [d, ctypes.POINTER(Design), ctypes.POINTER(self.FK)]
+        getattr(self.lib, f"wk_{name}_jacobian").argtypes = [d, ctypes.POINTER(Design), d]
+        getattr(self.lib, f"wk_{name}_design_init").argtypes = [d, ctypes.POINTER(Design)]
+        getattr(self.lib, f"wk_{name}_select_ik").argtypes = [ctypes.POINTER(self.IK), d, d, d]
+
+    @staticmethod
+    def _ptr(a):
+        return a.ctypes.data_as(ctypes.POINTER(ctypes.c_double))
+
+    def design(self, params):
+        d = self.Design()
+        a = np.ascontiguousarray(params, dtype=float)
+        return getattr(self.lib, f"wk_{self.name}_design_init")(self._ptr(a), ctypes.byref(d)), d
+
+    def ik(self, pose, design=None) -> CResult:
+        a = np.ascontiguousarray(np.asarray(pose, dtype=float)[:3].ravel())
+        out = self.IK()
+        rc = getattr(self.lib, f"wk_{self.name}_ik")(self._ptr(a), None if design is None else ctypes.byref(design),
+                                                      ctypes.byref(out))
+        return UnderactuatedWristC._result(rc, out)
+
+    def fk(self, joints, design=None) -> CResult:
+        a = np.ascontiguousarray(joints, dtype=float)
+        out = self.FK()
+        rc = getattr(self.lib, f"wk_{self.name}_fk")(self._ptr(a), None if design is None else ctypes.byref(design),
+                                                      ctypes.byref(out))
+        return UnderactuatedWristC._result(rc, out)
+
+    def jacobian(self, joints):
+        a = np.ascontiguousarray(joints, dtype=float)
+        out = np.zeros(6 * self.n)
+        rc = getattr(self.lib, f"wk_{self.name}_jacobian")(self._ptr(a), None, self._ptr(out))
+        return rc, out.reshape(6, self.n)
+
+    def select(self, res_struct, previous=None):
+        prev = None if previous is None else self._ptr(np.ascontiguousarray(previous, dtype=float))
+        return getattr(self.lib, f"wk_{self.name}_select_ik")(ctypes.byref(res_struct), prev, None, None)

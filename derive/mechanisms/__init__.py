@@ -1,7 +1,8 @@
-"""Explicit registry of mechanisms: name -> module with derive(), kernels(dv) and render metadata."""
+"""Explicit registry of mechanisms: name -> object with derive(), kernels(dv) and render metadata."""
 
-from . import underactuated_wrist
+from . import dh_robots, underactuated_wrist
 
 REGISTRY = {
     underactuated_wrist.NAME: underactuated_wrist,
+    **dh_robots.MECHANISMS,
 }

@@ -1,0 +1,263 @@
+"""Serial DH chains: symbolic FK, geometric Jacobian and a closed-form IK solution tree, one generic module.
+
+A robot is a `SerialSpec`: DH rows plus an IK plan. The plan is a list of stages, each solving one or
+more joints from pose entries and the joints solved before it:
+
+- ``trig_linear``: A cos q + B sin q + C = 0 (two branches, atan2 +/- acos),
+- ``rotation2d``: (u, v) = Rot(q) (u0, v0), so q = atan2(v, u) - atan2(v0, u0) (one branch),
+- ``value``: q = expression (one branch; prismatic joints, or an angle given directly),
+- ``wrist``: a spherical wrist M = R(q4) R(q5) R(q6) with the sign pattern found here (two branches).
+
+Every stage equation is checked against the chain's own FK before it is emitted, and the generated IK
+verifies every candidate by FK, so poses a < 6-DOF chain cannot reach give an empty set.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import sympy as sp
+
+from ..checks import numeric_predicate, symbolic_identity
+from ..identities.dh import DHRow, chain, dh_standard_explicit
+from ..model import Check, Derivation, Finding, Step
+
+POSE = sp.Matrix(3, 4, sp.symbols("r00 r01 r02 px r10 r11 r12 py r20 r21 r22 pz", real=True))
+POSE_SYMBOLS = tuple(POSE)  # row-major [R | p]
+R_POSE = POSE[:, :3]
+P_POSE = POSE[:, 3]
+
+
+@dataclass(frozen=True)
+class Stage:
+    kind: str  # trig_linear | rotation2d | value | wrist
+    joints: tuple[int, ...]
+    exprs: tuple  # trig_linear (A, B, C); rotation2d (u, v, u0, v0); value (q,); wrist (3x3 M as 9 entries)
+    title: str
+    rule: str
+
+    @property
+    def branches(self) -> int:
+        return 2 if self.kind in ("trig_linear", "wrist") else 1
+
+
+@dataclass
+class SerialSpec:
+    name: str
+    title: str
+    seed: str
+    rows: list[DHRow]
+    joints: tuple[sp.Symbol, ...]
+    kinds: tuple[str, ...]
+    design: tuple[sp.Symbol, ...]
+    design_default: tuple[float, ...]
+    stages: list[Stage]
+    printed: dict = field(default_factory=dict)  # seed's printed matrices: name -> (our expression, printed)
+    findings: list[Finding] = field(default_factory=list)
+    notes: str = ""
+
+
+# ------------------------------------------------------------------------------------------- checks
+def _sample_design(spec: SerialSpec, rng) -> dict:
+    # lengths drawn around the defaults (never zero, so no accidental degeneracy)
+    return {s: v * rng.uniform(0.5, 1.5) if v != 0 else rng.uniform(0.0, 0.2)
+            for s, v in zip(spec.design, spec.design_default, strict=True)}
+
+
+def _sample_joints(spec: SerialSpec, rng) -> dict:
+    return {q: (rng.uniform(-math.pi, math.pi) if k == "R" else rng.uniform(-1.0, 1.0))
+            for q, k in zip(spec.joints, spec.kinds, strict=True)}
+
+
+def _pose_subs(T: sp.Matrix) -> dict:
+    return {s: T[i // 4, i % 4] for i, s in enumerate(POSE_SYMBOLS)}
+
+
+def wrist_signs(m: sp.Matrix, q4, q5, q6) -> tuple[int, int, int, int]:
+    """Signs e with m22 = e0 c5, (m02, m12) = e1 s5 (c4, s4), (m20, m21) = s5 (e2 c6, e3 s6)."""
+    c4, s4, c5, s5, c6, s6 = sp.cos(q4), sp.sin(q4), sp.cos(q5), sp.sin(q5), sp.cos(q6), sp.sin(q6)
+    ratios = (m[2, 2] / c5, m[0, 2] / (c4 * s5), m[1, 2] / (s4 * s5), m[2, 0] / (s5 * c6), m[2, 1] / (s5 * s6))
+    vals = [sp.simplify(r) for r in ratios]
+    if any(v not in (1, -1) for v in vals) or vals[1] != vals[2]:
+        raise ValueError(f"not a spherical wrist of the supported form: ratios {vals}")
+    return int(vals[0]), int(vals[1]), int(vals[3]), int(vals[4])
+
+
+def derive_spec(spec: SerialSpec) -> Derivation:
+    syms = {s.name: s for s in (*spec.joints, *spec.design)}
+    dv = Derivation(spec.name, spec.title, spec.seed, syms)
+    ts = chain(spec.rows)
+    for i, row in enumerate(spec.rows, start=1):
+        A = row.transform()
+        dv.add(Step(f"A{i}", f"Link transform A{i}", "standard DH: A = Rz(theta) Tz(d) Tx(a) Rx(alpha)", (),
+                    {f"A{i}": A}, (symbolic_identity(A, dh_standard_explicit(row.a, row.alpha, row.d, row.theta),
+                                                     "product form = textbook closed form"),)))
+    T = sp.simplify(ts[-1])
+    rng_ranges = np.random.default_rng(0)
+    fT = sp.lambdify((*spec.joints, *spec.design), T, "numpy")
+
+    def orth_err(rng):
+        vals = [*_sample_joints(spec, rng).values(), *_sample_design(spec, rng).values()]
+        m = np.array(fT(*vals), dtype=float)
+        return float(np.max(np.abs(m[:3, :3].T @ m[:3, :3] - np.eye(3))) + abs(np.linalg.det(m[:3, :3]) - 1))
+    dv.add(Step("T", f"Forward kinematics T_{len(spec.rows)}^0", "product of the link transforms",
+                tuple(f"A{i}" for i in range(1, len(spec.rows) + 1)), {"T": T},
+                (numeric_predicate(orth_err, "rotation block is proper orthonormal", samples=100, tol=1e-12),)))
+    for name, (ours, printed) in spec.printed.items():
+        ok = symbolic_identity(ours, printed, f"{name} as printed in the seed").passed
+        dv.findings.append(Finding(name, "printed matrix", "derived by the chain product",
+                                   "reproduced" if ok else "wrong in seed",
+                                   "symbolic identity (simplify of the difference is zero)" if ok else
+                                   "the symbolic difference does not vanish"))
+    dv.findings.extend(spec.findings)
+    _jacobian_step(dv, spec, ts)
+    _ik_steps(dv, spec, T)
+    dv.exports["T"] = T
+    dv.exports["frames"] = ts
+    _ = rng_ranges
+    return dv
+
+
+def _jacobian_step(dv: Derivation, spec: SerialSpec, ts) -> None:
+    p_end = ts[-1][:3, 3]
+    cols = []
+    for i, kind in enumerate(spec.kinds):
+        prev = sp.eye(4) if i == 0 else ts[i - 1]
+        z, o = prev[:3, 2], prev[:3, 3]
+        cols.append(sp.Matrix.vstack(z.cross(p_end - o), z) if kind == "R" else sp.Matrix.vstack(z, sp.zeros(3, 1)))
+    J = sp.Matrix.hstack(*cols)
+    fT = sp.lambdify((*spec.joints, *spec.design), ts[-1], "numpy")
+    fJ = sp.lambdify((*spec.joints, *spec.design), J, "numpy")
+
+    def jac_err(rng):
+        q = np.array(list(_sample_joints(spec, rng).values()))
+        dsn = list(_sample_design(spec, rng).values())
+        J0 = np.array(fJ(*q, *dsn), dtype=float)
+        h, err = 1e-6, 0.0
+        T0 = np.array(fT(*q, *dsn), dtype=float)
+        for k in range(len(q)):
+            dq = np.zeros(len(q))
+            dq[k] = h
+            Tp, Tm = np.array(fT(*(q + dq), *dsn), dtype=float), np.array(fT(*(q - dq), *dsn), dtype=float)
+            v = (Tp[:3, 3] - Tm[:3, 3]) / (2 * h)
+            W = (Tp[:3, :3] - Tm[:3, :3]) / (2 * h) @ T0[:3, :3].T
+            w = np.array([W[2, 1], W[0, 2], W[1, 0]])
+            err = max(err, float(np.max(np.abs(np.concatenate([v, w]) - J0[:, k]))))
+        return err
+    dv.add(Step("jacobian", "Geometric Jacobian", "column i: (z_{i-1} x (p - o_{i-1}), z_{i-1}) for a revolute "
+                "joint, (z_{i-1}, 0) for a prismatic one; linear velocity first", ("T",), {"J": J},
+                (numeric_predicate(jac_err, "columns equal central differences of FK (h = 1e-6)", samples=40,
+                                   tol=1e-7),)))
+    dv.exports["jacobian"] = J
+
+
+def _ik_steps(dv: Derivation, spec: SerialSpec, T: sp.Matrix) -> None:
+    sub_pose = _pose_subs(T)
+    solved: list[int] = []
+    f_cache = {}
+    for k, st in enumerate(spec.stages, start=1):
+        exprs = [sp.sympify(e).xreplace(sub_pose) for e in st.exprs]
+        args = (*spec.joints, *spec.design)
+        fn = sp.lambdify(args, exprs, "numpy")
+        f_cache[k] = fn
+
+        def err(rng, st=st, fn=fn):
+            q = _sample_joints(spec, rng)
+            dsn = _sample_design(spec, rng)
+            vals = [float(v) for v in fn(*q.values(), *dsn.values())]
+            qs = [q[spec.joints[j]] for j in st.joints]
+            if st.kind == "trig_linear":
+                a, b, c = vals
+                return abs(a * math.cos(qs[0]) + b * math.sin(qs[0]) + c)
+            if st.kind == "rotation2d":
+                u, v, u0, v0 = vals
+                cq, sq = math.cos(qs[0]), math.sin(qs[0])
+                return abs(u - (cq * u0 - sq * v0)) + abs(v - (sq * u0 + cq * v0))
+            if st.kind == "value":
+                val = vals[0]
+                if spec.kinds[st.joints[0]] == "R":
+                    return abs(math.remainder(val - qs[0], 2 * math.pi))
+                return abs(val - qs[0])
+            m = np.array(vals).reshape(3, 3)
+            w = np.array(WRIST_R[st](*qs), dtype=float)
+            return float(np.max(np.abs(m - w)))
+        claim = {"trig_linear": "A cos q + B sin q + C = 0 on the FK",
+                 "rotation2d": "(u, v) = Rot(q)(u0, v0) on the FK", "value": "q = expression on the FK",
+                 "wrist": "M = wrist rotation on the FK"}[st.kind]
+        checks: list[Check] = [numeric_predicate(err, claim, samples=200, tol=1e-9)]
+        result = dict(zip(_stage_output_names(st), st.exprs, strict=True))
+        if st.kind == "wrist":
+            result["signs (e0, e1, e2, e3, k00@0, k10@0, k00@pi, k10@pi)"] = sp.Matrix(WRIST_SIGNS[st])
+        dv.add(Step(f"ik_stage{k}", f"IK stage {k}: {st.title}", st.rule, ("T",) + tuple(
+            f"ik_stage{j}" for j in range(1, k)), result, tuple(checks)))
+        solved.extend(st.joints)
+    if sorted(solved) != list(range(len(spec.joints))):
+        raise ValueError(f"{spec.name}: the IK plan must solve every joint exactly once")
+
+
+WRIST_R: dict = {}  # stage -> numeric wrist rotation function (filled by wrist_stage)
+WRIST_SIGNS: dict = {}
+
+
+def wrist_stage(spec_rows_wrist, joints3, m_expr, title: str, rule: str, joint_idx) -> Stage:
+    """Build a wrist stage: M (pose side) must equal the product of the three wrist link rotations."""
+    rot = sp.eye(3)
+    for row in spec_rows_wrist:
+        rot = rot * row.transform()[:3, :3]
+    rot = sp.simplify(rot)
+    signs = wrist_signs(rot, *joints3)
+    # At sin q5 = 0 only one combination of q4, q6 is defined: q4 := 0 and q6 from the top-left block.
+    q4, q5, q6 = joints3
+    degenerate = []
+    for q5v in (0, sp.pi):
+        m0 = sp.simplify(rot.subs({q4: 0, q5: q5v}))
+        k00, k10 = sp.simplify(m0[0, 0] / sp.cos(q6)), sp.simplify(m0[1, 0] / sp.sin(q6))
+        if k00 not in (1, -1) or k10 not in (1, -1):
+            raise ValueError(f"wrist at q5 = {q5v}: unexpected block {m0}")
+        degenerate += [int(k00), int(k10)]
+    st = Stage("wrist", tuple(joint_idx), tuple(m_expr), title,
+               rule + f"; sign pattern {signs}; at sin q5 = 0: q4 := 0, q6 = atan2(k10 m10, k00 m00) with "
+               f"(k00, k10) = {tuple(degenerate[:2])} at q5 = 0 and {tuple(degenerate[2:])} at q5 = pi")
+    WRIST_R[st] = sp.lambdify(joints3, rot, "numpy")
+    WRIST_SIGNS[st] = signs + tuple(degenerate)
+    return st
+
+
+def _stage_output_names(st: Stage) -> list[str]:
+    return {"trig_linear": ["A", "B", "C"], "rotation2d": ["u", "v", "u0", "v0"], "value": ["q"],
+            "wrist": [f"m{i}{j}" for i in range(3) for j in range(3)]}[st.kind]
+
+
+def kernels_spec(spec: SerialSpec, dv: Derivation):
+    from ..lower import Kernel
+
+    q = ("q", spec.joints)
+    dp = ("dp", spec.design)
+    pose = ("pose", POSE_SYMBOLS)
+    T = dv.exports["T"]
+    J = dv.exports["jacobian"]
+    ks = [Kernel("fk", "Pose [R | p] (row-major 3x4) of the end frame.", (q, dp),
+                 tuple((str(s), T[i // 4, i % 4]) for i, s in enumerate(POSE_SYMBOLS))),
+          Kernel("jacobian", "Geometric Jacobian (6 x n, row-major; linear velocity rows first).", (q, dp),
+                 tuple((f"j{r}{c}", J[r, c]) for r in range(6) for c in range(len(spec.joints))))]
+    for k, st in enumerate(spec.stages, start=1):
+        ks.append(Kernel(f"stage{k}", f"IK stage {k} ({st.kind}): {st.title}", (pose, q, dp),
+                         tuple(zip(_stage_output_names(st), (sp.sympify(e) for e in st.exprs), strict=True))))
+    return ks
+
+
+def stage_view(spec: SerialSpec) -> list[dict]:
+    """What the templates need to emit the solution tree."""
+    out, bit = [], 0
+    for k, st in enumerate(spec.stages, start=1):
+        view = {"index": k, "kind": st.kind, "joints": list(st.joints), "branches": st.branches, "bit": bit}
+        if st.kind == "wrist":
+            view["signs"] = list(WRIST_SIGNS[st])
+            view["joint_kinds"] = [spec.kinds[j] for j in st.joints]
+        else:
+            view["joint_kind"] = spec.kinds[st.joints[0]]
+        bit += st.branches - 1
+        out.append(view)
+    return out

@@ -1,0 +1,176 @@
+"""DH chains (seed 001 + PUMA-560): generated Python and C vs the independent numpy reference.
+
+The reference (tests/reference/dh.py) multiplies numeric DH matrices and finds every IK branch by
+multistart Levenberg-Marquardt; nothing in it comes from the derivation.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+
+import numpy as np
+import pytest
+from c_solvers import SerialC
+from reference import dh as ref
+
+NAMES = ["wrist_1dof", "spherical_wrist", "rpp_wrist", "scara_wrist", "puma560"]
+IK_SAMPLES = {"wrist_1dof": 20, "spherical_wrist": 15, "rpp_wrist": 8, "scara_wrist": 15, "puma560": 5}
+
+
+@pytest.fixture(scope="module", params=NAMES)
+def mech(request):
+    mod = importlib.import_module(f"wristkin.{request.param}")
+    c = SerialC(request.param, mod.N_JOINTS, mod.MAX_IK, len(mod.DESIGN_NAMES))
+    return request.param, mod, c
+
+
+def _joints(mod, rng, special=False):
+    vals = []
+    for k in mod.JOINT_KINDS:
+        if k == "P":
+            vals.append(rng.uniform(-0.5, 0.5))
+        elif special:
+            vals.append(rng.choice([0.0, math.pi / 2, -math.pi / 2, math.pi]))
+        else:
+            vals.append(rng.uniform(-math.pi, math.pi))
+    return np.array(vals)
+
+
+def _dist(mod, a, b):
+    diff = np.asarray(a) - np.asarray(b)
+    rev = np.array([k == "R" for k in mod.JOINT_KINDS])
+    return float(np.max(np.abs(np.where(rev, np.remainder(diff + math.pi, 2 * math.pi) - math.pi, diff))))
+
+
+def test_fk_and_jacobian_match_reference(mech):
+    name, mod, c = mech
+    rng = np.random.default_rng(1)
+    for _ in range(50):
+        q = _joints(mod, rng)
+        T = ref.fk(name, q)
+        np.testing.assert_allclose(mod.fk_matrix(q), T, atol=1e-12)
+        cr = c.fk(q)
+        assert cr.rc == 0 and cr.count == 1
+        np.testing.assert_allclose(cr.values[0], T[:3].ravel(), atol=1e-12)
+        J = ref.geometric_jacobian(name, q)
+        np.testing.assert_allclose(mod.jacobian(q), J, atol=1e-12)
+        np.testing.assert_allclose(c.jacobian(q)[1], J, atol=1e-12)
+        np.testing.assert_allclose(cr.aux[0, 0], mod.fk(q).aux[0, 0], atol=1e-9)
+
+
+def test_ik_matches_reference_branch_for_branch(mech):
+    name, mod, c = mech
+    rng = np.random.default_rng(2)
+    for _ in range(IK_SAMPLES[name]):
+        q = _joints(mod, rng)
+        T = ref.fk(name, q)
+        expected = ref.ik_reference(name, T)
+        py, cc = mod.ik(T), c.ik(T)
+        assert py.count == len(expected) == cc.count, (name, q, py.count, len(expected), cc.count)
+        for sol in expected:  # none missed
+            assert min(_dist(mod, sol, v) for v in py) < 1e-6
+        for v in py:  # none spurious
+            assert ref.pose_error(name, v, T) < 1e-9
+        np.testing.assert_allclose(cc.values[cc.valid], py.values[py.valid], atol=1e-12)
+        assert np.array_equal(cc.valid, py.valid)
+
+
+def test_round_trips_including_degenerate_joint_values(mech):
+    name, mod, c = mech
+    rng = np.random.default_rng(3)
+    worst = 0.0
+    for i in range(200):
+        q = _joints(mod, rng, special=i % 2 == 1)
+        T = ref.fk(name, q)
+        py = mod.ik(T)
+        assert py.count >= 1
+        errs = [ref.pose_error(name, v, T) for v in py]
+        worst = max(worst, max(errs))
+        if not np.any(py.flags & mod.FLAG_INDETERMINATE):
+            # the generating joints are among the branches; at a tangent (double) root the joint accuracy is
+            # sqrt(eps)-limited even though the pose error is below 1e-9
+            tol = 1e-6 if np.any(py.flags & mod.FLAG_DOUBLE_ROOT) else 1e-7
+            assert min(_dist(mod, q, v) for v in py) < tol
+        cc = c.ik(T)
+        assert cc.count == py.count and np.array_equal(cc.flags, py.flags)
+    assert worst < 1e-9
+
+
+@pytest.mark.parametrize("name", ["spherical_wrist", "rpp_wrist", "puma560"])
+def test_wrist_singularity_is_flagged_with_representative(name):
+    mod = importlib.import_module(f"wristkin.{name}")
+    rng = np.random.default_rng(4)
+    q = _joints(mod, rng)
+    i5 = mod.JOINT_NAMES.index("theta5")
+    q[i5] = 0.0
+    T = ref.fk(name, q)
+    sol = mod.ik(T)
+    assert sol.status == mod.STATUS_INDETERMINATE
+    i4 = mod.JOINT_NAMES.index("theta4")
+    flagged = [k for k in np.flatnonzero(sol.valid) if sol.flags[k] & mod.FLAG_INDETERMINATE]
+    assert flagged  # the generating arm branch has the wrist singularity; other arm branches need not
+    for k in flagged:
+        assert sol.flags[k] & mod.FLAG_SINGULAR_INVERSE
+        assert sol.values[k, i4] == 0.0  # documented representative: theta4 := 0
+    for k in np.flatnonzero(sol.valid):
+        assert ref.pose_error(name, sol.values[k], T) < 1e-9
+
+
+def test_unreachable_and_bad_input(mech):
+    name, mod, c = mech
+    far = np.eye(4)
+    far[:3, 3] = (50.0, 0.0, 0.0)
+    if name in ("wrist_1dof", "spherical_wrist"):
+        far[:3, 3] = (0.0, 0.0, 5.0)
+    if name == "rpp_wrist":  # unbounded prismatic joints reach every pose: the reference agrees
+        assert mod.ik(far).count == len(ref.ik_reference(name, far)) == 4
+    else:
+        sol = mod.ik(far)
+        assert sol.count == 0 and sol.status == mod.STATUS_UNREACHABLE and "not reachable" in sol.reason
+        cc = c.ik(far)
+        assert cc.rc == 0 and cc.count == 0 and cc.status == mod.STATUS_UNREACHABLE
+        assert ref.ik_reference(name, far) == []
+    bad = np.eye(4)
+    bad[0, 0] = math.nan
+    with pytest.raises(mod.InvalidInput):
+        mod.ik(bad)
+    assert c.ik(bad).rc == -2
+    shear = np.eye(4)
+    shear[0, 1] = 0.3
+    with pytest.raises(mod.InvalidInput):
+        mod.ik(shear)
+    assert c.ik(shear).rc == -4
+    with pytest.raises(mod.InvalidInput):
+        mod.fk([math.inf] * mod.N_JOINTS)
+    assert c.fk(np.full(mod.N_JOINTS, math.nan)).rc == -2
+    with pytest.raises(mod.InvalidDesign):
+        mod.make_design([math.nan] * len(mod.DESIGN_NAMES))
+
+
+def test_select_limits_and_seed(mech):
+    name, mod, c = mech
+    rng = np.random.default_rng(5)
+    q = _joints(mod, rng)
+    T = ref.fk(name, q)
+    sol = mod.ik(T)
+    k = mod.select(sol, previous=q + 1e-3)
+    assert _dist(mod, sol.values[k], q) < 1e-7
+    assert mod.select(sol, lower=np.full(mod.N_JOINTS, 10.0)) == -1
+    out = c.IK()
+    a = np.ascontiguousarray(T[:3].ravel())
+    getattr(c.lib, f"wk_{name}_ik")(c._ptr(a), None, out)
+    assert c.select(out, previous=q + 1e-3) == k
+
+
+def test_other_design_matches_reference():
+    mod = importlib.import_module("wristkin.scara_wrist")
+    c = SerialC("scara_wrist", 4, mod.MAX_IK, 3)
+    params = {"a1": 0.7, "a2": 0.25, "d4": 0.05}
+    rc, d = c.design([params[n] for n in mod.DESIGN_NAMES])
+    assert rc == 0
+    q = np.array([0.3, -1.1, 0.2, 0.7])
+    T = ref.fk("scara_wrist", q, params)
+    sol = mod.ik(T, params)
+    assert sol.count == 2 and min(_dist(mod, q, v) for v in sol) < 1e-9
+    assert c.ik(T, d).count == 2
