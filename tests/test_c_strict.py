@@ -29,6 +29,22 @@ def test_generated_c_is_clean_under_asan_ubsan():
     assert "runtime error" not in run.stderr and "AddressSanitizer" not in run.stderr
 
 
+SERIAL = {"wrist_1dof": 1, "spherical_wrist": 3, "rpp_wrist": 6, "scara_wrist": 4, "puma560": 6}
+
+
+@pytest.mark.skipif(not _sanitizer_available(), reason="compiler has no ASan/UBSan runtime")
+@pytest.mark.parametrize("name", sorted(SERIAL))
+def test_serial_chains_are_clean_under_asan_ubsan(name):
+    flags = [*SANITIZE_FLAGS, f"-DMECH={name}", f'-DMECH_H="{name}.h"', f"-DN={SERIAL[name]}"]
+    exe = compile_executable([ROOT / "tests" / "c" / "serial_sanitize.c", C_DIR / f"{name}.c"], [C_DIR],
+                             f"{name}_sanitize", extra_flags=flags)
+    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300,
+                         env={"ASAN_OPTIONS": "detect_leaks=1:abort_on_error=1",
+                              "UBSAN_OPTIONS": "halt_on_error=1:print_stacktrace=1"})
+    assert run.returncode == 0, run.stderr[-4000:]
+    assert "runtime error" not in run.stderr and "AddressSanitizer" not in run.stderr
+
+
 def test_generated_c_compiles_with_strict_flags_as_a_unit():
     for src in sorted(C_DIR.glob("*.c")):
         subprocess.run([compiler(), "-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-c", str(src),

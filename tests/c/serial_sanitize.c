@@ -1,0 +1,49 @@
+/* Sanitizer driver for a generated serial chain; compile with -DMECH=name -DMECH_H='"name.h"' -DN=joints.
+   Random, special (0, +/-pi/2, pi) and hostile (NaN, inf, NULL, non-rotation) inputs under ASan/UBSan. */
+#include <math.h>
+#include <stdio.h>
+#include MECH_H
+
+#define CAT3(a, b, c) a##b##c
+#define FN(mech, verb) CAT3(wk_, mech, verb)
+#define TYPE(mech, suffix) CAT3(wk_, mech, suffix)
+
+static unsigned long long state = 88172645463325252ULL;
+static double uniform(double lo, double hi)
+{
+    state ^= state << 13; state ^= state >> 7; state ^= state << 17;
+    return lo + (hi - lo) * (double)(state >> 11) / 9007199254740992.0;
+}
+
+int main(void)
+{
+    TYPE(MECH, _ik_solutions) ik, ikb[3];
+    TYPE(MECH, _fk_solutions) fk, fkb[3];
+    const double special[] = {0.0, 1.5707963267948966, -1.5707963267948966, 3.141592653589793};
+    double q[N], jac[6 * N], rows[3 * N], poses[36];
+    long checksum = 0;
+    int i, j;
+    for (i = 0; i < 3000; ++i) {
+        for (j = 0; j < N; ++j) q[j] = (i % 3 == 0) ? special[(i + j) % 4] : uniform(-3.2, 3.2);
+        if (FN(MECH, _fk)(q, NULL, &fk) != WK_OK) return 1;
+        checksum += FN(MECH, _ik)(fk.values[0], NULL, &ik) + ik.count;
+        checksum += FN(MECH, _select_ik)(&ik, q, NULL, NULL) + FN(MECH, _jacobian)(q, NULL, jac);
+        if (i % 50 == 0) {
+            double bad[12];
+            for (j = 0; j < 12; ++j) bad[j] = fk.values[0][j];
+            bad[i % 12] = (i % 100 == 0) ? NAN : INFINITY;
+            checksum += FN(MECH, _ik)(bad, NULL, &ik);
+            bad[i % 12] = 0.3; /* not a rotation any more (or a moved position) */
+            checksum += FN(MECH, _ik)(bad, NULL, &ik) + ik.count;
+        }
+    }
+    for (i = 0; i < 3 * N; ++i) rows[i] = uniform(-1.0, 1.0);
+    checksum += FN(MECH, _fk_batch)(3, rows, NULL, fkb);
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 12; ++j) poses[12 * i + j] = fkb[i].values[0][j];
+    checksum += FN(MECH, _ik_batch)(3, poses, NULL, ikb);
+    checksum += FN(MECH, _ik)(NULL, NULL, &ik) + FN(MECH, _fk)(NULL, NULL, &fk) + FN(MECH, _ik)(poses, NULL, NULL);
+    checksum += FN(MECH, _ik_batch)(0, NULL, NULL, NULL) + FN(MECH, _design_init)(NULL, NULL);
+    printf("checksum %ld\n", checksum);
+    return 0;
+}
