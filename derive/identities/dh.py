@@ -44,6 +44,18 @@ def dh_standard_explicit(a, alpha, d, theta) -> sp.Matrix:
     return sp.Matrix([[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st], [0, sa, ca, d], [0, 0, 0, 1]])
 
 
+def dh_modified_explicit(a_prev, alpha_prev, d, theta) -> sp.Matrix:
+    """Craig's closed form of the modified A_i, used to check the product form."""
+    ct, st, ca, sa = sp.cos(theta), sp.sin(theta), sp.cos(alpha_prev), sp.sin(alpha_prev)
+    return sp.Matrix([[ct, -st, 0, a_prev], [st * ca, ct * ca, -sa, -sa * d], [st * sa, ct * sa, ca, ca * d],
+                      [0, 0, 0, 1]])
+
+
+def explicit(row, convention: str) -> sp.Matrix:
+    fn = dh_standard_explicit if convention == "standard" else dh_modified_explicit
+    return fn(row.a, row.alpha, row.d, row.theta)
+
+
 @dataclass(frozen=True)
 class DHRow:
     """One link: a, alpha, d, theta may be numbers, design symbols or the joint variable."""
@@ -63,10 +75,12 @@ class DHRow:
         raise ValueError(f"unknown DH convention {convention!r}")
 
 
-def chain(rows, convention: str = "standard") -> list[sp.Matrix]:
-    """Cumulative transforms T_1^0 .. T_n^0."""
+def chain(rows, convention: str = "standard", tool: sp.Matrix | None = None) -> list[sp.Matrix]:
+    """Cumulative transforms T_1^0 .. T_n^0 (the last one times the constant tool transform, if any)."""
     out, t = [], sp.eye(4)
     for row in rows:
         t = t * row.transform(convention)
         out.append(t)
+    if tool is not None:
+        out[-1] = out[-1] * tool
     return out

@@ -21,7 +21,7 @@ import numpy as np
 import sympy as sp
 
 from ..checks import numeric_predicate, symbolic_identity
-from ..identities.dh import DHRow, chain, dh_standard_explicit
+from ..identities.dh import DHRow, chain, explicit
 from ..model import Check, Derivation, Finding, Step
 
 POSE = sp.Matrix(3, 4, sp.symbols("r00 r01 r02 px r10 r11 r12 py r20 r21 r22 pz", real=True))
@@ -57,6 +57,8 @@ class SerialSpec:
     printed: dict = field(default_factory=dict)  # seed's printed matrices: name -> (our expression, printed)
     findings: list[Finding] = field(default_factory=list)
     notes: str = ""
+    convention: str = "standard"  # or "modified" (Craig): A_i = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta_i) Tz(d_i)
+    tool: sp.Matrix | None = None  # constant end transform (e.g. the last Tx(a_n) Rx(alpha_n) of a modified table)
 
 
 # ------------------------------------------------------------------------------------------- checks
@@ -88,12 +90,13 @@ def wrist_signs(m: sp.Matrix, q4, q5, q6) -> tuple[int, int, int, int]:
 def derive_spec(spec: SerialSpec) -> Derivation:
     syms = {s.name: s for s in (*spec.joints, *spec.design)}
     dv = Derivation(spec.name, spec.title, spec.seed, syms)
-    ts = chain(spec.rows)
+    ts = chain(spec.rows, spec.convention, spec.tool)
+    rule = ("standard DH: A = Rz(theta) Tz(d) Tx(a) Rx(alpha)" if spec.convention == "standard" else
+            "modified (Craig) DH: A = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta) Tz(d)")
     for i, row in enumerate(spec.rows, start=1):
-        A = row.transform()
-        dv.add(Step(f"A{i}", f"Link transform A{i}", "standard DH: A = Rz(theta) Tz(d) Tx(a) Rx(alpha)", (),
-                    {f"A{i}": A}, (symbolic_identity(A, dh_standard_explicit(row.a, row.alpha, row.d, row.theta),
-                                                     "product form = textbook closed form"),)))
+        A = row.transform(spec.convention)
+        dv.add(Step(f"A{i}", f"Link transform A{i}", rule, (), {f"A{i}": A},
+                    (symbolic_identity(A, explicit(row, spec.convention), "product form = textbook closed form"),)))
     T = sp.simplify(ts[-1])
     rng_ranges = np.random.default_rng(0)
     fT = sp.lambdify((*spec.joints, *spec.design), T, "numpy")
@@ -112,7 +115,7 @@ def derive_spec(spec: SerialSpec) -> Derivation:
                                    "symbolic identity (simplify of the difference is zero)" if ok else
                                    "the symbolic difference does not vanish"))
     dv.findings.extend(spec.findings)
-    _jacobian_step(dv, spec, ts)
+    _jacobian_step(dv, spec, ts if spec.tool is None else chain(spec.rows, spec.convention), ts[-1])
     _ik_steps(dv, spec, T)
     dv.exports["T"] = T
     dv.exports["frames"] = ts
@@ -120,15 +123,19 @@ def derive_spec(spec: SerialSpec) -> Derivation:
     return dv
 
 
-def _jacobian_step(dv: Derivation, spec: SerialSpec, ts) -> None:
-    p_end = ts[-1][:3, 3]
+def _jacobian_step(dv: Derivation, spec: SerialSpec, ts, t_end) -> None:
+    """Joint i turns about z of frame i-1 (standard DH) or of frame i (modified DH)."""
+    p_end = t_end[:3, 3]
     cols = []
     for i, kind in enumerate(spec.kinds):
-        prev = sp.eye(4) if i == 0 else ts[i - 1]
+        if spec.convention == "modified":
+            prev = ts[i]
+        else:
+            prev = sp.eye(4) if i == 0 else ts[i - 1]
         z, o = prev[:3, 2], prev[:3, 3]
         cols.append(sp.Matrix.vstack(z.cross(p_end - o), z) if kind == "R" else sp.Matrix.vstack(z, sp.zeros(3, 1)))
     J = sp.Matrix.hstack(*cols)
-    fT = sp.lambdify((*spec.joints, *spec.design), ts[-1], "numpy")
+    fT = sp.lambdify((*spec.joints, *spec.design), t_end, "numpy")
     fJ = sp.lambdify((*spec.joints, *spec.design), J, "numpy")
 
     def jac_err(rng):
@@ -205,7 +212,7 @@ def wrist_stage(spec_rows_wrist, joints3, m_expr, title: str, rule: str, joint_i
     """Build a wrist stage: M (pose side) must equal the product of the three wrist link rotations."""
     rot = sp.eye(3)
     for row in spec_rows_wrist:
-        rot = rot * row.transform()[:3, :3]
+        rot = rot * row.transform()[:3, :3]  # wrist stages are written for standard-DH wrist rows
     rot = sp.simplify(rot)
     signs = wrist_signs(rot, *joints3)
     # At sin q5 = 0 only one combination of q4, q6 is defined: q4 := 0 and q6 from the top-left block.
