@@ -237,34 +237,67 @@ def _stage_output_names(st: Stage) -> list[str]:
             "wrist": [f"m{i}{j}" for i in range(3) for j in range(3)]}[st.kind]
 
 
+def _cs_symbols(spec: SerialSpec):
+    cs = tuple(sp.Symbol(f"c{i + 1}", real=True) for i in range(len(spec.joints)))
+    ss = tuple(sp.Symbol(f"s{i + 1}", real=True) for i in range(len(spec.joints)))
+    return cs, ss
+
+
+def _on_cs(expr, spec: SerialSpec):
+    """cos/sin of revolute joints -> c_i, s_i symbols (the IK carries them algebraically, no trig)."""
+    cs, ss = _cs_symbols(spec)
+    rep = {}
+    for i, (q, k) in enumerate(zip(spec.joints, spec.kinds, strict=True)):
+        if k == "R":
+            rep[sp.cos(q)] = cs[i]
+            rep[sp.sin(q)] = ss[i]
+    out = sp.expand_trig(sp.sympify(expr)).xreplace(rep)
+    left = {f for f in out.atoms(sp.cos, sp.sin) if f.free_symbols & set(spec.joints)}
+    if left:
+        raise ValueError(f"{spec.name}: joint trig left after substitution: {left}")
+    return out
+
+
 def kernels_spec(spec: SerialSpec, dv: Derivation):
     from ..lower import Kernel
 
     q = ("q", spec.joints)
     dp = ("dp", spec.design)
     pose = ("pose", POSE_SYMBOLS)
+    cs, ss = _cs_symbols(spec)
     T = dv.exports["T"]
+    T_raw = dv.exports["frames"][-1]
     J = dv.exports["jacobian"]
     ks = [Kernel("fk", "Pose [R | p] (row-major 3x4) of the end frame.", (q, dp),
                  tuple((str(s), T[i // 4, i % 4]) for i, s in enumerate(POSE_SYMBOLS))),
+          Kernel("fk_cs", "The same pose from (cos, sin) of the revolute joints (used to verify IK sets).",
+                 (q, ("c", cs), ("s", ss), dp),
+                 tuple((str(s), _on_cs(T_raw[i // 4, i % 4], spec)) for i, s in enumerate(POSE_SYMBOLS))),
           Kernel("jacobian", "Geometric Jacobian (6 x n, row-major; linear velocity rows first).", (q, dp),
                  tuple((f"j{r}{c}", J[r, c]) for r in range(6) for c in range(len(spec.joints))))]
     for k, st in enumerate(spec.stages, start=1):
-        ks.append(Kernel(f"stage{k}", f"IK stage {k} ({st.kind}): {st.title}", (pose, q, dp),
-                         tuple(zip(_stage_output_names(st), (sp.sympify(e) for e in st.exprs), strict=True))))
+        ks.append(Kernel(f"stage{k}", f"IK stage {k} ({st.kind}): {st.title}", (pose, q, ("c", cs), ("s", ss), dp),
+                         tuple(zip(_stage_output_names(st), (_on_cs(e, spec) for e in st.exprs), strict=True))))
     return ks
 
 
 def stage_view(spec: SerialSpec) -> list[dict]:
-    """What the templates need to emit the solution tree."""
-    out, bit = [], 0
+    """What the templates need to emit the solution tree.
+
+    The first branching stage takes the highest bit of the set index, so consecutive sets share their
+    prefix and a stage is recomputed only when its prefix (key = k >> shift) changes.
+    """
+    total = sum(st.branches - 1 for st in spec.stages)
+    out, used = [], 0
     for k, st in enumerate(spec.stages, start=1):
-        view = {"index": k, "kind": st.kind, "joints": list(st.joints), "branches": st.branches, "bit": bit}
+        used += st.branches - 1
+        shift = total - used
+        view = {"index": k, "kind": st.kind, "joints": list(st.joints), "branches": st.branches,
+                "bit": shift if st.branches == 2 else None, "shift": shift}
         if st.kind == "wrist":
             view["signs"] = list(WRIST_SIGNS[st])
             view["joint_kinds"] = [spec.kinds[j] for j in st.joints]
         else:
             view["joint_kind"] = spec.kinds[st.joints[0]]
-        bit += st.branches - 1
         out.append(view)
     return out
