@@ -92,6 +92,7 @@ lint: $(STAMP)
 	exit $$rc
 
 bench: $(STAMP)
+	$(PY) -m pip install -q -e '.[dev,bench]'
 	$(PY) bench/run.py --regenerate
 
 clean:

@@ -314,6 +314,11 @@ def main(argv=None) -> int:
     print()
     notes = [f"- {r['name']}: {r['note']}" for r in rows if r.get("note")]
     print("\n".join(notes))
+    print()
+    import dh  # bench/dh.py: the DH chains and the PUMA-560 peers, measured in this same run
+
+    dh_text = dh.tables(quick=args.quick)
+    print(dh_text)
     print(f"\ntimed in {time.perf_counter() - t_start:.1f} s; "
           f"results in {BUILD_DIR.relative_to(ROOT)}/results.json")
 
@@ -323,7 +328,7 @@ def main(argv=None) -> int:
             t = r.get(k)
             r[f"{k}_ratio_vs_c_loop"] = None if t is None else t / base[k]
     result = {"machine": machine, "unit": "seconds per call", "repeats_python": REPEATS, "counts": n,
-              "c_loop_raw": c_raw, "rows": rows}
+              "c_loop_raw": c_raw, "rows": rows, "dh_tables_markdown": dh_text}
     (BUILD_DIR / "results.json").write_text(json.dumps(result, indent=2) + "\n")
     return 0
 
