@@ -610,3 +610,25 @@ def test_real_cli_does_not_import_sympy():
     assert proc.returncode == 0, proc.stderr
     assert "underactuated_wrist ik" in proc.stdout
 
+
+
+# ---------------------------------------------------------------------------- a DH chain through the CLI
+def test_dh_chain_round_trip_and_bad_input(real_wristkin, capsys):
+    """Pose values of a serial chain are matrix entries and metres, never converted as degrees."""
+    data, _ = run_json(capsys, "fk", "puma560", "--joints", "10", "20", "30", "40", "50", "60")
+    pose = data["solutions"][0]["values"]
+    names = ("r00", "r01", "r02", "px", "r10", "r11", "r12", "py", "r20", "r21", "r22", "pz")
+    flat = [repr(pose[n]) for n in names]
+    back, _ = run_json(capsys, "ik", "puma560", "--pose", *flat)
+    assert back["count"] == 8
+    assert any(all(abs(s["values"][f"theta{i}"] - 10.0 * i) < 1e-6 for i in range(1, 7))
+               for s in back["solutions"] if s["valid"])
+    code, _, err = run(capsys, "ik", "puma560", "--pose", *flat[:11])
+    assert code == 2 and "error" in err
+    sheared = list(flat)
+    sheared[1] = "0.9"  # r01: no longer a rotation
+    code, _, err = run(capsys, "ik", "puma560", "--pose", *sheared)
+    assert code == 2 and "rotation" in err
+    far = ["1", "0", "0", "50", "0", "1", "0", "0", "0", "0", "1", "0"]
+    data, _ = run_json(capsys, "ik", "scara_wrist", "--pose", *far)
+    assert data["count"] == 0 and data["status"] == "unreachable" and "not reachable" in data["reason"]
