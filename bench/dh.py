@@ -12,10 +12,10 @@ import json
 import math
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
+from timing import per_call
 
 ROOT = Path(__file__).resolve().parent.parent
 BUILD = ROOT / "build" / "bench"
@@ -107,15 +107,7 @@ def casadi_c() -> dict:
 
 
 def _best(fn, args, repeats=3) -> float:
-    for a in args[: min(len(args), 50)]:
-        fn(a)
-    best = math.inf
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        for a in args:
-            fn(a)
-        best = min(best, (time.perf_counter() - t0) / len(args))
-    return best * 1e6
+    return per_call(fn, args, repeats, warmup=min(len(args), 50)) * 1e6
 
 
 def generated_python_and_ctypes(n: int) -> list[dict]:

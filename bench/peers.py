@@ -45,6 +45,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from timing import per_call
 
 ROOT = Path(__file__).resolve().parent.parent
 if str(ROOT / "tests") not in sys.path:
@@ -67,16 +68,8 @@ def sample(n: int, seed: int = 7) -> tuple[np.ndarray, np.ndarray]:
 
 
 def per_call_us(fn, args: list, repeats: int = 3) -> float:
-    """Best-of-``repeats`` microseconds per call of fn(arg) over args, after one warm-up pass."""
-    for a in args[: min(len(args), 50)]:
-        fn(a)
-    best = math.inf
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        for a in args:
-            fn(a)
-        best = min(best, time.perf_counter() - t0)
-    return best / len(args) * 1e6
+    """Best-of-``repeats`` microseconds per call of fn(arg) over args (bench/timing.py)."""
+    return per_call(fn, args, repeats, warmup=min(len(args), 50)) * 1e6
 
 
 def check_ik(solve, joints: np.ndarray, poses: np.ndarray) -> dict:

@@ -32,10 +32,11 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
+from timing import per_call
 
 ROOT = Path(__file__).resolve().parent.parent
 BENCH_DIR = ROOT / "bench"
@@ -107,20 +108,6 @@ def machine_info() -> dict:
 
 
 # ---------------------------------------------------------------------------------------- timing
-def per_call(fn: Callable[[np.ndarray], object], rows: Sequence, repeats: int = REPEATS,
-             warmup: int | None = None) -> float:
-    """Best-of-`repeats` seconds per call of fn(row) over rows, after a warm-up pass."""
-    for row in rows[: warmup if warmup is not None else max(1, len(rows) // 10)]:
-        fn(row)
-    best = math.inf
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        for row in rows:
-            fn(row)
-        best = min(best, time.perf_counter() - t0)
-    return best / len(rows)
-
-
 def per_row_batch(fn: Callable[[np.ndarray], object], rows: np.ndarray, repeats: int = REPEATS) -> float:
     """Best-of-`repeats` seconds per row of one fn(rows) batch call, after a warm-up call."""
     fn(rows[: max(1, len(rows) // 10)])
