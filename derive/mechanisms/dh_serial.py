@@ -37,6 +37,9 @@ class Stage:
     exprs: tuple  # trig_linear (A, B, C); rotation2d (u, v, u0, v0); value (q,); wrist (3x3 M as 9 entries)
     title: str
     rule: str
+    signs: tuple[int, ...] = ()  # wrist: (e0, e1, e2, e3, k00@0, k10@0, k00@pi, k10@pi)
+    wrist_rotation: sp.Matrix | None = None  # wrist: R(q4) R(q5) R(q6) of the three wrist rows
+    wrist_joints: tuple = ()
 
     @property
     def branches(self) -> int:
@@ -98,7 +101,6 @@ def derive_spec(spec: SerialSpec) -> Derivation:
         dv.add(Step(f"A{i}", f"Link transform A{i}", rule, (), {f"A{i}": A},
                     (symbolic_identity(A, explicit(row, spec.convention), "product form = textbook closed form"),)))
     T = sp.simplify(ts[-1])
-    rng_ranges = np.random.default_rng(0)
     fT = sp.lambdify((*spec.joints, *spec.design), T, "numpy")
 
     def orth_err(rng):
@@ -119,7 +121,6 @@ def derive_spec(spec: SerialSpec) -> Derivation:
     _ik_steps(dv, spec, T)
     dv.exports["T"] = T
     dv.exports["frames"] = ts
-    _ = rng_ranges
     return dv
 
 
@@ -163,14 +164,13 @@ def _jacobian_step(dv: Derivation, spec: SerialSpec, ts, t_end) -> None:
 def _ik_steps(dv: Derivation, spec: SerialSpec, T: sp.Matrix) -> None:
     sub_pose = _pose_subs(T)
     solved: list[int] = []
-    f_cache = {}
     for k, st in enumerate(spec.stages, start=1):
         exprs = [sp.sympify(e).xreplace(sub_pose) for e in st.exprs]
         args = (*spec.joints, *spec.design)
         fn = sp.lambdify(args, exprs, "numpy")
-        f_cache[k] = fn
+        wrist = sp.lambdify(st.wrist_joints, st.wrist_rotation, "numpy") if st.kind == "wrist" else None
 
-        def err(rng, st=st, fn=fn):
+        def err(rng, st=st, fn=fn, wrist=wrist):
             q = _sample_joints(spec, rng)
             dsn = _sample_design(spec, rng)
             vals = [float(v) for v in fn(*q.values(), *dsn.values())]
@@ -188,7 +188,7 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, T: sp.Matrix) -> None:
                     return abs(math.remainder(val - qs[0], 2 * math.pi))
                 return abs(val - qs[0])
             m = np.array(vals).reshape(3, 3)
-            w = np.array(WRIST_R[st](*qs), dtype=float)
+            w = np.array(wrist(*qs), dtype=float)
             return float(np.max(np.abs(m - w)))
         claim = {"trig_linear": "A cos q + B sin q + C = 0 on the FK",
                  "rotation2d": "(u, v) = Rot(q)(u0, v0) on the FK", "value": "q = expression on the FK",
@@ -196,16 +196,12 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, T: sp.Matrix) -> None:
         checks: list[Check] = [numeric_predicate(err, claim, samples=200, tol=1e-9)]
         result = dict(zip(_stage_output_names(st), st.exprs, strict=True))
         if st.kind == "wrist":
-            result["signs (e0, e1, e2, e3, k00@0, k10@0, k00@pi, k10@pi)"] = sp.Matrix(WRIST_SIGNS[st])
+            result["signs (e0, e1, e2, e3, k00@0, k10@0, k00@pi, k10@pi)"] = sp.Matrix(st.signs)
         dv.add(Step(f"ik_stage{k}", f"IK stage {k}: {st.title}", st.rule, ("T",) + tuple(
             f"ik_stage{j}" for j in range(1, k)), result, tuple(checks)))
         solved.extend(st.joints)
     if sorted(solved) != list(range(len(spec.joints))):
         raise ValueError(f"{spec.name}: the IK plan must solve every joint exactly once")
-
-
-WRIST_R: dict = {}  # stage -> numeric wrist rotation function (filled by wrist_stage)
-WRIST_SIGNS: dict = {}
 
 
 def wrist_stage(spec_rows_wrist, joints3, m_expr, title: str, rule: str, joint_idx) -> Stage:
@@ -224,12 +220,10 @@ def wrist_stage(spec_rows_wrist, joints3, m_expr, title: str, rule: str, joint_i
         if k00 not in (1, -1) or k10 not in (1, -1):
             raise ValueError(f"wrist at q5 = {q5v}: unexpected block {m0}")
         degenerate += [int(k00), int(k10)]
-    st = Stage("wrist", tuple(joint_idx), tuple(m_expr), title,
-               rule + f"; sign pattern {signs}; at sin q5 = 0: q4 := 0, q6 = atan2(k10 m10, k00 m00) with "
-               f"(k00, k10) = {tuple(degenerate[:2])} at q5 = 0 and {tuple(degenerate[2:])} at q5 = pi")
-    WRIST_R[st] = sp.lambdify(joints3, rot, "numpy")
-    WRIST_SIGNS[st] = signs + tuple(degenerate)
-    return st
+    return Stage("wrist", tuple(joint_idx), tuple(m_expr), title,
+                 rule + f"; sign pattern {signs}; at sin q5 = 0: q4 := 0, q6 = atan2(k10 m10, k00 m00) with "
+                 f"(k00, k10) = {tuple(degenerate[:2])} at q5 = 0 and {tuple(degenerate[2:])} at q5 = pi",
+                 signs + tuple(degenerate), rot, tuple(joints3))
 
 
 def _stage_output_names(st: Stage) -> list[str]:
@@ -295,7 +289,7 @@ def stage_view(spec: SerialSpec) -> list[dict]:
         view = {"index": k, "kind": st.kind, "joints": list(st.joints), "branches": st.branches,
                 "bit": shift if st.branches == 2 else None, "shift": shift}
         if st.kind == "wrist":
-            view["signs"] = list(WRIST_SIGNS[st])
+            view["signs"] = list(st.signs)
             view["joint_kinds"] = [spec.kinds[j] for j in st.joints]
         else:
             view["joint_kind"] = spec.kinds[st.joints[0]]
