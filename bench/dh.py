@@ -22,7 +22,7 @@ BUILD = ROOT / "build" / "bench"
 C_DIR = ROOT / "generated" / "c"
 CASADI_DIR = ROOT / "generated" / "casadi"
 FLAGS = ["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"]
-CHAINS = {"wrist_1dof": 1, "spherical_wrist": 3, "rpp_wrist": 6, "scara_wrist": 4, "puma560": 6}
+CHAINS = ("wrist_1dof", "spherical_wrist", "rpp_wrist", "scara_wrist", "puma560")
 
 
 def _compile(name: str, sources: list[Path], defines: list[str]) -> Path:
@@ -35,8 +35,11 @@ def _compile(name: str, sources: list[Path], defines: list[str]) -> Path:
 
 def c_loops(n: int) -> dict[str, dict]:
     """ns per call of IK (all branches), FK and FK + Jacobian, in a C loop, for every generated chain."""
+    import importlib
+
     out = {}
-    for name, dof in CHAINS.items():
+    for name in CHAINS:
+        dof = importlib.import_module(f"wristkin.{name}").N_JOINTS
         exe = _compile(name, [ROOT / "bench" / "bench_serial.c", C_DIR / f"{name}.c"],
                        [f"-DMECH={name}", f'-DMECH_H="{name}.h"', f"-DN={dof}"])
         out[name] = json.loads(subprocess.run([str(exe), str(n)], check=True, capture_output=True,
@@ -54,7 +57,7 @@ int main(void) {
     enum { N = 100000 };
     static double q[N][6], T[12], J[36], w[4096];
     static long long iw[1024];
-    const double p[6] = {0.6718, 0.4318, 0.15005, 0.0203, 0.4318, 0.0};
+    const double p[6] = {PUMA_DESIGN};
     const double *arg[2];
     double *res[1], best_fk = 1e9, best_fj = 1e9, sum = 0.0;
     unsigned long long s = 0x9E3779B97F4A7C15ULL;
@@ -96,8 +99,12 @@ def casadi_c() -> dict:
     cg.add(fns["puma560_jacobian"])
     cg.generate(str(BUILD) + "/")
     (BUILD / "casadi_main.c").write_text(CASADI_MAIN)
+    from wristkin import puma560
+
     exe = BUILD / "bench_casadi"
-    subprocess.run(["gcc", "-O2", f"-I{BUILD}", str(BUILD / "casadi_main.c"), str(BUILD / "puma560_casadi.c"), "-lm",
+    design = ", ".join(repr(v) for v in puma560.DESIGN_DEFAULT)
+    subprocess.run(["gcc", "-O2", f"-DPUMA_DESIGN={design}", f"-I{BUILD}", str(BUILD / "casadi_main.c"),
+                    str(BUILD / "puma560_casadi.c"), "-lm",
                     "-o", str(exe)], check=True, capture_output=True, text=True)
     res = json.loads(subprocess.run([str(exe)], check=True, capture_output=True, text=True).stdout)
     return {"name": f"CasADi-generated C (casadi {ca.__version__}), C loop", "ik_us": None,
@@ -151,6 +158,9 @@ def fmt(x) -> str:
 
 
 def tables(quick: bool = False) -> str:
+    for sub in ("tests", "generated/python"):
+        if str(ROOT / sub) not in sys.path:
+            sys.path.insert(0, str(ROOT / sub))
     n_c = 20_000 if quick else 100_000
     n_py = 100 if quick else 1000
     loops = c_loops(n_c)

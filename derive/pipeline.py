@@ -28,8 +28,7 @@ def _write(path: Path, text: str | bytes) -> Path:
     return path
 
 
-def _context(mod, dv) -> dict:
-    ks = mod.kernels(dv)
+def _context(mod, ks) -> dict:
     ctx = {
         "header": "\n".join(header_lines()),
         "header_lines": header_lines(),
@@ -49,14 +48,16 @@ def _templates(name: str, mod) -> tuple[str, str, str]:
     return getattr(mod, "TEMPLATES", (f"python/{name}.py.jinja", f"c/{name}.h.jinja", f"c/{name}.c.jinja"))
 
 
-def generate_code(out: Path, names=None) -> tuple[list[Path], dict]:
-    written, derivations = [], {}
+def generate_code(out: Path, names=None) -> tuple[list[Path], dict, dict]:
+    """Render every mechanism's solvers; returns (files, derivations, kernels) for the later products."""
+    written, derivations, kernels = [], {}, {}
     for name, mod in sorted(REGISTRY.items()):
         if names and name not in names:
             continue
         dv = mod.derive()
         derivations[name] = dv
-        ctx = _context(mod, dv)
+        kernels[name] = mod.kernels(dv)
+        ctx = _context(mod, kernels[name])
         t_py, t_h, t_c = _templates(name, mod)
         written.append(_write(out / "python" / "wristkin" / f"{name}.py", render(t_py, **ctx)))
         written.append(_write(out / "c" / f"{name}.h", render(t_h, **ctx)))
@@ -65,7 +66,7 @@ def generate_code(out: Path, names=None) -> tuple[list[Path], dict]:
                           render("python/__init__.py.jinja", header=header_lines(), names=sorted(REGISTRY))))
     written.append(_write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja",
                                                                   header=header_lines())))
-    return written, derivations
+    return written, derivations, kernels
 
 
 def _manifest(out: Path) -> Path:
@@ -81,23 +82,22 @@ def regenerate(out_dir: Path = GENERATED) -> list[Path]:
     for sub in ("python", "c", "casadi", "audit"):
         if (out / sub).exists():
             shutil.rmtree(out / sub)
-    written, derivations = generate_code(out)
-    written += _post_code_products(out, derivations)
+    written, derivations, kernels = generate_code(out)
+    written += _post_code_products(out, derivations, kernels)
     written.append(_manifest(out))
     return written
 
 
-def _post_code_products(out: Path, derivations: dict) -> list[Path]:
+def _post_code_products(out: Path, derivations: dict, kernels: dict) -> list[Path]:
     """CasADi functions and audit reports (they import the freshly generated solvers)."""
     extra: list[Path] = []
     from . import audit, to_casadi
 
     for name, dv in derivations.items():
-        kernels = REGISTRY[name].kernels(dv)
         if name == "underactuated_wrist":
-            fns = to_casadi.casadi_functions(dv, kernels)
+            fns = to_casadi.casadi_functions(dv, kernels[name])
         else:
-            fns = to_casadi.serial_functions(name, kernels)
+            fns = to_casadi.serial_functions(name, kernels[name])
         extra += list(to_casadi.write_casadi(fns, out / "casadi", name=name))
     extra += audit.write_reports(derivations, out)
     return extra

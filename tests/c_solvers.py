@@ -24,6 +24,11 @@ def _solutions_struct(max_n: int, n_values: int, n_aux: int):
     return S
 
 
+def _result(rc, out) -> CResult:
+    return CResult(rc, out.count, out.status, np.array(out.valid[:], dtype=bool), np.array(out.flags[:]),
+                   np.array([list(r) for r in out.values]), np.array([list(r) for r in out.aux]))
+
+
 @dataclass
 class CResult:
     rc: int
@@ -83,16 +88,11 @@ class UnderactuatedWristC:
         rc = fn(p, None if design is None else ctypes.byref(design), ctypes.byref(out))
         return rc, out
 
-    @staticmethod
-    def _result(rc, out):
-        return CResult(rc, out.count, out.status, np.array(out.valid[:], dtype=bool), np.array(out.flags[:]),
-                       np.array([list(r) for r in out.values]), np.array([list(r) for r in out.aux]))
-
     def ik(self, pose, design=None) -> CResult:
-        return self._result(*self._call(self.lib.wk_underactuated_wrist_ik, self.IK, pose, design))
+        return _result(*self._call(self.lib.wk_underactuated_wrist_ik, self.IK, pose, design))
 
     def fk(self, joints, design=None) -> CResult:
-        return self._result(*self._call(self.lib.wk_underactuated_wrist_fk, self.FK, joints, design))
+        return _result(*self._call(self.lib.wk_underactuated_wrist_fk, self.FK, joints, design))
 
     def ik_raw(self, pose_ptr, out):
         return self.lib.wk_underactuated_wrist_ik(pose_ptr, None, out)
@@ -141,14 +141,14 @@ class SerialC:
         out = self.IK()
         rc = getattr(self.lib, f"wk_{self.name}_ik")(self._ptr(a), None if design is None else ctypes.byref(design),
                                                       ctypes.byref(out))
-        return UnderactuatedWristC._result(rc, out)
+        return _result(rc, out)
 
     def fk(self, joints, design=None) -> CResult:
         a = np.ascontiguousarray(joints, dtype=float)
         out = self.FK()
         rc = getattr(self.lib, f"wk_{self.name}_fk")(self._ptr(a), None if design is None else ctypes.byref(design),
                                                       ctypes.byref(out))
-        return UnderactuatedWristC._result(rc, out)
+        return _result(rc, out)
 
     def jacobian(self, joints):
         a = np.ascontiguousarray(joints, dtype=float)
