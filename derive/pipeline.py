@@ -94,7 +94,10 @@ def _post_code_products(out: Path, derivations: dict, kernels: dict) -> list[Pat
     from . import audit, to_casadi
 
     for name, dv in derivations.items():
-        if name == "underactuated_wrist":
+        mod = REGISTRY[name]
+        if hasattr(mod, "casadi_functions"):  # a mechanism may build its own CasADi functions
+            fns = mod.casadi_functions(dv, kernels[name])
+        elif name == "underactuated_wrist":
             fns = to_casadi.casadi_functions(dv, kernels[name])
         else:
             fns = to_casadi.serial_functions(name, kernels[name])
