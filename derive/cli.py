@@ -200,6 +200,9 @@ def solve(verb: str, module, values_text: Sequence[str], design_items, rad: bool
         else:
             in_names, in_group = motor_names(module), "motor"
 
+    short = getattr(module, "POSE_MIN_LEN", None)
+    if verb == "ik" and short is not None and len(values_text) == short:  # optional trailing pose entries
+        in_names = in_names[:short]
     user_in = parse_vector(values_text, in_names, option)
     overrides = parse_design(design_items, module)
     user_design = dict(zip(module.DESIGN_NAMES,

@@ -1,0 +1,257 @@
+"""Hybrid robot of seed 002: a 4-DOF SCARA (modified DH) carrying the 3-RSR wrist upside down, T = T_s T_c T_w.
+
+Joints q = (theta1, theta2, d3, theta4, phi1, phi2, phi3); d3 is the downward stroke (flange height d - d3).
+Pose = the platform frame [R | p] (12 entries, row-major) plus the centre distance l_bw of the wrist, the
+redundant coordinate. Orientation split (derived below): R = Rz(theta) C Rz(alpha1) Ry(beta) Rz(-alpha1) with
+theta = theta1 + theta2 + theta4 and C = diag(1, -1, -1), so the tool approach R e_z points down, swung by beta
+towards azimuth alpha = theta - alpha1.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import sympy as sp
+
+from ..checks import numeric_predicate, symbolic_identity
+from ..identities.dh import dh_modified, trans
+from ..identities.frames import rot_x, rot_z
+from ..model import Derivation, Finding, Step
+from . import rsr_geometry as g
+from . import rsr_wrist
+from .rsr_geometry import BETA, LBW, PHI, L
+
+NAME = "scara_rsr"
+TITLE = "Hybrid robot: SCARA (modified DH) + 3-RSR parallel wrist, decoupled closed-form IK with every branch"
+SEED = rsr_wrist.SEED
+VECTORISED_KERNELS = ()
+TEMPLATES = ("python/scara_rsr.py.jinja", "c/scara_rsr.h.jinja", "c/scara_rsr.c.jinja")
+TH1, TH2, D3, TH4 = sp.symbols("theta1 theta2 d3 theta4", real=True)
+L1, L2, D, DF = sp.symbols("L1 L2 d d_f", real=True)
+ALPHA1, THETA = sp.symbols("alpha1 theta", real=True)
+DESIGN_NAMES = ("L1", "L2", "d", "d_f", *rsr_wrist.DESIGN_NAMES)
+# Link dimensions are not published; these reach the seed's arc example (see the audit report).
+DESIGN_DEFAULT = (0.25, 0.25, 0.0, 0.05, *rsr_wrist.DESIGN_DEFAULT)
+C_FLIP = sp.diag(1, -1, -1)
+
+
+def scara_rows(sign_d3: int):
+    """Seed Table I rows (a_{i-1}, alpha_{i-1}, d_i, theta_i); sign_d3 = +1 as printed, -1 = eq. (1)."""
+    return ((0, 0, D, TH1), (L1, 0, 0, TH2), (L2, 0, sign_d3 * D3, 0), (0, 0, 0, TH4))
+
+
+def scara_transform(sign_d3: int = -1) -> sp.Matrix:
+    t = sp.eye(4)
+    for row in scara_rows(sign_d3):
+        t = t * dh_modified(*row)
+    return t.applyfunc(sp.simplify)
+
+
+def t_c() -> sp.Matrix:
+    m = sp.eye(4)
+    m[:3, :3] = C_FLIP
+    m[2, 3] = -DF
+    return m
+
+
+def wrist_transform(alpha1=ALPHA1, beta=BETA, lbw=LBW) -> sp.Matrix:
+    m = sp.eye(4)
+    m[:3, :3] = g.tilt_rotation(alpha1, beta)
+    m[:3, 3] = lbw * g.mirror_normal(alpha1, beta)
+    return m
+
+
+def eq1_matrix() -> sp.Matrix:
+    s124, c124 = sp.sin(TH1 + TH2 + TH4), sp.cos(TH1 + TH2 + TH4)
+    return sp.Matrix([[c124, -s124, 0, L2 * sp.cos(TH1 + TH2) + L1 * sp.cos(TH1)],
+                      [s124, c124, 0, L2 * sp.sin(TH1 + TH2) + L1 * sp.sin(TH1)],
+                      [0, 0, 1, D - D3], [0, 0, 0, 1]])
+
+
+def derive() -> Derivation:
+    dv = Derivation(NAME, TITLE, SEED, {s.name: s for s in (TH1, TH2, D3, TH4, *PHI, L1, L2, D, DF, L, ALPHA1,
+                                                             BETA, LBW, THETA)})
+    ts = scara_transform(-1)
+    ts_printed = scara_transform(+1)
+    dv.add(Step(
+        "scara_fk", "SCARA forward kinematics T_s by modified DH",
+        "Craig's A_i = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta_i) Tz(d_i) over seed Table I; the stroke d3 enters with "
+        "d_3 -> -d3 (downward), which is eq. (1)",
+        (), {"T_s": ts},
+        (symbolic_identity(ts, eq1_matrix(), "T_s (d_3 := -d3) equals seed eq. (1)"),
+         symbolic_identity(ts_printed[2, 3], D + D3, "Table I as printed gives z = d + d3, not eq. (1)'s d - d3")),
+        source="seed 002, Table I and eq. (1)"))
+    tw = wrist_transform()
+    total = ts * t_c() * tw
+    dv.add(Step(
+        "hybrid_fk", "Hybrid forward kinematics T = T_s T_c T_w",
+        "serial composition; T_w = [Rz(alpha1) Ry(beta) Rz(-alpha1) | l_bw n(alpha1, beta)] from the wrist "
+        "derivation (steps zero_torsion, centre of rsr_wrist)",
+        ("scara_fk",), {"T_c": t_c(), "T": total},
+        (symbolic_identity(t_c()[:3, :3] * t_c()[:3, :3].T, sp.eye(3), "T_c is a rigid transform (C C^T = I)"),),
+        source="seed 002, eqs. (6)-(8)"))
+    rt = total[:3, :3]
+    split = rot_z(THETA - ALPHA1) * g.rot_y(-BETA) * rot_z(ALPHA1) * rot_x(sp.pi)
+    dv.add(Step(
+        "orientation_split", "Orientation split: SCARA rotation theta, wrist azimuth alpha1, swing beta",
+        "C Rz(a) = Rz(-a) C and C Ry(b) = Ry(-b) C (C = Rx(pi)): R = Rz(theta - alpha1) Ry(-beta) Rz(alpha1) Rx(pi), "
+        "theta = theta1 + theta2 + theta4; the approach R e_z = (sin beta cos alpha, sin beta sin alpha, -cos beta) "
+        "with alpha = theta - alpha1. Inverse: beta = atan2(|a_xy|, -a_z), alpha = atan2(a_y, a_x), and with "
+        "N = Rz(-alpha) R Rx(pi) = Ry(-beta) Rz(alpha1): alpha1 = atan2(N_10, N_11); at beta = 0 the wrist does "
+        "not depend on alpha1, which is set to 0",
+        ("hybrid_fk",), {"R": split},
+        (symbolic_identity(rt.subs(TH4, THETA - TH1 - TH2), split,
+                           "R(theta1, theta2, theta4, alpha1, beta) = Rz(theta - alpha1) Ry(-beta) Rz(alpha1) Rx(pi)"),
+         symbolic_identity((rot_z(-(THETA - ALPHA1)) * split * rot_x(sp.pi))[1, :],
+                           sp.Matrix([[sp.sin(ALPHA1), sp.cos(ALPHA1), 0]]), "row 1 of N = (sin alpha1, cos alpha1, 0)"),
+         numeric_predicate(_orientation_roundtrip, "extraction (alpha, beta, alpha1) from R recovers theta and alpha1",
+                           samples=300, tol=1e-12)),
+        source="seed 002, Sec. III-B-1 and eq. (11)"))
+    offset = rot_z(THETA) * (C_FLIP * LBW * g.mirror_normal(ALPHA1, BETA) + sp.Matrix([0, 0, -DF]))
+    p_total = total[:3, 3].subs(TH4, THETA - TH1 - TH2)
+    p4 = ts[:3, 3]
+    dv.add(Step(
+        "position_split", "Position split: flange point from the tool point",
+        "p = p_4 + Rz(theta) (C l_bw n(alpha1, beta) + (0, 0, -d_f)), p_4 = (L1 c1 + L2 c12, L1 s1 + L2 s12, d - d3)",
+        ("orientation_split",), {"offset": offset},
+        (symbolic_identity(p_total, p4 + offset, "translation of T_s T_c T_w = p_4 + offset"),),
+        source="seed 002, Fig. 8 and eq. (9)"))
+    dv.add(Step(
+        "scara_ik", "Planar two-link IK, both elbows; stroke and fourth joint",
+        "law of cosines: cos theta2 = (x^2 + y^2 - L1^2 - L2^2) / (2 L1 L2), theta2 = +/- acos(.), "
+        "theta1 = atan2(y, x) - atan2(L2 sin theta2, L1 + L2 cos theta2); d3 = d - z_4; theta4 = theta - theta1 - "
+        "theta2 (wrapped)",
+        ("position_split", "scara_fk"), {},
+        (numeric_predicate(_scara_ik_error, "both elbow solutions reproduce p_4, random L1, L2 and joints",
+                           samples=300, tol=1e-12),)))
+    dv.exports.update({"T": total, "offset": offset, "T_s": ts})
+    dv.findings.extend(_findings())
+    return dv
+
+
+def _orientation_roundtrip(rng) -> float:
+    theta, a1, beta = rng.uniform(-math.pi, math.pi), rng.uniform(-math.pi, math.pi), rng.uniform(1e-3, 2.5)
+    r = (_rz(theta) @ np.diag([1.0, -1.0, -1.0]) @ _rz(a1) @ _ry(beta) @ _rz(-a1))
+    alpha, beta_x, a1_x = extract_orientation(r)
+    return max(abs(beta_x - beta), abs(math.remainder(a1_x - a1, 2 * math.pi)),
+               abs(math.remainder(alpha + a1_x - theta, 2 * math.pi)))
+
+
+def extract_orientation(r):
+    """(alpha, beta, alpha1) from the platform rotation (numpy mirror of the generated code, for the checks)."""
+    ax, ay, az = r[0, 2], r[1, 2], r[2, 2]
+    beta = math.atan2(math.hypot(ax, ay), -az)
+    alpha = math.atan2(ay, ax)
+    ca, sa = math.cos(alpha), math.sin(alpha)
+    n10 = -sa * r[0, 0] + ca * r[1, 0]
+    n11 = -(-sa * r[0, 1] + ca * r[1, 1])
+    return alpha, beta, math.atan2(n10, n11)
+
+
+def _rz(a):
+    return np.array([[math.cos(a), -math.sin(a), 0.0], [math.sin(a), math.cos(a), 0.0], [0.0, 0.0, 1.0]])
+
+
+def _ry(a):
+    return np.array([[math.cos(a), 0.0, math.sin(a)], [0.0, 1.0, 0.0], [-math.sin(a), 0.0, math.cos(a)]])
+
+
+def _scara_ik_error(rng) -> float:
+    l1, l2 = rng.uniform(0.1, 0.4, 2)
+    t1, t2 = rng.uniform(-math.pi, math.pi, 2)
+    x, y = l1 * math.cos(t1) + l2 * math.cos(t1 + t2), l1 * math.sin(t1) + l2 * math.sin(t1 + t2)
+    c2 = max(-1.0, min(1.0, (x * x + y * y - l1 * l1 - l2 * l2) / (2 * l1 * l2)))
+    worst = 0.0
+    for sgn in (1, -1):
+        s2 = sgn * math.sqrt(1 - c2 * c2)
+        th1 = math.atan2(y, x) - math.atan2(l2 * s2, l1 + l2 * c2)
+        th2 = math.atan2(s2, c2)
+        worst = max(worst, abs(l1 * math.cos(th1) + l2 * math.cos(th1 + th2) - x),
+                    abs(l1 * math.sin(th1) + l2 * math.sin(th1 + th2) - y))
+    return worst
+
+
+def _findings() -> list[Finding]:
+    # Eq. (13) with L1 = L2 = 0.25 at a point in the second quadrant, both sign pairings.
+    l1, x, y = 0.25, -0.2, 0.3
+    phi1_atan = math.atan(y / x)
+    phi1 = math.atan2(y, x)
+    phi2 = math.acos(math.hypot(x, y) / (2 * l1))
+
+    def reach(t1, t2):
+        return math.hypot(l1 * math.cos(t1) + l1 * math.cos(t1 + t2) - x, l1 * math.sin(t1) + l1 * math.sin(t1 + t2) - y)
+
+    same = reach(phi1 + phi2, 2 * phi2)
+    opposite = reach(phi1 + phi2, -2 * phi2)
+    atan_err = reach(phi1_atan - phi2, 2 * phi2)
+    a1, beta = math.radians(30.0), math.radians(40.0)
+    rw = _rz(a1) @ _ry(beta) @ _rz(-a1)
+    eq10 = rw @ np.diag([1.0, -1.0, -1.0])
+    tc = np.diag([1.0, -1.0, -1.0]) @ rw
+    # theta1 + theta2 + theta4 versus alpha -/+ alpha1 at theta = 50 deg, alpha1 = 30 deg
+    theta = math.radians(50.0)
+    r = _rz(theta) @ np.diag([1.0, -1.0, -1.0]) @ rw
+    alpha, _, _ = extract_orientation(r)
+    circle = [math.hypot(yy, zz + 410.0) for yy, zz in ((-200.0, -63.5898), (0.0, -10.0), (200.0, -63.5898))]
+    return [
+        Finding("flange height", "Table I: d_3 on joint 3 (modified DH) and eq. (1): z = d - d3",
+                "Table I as printed gives z = d + d3 (proven, step scara_fk); eq. (1) and the IK d3 = d - Z_s need "
+                "the stroke measured downward (d_3 -> -d3)", "wrong in seed",
+                "the symbolic product of Table I's rows has (2, 3) entry d + d3; we adopt eq. (1) (d3 >= 0 lowers "
+                "the flange), consistent with the seed's own IK"),
+        Finding("SCARA elbow signs (eq. 13)", "theta1 = phi1 +/- phi2 with theta2 = +/- 2 phi2",
+                "theta1 = phi1 -/+ phi2 with theta2 = +/- 2 phi2 (opposite signs), phi1 = atan2(Y_s, X_s)",
+                "wrong in seed",
+                f"L1 = L2 = 0.25 m, target (x, y) = ({x}, {y}) m: same signs miss by {same:.4f} m, opposite signs by "
+                f"{opposite:.1e} m; phi1 = arctan(Y/X) (no quadrant) misses by {atan_err:.4f} m"),
+        Finding("wrist rotation in the flange frame (eq. 10)", "R = [Wx, -Wy, -Wz]",
+                "T_c's rotation C = diag(1, -1, -1) acts from the left: C R_W negates rows 2 and 3, not columns",
+                "wrong in seed",
+                f"alpha1 = 30 deg, beta = 40 deg: max |[Wx, -Wy, -Wz] - C R_W| = "
+                f"{float(np.max(np.abs(eq10 - tc))):.3f}"),
+        Finding("azimuth bookkeeping", "theta1 + theta2 + theta4 = alpha - alpha1",
+                "theta1 + theta2 + theta4 = alpha + alpha1 (proven in step orientation_split)", "wrong in seed",
+                f"theta = 50 deg, alpha1 = 30 deg: the approach azimuth alpha = {math.degrees(alpha):.1f} deg, so "
+                f"alpha + alpha1 = {math.degrees(alpha + a1):.1f} deg = theta, alpha - alpha1 = "
+                f"{math.degrees(alpha - a1):.1f} deg; the two agree only where alpha1 = 0 or 180 deg, which is "
+                "where the seed's example sits"),
+        Finding("arc example path", "P1 (250, -200, -63.5898), P2 (250, 0, -10), P3 (250, 200, -63.5898) mm",
+                "a circle of radius 400 mm centred at (250, 0, -410) mm in the plane x = 250", "clarified",
+                f"distances from the centre: {', '.join(f'{c:.4f}' for c in circle)} mm"),
+    ]
+
+
+def kernels(dv: Derivation):
+    from ..lower import Kernel
+
+    total = dv.exports["T"]
+    scara = ("qs", (TH1, TH2, D3, TH4))
+    design = ("design", (L1, L2, D, DF))
+    rwvars = sp.symbols("w0:12", real=True)  # wrist platform pose [R_W | p_W] row-major
+    tw = sp.Matrix([[rwvars[0], rwvars[1], rwvars[2], rwvars[3]], [rwvars[4], rwvars[5], rwvars[6], rwvars[7]],
+                    [rwvars[8], rwvars[9], rwvars[10], rwvars[11]], [0, 0, 0, 1]])
+    composed = dv.exports["T_s"] * t_c() * tw
+    offset = dv.exports["offset"]
+    _ = total  # the symbolic T is the checked identity; the kernel composes with the numeric wrist pose
+    wrist = [k for k in rsr_wrist.kernels(rsr_wrist.derive_cached()) if k.name != "jacobians"]
+    return wrist + [
+        Kernel("fk_compose", "T = T_s T_c T_w: the 12 entries of [R | p] from the SCARA joints and the wrist pose.",
+               (scara, ("tw", rwvars), design),
+               tuple((f"t{i}{j}", composed[i, j]) for i in range(3) for j in range(4))),
+        Kernel("wrist_offset", "p - p_4 = Rz(theta) (C l_bw n(alpha1, beta) + (0, 0, -d_f)).",
+               (("x", (THETA, ALPHA1, BETA, LBW)), design),
+               tuple((f"o{c}", offset[k]) for k, c in enumerate("xyz"))),
+    ]
+
+
+def extra_context(ks) -> dict:
+    return {"name": NAME, "upper": NAME.upper(), "design_names": DESIGN_NAMES,
+            "design_values": [repr(v) for v in DESIGN_DEFAULT], "joint_kinds": ("R", "R", "P", "R", "R", "R", "R"),
+            "leg_angles": [repr(2 * math.pi * i / 3) for i in range(3)]}
+
+
+def casadi_functions(dv, ks):
+    from ..rsr_casadi import hybrid_functions
+
+    return hybrid_functions(ks)
