@@ -257,12 +257,13 @@ def _num(v: float) -> str:
     return format(v, ".10g")
 
 
-def format_human(result: dict, rad: bool) -> str:
+def format_human(result: dict, rad: bool, angles=None) -> str:
+    """The result as a table; `angles` = the output names that carry the angle unit (None: all)."""
     unit = "rad" if rad else "deg"
     lines = [
         f"{result['mechanism']} {result['verb']}  "
-        + " ".join(f"{k}={_num(v)}" for k, v in result["input"].items()) + f"  ({unit})",
-        "design  " + " ".join(f"{k}={_num(v)}" for k, v in result["design"].items()) + f"  ({unit})",
+        + " ".join(f"{k}={_num(v)}" for k, v in result["input"].items()) + f"  (angles in {unit})",
+        "design  " + " ".join(f"{k}={_num(v)}" for k, v in result["design"].items()) + f"  (angles in {unit})",
         f"status  {result['status']}: {result['count']} of {len(result['solutions'])} valid"
         + (f"; {result['reason']}" if result["reason"] else ""),
     ]
@@ -271,7 +272,8 @@ def format_human(result: dict, rad: bool) -> str:
         return "\n".join(lines) + "\n"
     names = list(rows[0]["values"])
     prec = 8 if rad else 6
-    cells = [["#", "valid", *(f"{n} ({unit})" for n in names), "flags"]]
+    angles = set(names if angles is None else angles)
+    cells = [["#", "valid", *(f"{n} ({unit})" if n in angles else n for n in names), "flags"]]
     for r in rows:
         vals = [("-" if r["values"][n] is None else f"{r['values'][n]:.{prec}f}") for n in names]
         cells.append([str(r["index"]), "yes" if r["valid"] else "no", *vals, ",".join(r["flags"]) or "-"])
@@ -304,7 +306,9 @@ def cmd_solve(args) -> int:
     if args.json:
         print(json.dumps(result, sort_keys=True, allow_nan=False))
     else:
-        sys.stdout.write(format_human(result, args.rad))
+        group = "joint" if args.verb == "ik" else "pose"
+        names = list(result["solutions"][0]["values"]) if result["solutions"] else []
+        sys.stdout.write(format_human(result, args.rad, [n for n in names if _is_angle(module, n, group)]))
     return EXIT_OK
 
 

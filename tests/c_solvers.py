@@ -159,3 +159,63 @@ class SerialC:
     def select(self, res_struct, previous=None):
         prev = None if previous is None else self._ptr(np.ascontiguousarray(previous, dtype=float))
         return getattr(self.lib, f"wk_{self.name}_select_ik")(ctypes.byref(res_struct), prev, None, None)
+
+
+class RsrC:
+    """ctypes wrapper for the generated 3-RSR wrist (`rsr_wrist`) or the SCARA + 3-RSR hybrid (`scara_rsr`)."""
+
+    LAYOUT = {"rsr_wrist": (3, 3, 8, 3, 3, 14, 5), "scara_rsr": (7, 13, 16, 6, 6, 6, 9)}
+
+    def __init__(self, name: str, extra_flags=()):
+        so = compile_shared([C_DIR / f"{name}.c"], [C_DIR], name, extra_flags=list(extra_flags))
+        self.lib = load(so)
+        self.name = name
+        self.n, self.n_pose, self.max_ik, n_ik_aux, _, n_fk_aux, n_params = self.LAYOUT[name]
+        self.IK = _solutions_struct(self.max_ik, self.n, n_ik_aux)
+        self.FK = _solutions_struct(1, self.n_pose, n_fk_aux)
+
+        class Design(ctypes.Structure):
+            _fields_ = [("params", ctypes.c_double * n_params)]
+        self.Design = Design
+        d = ctypes.POINTER(ctypes.c_double)
+        dp = ctypes.POINTER(Design)
+        self._fn("ik").argtypes = [d, dp, ctypes.POINTER(self.IK)]
+        self._fn("fk").argtypes = [d, dp, ctypes.POINTER(self.FK)]
+        self._fn("ik_batch").argtypes = [ctypes.c_size_t, d, dp, ctypes.POINTER(self.IK)]
+        self._fn("design_init").argtypes = [d, dp]
+        sel = [ctypes.POINTER(self.IK), d, d, d] + ([d] if name == "scara_rsr" else [])
+        self._fn("select_ik").argtypes = sel
+
+    def _fn(self, verb):
+        return getattr(self.lib, f"wk_{self.name}_{verb}")
+
+    @staticmethod
+    def _ptr(a):
+        return None if a is None else a.ctypes.data_as(ctypes.POINTER(ctypes.c_double))
+
+    def design(self, params):
+        d = self.Design()
+        a = np.ascontiguousarray(params, dtype=float)
+        return self._fn("design_init")(self._ptr(a), ctypes.byref(d)), d
+
+    def ik(self, pose, design=None) -> CResult:
+        a = np.ascontiguousarray(np.asarray(pose, dtype=float).ravel())
+        out = self.IK()
+        rc = self._fn("ik")(self._ptr(a), None if design is None else ctypes.byref(design), ctypes.byref(out))
+        return _result(rc, out)
+
+    def fk(self, joints, design=None) -> CResult:
+        a = np.ascontiguousarray(joints, dtype=float)
+        out = self.FK()
+        rc = self._fn("fk")(self._ptr(a), None if design is None else ctypes.byref(design), ctypes.byref(out))
+        return _result(rc, out)
+
+    def select(self, pose, previous=None, lower=None, upper=None, weights=None):
+        a = np.ascontiguousarray(np.asarray(pose, dtype=float).ravel())
+        out = self.IK()
+        self._fn("ik")(self._ptr(a), None, ctypes.byref(out))
+        args = [self._ptr(None if v is None else np.ascontiguousarray(v, dtype=float))
+                for v in (previous, lower, upper)]
+        if self.name == "scara_rsr":
+            args.append(self._ptr(None if weights is None else np.ascontiguousarray(weights, dtype=float)))
+        return self._fn("select_ik")(ctypes.byref(out), *args)

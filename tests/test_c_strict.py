@@ -51,3 +51,14 @@ def test_generated_c_compiles_with_strict_flags_as_a_unit():
     for src in sorted(C_DIR.glob("*.c")):
         subprocess.run([compiler(), "-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-c", str(src),
                         "-o", "/dev/null", f"-I{C_DIR}"], check=True, capture_output=True, text=True)
+
+
+@pytest.mark.skipif(not _sanitizer_available(), reason="compiler has no ASan/UBSan runtime")
+def test_rsr_wrist_and_hybrid_are_clean_under_asan_ubsan():
+    exe = compile_executable([ROOT / "tests" / "c" / "rsr_sanitize.c", C_DIR / "rsr_wrist.c", C_DIR / "scara_rsr.c"],
+                             [C_DIR], "rsr_sanitize", extra_flags=SANITIZE_FLAGS)
+    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300,
+                         env={"ASAN_OPTIONS": "detect_leaks=1:abort_on_error=1",
+                              "UBSAN_OPTIONS": "halt_on_error=1:print_stacktrace=1"})
+    assert run.returncode == 0, run.stderr[-4000:]
+    assert "runtime error" not in run.stderr and "AddressSanitizer" not in run.stderr

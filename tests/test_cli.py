@@ -237,8 +237,8 @@ def test_ik_human_table(fake, capsys):
     code, out, err = run(capsys, "ik", "toy_wrist", "--pose", "10", "20", "30")
     assert code == 0 and err == ""
     lines = out.splitlines()
-    assert lines[0] == "toy_wrist ik  psi=10 theta=20 phi=30  (deg)"
-    assert lines[1] == "design  alpha1=60 alpha2=30  (deg)"
+    assert lines[0] == "toy_wrist ik  psi=10 theta=20 phi=30  (angles in deg)"
+    assert lines[1] == "design  alpha1=60 alpha2=30  (angles in deg)"
     assert lines[2] == "status  ok: 3 of 4 valid; 3 solution sets"
     header, rows = lines[3].split(), lines[4:]
     assert header == ["#", "valid", "theta1", "(deg)", "theta2", "(deg)", "theta3", "(deg)", "flags"]
@@ -632,3 +632,33 @@ def test_dh_chain_round_trip_and_bad_input(real_wristkin, capsys):
     far = ["1", "0", "0", "50", "0", "1", "0", "0", "0", "0", "1", "0"]
     data, _ = run_json(capsys, "ik", "scara_wrist", "--pose", *far)
     assert data["count"] == 0 and data["status"] == "unreachable" and "not reachable" in data["reason"]
+
+
+def real_wristkin_names(name):
+    import importlib
+
+    return importlib.import_module(f"wristkin.{name}").POSE_NAMES
+
+
+@real
+def test_real_rsr_wrist_degrees_round_trip(real_wristkin, capsys):
+    data, _ = run_json(capsys, "ik", "rsr_wrist", "--pose", "17", "28", "0.08")
+    assert data["status"] == "ok" and data["count"] == 8
+    q = [str(data["solutions"][0]["values"][n]) for n in ("phi1", "phi2", "phi3")]
+    back, _ = run_json(capsys, "fk", "rsr_wrist", "--joints", *q)
+    vals = back["solutions"][0]["values"]
+    assert abs(vals["alpha"] - 17) < 1e-9 and abs(vals["beta"] - 28) < 1e-9 and abs(vals["l_bw"] - 0.08) < 1e-12
+
+
+@real
+def test_real_scara_rsr_twelve_or_thirteen_numbers(real_wristkin, capsys):
+    fk, _ = run_json(capsys, "fk", "scara_rsr", "--joints", "17", "57", "0.1", "11", "46", "52", "57")
+    pose = [str(fk["solutions"][0]["values"][n]) for n in real_wristkin_names("scara_rsr")]
+    full, _ = run_json(capsys, "ik", "scara_rsr", "--pose", *pose)
+    assert full["count"] == 16
+    assert any(abs(s["values"]["theta1"] - 17) < 1e-7 and abs(s["values"]["phi3"] - 57) < 1e-7
+               for s in full["solutions"] if s["valid"])
+    mid, _ = run_json(capsys, "ik", "scara_rsr", "--pose", *pose[:12])
+    assert mid["count"] == 16 and "l_bw" in mid["reason"]
+    code, _, err = run(capsys, "ik", "scara_rsr", "--pose", *pose[:11])
+    assert code == 2 and "takes 13 values" in err

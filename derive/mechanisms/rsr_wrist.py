@@ -24,8 +24,12 @@ VECTORISED_KERNELS = ()
 TEMPLATES = ("python/rsr_wrist.py.jinja", "c/rsr_wrist.h.jinja", "c/rsr_wrist.c.jinja")
 # Design: link length and the workspace limits the middle curve is taken between (explicit, not published).
 DESIGN_NAMES = ("L", "phi_min", "phi_max", "lbw_min", "lbw_max")
-DESIGN_DEFAULT = (0.06, math.radians(-30.0), math.radians(120.0), 0.03, 0.114)
+# phi in [25, 75] deg reproduces the seed's workspace shape (max swing ~56 deg over the cycle, ~75 deg at 30 deg).
+DESIGN_DEFAULT = (0.06, math.radians(25.0), math.radians(75.0), 0.02, 0.11)
 GAMMA, ALPHA1 = sp.symbols("gamma alpha_1", real=True)
+CQ = sp.symbols("c1:4", real=True)  # cos phi_i
+SQ = sp.symbols("s1:4", real=True)  # sin phi_i
+_CS = {**{sp.cos(PHI[i]): CQ[i] for i in range(3)}, **{sp.sin(PHI[i]): SQ[i] for i in range(3)}}
 
 _PHI_RANGE = (-0.6, 2.2)
 _POSE_RANGES = {ALPHA: (-math.pi, math.pi), BETA: (0.05, 2.0), L: (0.03, 0.2)}
@@ -391,6 +395,10 @@ def kernels(dv: Derivation):
         Kernel("fk_plane", "Mirror plane: unnormalised normal N = S1S2 x S1S3 and the point S1.", (q, design),
                tuple((f"N{c}", nvec[k]) for k, c in enumerate("xyz")) +
                tuple((f"S1{c}", pts[0][k]) for k, c in enumerate("xyz"))),
+        Kernel("fk_plane_cs", "fk_plane on (cos phi_i, sin phi_i): lets IK check each set without trigonometry.",
+               (("cs", (*CQ, *SQ)), design),
+               tuple((f"N{c}", nvec[k].subs(_CS)) for k, c in enumerate("xyz")) +
+               tuple((f"S1{c}", pts[0][k].subs(_CS)) for k, c in enumerate("xyz"))),
         Kernel("fk_pose", "Platform pose from the unit plane normal n and offset h: R_W = (I - 2 n n^T) "
                "diag(1, 1, -1), O_W = 2 h n, as the 12 entries of [R_W | O_W] row-major.", (plane,),
                tuple((f"r{i}{j}", rw[i, j]) if j < 3 else ("pxyz"[i + 1], 2 * h * nn[i])
@@ -412,3 +420,9 @@ def casadi_functions(dv, ks):
     from ..rsr_casadi import wrist_functions
 
     return wrist_functions(ks)
+
+
+def audit_numbers(dv, solver, audit_dir):
+    from .rsr_audit import wrist_audit_numbers
+
+    return wrist_audit_numbers(dv, solver, audit_dir, kernels(dv))

@@ -32,7 +32,7 @@ L1, L2, D, DF = sp.symbols("L1 L2 d d_f", real=True)
 ALPHA1, THETA = sp.symbols("alpha1 theta", real=True)
 DESIGN_NAMES = ("L1", "L2", "d", "d_f", *rsr_wrist.DESIGN_NAMES)
 # Link dimensions are not published; these reach the seed's arc example (see the audit report).
-DESIGN_DEFAULT = (0.25, 0.25, 0.0, 0.05, *rsr_wrist.DESIGN_DEFAULT)
+DESIGN_DEFAULT = (0.25, 0.25, 0.2, 0.05, *rsr_wrist.DESIGN_DEFAULT)
 C_FLIP = sp.diag(1, -1, -1)
 
 
@@ -255,3 +255,9 @@ def casadi_functions(dv, ks):
     from ..rsr_casadi import hybrid_functions
 
     return hybrid_functions(ks)
+
+
+def audit_numbers(dv, solver, audit_dir):
+    from .rsr_audit import hybrid_audit_numbers
+
+    return hybrid_audit_numbers(dv, solver, audit_dir)
