@@ -47,7 +47,6 @@ def tables(quick: bool = False) -> str:
             sys.path.insert(0, str(ROOT / sub))
     from c_solvers import RsrC
     from reference import rsr as ref
-
     from wristkin import rsr_wrist as w
     from wristkin import scara_rsr as h
 

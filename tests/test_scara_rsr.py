@@ -8,7 +8,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 from reference import rsr as ref
-
 from wristkin import scara_rsr as h
 
 P = h.DESIGN_DEFAULT

@@ -15,7 +15,7 @@ import numpy as np
 import sympy as sp
 
 from ..checks import numeric_predicate, symbolic_identity
-from ..identities.dh import dh_modified, trans
+from ..identities.dh import dh_modified
 from ..identities.frames import rot_x, rot_z
 from ..model import Derivation, Finding, Step
 from . import rsr_geometry as g
@@ -104,7 +104,8 @@ def derive() -> Derivation:
         (symbolic_identity(rt.subs(TH4, THETA - TH1 - TH2), split,
                            "R(theta1, theta2, theta4, alpha1, beta) = Rz(theta - alpha1) Ry(-beta) Rz(alpha1) Rx(pi)"),
          symbolic_identity((rot_z(-(THETA - ALPHA1)) * split * rot_x(sp.pi))[1, :],
-                           sp.Matrix([[sp.sin(ALPHA1), sp.cos(ALPHA1), 0]]), "row 1 of N = (sin alpha1, cos alpha1, 0)"),
+                           sp.Matrix([[sp.sin(ALPHA1), sp.cos(ALPHA1), 0]]),
+                           "row 1 of N = (sin alpha1, cos alpha1, 0)"),
          numeric_predicate(_orientation_roundtrip, "extraction (alpha, beta, alpha1) from R recovers theta and alpha1",
                            samples=300, tol=1e-12)),
         source="seed 002, Sec. III-B-1 and eq. (11)"))
@@ -180,7 +181,8 @@ def _findings() -> list[Finding]:
     phi2 = math.acos(math.hypot(x, y) / (2 * l1))
 
     def reach(t1, t2):
-        return math.hypot(l1 * math.cos(t1) + l1 * math.cos(t1 + t2) - x, l1 * math.sin(t1) + l1 * math.sin(t1 + t2) - y)
+        return math.hypot(l1 * math.cos(t1) + l1 * math.cos(t1 + t2) - x,
+                          l1 * math.sin(t1) + l1 * math.sin(t1 + t2) - y)
 
     same = reach(phi1 + phi2, 2 * phi2)
     opposite = reach(phi1 + phi2, -2 * phi2)
