@@ -284,7 +284,7 @@ def hybrid_audit_numbers(dv, solver, audit_dir: Path) -> dict:
         ("design (chosen; the seed publishes none)", design_txt),
         ("IK solution sets per pose", "16 = 2 elbows x 2^3 wrist legs, all returned"),
         ("arc example: IK solution counts along the path", ", ".join(str(c) for c in sorted(counts))),
-        ("arc example: FK round trip, max |FK(q) - target|", f"{worst_rt:.1e}"),
+        ("arc example: FK round trip, max abs(FK(q) - target)", f"{worst_rt:.1e}"),
         ("arc example: largest joint step between consecutive points", f"{worst_step:.4f} (rad or m)"),
     ]
     joints_txt = ", ".join(f"{n} {v:.4f}" for n, v in zip(solver.JOINT_NAMES, first[2], strict=True))

@@ -210,7 +210,7 @@ def _findings() -> list[Finding]:
         Finding("wrist rotation in the flange frame (eq. 10)", "R = [Wx, -Wy, -Wz]",
                 "T_c's rotation C = diag(1, -1, -1) acts from the left: C R_W negates rows 2 and 3, not columns",
                 "wrong in seed",
-                f"alpha1 = 30 deg, beta = 40 deg: max |[Wx, -Wy, -Wz] - C R_W| = "
+                f"alpha1 = 30 deg, beta = 40 deg: max abs([Wx, -Wy, -Wz] - C R_W) = "
                 f"{float(np.max(np.abs(eq10 - tc))):.3f}"),
         Finding("azimuth bookkeeping", "theta1 + theta2 + theta4 = alpha - alpha1",
                 "theta1 + theta2 + theta4 = alpha + alpha1 (proven in step orientation_split)", "wrong in seed",
