@@ -17,8 +17,9 @@ def _int_power(printer, expr) -> str | None:
     b, e = expr.as_base_exp()
     if e.is_Integer and 1 < abs(int(e)) <= 4:
         base = printer.parenthesize(b, sp.printing.precedence.PRECEDENCE["Mul"] + 1)
-        prod = "*".join([base] * abs(int(e)))
-        return prod if e > 0 else f"1.0/({prod})"
+        # Parenthesised: a power binds tighter than * and /, so `2/x**2` must not print as `2/x*x`.
+        prod = "(" + "*".join([base] * abs(int(e))) + ")"
+        return prod if e > 0 else f"1.0/{prod}"
     if e == -1:
         return f"1.0/{printer.parenthesize(b, sp.printing.precedence.PRECEDENCE['Mul'] + 1)}"
     return None

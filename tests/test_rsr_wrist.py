@@ -205,3 +205,21 @@ def test_c_bad_input_and_selection(wc):
     assert wc.select(pose, lower=lo, upper=hi) == w.select(w.ik(pose), lower=lo, upper=hi)
     prev = w.ik(pose).values[5]
     assert wc.select(pose, previous=prev) == w.select(w.ik(pose), previous=prev) == 5
+
+
+def test_geometric_jacobian_maps_leg_rates_to_the_platform_twist():
+    rng = np.random.default_rng(16)
+    for _ in range(20):
+        q = rng.uniform(math.radians(25), math.radians(75), 3)
+        jac = w.jacobian(q)
+        eps = 1e-6
+        t0 = w.pose_matrix(w.fk(q).values[0])
+        for j in range(3):
+            dq = np.zeros(3)
+            dq[j] = eps
+            tp, tm = w.pose_matrix(w.fk(q + dq).values[0]), w.pose_matrix(w.fk(q - dq).values[0])
+            rot = (tp[:3, :3] - tm[:3, :3]) / (2 * eps) @ t0[:3, :3].T
+            fd = np.r_[(tp[:3, 3] - tm[:3, 3]) / (2 * eps), rot[2, 1], rot[0, 2], rot[1, 0]]
+            assert np.max(np.abs(fd - jac[:, j])) < 1e-7
+    with pytest.raises(w.InvalidInput):
+        w.jacobian((math.pi / 2, math.pi / 2, math.pi / 2))

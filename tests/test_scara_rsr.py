@@ -187,3 +187,29 @@ def test_casadi_fk_and_jacobian_from_the_generated_file():
             dq[j] = eps
             fd = (h.fk_matrix(q + dq)[:3] - h.fk_matrix(q - dq)[:3]).ravel() / (2 * eps)
             assert np.max(np.abs(jac[:, j] - fd)) < 1e-7
+
+
+def test_geometric_jacobian_python_c_casadi(hc):
+    import ctypes
+
+    rng = np.random.default_rng(15)
+    fn = hc.lib.wk_scara_rsr_jacobian
+    dptr = ctypes.POINTER(ctypes.c_double)
+    fn.argtypes = [dptr, ctypes.c_void_p, dptr]
+    for _ in range(20):
+        q = _random_q(rng)
+        jac = h.jacobian(q)
+        eps, t0 = 1e-6, h.fk_matrix(q)
+        for j in range(7):
+            dq = np.zeros(7)
+            dq[j] = eps
+            tp, tm = h.fk_matrix(q + dq), h.fk_matrix(q - dq)
+            w = (tp[:3, :3] - tm[:3, :3]) / (2 * eps) @ t0[:3, :3].T
+            fd = np.r_[(tp[:3, 3] - tm[:3, 3]) / (2 * eps), w[2, 1], w[0, 2], w[1, 0]]
+            assert np.max(np.abs(fd - jac[:, j])) < 1e-7
+        out = np.zeros(42)
+        qa = np.ascontiguousarray(q)
+        assert fn(qa.ctypes.data_as(dptr), None, out.ctypes.data_as(dptr)) == 0
+        assert np.allclose(out.reshape(6, 7), jac, atol=1e-13)
+    with pytest.raises(h.InvalidInput):
+        h.jacobian([0, 0, 0, 0, math.pi / 2, math.pi / 2, math.pi / 2])

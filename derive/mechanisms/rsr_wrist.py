@@ -70,6 +70,12 @@ def derive() -> Derivation:
     _inverse(dv)
     _attitude(dv)
     _rates(dv)
+    from .rsr_jacobian import LEG_RANGE, jacobian_step, wrist_transform_of_joints
+
+    step, jac = jacobian_step("geometric_jacobian", wrist_transform_of_joints(dv), PHI, (L,), [LEG_RANGE] * 3,
+                              ("legs_close",))
+    dv.add(step)
+    dv.exports["geometric_jacobian"] = jac
     dv.findings.extend(_findings())
     return dv
 
@@ -403,6 +409,9 @@ def kernels(dv: Derivation):
                "diag(1, 1, -1), O_W = 2 h n, as the 12 entries of [R_W | O_W] row-major.", (plane,),
                tuple((f"r{i}{j}", rw[i, j]) if j < 3 else ("pxyz"[i + 1], 2 * h * nn[i])
                      for i in range(3) for j in range(4))),
+        Kernel("geometric_jacobian", "Geometric Jacobian 6 x 3 (row-major): platform centre velocity, then "
+               "angular velocity, per phi_dot.", (q, design),
+               tuple((f"j{i}{c}", dv.exports["geometric_jacobian"][i, c]) for i in range(6) for c in range(3))),
         Kernel("jacobians", "Rate Jacobians: Jq (diagonal, 3) and Jx (3x3 row-major) with Jq phi_dot = Jx "
                "(alpha, beta, l_bw)_dot.", (q, pose, design),
                tuple((f"jq{i}", jq[i]) for i in range(3)) +

@@ -30,6 +30,7 @@ TEMPLATES = ("python/scara_rsr.py.jinja", "c/scara_rsr.h.jinja", "c/scara_rsr.c.
 TH1, TH2, D3, TH4 = sp.symbols("theta1 theta2 d3 theta4", real=True)
 L1, L2, D, DF = sp.symbols("L1 L2 d d_f", real=True)
 ALPHA1, THETA = sp.symbols("alpha1 theta", real=True)
+JOINTS = (TH1, TH2, D3, TH4, *PHI)
 DESIGN_NAMES = ("L1", "L2", "d", "d_f", *rsr_wrist.DESIGN_NAMES)
 # Link dimensions are not published; these reach the seed's arc example (see the audit report).
 DESIGN_DEFAULT = (0.25, 0.25, 0.2, 0.05, *rsr_wrist.DESIGN_DEFAULT)
@@ -126,7 +127,14 @@ def derive() -> Derivation:
         ("position_split", "scara_fk"), {},
         (numeric_predicate(_scara_ik_error, "both elbow solutions reproduce p_4, random L1, L2 and joints",
                            samples=300, tol=1e-12),)))
-    dv.exports.update({"T": total, "offset": offset, "T_s": ts})
+    from .rsr_jacobian import LEG_RANGE, jacobian_step, wrist_transform_of_joints
+
+    t_q = ts * t_c() * wrist_transform_of_joints(rsr_wrist.derive_cached())
+    step, jac = jacobian_step("geometric_jacobian", t_q, JOINTS, (L1, L2, D, DF, L),
+                              [(-3.0, 3.0), (-3.0, 3.0), (0.0, 0.3), (-3.0, 3.0)] + [LEG_RANGE] * 3,
+                              ("hybrid_fk",))
+    dv.add(step)
+    dv.exports.update({"T": total, "offset": offset, "T_s": ts, "jacobian": jac})
     dv.findings.extend(_findings())
     return dv
 
@@ -227,7 +235,6 @@ def _findings() -> list[Finding]:
 def kernels(dv: Derivation):
     from ..lower import Kernel
 
-    total = dv.exports["T"]
     scara = ("qs", (TH1, TH2, D3, TH4))
     design = ("design", (L1, L2, D, DF))
     rwvars = sp.symbols("w0:12", real=True)  # wrist platform pose [R_W | p_W] row-major
@@ -235,12 +242,15 @@ def kernels(dv: Derivation):
                     [rwvars[8], rwvars[9], rwvars[10], rwvars[11]], [0, 0, 0, 1]])
     composed = dv.exports["T_s"] * t_c() * tw
     offset = dv.exports["offset"]
-    _ = total  # the symbolic T is the checked identity; the kernel composes with the numeric wrist pose
-    wrist = [k for k in rsr_wrist.kernels(rsr_wrist.derive_cached()) if k.name != "jacobians"]
+    unused = ("jacobians", "geometric_jacobian")  # the hybrid's own Jacobian is below
+    wrist = [k for k in rsr_wrist.kernels(rsr_wrist.derive_cached()) if k.name not in unused]
     return wrist + [
         Kernel("fk_compose", "T = T_s T_c T_w: the 12 entries of [R | p] from the SCARA joints and the wrist pose.",
                (scara, ("tw", rwvars), design),
                tuple((f"t{i}{j}", composed[i, j]) for i in range(3) for j in range(4))),
+        Kernel("jacobian", "Geometric Jacobian 6 x 7 (row-major): platform centre velocity, then angular velocity.",
+               (("q", JOINTS), ("design", (L1, L2, D, DF, L))),
+               tuple((f"j{i}{c}", dv.exports["jacobian"][i, c]) for i in range(6) for c in range(7))),
         Kernel("wrist_offset", "p - p_4 = Rz(theta) (C l_bw n(alpha1, beta) + (0, 0, -d_f)).",
                (("x", (THETA, ALPHA1, BETA, LBW)), design),
                tuple((f"o{c}", offset[k]) for k, c in enumerate("xyz"))),

@@ -60,6 +60,13 @@ static void wrist(void)
     EXPECT(wk_rsr_wrist_ik_batch(0, NULL, NULL, NULL) == WK_OK);
     EXPECT(wk_rsr_wrist_fk_batch(1, NULL, NULL, NULL) == WK_ERR_NULL);
     EXPECT(wk_rsr_wrist_select_ik(NULL, NULL, NULL, NULL) == -1);
+    {
+        double jac[18];
+        const double q[3] = {0.7, 0.8, 0.9}, qc[3] = {1.5707963267948966, 1.5707963267948966, 1.5707963267948966};
+        EXPECT(wk_rsr_wrist_jacobian(q, NULL, jac) == WK_OK);
+        EXPECT(wk_rsr_wrist_jacobian(qc, NULL, jac) == WK_STATUS_NO_ASSEMBLY);
+        EXPECT(wk_rsr_wrist_jacobian(NULL, NULL, jac) == WK_ERR_NULL);
+    }
     EXPECT(wk_rsr_wrist_workspace(0.3, 0.4, NULL, span) == WK_OK && span[0] <= span[1]);
     EXPECT(wk_rsr_wrist_workspace(0.3, 3.0, NULL, span) == WK_STATUS_UNREACHABLE);
     EXPECT(wk_rsr_wrist_workspace(NAN, 0.4, NULL, span) == WK_ERR_NONFINITE);
@@ -84,6 +91,11 @@ static void hybrid(void)
     EXPECT(wk_scara_rsr_select_ik(NULL, q, NULL, NULL, w) == -1);
     EXPECT(wk_scara_rsr_fk_matrix(q, NULL, p12) == WK_OK);
     EXPECT(wk_scara_rsr_middle_lbw(p12, NULL, &lbw) == WK_OK);
+    {
+        double jac[42];
+        EXPECT(wk_scara_rsr_jacobian(q, NULL, jac) == WK_OK);
+        EXPECT(wk_scara_rsr_jacobian(q, NULL, NULL) == WK_ERR_NULL);
+    }
     EXPECT(wk_scara_rsr_middle_lbw(NULL, NULL, &lbw) == WK_ERR_NULL);
     pose[3] += 5.0;
     EXPECT(wk_scara_rsr_ik(pose, NULL, &ik) == WK_OK && ik.status == WK_STATUS_UNREACHABLE && ik.count == 0);
