@@ -158,6 +158,10 @@ def _critical_swing(solver, design) -> tuple[float, float]:
     return out[0], out[1]
 
 
+def _swing_text(deg: float) -> str:
+    return "none below 180°" if deg > 179.5 else f"{deg:.2f}°"
+
+
 def wrist_audit_numbers(dv, solver, audit_dir: Path, kernels) -> dict:
     d = solver.make_design()
     length, pmin, pmax, lmin, lmax = d.params
@@ -214,7 +218,7 @@ def wrist_audit_numbers(dv, solver, audit_dir: Path, kernels) -> dict:
                  f"relative singular value of the closed-chain Jacobian {worst['constraint']:.3f}: no singularity "
                  "inside the limited workspace.\n\n"
                  f"Without the leg limits, at l_bw = L the leg roots merge (an inverse singularity) at swing "
-                 f"{crit0:.2f}° for α = 0 and {crit30:.2f}° for α = 30°."},
+                 f"{_swing_text(crit0)} for α = 0 and {_swing_text(crit30)} for α = 30°."},
         {"title": "Swing-rotation angle γ",
          "body": "γ = atan2(sin α1, cos β cos α1) (step gamma) with the exact inverse α1 = atan2(cos β sin γ, "
                  "cos γ) for β < 90°: no curve fit and no bisection are needed. γ = α1 at α1 = 0, ±90°, 180°, as the "
