@@ -177,6 +177,20 @@ def seed_quartic_polys():
 def r_robot_steps(dv: Derivation, spec: ScrewSpec) -> None:
     _orientation_step(dv, spec, "a b", lambda q: (q[0] + q[1] + q[2], q[3] + q[4]))
     P4, P2, t = seed_quartic_polys()
+    f4 = sp.lambdify(_quartic_symbols(), sp.Poly(P4, t).all_coeffs(), "math")
+
+    def on_robot(rng):
+        """The robot's own planar problem (plane normal to a): tan(theta1/2) of the generating joints is a root."""
+        dsn = sample_design(spec, rng)
+        a, r1, r2, r3 = _vecs(spec, dsn, "a r1 r2 r3")
+        q = list(sample_joints(spec, rng, 2.5).values())
+        e1 = np.cross(a, [1.0, 0.0, 0.0] if abs(a[0]) < 0.9 else [0.0, 1.0, 0.0])
+        e1 /= np.linalg.norm(e1)
+        e2 = np.cross(a, e1)
+        u, v = r2 - r1, r3 - r2
+        d = _rot(a, q[0]) @ u + _rot(a, q[0] + q[1]) @ v
+        coeffs = f4(u @ e1, u @ e2, v @ e1, v @ e2, d @ e1, d @ e2)
+        return abs(np.polyval(coeffs, math.tan(q[0] / 2))) / max(abs(c) for c in coeffs)
     dv.add(Step("seed_quartic", "Seed route for theta1, theta2: the quartic of eqs. (24)-(26), and the quadratic",
                 "in-plane components of d = Rot(theta1) u + Rot(theta1 + theta2) v, solved linearly for "
                 "(cos, sin)(theta1 + theta2), cos^2 + sin^2 = 1, half tangent t = tan(theta1/2): a quartic P4(t); "
@@ -186,7 +200,10 @@ def r_robot_steps(dv: Derivation, spec: ScrewSpec) -> None:
                 {"P4 (seed quartic)": sp.collect(P4, t), "P2 (quadratic)": sp.collect(P2, t),
                  "relation": sp.Eq(sp.Symbol("P4"), (1 + t**2) * sp.Symbol("P2"))},
                 (symbolic_identity(P4, sp.expand((1 + t**2) * P2), "P4 = (1 + t^2) P2 identically: the quartic "
-                                   "only adds t = +/- i", sp.expand),),
+                                   "only adds t = +/- i", sp.expand),
+                 numeric_predicate(on_robot, "on random robots, tan(theta1/2) of the generating joints is a root of "
+                                   "P4 built from the robot's (r2 - r1, r3 - r2, d) in the plane normal to a "
+                                   "(relative residual)", samples=100, tol=1e-9)),
                 source="seed 003, eqs. (24)-(27) (formulas lost; rebuilt from the text)",
                 note="The extra roots t = +/- i are the circular points (cos theta1, sin theta1) = (1, +/- i) x "
                      "infinity: never real, never a solution."))
