@@ -294,3 +294,4 @@ def test_casadi_fk_and_jacobians(name):
         np.testing.assert_allclose(T, ref.fk(robot, q)[:3], atol=1e-12)
         np.testing.assert_allclose(J, ref.jacobian(robot, q), atol=1e-12)
         np.testing.assert_allclose(np.array(fns[f"{name}_position_jacobian_ad"](q, params)), J[:3], atol=1e-12)
+        np.testing.assert_allclose(np.array(fns[f"{name}_jacobian_ad"](q, params)), J, atol=1e-12)

@@ -182,5 +182,26 @@ class ScrewMechanism:
     def audit_numbers(self, dv, solver, audit_dir) -> dict:
         return screw_seed.audit_numbers(self.spec, dv, solver)
 
+    def casadi_functions(self, dv, kernels) -> dict:
+        """The serial chains' CasADi set (FK, geometric Jacobian, AD of the position) plus the whole 6 x n
+        Jacobian by CasADi's AD: linear rows d p / d q, angular rows vee(d R / d q_k R^T) (tested equal)."""
+        import casadi as ca
+
+        from .. import to_casadi
+
+        name = self.NAME
+        fns = to_casadi.serial_functions(name, kernels)
+        n, m = len(self.spec.joints), len(self.spec.design)
+        q, p = ca.SX.sym("q", n), ca.SX.sym("p", m)
+        T = fns[f"{name}_fk"](q, p)
+        R = T[:, :3]
+        cols = []
+        for k in range(n):
+            W = ca.reshape(ca.jacobian(ca.vec(R), q[k]), 3, 3) @ R.T
+            cols.append(ca.vertcat(W[2, 1], W[0, 2], W[1, 0]))
+        J = ca.vertcat(ca.jacobian(T[:, 3], q), ca.horzcat(*cols))
+        fns[f"{name}_jacobian_ad"] = ca.Function(f"{name}_jacobian_ad", [q, p], [ca.densify(J)], ["q", "p"], ["J"])
+        return fns
+
 
 MECHANISMS = {name: ScrewMechanism(name) for name in SPECS}
