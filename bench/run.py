@@ -311,6 +311,11 @@ def main(argv=None) -> int:
 
     rsr_text = rsr.tables(quick=args.quick)
     print(rsr_text)
+    import screws  # bench/screws.py: the finite-screw 3T2R robots (seed 003), same run
+
+    screws_text = screws.tables(quick=args.quick)
+    print()
+    print(screws_text)
     print(f"\ntimed in {time.perf_counter() - t_start:.1f} s; "
           f"results in {BUILD_DIR.relative_to(ROOT)}/results.json")
 
@@ -321,7 +326,7 @@ def main(argv=None) -> int:
             r[f"{k}_ratio_vs_c_loop"] = None if t is None else t / base[k]
     result = {"machine": machine, "unit": "seconds per call", "repeats_python": REPEATS, "counts": n,
               "c_loop_raw": c_raw, "rows": rows, "dh_tables_markdown": dh_text,
-              "rsr_tables_markdown": rsr_text}
+              "rsr_tables_markdown": rsr_text, "screw_tables_markdown": screws_text}
     (BUILD_DIR / "results.json").write_text(json.dumps(result, indent=2) + "\n")
     return 0
 

@@ -30,7 +30,7 @@ def test_generated_c_is_clean_under_asan_ubsan():
     assert "runtime error" not in run.stderr and "AddressSanitizer" not in run.stderr
 
 
-SERIAL = ["puma560", "rpp_wrist", "scara_wrist", "spherical_wrist", "wrist_1dof"]
+SERIAL = ["puma560", "rpp_wrist", "scara_wrist", "spherical_wrist", "wrist_1dof", "p1p2p3rarb", "rarararbrb"]
 
 
 @pytest.mark.skipif(not _sanitizer_available(), reason="compiler has no ASan/UBSan runtime")

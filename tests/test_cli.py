@@ -662,3 +662,27 @@ def test_real_scara_rsr_twelve_or_thirteen_numbers(real_wristkin, capsys):
     assert mid["count"] == 16 and "l_bw" in mid["reason"]
     code, _, err = run(capsys, "ik", "scara_rsr", "--pose", *pose[:11])
     assert code == 2 and "takes 13 values" in err
+
+
+# ---------------------------------------------------------------------------- finite-screw robots through the CLI
+def test_screw_robots_round_trip_design_and_bad_input(real_wristkin, capsys):
+    """Revolute joints in degrees, slides and pose entries in metres; design = axis directions and points."""
+    names = ("r00", "r01", "r02", "px", "r10", "r11", "r12", "py", "r20", "r21", "r22", "pz")
+    data, _ = run_json(capsys, "fk", "p1p2p3rarb", "--joints", "0.3", "-0.2", "0.5", "40", "-70")
+    flat = [repr(data["solutions"][0]["values"][n]) for n in names]
+    back, _ = run_json(capsys, "ik", "p1p2p3rarb", "--pose", *flat)
+    assert back["count"] == 1
+    got = back["solutions"][0]["values"]
+    assert max(abs(got[k] - v) for k, v in {"t1": 0.3, "t2": -0.2, "t3": 0.5, "theta_a": 40, "theta_b": -70}.items()
+               ) < 1e-9
+    data, _ = run_json(capsys, "fk", "rarararbrb", "--joints", "10", "20", "30", "40", "50")
+    flat = [repr(data["solutions"][0]["values"][n]) for n in names]
+    back, _ = run_json(capsys, "ik", "rarararbrb", "--pose", *flat)
+    assert back["count"] in (2, 4) and any(
+        all(abs(s["values"][f"theta{i}"] - 10.0 * i) < 1e-6 for i in range(1, 6)) for s in back["solutions"]
+        if s["valid"])
+    off = ["1", "0", "0", "0", "0", "0", "-1", "0", "0", "1", "0", "0"]  # Rot(x, 90 deg): not Rot(a) Rot(b)
+    data, _ = run_json(capsys, "ik", "p1p2p3rarb", "--pose", *off)
+    assert data["count"] == 0 and data["status"] == "unreachable" and "image" in data["reason"]
+    code, _, err = run(capsys, "ik", "rarararbrb", "--pose", *flat, "--design", "bx=0.5")
+    assert code == 2 and "unit vector" in err
