@@ -176,15 +176,16 @@ class SerialMechanism:
 
     TEMPLATES = ("python/serial.py.jinja", "c/serial.h.jinja", "c/serial.c.jinja")
     VECTORISED_KERNELS = ("fk",)
+    SPECS = SPECS  # name -> spec factory; subclasses for other chain families replace it
 
     def __init__(self, name: str):
         self.NAME = name
         self._spec = None
 
     @property
-    def spec(self) -> SerialSpec:
+    def spec(self):
         if self._spec is None:
-            self._spec = SPECS[self.NAME]()
+            self._spec = self.SPECS[self.NAME]()
         return self._spec
 
     def derive(self):

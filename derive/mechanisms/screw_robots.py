@@ -15,6 +15,7 @@ import sympy as sp
 from ..identities.frames import skew
 from ..identities.screws import JointAxis
 from . import screw_seed
+from .dh_robots import SerialMechanism
 from .dh_serial import P_POSE, R_POSE, Stage
 from .screw_serial import DESIGN_NONZERO_TOL, DESIGN_UNIT_TOL, DesignCheck, ScrewSpec
 
@@ -151,21 +152,10 @@ def rarararbrb() -> ScrewSpec:
 SPECS = {f.__name__: f for f in (p1p2p3rarb, rarararbrb)}
 
 
-class ScrewMechanism:
+class ScrewMechanism(SerialMechanism):
     """Registry adapter: a ScrewSpec rendered through the serial-chain templates (same API as the DH chains)."""
 
-    TEMPLATES = ("python/serial.py.jinja", "c/serial.h.jinja", "c/serial.c.jinja")
-    VECTORISED_KERNELS = ("fk",)
-
-    def __init__(self, name: str):
-        self.NAME = name
-        self._spec = None
-
-    @property
-    def spec(self) -> ScrewSpec:
-        if self._spec is None:
-            self._spec = SPECS[self.NAME]()
-        return self._spec
+    SPECS = SPECS
 
     def derive(self):
         from .screw_serial import derive_spec
