@@ -174,3 +174,18 @@ def test_other_design_matches_reference():
     sol = mod.ik(T, params)
     assert sol.count == 2 and min(_dist(mod, q, v) for v in sol) < 1e-9
     assert c.ik(T, d).count == 2
+
+
+def test_fk_flags_exact_singularities_in_python_and_c():
+    """sigma_min / sigma_max of J decides the FK flag: exact singularities (PUMA wrist theta5 = 0, stretched elbow)
+    are flagged in both languages, a regular configuration is not."""
+    mod = importlib.import_module("wristkin.puma560")
+    c = SerialC("puma560", mod.N_JOINTS, mod.MAX_IK, len(mod.DESIGN_NAMES))
+    q_wrist = np.array([0.3, -0.4, 0.5, 0.2, 0.0, 0.1])
+    q_regular = np.array([0.3, -0.4, 0.5, 0.2, 0.7, 0.1])
+    for q, singular in ((q_wrist, True), (q_regular, False)):
+        assert bool(mod.fk(q).flags[0] & mod.FLAG_SINGULAR_INVERSE) == singular
+        assert bool(c.fk(q).flags[0] & mod.FLAG_SINGULAR_INVERSE) == singular
+        assert bool(mod.fk_batch(q[None, :]).flags[0, 0] & mod.FLAG_SINGULAR_INVERSE) == singular
+        # manipulability: equal where regular; at the singularity both are rounding noise of sqrt(eps * |J|^2)
+        assert abs(c.fk(q).aux[0, 0] - mod.fk(q).aux[0, 0]) < (1e-8 if singular else 1e-12)

@@ -179,6 +179,7 @@ def test_near_singular_configurations():
             assert all(ref.distance(robot, x, y) > 1e-4 for j, x in enumerate(vals) for y in vals[:j])
             assert np.any(sol.flags[sol.valid] & mod.FLAG_DOUBLE_ROOT)
             assert np.linalg.svd(mod.jacobian(q, params), compute_uv=False)[-1] < 1e-9
+            assert mod.fk(q, params).flags[0] & mod.FLAG_SINGULAR_INVERSE  # FK flags it too
         # none missed, none spurious against the reference, at the singular set and 1e-5 from it (at 1e-7 the two
         # roots are closer than the tangent tolerance and reported once, flagged double_root)
         # (at a double root the residual is quadratic, so the reference's converged points spread ~1e-5 along the
