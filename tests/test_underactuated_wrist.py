@@ -364,3 +364,18 @@ def test_fk_exactly_at_a_double_root(uw, uw_c):
                 if res > uw.FK_RESIDUAL_TOL:
                     assert sol.flags[k] & uw.FLAG_DOUBLE_ROOT and sol.flags[k] & uw.FLAG_SINGULAR_DIRECT
             assert sol.count == 3
+
+
+def test_select_weights_every_mechanism_takes_the_same_keyword(uw):
+    """select(..., weights=...) is part of the shared API: a zero weight ignores that joint's distance."""
+    import math
+
+    import numpy as np
+
+    sol = uw.ik([math.radians(a) for a in (-35.99, 0.26, 38.93)])
+    ks = np.flatnonzero(sol.valid)
+    target = sol.values[ks[-1]].copy()
+    prev = target.copy()
+    prev[1:] += 1.0  # far in joints 2 and 3, exact in joint 1
+    assert uw.select(sol, previous=prev, weights=(1.0, 0.0, 0.0)) in [
+        k for k in ks if abs(math.remainder(sol.values[k, 0] - target[0], 2 * math.pi)) < 1e-12]
