@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from c_solvers import SerialC
 from reference import dh as ref
+from seeding import case_rng
 
 NAMES = ["wrist_1dof", "spherical_wrist", "rpp_wrist", "scara_wrist", "puma560"]
 IK_SAMPLES = {"wrist_1dof": 20, "spherical_wrist": 15, "rpp_wrist": 8, "scara_wrist": 15, "puma560": 5}
@@ -45,7 +46,7 @@ def _dist(mod, a, b):
 
 def test_fk_and_jacobian_match_reference(mech):
     name, mod, c = mech
-    rng = np.random.default_rng(1)
+    rng = case_rng(1)
     for _ in range(50):
         q = _joints(mod, rng)
         T = ref.fk(name, q)
@@ -61,7 +62,7 @@ def test_fk_and_jacobian_match_reference(mech):
 
 def test_ik_matches_reference_branch_for_branch(mech):
     name, mod, c = mech
-    rng = np.random.default_rng(2)
+    rng = case_rng(2)
     for _ in range(IK_SAMPLES[name]):
         q = _joints(mod, rng)
         T = ref.fk(name, q)
@@ -78,7 +79,7 @@ def test_ik_matches_reference_branch_for_branch(mech):
 
 def test_round_trips_including_degenerate_joint_values(mech):
     name, mod, c = mech
-    rng = np.random.default_rng(3)
+    rng = case_rng(3)
     worst = 0.0
     for i in range(200):
         q = _joints(mod, rng, special=i % 2 == 1)
@@ -100,7 +101,7 @@ def test_round_trips_including_degenerate_joint_values(mech):
 @pytest.mark.parametrize("name", ["spherical_wrist", "rpp_wrist", "puma560"])
 def test_wrist_singularity_is_flagged_with_representative(name):
     mod = importlib.import_module(f"wristkin.{name}")
-    rng = np.random.default_rng(4)
+    rng = case_rng(4)
     q = _joints(mod, rng)
     i5 = mod.JOINT_NAMES.index("theta5")
     q[i5] = 0.0
@@ -150,7 +151,7 @@ def test_unreachable_and_bad_input(mech):
 
 def test_select_limits_and_seed(mech):
     name, mod, c = mech
-    rng = np.random.default_rng(5)
+    rng = case_rng(5)
     q = _joints(mod, rng)
     T = ref.fk(name, q)
     sol = mod.ik(T)

@@ -24,13 +24,14 @@ from reference.dh import (
     wrap_angle,
     wrap_joints,
 )
+from seeding import case_rng
 
 c, s = math.cos, math.sin
 N_RANDOM = 10
 
 
 def _rng(tag: int) -> np.random.Generator:
-    return np.random.default_rng(20240 + tag)
+    return case_rng(20240 + tag)
 
 
 def _homog(top: list[list[float]]) -> np.ndarray:

@@ -37,6 +37,7 @@ from reference.rsr import (
     pose_from_params,
     scara_fk,
 )
+from seeding import case_rng
 
 DEG = math.pi / 180.0
 L = DEFAULT_L
@@ -44,7 +45,7 @@ L = DEFAULT_L
 
 def _random_params(n: int, seed: int) -> list[tuple[float, float, float]]:
     """(alpha, beta, l_bw) with alpha, beta in (0, 60 deg) and l_bw in (0.04, 0.1) m."""
-    rng = np.random.default_rng(seed)
+    rng = case_rng(seed)
     return [(rng.uniform(0.0, 60.0) * DEG, rng.uniform(0.0, 60.0) * DEG, rng.uniform(0.04, 0.1)) for _ in range(n)]
 
 
@@ -165,7 +166,7 @@ def test_scara_modified_dh_against_hand_formula():
 
 def _random_hybrid_joints(n: int, seed: int, ds: HybridDesign):
     """q from random SCARA joints and a random posed wrist (legs from ik_all), with T and l_bw."""
-    rng = np.random.default_rng(seed)
+    rng = case_rng(seed)
     out = []
     for alpha, beta, l_bw in _random_params(n, seed + 1):
         R, p = pose_from_params(alpha, beta, l_bw)
