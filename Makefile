@@ -22,6 +22,16 @@ CC := gcc
 endif
 CSTRICT := -std=c99 -pedantic -Wall -Wextra -Werror
 PYTEST_ARGS ?=
+# Test workers (pytest-xdist): one per core.
+TEST_WORKERS ?= auto
+# The second pass of `make test-portable`: another CPU's numeric kernels and another set of random cases.
+PORTABLE_SEED ?= 2
+# Numerically sensitive tests: every comparison against the independent reference, the fuzz tests and the
+# drift check.
+SENSITIVE_TESTS := tests/test_underactuated_wrist.py tests/test_reference_underactuated_wrist.py \
+	tests/test_poly_real_roots.py tests/test_dh.py tests/test_reference_dh.py tests/test_screw_robots.py \
+	tests/test_rsr_wrist.py tests/test_scara_rsr.py tests/test_reference_rsr_selfcheck.py \
+	tests/test_casadi_functions.py tests/test_fuzz.py tests/test_fuzz_python.py tests/test_generated_fresh.py
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 export PIP_NO_INPUT := 1
@@ -30,7 +40,7 @@ export MPLBACKEND := Agg
 DEMO_POSE := -35.99 0.26 38.93
 DEMO_JOINTS := 137.92 138.44 137.82
 
-.PHONY: all setup venv regenerate check-generated demo test lint bench clean distclean help
+.PHONY: all setup venv regenerate check-generated demo test test-portable fuzz lint bench clean distclean help
 
 all: venv regenerate demo
 
@@ -38,7 +48,9 @@ setup: all
 
 help:
 	@echo "make all              venv + regenerate + demo (the README's first command)"
-	@echo "make test             the full pytest suite, incl. drift check and C compile tests"
+	@echo "make test             the full pytest suite, incl. drift check and C compile tests (WRISTKIN_TEST_SEED=N: other cases)"
+	@echo "make test-portable    the numerically sensitive tests again as another CPU computes (Sandybridge kernels, no AVX2)"
+	@echo "make fuzz             1e6 fuzz cases per mechanism (1e7 in all) on the generated C under ASan/UBSan, then Python"
 	@echo "make regenerate       rebuild generated/ from the derivations"
 	@echo "make check-generated  regenerate into a temp dir and diff against generated/"
 	@echo "make demo             IK and FK of the paper's design on the command line"
@@ -74,9 +86,22 @@ demo: $(STAMP)
 
 # pytest exit code 5 means no tests were collected: that is a failure, not a pass.
 test: $(STAMP)
-	@rc=0; $(PY) -m pytest -q $(PYTEST_ARGS) || rc=$$?; \
+	@rc=0; $(PY) -m pytest -n $(TEST_WORKERS) --dist worksteal --durations=15 $(PYTEST_ARGS) || rc=$$?; \
 	if [ $$rc -eq 5 ]; then echo "error: pytest collected no tests (exit code 5)" >&2; fi; \
 	exit $$rc
+
+# As a CPU without AVX2 computes: OpenBLAS's Sandybridge kernels, numpy's AVX2/FMA3 loops off, other cases.
+test-portable: $(STAMP)
+	@rc=0; OPENBLAS_CORETYPE=Sandybridge NPY_DISABLE_CPU_FEATURES=X86_V3 WRISTKIN_TEST_SEED=$(PORTABLE_SEED) \
+	$(PY) -m pytest -n $(TEST_WORKERS) --dist worksteal $(SENSITIVE_TESTS) $(PYTEST_ARGS) || rc=$$?; \
+	if [ $$rc -eq 5 ]; then echo "error: pytest collected no tests (exit code 5)" >&2; fi; \
+	exit $$rc
+
+# 1e6 cases per mechanism through the C fuzz driver (10 mechanisms: 1e7), then 20x the Python examples.
+FUZZ_CASES ?= 1000000
+fuzz: $(STAMP)
+	WRISTKIN_FUZZ_CASES=$(FUZZ_CASES) WRISTKIN_FUZZ_EXAMPLES=3000 $(PY) -m pytest -n $(TEST_WORKERS) -s \
+	tests/test_fuzz.py tests/test_fuzz_python.py $(PYTEST_ARGS)
 
 # All three checks run; the target fails if any of them failed.
 lint: $(STAMP)

@@ -11,6 +11,8 @@ from typing import Any
 
 import sympy as sp
 
+from .report_numbers import error_bucket  # machine-independent bytes in the audit report
+
 
 @dataclass(frozen=True)
 class Check:
@@ -26,7 +28,7 @@ class Check:
     def summary(self) -> str:
         if self.kind == "symbolic":
             return f"symbolic identity: {'proven' if self.passed else 'FAILED'}"
-        return (f"numeric, {self.samples} samples: max error {self.max_error:.2e} "
+        return (f"numeric, {self.samples} samples: max error {error_bucket(self.max_error)} "
                 f"(tolerance {self.tolerance:.0e}) {'passed' if self.passed else 'FAILED'}")
 
 

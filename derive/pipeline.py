@@ -101,7 +101,10 @@ def _post_code_products(out: Path, derivations: dict, kernels: dict) -> list[Pat
             fns = to_casadi.casadi_functions(dv, kernels[name])
         else:
             fns = to_casadi.serial_functions(name, kernels[name])
-        extra += list(to_casadi.write_casadi(fns, out / "casadi", name=name))
+        # the entries of the functions' design input: the solver's DESIGN_NAMES unless the mechanism's CasADi
+        # functions take fewer (the 3-RSR wrist's take only L)
+        design_names = getattr(mod, "CASADI_DESIGN_NAMES", None) or audit.load_generated(out, name).DESIGN_NAMES
+        extra += list(to_casadi.write_casadi(fns, out / "casadi", name=name, design_names=design_names))
     extra += audit.write_reports(derivations, out)
     return extra
 

@@ -30,7 +30,7 @@ import hashlib
 import json
 import os
 import tempfile
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 
 import casadi as ca
@@ -385,15 +385,16 @@ def _io(f: ca.Function, kind: str) -> list[dict]:
     return [{"name": name(i), "shape": list(shape(i))} for i in range(n)]
 
 
-def index_json(functions: Mapping[str, ca.Function], blob: bytes, file_name: str) -> str:
+def index_json(functions: Mapping[str, ca.Function], blob: bytes, file_name: str, name: str,
+               design_names: Sequence[str]) -> str:
     idx = {
-        "mechanism": MECHANISM,
+        "mechanism": name,
         "file": file_name,
         "format": "casadi.FileSerializer; one packed list of Functions sorted by name; "
                   "load with casadi.FileDeserializer(path).unpack()",
         "casadi_version": ca.__version__,
         "sha256": hashlib.sha256(blob).hexdigest(),
-        "design_names": list(DESIGN_NAMES),
+        "design_names": list(design_names),
         "functions": {
             n: {"doc": FUNCTION_DOCS.get(n, ""), "inputs": _io(f, "in"), "outputs": _io(f, "out"),
                 "n_instructions": int(f.n_instructions())}
@@ -423,8 +424,12 @@ def serial_functions(name: str, kernels) -> dict[str, ca.Function]:
     }
 
 
-def write_casadi(functions: Mapping[str, ca.Function], out_dir, name: str = MECHANISM) -> list[Path]:
+def write_casadi(functions: Mapping[str, ca.Function], out_dir, name: str = MECHANISM,
+                 design_names: Sequence[str] = DESIGN_NAMES) -> list[Path]:
     """Write `<out_dir>/<name>.casadi` and `<out_dir>/<name>.json` (index); return both paths.
+
+    design_names: the mechanism's design parameters in the order of the functions' design input (the
+    generated module's DESIGN_NAMES).
 
     out_dir is the CasADi directory itself (the pipeline passes generated/casadi).
 
@@ -438,7 +443,7 @@ def write_casadi(functions: Mapping[str, ca.Function], out_dir, name: str = MECH
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths = [out / f"{name}.casadi", out / f"{name}.json"]
-    contents = [blob, index_json(functions, blob, paths[0].name).encode()]
+    contents = [blob, index_json(functions, blob, paths[0].name, name, design_names).encode()]
     for path, data in zip(paths, contents, strict=True):
         if not path.exists() or path.read_bytes() != data:
             tmp = path.with_suffix(path.suffix + ".tmp")

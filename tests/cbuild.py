@@ -39,9 +39,13 @@ def compile_shared(sources: list[Path], include_dirs: list[Path] = (), name: str
     BUILD_DIR.mkdir(parents=True, exist_ok=True)
     out = BUILD_DIR / f"{name}-{digest.hexdigest()[:16]}.so"
     if not out.exists():
-        cmd = [compiler(), *flags, "-shared", "-o", str(out), *map(str, sources)]
+        # Built under a private name, then renamed: parallel test workers that need the same library build it
+        # at most once each and never load a half-written file.
+        tmp = out.with_name(f"{out.stem}.{os.getpid()}.tmp.so")
+        cmd = [compiler(), *flags, "-shared", "-o", str(tmp), *map(str, sources)]
         cmd += [f"-I{inc}" for inc in include_dirs] + ["-lm"]
         subprocess.run(cmd, check=True, capture_output=True, text=True)
+        os.replace(tmp, out)
     return out
 
 
@@ -51,9 +55,11 @@ def compile_executable(sources: list[Path], include_dirs: list[Path] = (), name:
     flags = STRICT_FLAGS + list(extra_flags)
     BUILD_DIR.mkdir(parents=True, exist_ok=True)
     out = BUILD_DIR / name
-    cmd = [compiler(), *flags, "-o", str(out), *map(str, sources)]
+    tmp = out.with_name(f"{out.name}.{os.getpid()}.tmp")
+    cmd = [compiler(), *flags, "-o", str(tmp), *map(str, sources)]
     cmd += [f"-I{inc}" for inc in include_dirs] + ["-lm"]
     subprocess.run(cmd, check=True, capture_output=True, text=True)
+    os.replace(tmp, out)
     return out
 
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 import itertools
 import json
 import math
+from pathlib import Path
 
 import casadi as ca
 import numpy as np
@@ -398,3 +399,27 @@ def test_serialisation_round_trip_and_determinism(fns, dv, kernels, tmp_path):
             a, b = call(f, *args), call(g, *args)
             for x, y in zip(a, b, strict=True):
                 assert np.array_equal(x, y, equal_nan=True), name
+
+
+CASADI_INDEXES = sorted((Path(__file__).resolve().parent.parent / "generated" / "casadi").glob("*.json"))
+
+
+@pytest.mark.parametrize("index", CASADI_INDEXES, ids=lambda p: p.stem)
+def test_index_names_the_mechanism_and_its_design_parameters(index):
+    """Each CasADi index names its own mechanism and the design parameters of that mechanism, in the order of
+    the functions' design input (a fixed list once stood in every index)."""
+    import importlib
+
+    doc = json.loads(index.read_text())
+    mod = importlib.import_module(f"wristkin.{index.stem}")
+    assert doc["mechanism"] == index.stem
+    names = doc["design_names"]
+    # every design input of every function has one entry per listed name: the whole design ("p") or the one
+    # named parameter it takes; the names are the module's, in its order
+    assert names == [n for n in mod.DESIGN_NAMES if n in names] and names
+    for fn in tc.load_casadi(index.with_suffix(".casadi")).values():
+        for i in range(fn.n_in()):
+            if fn.name_in(i) == "p":
+                assert fn.size_in(i) == (len(names), 1), (fn.name(), fn.name_in(i))
+            elif fn.name_in(i) in mod.DESIGN_NAMES:
+                assert names == [fn.name_in(i)], (fn.name(), fn.name_in(i))

@@ -24,6 +24,7 @@ VECTORISED_KERNELS = ()
 TEMPLATES = ("python/rsr_wrist.py.jinja", "c/rsr_wrist.h.jinja", "c/rsr_wrist.c.jinja")
 # Design: link length and the workspace limits the middle curve is taken between (explicit, not published).
 DESIGN_NAMES = ("L", "phi_min", "phi_max", "lbw_min", "lbw_max")
+CASADI_DESIGN_NAMES = ("L",)  # the CasADi functions take the platform link length only (limits do not enter)
 # phi in [25, 75] deg reproduces the seed's workspace shape (max swing ~56 deg over the cycle, ~75 deg at 30 deg).
 DESIGN_DEFAULT = (0.06, math.radians(25.0), math.radians(75.0), 0.02, 0.11)
 GAMMA, ALPHA1 = sp.symbols("gamma alpha_1", real=True)
