@@ -89,10 +89,14 @@ def test_round_trips_including_degenerate_joint_values(mech):
         errs = [ref.pose_error(name, v, T) for v in py]
         worst = max(worst, max(errs))
         if not np.any(py.flags & mod.FLAG_INDETERMINATE):
-            # the generating joints are among the branches; at a tangent (double) root the joint accuracy is
-            # sqrt(eps)-limited even though the pose error is below 1e-9
-            tol = 1e-6 if np.any(py.flags & mod.FLAG_DOUBLE_ROOT) else 1e-7
-            assert min(_dist(mod, q, v) for v in py) < tol
+            # The generating joints are among the branches, to the accuracy the conditioning allows: a stage
+            # root carries ~1e-14 (regular) or ~sqrt(1e-14) ~ 1e-7 (tangent/double root) error, and the later
+            # joints amplify it by at most 1 / (sigma_min / sigma_max) of J at q (the near-singular wrist makes
+            # q4 and q6 individually ill-determined: the pose, checked above, is not).
+            sv = np.linalg.svd(mod.jacobian(q), compute_uv=False)
+            ratio = sv[-1] / sv[0]
+            base = 1e-6 if np.any(py.flags & mod.FLAG_DOUBLE_ROOT) else 1e-7
+            assert min(_dist(mod, q, v) for v in py) < base / max(ratio, 1e-300)
         cc = c.ik(T)
         assert cc.count == py.count and np.array_equal(cc.flags, py.flags)
     assert worst < 1e-9

@@ -81,10 +81,13 @@ def call(mod, fn, *args):
 
 
 def distance(kinds, a, b):
-    d = np.asarray(a, float) - np.asarray(b, float)
-    rev = np.array([k == "R" for k in kinds])
-    d = np.where(rev, np.remainder(d + math.pi, 2 * math.pi) - math.pi, d)
-    return float(np.max(np.abs(d)))
+    """Max joint difference, angles wrapped (each side first: math.remainder is exact for any finite value)."""
+    out = 0.0
+    for k, x, y in zip(kinds, a, b, strict=True):
+        d = math.remainder(math.remainder(x, 2 * math.pi) - math.remainder(y, 2 * math.pi), 2 * math.pi) \
+            if k == "R" else x - y
+        out = max(out, abs(d))
+    return out
 
 
 def pose_matrix(mod, row, aux):

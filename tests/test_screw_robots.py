@@ -172,7 +172,12 @@ def test_near_singular_configurations():
         robot = ref.axes("rarararbrb", params)
         T = ref.fk(robot, q)
         sol = mod.ik(T, params)
-        assert min(ref.distance(robot, q, v) for v in sol) < 1e-6
+        # Two roots closer than 2 sqrt(DOUBLE_ROOT_TOL) = 2e-6 rad in the stage joint are one double root (their
+        # separation is below what rounding of the stage's u, ~sqrt(1e-14), resolves with margin): the generating
+        # joints lie within that of the reported set, times the O(1) gain of the later stages (random designs
+        # kept 1e-2 off degenerate ones); regular sets are exact to ~1e-12.
+        tol = 1e-5 if np.any(sol.flags[sol.valid] & mod.FLAG_DOUBLE_ROOT) else 1e-6
+        assert min(ref.distance(robot, q, v) for v in sol) < tol
         for v in sol:
             assert ref.pose_error(robot, v, T) < 1e-9
         vals = list(sol)
