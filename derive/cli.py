@@ -271,11 +271,12 @@ def format_human(result: dict, rad: bool, angles=None) -> str:
     if not rows:
         return "\n".join(lines) + "\n"
     names = list(rows[0]["values"])
-    prec = 8 if rad else 6
     angles = set(names if angles is None else angles)
     cells = [["#", "valid", *(f"{n} ({unit})" if n in angles else n for n in names), "flags"]]
     for r in rows:
-        vals = [("-" if r["values"][n] is None else f"{r['values'][n]:.{prec}f}") for n in names]
+        # 12 significant digits: a printed pose pastes back into `ik` (its rotation is then within 1e-11 of SO(3),
+        # well inside the 1e-6 that is projected) and joints read back to 1e-12 relative
+        vals = [("-" if r["values"][n] is None else format(float(r["values"][n]), ".12g")) for n in names]
         cells.append([str(r["index"]), "yes" if r["valid"] else "no", *vals, ",".join(r["flags"]) or "-"])
     widths = [max(len(c[j]) for c in cells) for j in range(len(cells[0]))]
     for c in cells:

@@ -243,10 +243,10 @@ def test_ik_human_table(fake, capsys):
     header, rows = lines[3].split(), lines[4:]
     assert header == ["#", "valid", "theta1", "(deg)", "theta2", "(deg)", "theta3", "(deg)", "flags"]
     assert len(rows) == 4
-    assert rows[0].split() == ["0", "yes", "70.000000", "80.000000", "90.000000", "-"]
-    assert rows[1].split() == ["1", "yes", "-50.000000", "-40.000000", "-30.000000", "-"]
+    assert rows[0].split() == ["0", "yes", "70", "80", "90", "-"]
+    assert rows[1].split() == ["1", "yes", "-50", "-40", "-30", "-"]
     assert rows[2].split() == ["2", "no", "-", "-", "-", "-"]
-    assert rows[3].split() == ["3", "yes", "10.000000", "20.000000", "30.000000",
+    assert rows[3].split() == ["3", "yes", "10", "20", "30",
                                "singular_inverse,double_root"]
     # Aligned: every row has the same width up to the flags column.
     assert len({r.index(r.split()[-1], len(r) - len(r.split()[-1]) - 1) for r in rows[:3]}) == 1
@@ -686,3 +686,26 @@ def test_screw_robots_round_trip_design_and_bad_input(real_wristkin, capsys):
     assert data["count"] == 0 and data["status"] == "unreachable" and "image" in data["reason"]
     code, _, err = run(capsys, "ik", "rarararbrb", "--pose", *flat, "--design", "bx=0.5")
     assert code == 2 and "unit vector" in err
+
+
+@pytest.mark.skipif(not REAL_MODULE.exists(), reason="generated package not present")
+def test_printed_fk_pose_pastes_back_into_ik_and_huge_joints_are_wrapped():
+    """The table prints 12 significant digits: the FK pose pasted into `ik`
+    finds the joints again; 1e308 joints are wrapped exactly (no traceback, no NaN)."""
+    import subprocess
+    import sys
+
+    def run_cli(*argv):
+        return subprocess.run([sys.executable, "-m", "derive.cli", *argv], cwd=REPO_ROOT, capture_output=True,
+                              text=True, timeout=120)
+
+    q = ["0.1", "0.2", "0.3", "0.4", "0.5", "0.6"]
+    out = run_cli("fk", "puma560", "--rad", "--joints", *q)
+    assert out.returncode == 0, out.stderr
+    row = [line for line in out.stdout.splitlines() if line.startswith("0  yes")][0].split()
+    back = run_cli("ik", "puma560", "--rad", "--pose", *row[2:14])
+    assert back.returncode == 0, back.stderr
+    found = [line.split()[2:8] for line in back.stdout.splitlines() if " yes " in f" {line} "]
+    assert any(max(abs(float(a) - float(b)) for a, b in zip(f, q, strict=True)) < 1e-9 for f in found), back.stdout
+    huge = run_cli("fk", "puma560", "--rad", "--joints", "1e308", "1e308", "1e308", "0", "0", "0")
+    assert huge.returncode == 0 and "Traceback" not in huge.stderr and "nan" not in huge.stdout.lower()
