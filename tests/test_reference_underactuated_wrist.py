@@ -287,9 +287,13 @@ def test_fk_near_double_root():
     dr = np.array([(middle_axis(i, th[i] + h) - middle_axis(i, th[i] - h)) / (2 * h) @ (R @ P[i])
                    for i in range(3)])
     dth = u / dr / np.linalg.norm(u / dr)
+    # At the fold itself the reference sees the double root once or, split by rounding into two modes about
+    # sqrt(residual tolerance) apart, twice: the count there is 3 or 4. Off the fold by h the two merging
+    # modes are about sqrt(h) apart (1e-4 at h = 1e-8), well resolved: 2 on one side, 4 on the other.
+    assert fk.count in (3, 4)
     for eps in (1e-4, 1e-6, 1e-8):
         counts = sorted(fk_reference(th + s * eps * dth).count for s in (1.0, -1.0))
-        assert counts == [fk.count - 1, fk.count + 1] == [2, 4]
+        assert counts == [2, 4]
 
 
 # ------------------------------------------------------------------------------------------
