@@ -380,3 +380,40 @@ def test_select_weights_every_mechanism_takes_the_same_keyword(uw):
     prev[1:] += 1.0  # far in joints 2 and 3, exact in joint 1
     assert uw.select(sol, previous=prev, weights=(1.0, 0.0, 0.0)) in [
         k for k in ks if abs(math.remainder(sol.values[k, 0] - target[0], 2 * math.pi)) < 1e-12]
+
+
+def test_close_roots_of_the_eliminant_keep_both_modes(uw, uw_c):
+    """Two roots of the degree-8 eliminant 1.4e-7 apart belong to two well-conditioned modes that share eta (the
+    loop equations are nearly proportional there): both are returned (scalar, batch and C), unflagged, and IK of
+    each gives the joints back. A merge is confirmed, never assumed."""
+    q = np.array([1.3787517671176137, 0.7898908212231482, 5.308687386977519])
+    expected = ref.fk_reference(q).rotations
+    assert len(expected) == 6
+    fb = uw.fk_batch(q[None, :])
+    batch_row = uw.Solutions(fb.values[0], fb.valid[0], fb.flags[0], fb.aux[0], int(fb.status[0]), "")
+    for sol in (uw.fk(q), uw_c.fk(q), batch_row):
+        assert sol.count == 6
+        rots = [sol.aux[k, :9].reshape(3, 3) for k in np.flatnonzero(sol.valid)]
+        for r in expected:  # each mode is found; well conditioned, so to ~eps / cond_direct
+            assert min(np.max(np.abs(r - x)) for x in rots) < 1e-9
+    for pose in uw.fk(q):
+        ik = uw.ik(pose)
+        assert min(np.max(np.abs(np.remainder(v - q + np.pi, 2 * np.pi) - np.pi)) for v in ik) < 1e-9
+
+
+def test_euler_angles_next_to_the_gimbal_reproduce_their_rotation(uw, uw_c):
+    """Just above GIMBAL_EPS psi and phi are individually ill-determined (~eps / sin theta) but the returned
+    angles must reproduce the mode's own rotation matrix to rounding (phi is taken after psi)."""
+    q = (3.1415926537790035, 3.1415926521088884, 3.141592647950821)
+    for sol in (uw.fk(q), uw_c.fk(q)):
+        assert sol.count >= 1
+        for k in np.flatnonzero(sol.valid):
+            r = uw.rotation_from_pose(sol.values[k])
+            assert np.max(np.abs(r - sol.aux[k, :9].reshape(3, 3))) < 1e-14  # a few ulps of unit entries
+
+
+def test_degenerate_designs_are_invalid_in_python_and_c(uw, uw_c):
+    for bad in ([5e-324, 1.0, 0.5, 5e-324], [1e-4, 1.0, 0.5, 0.7], [1.0, np.pi - 1e-5, 0.5, 0.7], [1.0, 1.0, 0.5, 0.0]):
+        with pytest.raises(uw.InvalidDesign):
+            uw.make_design(bad)
+        assert uw_c.design(bad)[0] == -3  # WK_ERR_DESIGN

@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from ..model import Finding
+from ..report_numbers import error_bucket
 from .rsr_wrist import max_gamma_difference, seed_fd
 
 _BETA_GRID = np.radians(np.arange(0.0, 179.5, 0.25))
@@ -288,7 +289,7 @@ def hybrid_audit_numbers(dv, solver, audit_dir: Path) -> dict:
         ("design (chosen; the seed publishes none)", design_txt),
         ("IK solution sets per pose", "16 = 2 elbows x 2^3 wrist legs, all returned"),
         ("arc example: IK solution counts along the path", ", ".join(str(c) for c in sorted(counts))),
-        ("arc example: FK round trip, max abs(FK(q) - target)", f"{worst_rt:.1e}"),
+        ("arc example: FK round trip, max abs(FK(q) - target)", error_bucket(worst_rt)),
         ("arc example: largest joint step between consecutive points", f"{worst_step:.4f} (rad or m)"),
     ]
     joints_txt = ", ".join(f"{n} {v:.4f}" for n, v in zip(solver.JOINT_NAMES, first[2], strict=True))

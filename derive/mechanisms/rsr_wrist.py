@@ -14,6 +14,7 @@ import sympy as sp
 
 from ..checks import numeric_identity, numeric_predicate, symbolic_identity
 from ..model import Derivation, Finding, Step
+from ..report_numbers import measured
 from . import rsr_geometry as g
 from .rsr_geometry import ALPHA, BETA, LBW, PHI, L
 
@@ -345,8 +346,8 @@ def _findings() -> list[Finding]:
                 "S2x - sqrt(3) S2y = 0 and S3x + sqrt(3) S3y = 0 (S_i lies in the plane perpendicular to u_i)",
                 "wrong in seed",
                 f"phi = 0.7 rad, L = 1: S2 = ({float(s2[0]):.4f}, {float(s2[1]):.4f}): S2x - sqrt(3) S2y = "
-                f"{float(s2[0] - sp.sqrt(3) * s2[1]):.1e}, while S2x - sqrt(S2y) is undefined (S2y < 0); "
-                f"S3x + sqrt(3) S3y = {float(s3[0] + sp.sqrt(3) * s3[1]):.1e}"),
+                f"{measured(float(s2[0] - sp.sqrt(3) * s2[1]))}, while S2x - sqrt(S2y) is undefined (S2y < 0); "
+                f"S3x + sqrt(3) S3y = {measured(float(s3[0] + sp.sqrt(3) * s3[1]))}"),
         Finding("mid-plane condition", "O_B S_1 . O_B O_W = L_BW / 2",
                 "O_B S_i . n = L_BW / 2 (equivalently O_B S_i . O_B O_W = L_BW^2 / 2)", "wrong in seed",
                 "dimensions: the left side is a length squared; with L_BW = 0.08 m, O_B S_i . O_B O_W = 0.0032 m^2 "

@@ -18,6 +18,7 @@ from ..checks import numeric_predicate, symbolic_identity
 from ..identities.dh import dh_modified
 from ..identities.frames import rot_x, rot_z
 from ..model import Derivation, Finding, Step
+from ..report_numbers import measured
 from . import rsr_geometry as g
 from . import rsr_wrist
 from .rsr_geometry import BETA, LBW, PHI, L
@@ -214,7 +215,7 @@ def _findings() -> list[Finding]:
                 "theta1 = phi1 -/+ phi2 with theta2 = +/- 2 phi2 (opposite signs), phi1 = atan2(Y_s, X_s)",
                 "wrong in seed",
                 f"L1 = L2 = 0.25 m, target (x, y) = ({x}, {y}) m: same signs miss by {same:.4f} m, opposite signs by "
-                f"{opposite:.1e} m; phi1 = arctan(Y/X) (no quadrant) misses by {atan_err:.4f} m"),
+                f"{measured(opposite)} m; phi1 = arctan(Y/X) (no quadrant) misses by {atan_err:.4f} m"),
         Finding("wrist rotation in the flange frame (eq. 10)", "R = [Wx, -Wy, -Wz]",
                 "T_c's rotation C = diag(1, -1, -1) acts from the left: C R_W negates rows 2 and 3, not columns",
                 "wrong in seed",

@@ -16,6 +16,7 @@ from ..checks import numeric_predicate, symbolic_identity
 from ..identities import screws
 from ..identities.polynomial import half_angle_quadratic
 from ..model import Derivation, Finding, Step
+from ..report_numbers import error_bucket, measured
 from .screw_serial import ScrewSpec, numeric_axes, sample_design, sample_joints
 
 N_AUDIT = 300  # seeded samples behind each number of the report
@@ -97,11 +98,11 @@ def _half_turn_evidence(spec: ScrewSpec, dirs: str, half: list[int]) -> str:
         ea = max(_wrap(x - y) for x, y in zip(atan2_orientation(a, b, R), (math.pi - delta, 0.0), strict=True))
         try:
             es = max(_wrap(x - y) for x, y in zip(seed_orientation(a, b, R), (math.pi - delta, 0.0), strict=True))
-            seed = f"{es:.1e}"
+            seed = measured(es)
         except (screws.ScrewSingularity, np.linalg.LinAlgError, ZeroDivisionError):
             seed = "no finite screw (ScrewSingularity)"
         at = f"pi - {delta:g}" if delta else "pi"
-        parts.append(f"phi_a = {at}: seed route error {seed}, atan2 route {ea:.1e}")
+        parts.append(f"phi_a = {at}: seed route error {seed}, atan2 route {error_bucket(ea)}")
     return "; ".join(parts)
 
 
@@ -136,7 +137,8 @@ def p_robot_steps(dv: Derivation, spec: ScrewSpec) -> None:
     dv.findings.append(Finding(
         "prismatic parameters (eq. 16)", "t_i = projection of the translation on p_i",
         "t = [p1 p2 p3]^-1 d (Cramer's rule); projections only for orthonormal directions", "wrong in seed",
-        f"orthonormal random frames: max error {dv['seed_projection_route'].checks[0].max_error:.1e} m; random unit "
+        f"orthonormal random frames: max error {error_bucket(dv['seed_projection_route'].checks[0].max_error)} m; "
+        "random unit "
         f"(non-orthogonal) directions, t uniform in [-1, 1]: median error {np.median(errs):.2f} m, max "
         f"{max(errs):.2f} m over {N_AUDIT} samples; default design, t = (0.3, -0.2, 0.5): projections give "
         f"({', '.join(f'{pi @ d:.3f}' for pi in p)})"))
@@ -265,11 +267,13 @@ def _r_findings(spec: ScrewSpec) -> list[Finding]:
                 "one law-of-cosines step (2 roots) and one rotation", "clarified",
                 f"symbolic identity (step seed_quartic); {N_AUDIT} random planar problems (70% reachable): real roots "
                 f"of P4 {real4}, of P2 {real2}; real roots of P4 that are not roots of P2: {extra_real}; roots of P2 "
-                f"missing from P4: {lost}; the two extra roots of P4 lie within {worst_i:.1e} of +/- i. The quartic "
+                f"missing from P4: {lost}; the two extra roots of P4 lie within {error_bucket(worst_i)} of +/- i. "
+                "The quartic "
                 "adds only the complex pair t = +/- i and is never needed."),
         Finding("theta4 half-tangent formula (eq. 22) at theta4 = pi", "t = tan(theta4/2) from the quadratic",
                 "atan2(B, A) +/- acos(-C / sqrt(A^2 + B^2)) (emitted)", "clarified",
-                f"random robot with theta4 = pi: leading coefficient C - A = {lead:.1e} (vs A = {A_:.2f}): the root "
+                f"random robot with theta4 = pi: leading coefficient |C - A| {error_bucket(lead)} (vs A = {A_:.2f}): "
+                "the root "
                 "is at t = infinity, the quadratic formula divides by ~0; the generated IK returns theta4 = pi (tests "
                 "test_half_turn_joint_values)"),
         Finding("rotational parameters (eq. 19) at half turns", "closed form from the finite screw of the pose",
@@ -352,7 +356,7 @@ def _singular_numbers(spec: ScrewSpec, solver) -> str:
         return ("None for an admissible design: the Jacobian has the independent columns p1, p2, p3 (linear) and "
                 "a, Rot(a, theta_a) b (angular, never parallel since angle(a, b) is preserved), so rank 5 "
                 f"everywhere. Smallest singular value of J over {N_AUDIT} random robots (design "
-                f"conditions above 0.1) and joints: {worst:.2e}.")
+                f"conditions above 0.1) and joints: {measured(worst)}.")
     worst_sing, flagged, n = 0.0, 0, 60
     for i in range(n):
         dsn = sample_design(spec, rng, margin=0.1)
@@ -374,4 +378,4 @@ def _singular_numbers(spec: ScrewSpec, solver) -> str:
             "J loses rank (a) where d(a.p)/d theta4 = 0, theta4 = atan2(B, A) mod pi (the theta4 stage has a double "
             "root), and (b) where the elbow is stretched or folded (the theta2 stage has a double root). Measured "
             f"on {n} random robots at such configurations (half each): largest smallest singular value of J "
-            f"{worst_sing:.1e}; IK sets flagged double_root + singular_inverse in {flagged} of {n}.")
+            f"{error_bucket(worst_sing)}; IK sets flagged double_root + singular_inverse in {flagged} of {n}.")
