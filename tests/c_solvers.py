@@ -126,6 +126,7 @@ class SerialC:
         getattr(self.lib, f"wk_{name}_jacobian").argtypes = [d, ctypes.POINTER(Design), d]
         getattr(self.lib, f"wk_{name}_design_init").argtypes = [d, ctypes.POINTER(Design)]
         getattr(self.lib, f"wk_{name}_select_ik").argtypes = [ctypes.POINTER(self.IK), d, d, d]
+        getattr(self.lib, f"wk_{name}_ik_near").argtypes = [d, ctypes.POINTER(Design), d, ctypes.POINTER(self.IK)]
 
     @staticmethod
     def _ptr(a):
@@ -142,6 +143,15 @@ class SerialC:
         rc = getattr(self.lib, f"wk_{self.name}_ik")(self._ptr(a), None if design is None else ctypes.byref(design),
                                                       ctypes.byref(out))
         return _result(rc, out)
+
+    def ik_near(self, pose, previous, design=None):
+        """(result, the raw struct for select)."""
+        a = np.ascontiguousarray(np.asarray(pose, dtype=float)[:3].ravel())
+        prev = np.ascontiguousarray(previous, dtype=float)
+        out = self.IK()
+        rc = getattr(self.lib, f"wk_{self.name}_ik_near")(self._ptr(a), None if design is None else ctypes.byref(design),
+                                                           self._ptr(prev), ctypes.byref(out))
+        return _result(rc, out), out
 
     def fk(self, joints, design=None) -> CResult:
         a = np.ascontiguousarray(joints, dtype=float)

@@ -1,0 +1,134 @@
+"""The reproducers of the portable-suite issue, each in Python and C: near-singular wrists, selection at the
+wrist singularity, near-rotations, scaled designs, the 3-RSR degenerate configuration. (Generic invariants on
+random and hostile input live in test_fuzz.py / test_fuzz_python.py; these pin the exact cases.)"""
+
+from __future__ import annotations
+
+import importlib
+import math
+
+import numpy as np
+import pytest
+from c_solvers import RsrC, SerialC
+
+FLAG_SINGULAR_INVERSE, FLAG_PROJECTED = 1, 32
+
+
+def serial(name):
+    mod = importlib.import_module(f"wristkin.{name}")
+    return mod, SerialC(name, mod.N_JOINTS, mod.MAX_IK, len(mod.DESIGN_NAMES))
+
+
+def wrapped(a, b):
+    return float(np.max(np.abs(np.remainder(np.asarray(a) - np.asarray(b) + math.pi, 2 * math.pi) - math.pi)))
+
+
+@pytest.mark.parametrize("name,i5", [("spherical_wrist", 1), ("rpp_wrist", 4), ("puma560", 4)])
+@pytest.mark.parametrize("t5", [1e-5, 1e-6, 1e-7, 1e-9, 1e-12, -1e-9, math.pi - 1e-9])
+def test_poses_next_to_the_wrist_singularity_are_reachable(name, i5, t5):
+    """Within 1e-12 ... 1e-5 rad of a straight wrist every set is found (was: unreachable 74-99.8 %), each
+    reproduces the pose to 1e-9, and C agrees with Python set for set."""
+    mod, c = serial(name)
+    q = np.array([0.3, 0.2, 0.1, 0.3, 0.5, 0.2][: mod.N_JOINTS])
+    q[i5] = t5
+    T = mod.fk(q).values[0]
+    py, cc = mod.ik(T), c.ik(T)
+    assert py.count == mod.MAX_IK and cc.count == py.count
+    assert np.array_equal(py.valid, cc.valid) and np.array_equal(py.flags, cc.flags)
+    assert np.max(py.aux[py.valid]) <= mod.IK_VERIFY_TOL
+    # the joints: exact up to the conditioning, ~1e-16 / |sin theta5| in q4 and q6 (and flagged below 1e-6)
+    sv = np.linalg.svd(mod.jacobian(q), compute_uv=False)
+    assert min(wrapped(v, q) for v in py) < 1e-13 / (sv[-1] / sv[0])
+    for v, f in zip(py.values[py.valid], py.flags[py.valid], strict=True):  # flagged where the wrist is near straight
+        if abs(math.sin(v[i5])) <= 0.5 * mod.SINGULAR_EPS:
+            assert f & FLAG_SINGULAR_INVERSE
+
+
+def test_selection_at_the_wrist_singularity_follows_previous():
+    """PUMA at its zero pose (theta5 = 0): select(ik(fk(qz)), previous=qz) stays (was: a set 3.05 rad away); with
+    previous passed to IK, the singular family's member is the one at previous's theta4; C agrees."""
+    mod, c = serial("puma560")
+    qz = np.zeros(6)
+    sol = mod.ik(mod.fk(qz).values[0])
+    assert wrapped(sol.values[mod.select(sol, previous=qz)], qz) < 1e-12
+    qprev = np.array([0.1, 0.2, 0.3, 1.1, 0.0, 0.6])
+    T = mod.fk(qprev).values[0]
+    sol = mod.ik(T, previous=qprev)
+    k = mod.select(sol, previous=qprev)
+    assert wrapped(sol.values[k], qprev) < 1e-9 and sol.flags[k] & mod.FLAG_INDETERMINATE
+    res, raw = c.ik_near(T, qprev)
+    assert wrapped(res.values[c.select(raw, qprev)], qprev) < 1e-9
+
+
+# (not the 5-DOF screw robots: a float32 pose lies ~1e-8 off their 5-dimensional image, beyond IK_VERIFY_TOL,
+# and is reported unreachable with that residual, as any pose off the image)
+@pytest.mark.parametrize("name", ["puma560", "scara_wrist"])
+def test_near_rotations_are_projected_and_far_ones_rejected_with_the_deviation(name):
+    mod, c = serial(name)
+    q = np.full(mod.N_JOINTS, 0.3)
+    T = mod.fk_matrix(q)
+    for near in (T.astype(np.float32), np.round(T, 8)):
+        py, cc = mod.ik(near), c.ik(near)
+        assert py.count >= 1 and cc.count == py.count
+        assert np.all(py.flags[py.valid] & FLAG_PROJECTED) and np.all(cc.flags[cc.valid] & FLAG_PROJECTED)
+        assert "projected onto SO(3)" in py.reason
+        assert min(wrapped(v, q) for v in py) < 1e-5  # float32 pose: ~6e-8 per entry, amplified by the chain
+    far = T.copy()
+    far[0, 0] += 1e-4
+    with pytest.raises(mod.InvalidInput, match=r"max\|R\^T R - I\| = [0-9.e-]+ \(accepted up to 1e-06"):
+        mod.ik(far)
+    assert c.ik(far).rc == -4  # WK_ERR_RANGE
+
+
+@pytest.mark.parametrize("name", ["puma560", "scara_wrist"])
+def test_designs_below_a_millimetre_are_rejected_in_python_and_c(name):
+    mod, c = serial(name)
+    tiny = np.array(mod.DESIGN_DEFAULT) * 1e-6
+    with pytest.raises(mod.InvalidDesign, match="smaller units"):
+        mod.make_design(tiny)
+    assert c.design(tiny)[0] == -3  # WK_ERR_DESIGN
+    assert c.design(np.array(mod.DESIGN_DEFAULT) * 1e-2)[0] == 0  # a centimetre-scale robot is fine
+
+
+def test_rsr_wrist_at_beta_pi_is_flagged_and_sets_are_not_duplicated():
+    """rsr_wrist.fk([0, pi/2, -pi/2]): beta = pi, l_bw = 0, leg 1 turns freely: FK flags singular_inverse, IK
+    returns each set once (was: flags 0 and every set twice); the hybrid reaches the same platform pose."""
+    mod = importlib.import_module("wristkin.rsr_wrist")
+    c = RsrC("rsr_wrist")
+    q = [0.0, math.pi / 2, -math.pi / 2]
+    for fk in (mod.fk(q), c.fk(q)):
+        assert fk.count == 1 and fk.flags[0] & FLAG_SINGULAR_INVERSE
+    for ik in (mod.ik(mod.fk(q).values[0]), c.ik(mod.fk(q).values[0])):
+        rows = [tuple(np.round(v, 12)) for v in ik.values[ik.valid]]
+        assert ik.count == 4 and len(set(rows)) == 4
+    hy = importlib.import_module("wristkin.scara_rsr")
+    qh = [1e-12, 1e-12, -0.0098300311131065965, 2.0299772569726562, 1e-12, math.pi / 2, -math.pi / 2]
+    sol = hy.ik(hy.fk(qh).values[0])
+    assert sol.count >= 1 and sol.status != hy.STATUS_UNREACHABLE
+    assert RsrC("scara_rsr").ik(hy.fk(qh).values[0]).count == sol.count
+
+
+def test_rsr_designs_python_and_c_agree():
+    mod = importlib.import_module("wristkin.rsr_wrist")
+    c = RsrC("rsr_wrist")
+    big = list(mod.DESIGN_DEFAULT)
+    big[0] = 1e200
+    with pytest.raises(mod.InvalidDesign):
+        mod.make_design(big)
+    assert c.design(big)[0] == -3
+
+
+def test_rsr_centre_distance_is_signed_and_round_trips():
+    """l_bw is the signed distance along the platform normal (docs/API.md): FK returns negative values for about
+    half of random joints, and FK -> IK closes for both signs."""
+    mod = importlib.import_module("wristkin.rsr_wrist")
+    rng = np.random.default_rng(5)
+    signs = set()
+    for _ in range(40):
+        q = rng.uniform(-math.pi, math.pi, 3)
+        fk = mod.fk(q)
+        if not fk.count or fk.flags[0] & 3:
+            continue
+        signs.add(bool(fk.values[0][2] > 0))
+        assert min(wrapped(v, q) for v in mod.ik(fk.values[0])) < 1e-9
+    assert signs == {True, False}
