@@ -149,8 +149,8 @@ class SerialC:
         a = np.ascontiguousarray(np.asarray(pose, dtype=float)[:3].ravel())
         prev = np.ascontiguousarray(previous, dtype=float)
         out = self.IK()
-        rc = getattr(self.lib, f"wk_{self.name}_ik_near")(self._ptr(a), None if design is None else ctypes.byref(design),
-                                                           self._ptr(prev), ctypes.byref(out))
+        dptr = None if design is None else ctypes.byref(design)
+        rc = getattr(self.lib, f"wk_{self.name}_ik_near")(self._ptr(a), dptr, self._ptr(prev), ctypes.byref(out))
         return _result(rc, out), out
 
     def fk(self, joints, design=None) -> CResult:
