@@ -1,7 +1,8 @@
 """3-RSR (2R1T) symmetric parallel wrist of seed 002: FK by the mirror-plane construction, exact IK per leg,
 the swing-rotation attitude angle gamma, and rate Jacobians; every step checked as it is recorded.
 
-Pose = (alpha, beta, l_bw): azimuth and swing of the platform normal and the centre distance |O_B O_W|
+Pose = (alpha, beta, l_bw): azimuth and swing of the platform normal and the signed centre distance (|O_B O_W|
+up to sign: l_bw = 2 h along the mirror plane's normal n with n_z >= 0)
 (seed eq. 9). Joints = (phi1, phi2, phi3), the swing angles of the three base links.
 """
 
@@ -109,7 +110,8 @@ def _forward(dv: Derivation) -> None:
     ow = LBW * n
     dv.add(Step(
         "centre", "Platform centre O_W = mirror image of O_B",
-        "reflection of O_B about the plane n . x = h: O_W = 2 h n, so l_bw = |O_B O_W| = 2 h and, with "
+        "reflection of O_B about the plane n . x = h: O_W = 2 h n, so l_bw = 2 h (signed; |l_bw| = |O_B O_W|) "
+        "and, with "
         "n = (sin(beta/2) cos alpha, sin(beta/2) sin alpha, cos(beta/2)), O_W = l_bw n (seed eq. 9)",
         ("plane",), {"n": n, "O_W": ow},
         (symbolic_identity(n.dot(n), sp.Integer(1), "n(alpha, beta) is a unit vector"),
