@@ -135,7 +135,12 @@ def test_unreachable_and_bad_input(mech):
         assert sol.count == 0 and sol.status == mod.STATUS_UNREACHABLE and "not reachable" in sol.reason
         cc = c.ik(far)
         assert cc.rc == 0 and cc.count == 0 and cc.status == mod.STATUS_UNREACHABLE
-        assert ref.ik_reference(name, far) == []
+        if name == "puma560":
+            # an all-revolute chain reaches no farther than the sum of its link lengths (|a_i| + |d_i|): an
+            # independent certificate, instead of a multistart search that needs 30 s to find nothing
+            assert np.linalg.norm(far[:3, 3]) > sum(abs(v) for v in mod.DESIGN_DEFAULT)
+        else:
+            assert ref.ik_reference(name, far) == []
     bad = np.eye(4)
     bad[0, 0] = math.nan
     with pytest.raises(mod.InvalidInput):
