@@ -10,6 +10,7 @@ import sympy as sp
 
 from .mechanisms import REGISTRY
 from .render import header_lines, render
+from .tolerances import TOLERANCES
 
 MAX_PRINT_OPS = 160  # larger expressions are summarised by their size instead of printed
 
@@ -44,25 +45,20 @@ def load_generated(out: Path, name: str):
     return mod
 
 
-def write_reports(derivations: dict, out: Path) -> list[Path]:
-    written = []
-    for name, dv in sorted(derivations.items()):
-        mech = REGISTRY[name]
-        solver = load_generated(out, name)
-        audit_dir = out / "audit"
-        audit_dir.mkdir(parents=True, exist_ok=True)
-        numeric = {"summary": [], "sections": [], "findings": [], "decisions": [], "files": []}
-        if hasattr(mech, "audit_numbers"):
-            numeric.update(mech.audit_numbers(dv, solver, audit_dir))
-        from .pipeline import TOLERANCES
-
-        text = render("audit/report.md.jinja", header=header_lines(), dv=dv, tolerances=sorted(TOLERANCES.items()),
-                      steps=[step_view(s) for s in dv.steps], findings=dv.findings + numeric.get("findings", []),
-                      decisions=dv.decisions + numeric.get("decisions", []), numeric=numeric,
-                      n_checks=sum(len(s.checks) for s in dv.steps),
-                      n_symbolic=sum(c.kind == "symbolic" for s in dv.steps for c in s.checks))
-        path = audit_dir / f"{name}.md"
-        path.write_text(text)
-        written.append(path)
-        written += numeric.get("files", [])
-    return written
+def write_report(name: str, dv, out: Path) -> list[Path]:
+    """The audit report of one mechanism (and the figures it draws) into out/audit."""
+    mech = REGISTRY[name]
+    solver = load_generated(out, name)
+    audit_dir = out / "audit"
+    audit_dir.mkdir(parents=True, exist_ok=True)
+    numeric = {"summary": [], "sections": [], "findings": [], "decisions": [], "files": []}
+    if hasattr(mech, "audit_numbers"):
+        numeric.update(mech.audit_numbers(dv, solver, audit_dir))
+    text = render("audit/report.md.jinja", header=header_lines(), dv=dv, tolerances=sorted(TOLERANCES.items()),
+                  steps=[step_view(s) for s in dv.steps], findings=dv.findings + numeric.get("findings", []),
+                  decisions=dv.decisions + numeric.get("decisions", []), numeric=numeric,
+                  n_checks=sum(len(s.checks) for s in dv.steps),
+                  n_symbolic=sum(c.kind == "symbolic" for s in dv.steps for c in s.checks))
+    path = audit_dir / f"{name}.md"
+    path.write_text(text)
+    return [path, *numeric.get("files", [])]

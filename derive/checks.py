@@ -41,11 +41,13 @@ def numeric_identity(lhs, rhs, claim: str, ranges: dict[sp.Symbol, tuple[float, 
 
 
 def numeric_predicate(fn: Callable[[np.random.Generator], float], claim: str,
-                      samples: int = 200, tol: float = 1e-11) -> Check:
-    """Generic sampled check: fn(rng) returns an error for one random sample."""
+                      samples: int = 200, tol: float = 1e-11, floor: float | None = None) -> Check:
+    """Generic sampled check: fn(rng) returns an error for one random sample. `floor`: the rounding level of an
+    extended-precision fn (default: double precision's, report_numbers.ROUNDING_FLOOR)."""
     rng = np.random.default_rng(SEED)
     worst = max(float(fn(rng)) for _ in range(samples))
-    return Check("numeric", claim, worst <= tol, worst, tol, samples)
+    extra = {} if floor is None else {"floor": floor}
+    return Check("numeric", claim, worst <= tol, worst, tol, samples, **extra)
 
 
 def identity(lhs, rhs, claim: str, ranges: dict[sp.Symbol, tuple[float, float]],

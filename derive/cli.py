@@ -3,9 +3,9 @@
     wristkin list
     wristkin ik M --pose PSI THETA PHI [--rad] [--design k=v ...] [--json] [--motor]
     wristkin fk M --joints T1 T2 T3   [--rad] [--design k=v ...] [--json] [--motor]
-    wristkin regenerate [--out DIR]
+    wristkin regenerate [--out DIR] [--jobs N]
     wristkin check
-    wristkin audit [M]
+    wristkin audit [M] [--out DIR] [--jobs N]
 
 `list`, `ik` and `fk` import only the generated package `wristkin` (numpy + math): never
 sympy, so a solve starts fast. `regenerate`, `check` and `audit` import `derive.pipeline`
@@ -318,7 +318,7 @@ def cmd_regenerate(args) -> int:
 
     out = Path(args.out) if args.out else GENERATED_DIR
     t0 = time.perf_counter()
-    files = pipeline.regenerate(out)
+    files = pipeline.regenerate(out, jobs=args.jobs)
     print(f"regenerated {len(files)} file(s) in {out} ({time.perf_counter() - t0:.1f} s)")
     return EXIT_OK
 
@@ -326,7 +326,7 @@ def cmd_regenerate(args) -> int:
 def cmd_check(args) -> int:
     from derive import pipeline
 
-    ok, diff = pipeline.check()
+    ok, diff = pipeline.check(jobs=args.jobs)
     if ok:
         print("generated/ is up to date")
         return EXIT_OK
@@ -347,7 +347,8 @@ def cmd_audit(args) -> int:
         names = [args.mechanism]
     from derive import pipeline
 
-    for path in pipeline.audit(names):
+    out = Path(args.out) if args.out else GENERATED_DIR
+    for path in pipeline.audit(names, out, jobs=args.jobs):
         print(path)
     return EXIT_OK
 
@@ -378,15 +379,21 @@ def build_parser() -> argparse.ArgumentParser:
                        help="joint values are motor/sensor angles Phi_i = theta_i - theta0")
         s.set_defaults(func=cmd_solve, verb=verb)
 
+    jobs_help = "derivation processes (default: WRISTKIN_JOBS, else one per core); the bytes do not depend on it"
     s = sub.add_parser("regenerate", help="derive and write every generated file")
     s.add_argument("--out", metavar="DIR", help=f"output directory (default {GENERATED_DIR})")
+    s.add_argument("--jobs", type=int, metavar="N", help=jobs_help)
     s.set_defaults(func=cmd_regenerate)
 
     s = sub.add_parser("check", help="regenerate into a temporary directory and diff against generated/")
+    s.add_argument("--jobs", type=int, metavar="N", help=jobs_help)
     s.set_defaults(func=cmd_check)
 
-    s = sub.add_parser("audit", help="regenerate the audit report(s) and print their paths")
+    s = sub.add_parser("audit", help="derive mechanism M alone (all without M): its solvers, CasADi functions "
+                                     "and audit report; print the report paths")
     s.add_argument("mechanism", nargs="?", metavar="M")
+    s.add_argument("--out", metavar="DIR", help=f"output directory (default {GENERATED_DIR})")
+    s.add_argument("--jobs", type=int, metavar="N", help=jobs_help)
     s.set_defaults(func=cmd_audit)
     return p
 

@@ -11,7 +11,7 @@ from typing import Any
 
 import sympy as sp
 
-from .report_numbers import error_bucket  # machine-independent bytes in the audit report
+from .report_numbers import ROUNDING_FLOOR, error_bucket  # machine-independent bytes in the audit report
 
 
 @dataclass(frozen=True)
@@ -24,11 +24,14 @@ class Check:
     max_error: float | None = None  # numeric checks: worst error seen
     tolerance: float | None = None
     samples: int | None = None
+    # errors below this are one bucket: float rounding varies per CPU below ROUNDING_FLOOR; a check evaluated in
+    # extended precision (mpmath) states a lower floor of its own
+    floor: float = ROUNDING_FLOOR
 
     def summary(self) -> str:
         if self.kind == "symbolic":
             return f"symbolic identity: {'proven' if self.passed else 'FAILED'}"
-        return (f"numeric, {self.samples} samples: max error {error_bucket(self.max_error)} "
+        return (f"numeric, {self.samples} samples: max error {error_bucket(self.max_error, self.floor)} "
                 f"(tolerance {self.tolerance:.0e}) {'passed' if self.passed else 'FAILED'}")
 
 

@@ -7,19 +7,19 @@ import filecmp
 import hashlib
 import json
 import math
+import multiprocessing
+import os
 import shutil
 import tempfile
+from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 from .lower import lower
 from .mechanisms import REGISTRY
 from .render import ROOT, header_lines, render, tool_versions
+from .tolerances import TOLERANCES
 
 GENERATED = ROOT / "generated"
-TOLERANCES = {"singular": "1e-6", "gimbal": "1e-10", "tangent": "1e-12", "fk_residual": "1e-10",
-              "fk_duplicate": "1e-7", "fk_fold": "1e-8", "touch": "1e-8", "degenerate": "1e-12",
-              "ik_verify": "1e-9", "rotation": "1e-9", "stage_tangent": "1e-9", "double_root": "1e-12",
-              "wrist_exact": "1e-13", "design_scale_min": "1e-3", "length_max": "1e6"}
 
 
 def _write(path: Path, text: str | bytes) -> Path:
@@ -49,25 +49,70 @@ def _templates(name: str, mod) -> tuple[str, str, str]:
     return getattr(mod, "TEMPLATES", (f"python/{name}.py.jinja", f"c/{name}.h.jinja", f"c/{name}.c.jinja"))
 
 
-def generate_code(out: Path, names=None) -> tuple[list[Path], dict, dict]:
-    """Render every mechanism's solvers; returns (files, derivations, kernels) for the later products."""
-    written, derivations, kernels = [], {}, {}
-    for name, mod in sorted(REGISTRY.items()):
-        if names and name not in names:
-            continue
-        dv = mod.derive()
-        derivations[name] = dv
-        kernels[name] = mod.kernels(dv)
-        ctx = _context(mod, kernels[name])
-        t_py, t_h, t_c = _templates(name, mod)
-        written.append(_write(out / "python" / "wristkin" / f"{name}.py", render(t_py, **ctx)))
-        written.append(_write(out / "c" / f"{name}.h", render(t_h, **ctx)))
-        written.append(_write(out / "c" / f"{name}.c", render(t_c, **ctx)))
-    written.append(_write(out / "python" / "wristkin" / "__init__.py",
-                          render("python/__init__.py.jinja", header=header_lines(), names=sorted(REGISTRY))))
-    written.append(_write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja",
-                                                                  header=header_lines())))
-    return written, derivations, kernels
+def tasks(names=None) -> list[tuple[str, ...]]:
+    """Mechanisms grouped into independent jobs, costliest first: a mechanism whose derivation builds on
+    another's (DERIVE_AFTER) runs after it in the same process, reusing the cached derivation."""
+    chosen = sorted(n for n in REGISTRY if not names or n in names)
+    heads = {}
+    for n in chosen:
+        after = getattr(REGISTRY[n], "DERIVE_AFTER", None)
+        heads[n] = after if after in chosen else n
+    jobs = [(h, *(n for n in chosen if heads[n] == h and n != h)) for h in sorted(set(heads.values()))]
+    cost = {n: getattr(REGISTRY[n], "DERIVE_SECONDS", 5) for n in chosen}
+    return sorted(jobs, key=lambda g: (-sum(cost[n] for n in g), g))
+
+
+def mechanism_products(name: str, out: Path) -> list[Path]:
+    """Everything one mechanism contributes to `out`: its Python and C solvers, CasADi functions and audit
+    report (the audit imports the freshly written solver)."""
+    mod = REGISTRY[name]
+    dv = mod.derive()
+    ks = mod.kernels(dv)
+    ctx = _context(mod, ks)
+    t_py, t_h, t_c = _templates(name, mod)
+    written = [_write(out / "python" / "wristkin" / f"{name}.py", render(t_py, **ctx)),
+               _write(out / "c" / f"{name}.h", render(t_h, **ctx)),
+               _write(out / "c" / f"{name}.c", render(t_c, **ctx))]
+    from . import audit, to_casadi
+
+    fns = mod.casadi_functions(dv, ks)
+    # the entries of the functions' design input: the solver's DESIGN_NAMES unless the mechanism's CasADi
+    # functions take fewer (the 3-RSR wrist's take only L)
+    design_names = getattr(mod, "CASADI_DESIGN_NAMES", None) or audit.load_generated(out, name).DESIGN_NAMES
+    written += to_casadi.write_casadi(fns, out / "casadi", name=name, design_names=design_names)
+    written += audit.write_report(name, dv, out)
+    return written
+
+
+def _job(args) -> list[Path]:
+    group, out = args
+    return [p for name in group for p in mechanism_products(name, out)]
+
+
+def _shared_files(out: Path) -> list[Path]:
+    return [_write(out / "python" / "wristkin" / "__init__.py",
+                   render("python/__init__.py.jinja", header=header_lines(), names=sorted(REGISTRY))),
+            _write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja", header=header_lines()))]
+
+
+def default_jobs() -> int:
+    """Worker processes: WRISTKIN_JOBS, else one per core."""
+    env = os.environ.get("WRISTKIN_JOBS", "")
+    return max(1, int(env)) if env.strip().isdigit() else max(1, os.cpu_count() or 1)
+
+
+def generate(out: Path, names=None, jobs: int | None = None) -> list[Path]:
+    """Derive and write the given mechanisms (all by default) with `jobs` processes. Each job's bytes depend on
+    its mechanism alone, so the output is the same whatever the number of processes or their order."""
+    work = [(g, out) for g in tasks(names)]
+    jobs = min(jobs or default_jobs(), len(work)) or 1
+    if jobs == 1:
+        results = [_job(w) for w in work]
+    else:
+        ctx = multiprocessing.get_context("fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn")
+        with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
+            results = list(pool.map(_job, work))
+    return [p for r in results for p in r] + _shared_files(out)
 
 
 def _manifest(out: Path) -> Path:
@@ -78,43 +123,21 @@ def _manifest(out: Path) -> Path:
                                                     sort_keys=True, indent=2) + "\n")
 
 
-def regenerate(out_dir: Path = GENERATED) -> list[Path]:
+def regenerate(out_dir: Path = GENERATED, jobs: int | None = None) -> list[Path]:
     out = Path(out_dir)
     for sub in ("python", "c", "casadi", "audit"):
         if (out / sub).exists():
             shutil.rmtree(out / sub)
-    written, derivations, kernels = generate_code(out)
-    written += _post_code_products(out, derivations, kernels)
+    written = generate(out, jobs=jobs)
     written.append(_manifest(out))
     return written
 
 
-def _post_code_products(out: Path, derivations: dict, kernels: dict) -> list[Path]:
-    """CasADi functions and audit reports (they import the freshly generated solvers)."""
-    extra: list[Path] = []
-    from . import audit, to_casadi
-
-    for name, dv in derivations.items():
-        mod = REGISTRY[name]
-        if hasattr(mod, "casadi_functions"):  # a mechanism may build its own CasADi functions
-            fns = mod.casadi_functions(dv, kernels[name])
-        elif name == "underactuated_wrist":
-            fns = to_casadi.casadi_functions(dv, kernels[name])
-        else:
-            fns = to_casadi.serial_functions(name, kernels[name])
-        # the entries of the functions' design input: the solver's DESIGN_NAMES unless the mechanism's CasADi
-        # functions take fewer (the 3-RSR wrist's take only L)
-        design_names = getattr(mod, "CASADI_DESIGN_NAMES", None) or audit.load_generated(out, name).DESIGN_NAMES
-        extra += list(to_casadi.write_casadi(fns, out / "casadi", name=name, design_names=design_names))
-    extra += audit.write_reports(derivations, out)
-    return extra
-
-
-def check(out_dir: Path = GENERATED) -> tuple[bool, str]:
+def check(out_dir: Path = GENERATED, jobs: int | None = None) -> tuple[bool, str]:
     """Regenerate into a temp dir and compare with out_dir; returns (ok, unified diff)."""
     with tempfile.TemporaryDirectory() as tmp:
         fresh = Path(tmp) / "generated"
-        regenerate(fresh)
+        regenerate(fresh, jobs=jobs)
         diffs = []
         a_files = {p.relative_to(out_dir).as_posix() for p in Path(out_dir).rglob("*")
                    if p.is_file() and "__pycache__" not in p.parts}
@@ -133,8 +156,13 @@ def check(out_dir: Path = GENERATED) -> tuple[bool, str]:
         return not diffs, "".join(diffs)
 
 
-def audit(names: list[str] | None = None) -> list[Path]:
-    """Regenerate everything (the audit depends on freshly generated solvers) and return report paths."""
-    written = regenerate(GENERATED)
-    return [p for p in written if p.parent.name == "audit" and p.suffix == ".md"
-            and (not names or p.stem in names)]
+def audit(names: list[str] | None = None, out_dir: Path = GENERATED, jobs: int | None = None) -> list[Path]:
+    """Derive the named mechanisms (all when None) alone into out_dir (their solvers, CasADi functions and
+    reports: the bytes a full regeneration writes) and refresh the manifest; returns the report paths."""
+    unknown = sorted(set(names or ()) - set(REGISTRY))
+    if unknown:
+        raise KeyError(f"unknown mechanism(s) {unknown} (known: {', '.join(sorted(REGISTRY))})")
+    out = Path(out_dir)
+    written = generate(out, names, jobs)
+    _manifest(out)
+    return [p for p in written if p.parent.name == "audit" and p.suffix == ".md"]

@@ -16,15 +16,16 @@ ROUNDING_FLOOR = 1e-13  # rounding-level errors of order-one quantities vary by 
 ORDER_ONE = 1e-4  # at or above this, a measured value keeps 3 significant digits
 
 
-def error_bucket(x: float) -> str:
-    """'0', '< 1e-13' (rounding level) or the decade bound '< 1e-k' of |x|; 'not finite' for NaN/inf."""
+def error_bucket(x: float, floor: float = ROUNDING_FLOOR) -> str:
+    """'0', '< 1e-13' (rounding level: below `floor`) or the decade bound '< 1e-k' of |x|; 'not finite' for
+    NaN/inf."""
     if not math.isfinite(x):
         return "not finite"
     x = abs(float(x))
     if x == 0.0:
         return "0"
-    if x < ROUNDING_FLOOR:
-        return f"< {ROUNDING_FLOOR:.0e}"
+    if x < floor:
+        return f"< {floor:.0e}"
     return f"< 1e{math.floor(math.log10(x)) + 1}"
 
 

@@ -459,15 +459,15 @@ def fake_pipeline(monkeypatch, tmp_path):
     mod = types.ModuleType("derive.pipeline")
     mod.state = {"ok": True, "diff": ""}
 
-    def regenerate(out_dir):
+    def regenerate(out_dir, jobs=None):
         calls.append(("regenerate", out_dir))
         return [Path(out_dir) / "a.py", Path(out_dir) / "b.c"]
 
-    def check(out_dir=None):
+    def check(out_dir=None, jobs=None):
         calls.append(("check",))
         return mod.state["ok"], mod.state["diff"]
 
-    def audit(names):
+    def audit(names, out_dir=None, jobs=None):
         calls.append(("audit", names))
         return [tmp_path / "audit" / f"{n}.md" for n in (names or ["toy_wrist"])]
 

@@ -177,6 +177,7 @@ class SerialMechanism:
     TEMPLATES = ("python/serial.py.jinja", "c/serial.h.jinja", "c/serial.c.jinja")
     VECTORISED_KERNELS = ("fk",)
     SPECS = SPECS  # name -> spec factory; subclasses for other chain families replace it
+    DERIVE_SECONDS = 5  # a scheduling hint for parallel regeneration
 
     def __init__(self, name: str):
         self.NAME = name
@@ -193,6 +194,10 @@ class SerialMechanism:
 
     def kernels(self, dv):
         return dh_serial.kernels_spec(self.spec, dv)
+
+    def casadi_functions(self, dv, kernels) -> dict:
+        from ..to_casadi import serial_functions
+        return serial_functions(self.NAME, kernels)
 
     def extra_context(self, ks) -> dict:
         sp_ = self.spec

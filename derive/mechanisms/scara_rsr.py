@@ -27,6 +27,8 @@ NAME = "scara_rsr"
 TITLE = "Hybrid robot: SCARA (modified DH) + 3-RSR parallel wrist, decoupled closed-form IK with every branch"
 SEED = rsr_wrist.SEED
 VECTORISED_KERNELS = ()
+DERIVE_AFTER = "rsr_wrist"  # regenerated in the wrist's process: it builds on the wrist's cached derivation
+DERIVE_SECONDS = 9
 TEMPLATES = ("python/scara_rsr.py.jinja", "c/scara_rsr.h.jinja", "c/scara_rsr.c.jinja")
 TH1, TH2, D3, TH4 = sp.symbols("theta1 theta2 d3 theta4", real=True)
 L1, L2, D, DF = sp.symbols("L1 L2 d d_f", real=True)

@@ -156,6 +156,7 @@ class ScrewMechanism(SerialMechanism):
     """Registry adapter: a ScrewSpec rendered through the serial-chain templates (same API as the DH chains)."""
 
     SPECS = SPECS
+    DERIVE_SECONDS = 16
 
     def derive(self):
         from .screw_serial import derive_spec

@@ -35,6 +35,7 @@ SEED = "seed 000: 'Kinematics analysis of a novel underactuated robot wrist', Pr
 
 # Paper design (alpha1 = alpha2 = 60 deg, beta1 = 30 deg, beta2 = 43.89 deg).
 DESIGN_NAMES = ("alpha1", "alpha2", "beta1", "beta2")
+DERIVE_SECONDS = 28  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
 VECTORISED_KERNELS = ("ik_abc", "middle_axes", "platform_axes", "base_axes", "fk_def", "fk_rotation")
 DESIGN_DEFAULT_DEG = (60.0, 60.0, 30.0, 43.89)
 JOINT_NAMES = ("theta1", "theta2", "theta3")
@@ -447,35 +448,50 @@ def _forward_kinematics(dv: Derivation) -> None:
     qpoly = {nm: c[0] + c[1] * x + c[2] * x**2 for nm, c in qd_sym.items()}
     Kx = sp.expand(elimination_identity(*(qpoly[n] for n in ("D1", "E1", "F1", "D2", "E2", "F2"))))
     deg = sp.Poly(Kx, x).degree()
-    coef_np = {k: sp.lambdify((th[0], th[1], th[2], a1, a2, b1, b2), [c.subs(on_design) for c in v], "numpy")
+    # evaluated in 30-digit mpmath: the check measures the algebra (the identity), not float rounding, and its
+    # number is the same on every CPU (numpy's trig and BLAS kernels differ in the last bits)
+    coef_mp = {k: sp.lambdify((th[0], th[1], th[2], a1, a2, b1, b2), [c.subs(on_design) for c in v], "mpmath")
                for k, v in coef.items()}
 
     def k_poly_err(rng):
-        des = _rand_design(rng)
-        tt = rng.uniform(-math.pi, math.pi, 3)
-        ec = rng.uniform(-math.pi, math.pi)
-        c3 = {k: np.array(f(*tt, *des), dtype=float) for k, f in coef_np.items()}
-        qs = {}
-        for k, (k0, kc, kss) in c3.items():
-            rc, rs = kc * math.cos(ec) + kss * math.sin(ec), -kc * math.sin(ec) + kss * math.cos(ec)
-            qs[k] = np.array([k0 + rc, 2 * rs, k0 - rc])  # ascending in x
-        P = np.polynomial.polynomial
-        t1 = P.polysub(P.polymul(qs["E1"], qs["F2"]), P.polymul(qs["E2"], qs["F1"]))
-        t2 = P.polysub(P.polymul(qs["D2"], qs["F1"]), P.polymul(qs["D1"], qs["F2"]))
-        t3 = P.polysub(P.polymul(qs["D1"], qs["E2"]), P.polymul(qs["D2"], qs["E1"]))
-        K = P.polysub(P.polyadd(P.polymul(t1, t1), P.polymul(t2, t2)), P.polymul(t3, t3))
-        xv = rng.uniform(-3, 3)
-        et = ec + 2 * math.atan(xv)
-        vals = {k: v[0] + v[1] * math.cos(et) + v[2] * math.sin(et) for k, v in c3.items()}
-        f = ((vals["E1"] * vals["F2"] - vals["E2"] * vals["F1"]) ** 2
-             + (vals["D2"] * vals["F1"] - vals["D1"] * vals["F2"]) ** 2
-             - (vals["D1"] * vals["E2"] - vals["D2"] * vals["E1"]) ** 2)
-        lead_err = abs(K[-1] - ((lambda e: (
-            (e["E1"] * e["F2"] - e["E2"] * e["F1"]) ** 2 + (e["D2"] * e["F1"] - e["D1"] * e["F2"]) ** 2
-            - (e["D1"] * e["E2"] - e["D2"] * e["E1"]) ** 2))(
-            {k: v[0] + v[1] * math.cos(ec + math.pi) + v[2] * math.sin(ec + math.pi) for k, v in c3.items()})))
-        scale = 1 + max(abs(K))
-        return (abs(P.polyval(xv, K) - (1 + xv * xv) ** 4 * f) + lead_err) / scale
+        import mpmath
+
+        des = [float(v) for v in _rand_design(rng)]
+        tt = [float(v) for v in rng.uniform(-math.pi, math.pi, 3)]
+        ec = float(rng.uniform(-math.pi, math.pi))
+        xv = float(rng.uniform(-3, 3))
+        with mpmath.workdps(30):
+            mec, mx = mpmath.mpf(ec), mpmath.mpf(xv)
+            c3 = {k: [mpmath.mpf(c) for c in f(*map(mpmath.mpf, tt), *map(mpmath.mpf, des))]
+                  for k, f in coef_mp.items()}
+            qs = {}
+            for k, (k0, kc, kss) in c3.items():
+                rc, rs = kc * mpmath.cos(mec) + kss * mpmath.sin(mec), -kc * mpmath.sin(mec) + kss * mpmath.cos(mec)
+                qs[k] = [k0 + rc, 2 * rs, k0 - rc]  # ascending in x
+
+            def mul(p, q):
+                out = [mpmath.mpf(0)] * (len(p) + len(q) - 1)
+                for i, a in enumerate(p):
+                    for j, b in enumerate(q):
+                        out[i + j] += a * b
+                return out
+
+            def sub(p, q):
+                return [a - b for a, b in zip(p, q, strict=True)]
+
+            t1 = sub(mul(qs["E1"], qs["F2"]), mul(qs["E2"], qs["F1"]))
+            t2 = sub(mul(qs["D2"], qs["F1"]), mul(qs["D1"], qs["F2"]))
+            t3 = sub(mul(qs["D1"], qs["E2"]), mul(qs["D2"], qs["E1"]))
+            K = [a + b - c for a, b, c in zip(mul(t1, t1), mul(t2, t2), mul(t3, t3), strict=True)]
+
+            def ident(eta):
+                e = {k: v[0] + v[1] * mpmath.cos(eta) + v[2] * mpmath.sin(eta) for k, v in c3.items()}
+                return ((e["E1"] * e["F2"] - e["E2"] * e["F1"]) ** 2 + (e["D2"] * e["F1"] - e["D1"] * e["F2"]) ** 2
+                        - (e["D1"] * e["E2"] - e["D2"] * e["E1"]) ** 2)
+
+            kx = sum(c * mx**i for i, c in enumerate(K))
+            err = abs(kx - (1 + mx * mx) ** 4 * ident(mec + 2 * mpmath.atan(mx))) + abs(K[-1] - ident(mec + mpmath.pi))
+            return float(err / (1 + max(abs(c) for c in K)))
     dv.add(Step(
         "fk_polynomial", "The Ki polynomial in x = tan((eta - eta_c)/2)",
         "each of D, E, F is affine in (cos eta, sin eta); a shift eta = eta_c + phi rotates its (cos, sin) "
@@ -486,8 +502,9 @@ def _forward_kinematics(dv: Derivation) -> None:
          "K8": sp.Symbol("f(eta_c + pi)")},
         (symbolic_identity(sp.expand_trig(orig), sp.expand_trig(shifted), "coefficient rotation by eta_c"),
          symbolic_identity(sp.Integer(deg), sp.Integer(8), "K(x) has degree 8 (product structure)"),
-         numeric_predicate(k_poly_err, "K(x) = (1 + x^2)^4 f(eta_c + 2 atan x) and K8 = f(eta_c + pi)",
-                           samples=200, tol=1e-10)),
+         # 30 digits leave >= 20 after the cancellations of the degree-8 products (scaled by 1 + max|K_i|)
+         numeric_predicate(k_poly_err, "K(x) = (1 + x^2)^4 f(eta_c + 2 atan x) and K8 = f(eta_c + pi), in "
+                           "30-digit arithmetic", samples=200, tol=1e-20, floor=1e-25)),
         source="seed 000, formulas (40)-(41): 'Ki', called a quartic in the seed and in the design card",
         note="The identity is a quartic in (cos eta, sin eta) -- a trigonometric polynomial of order 4 -- which "
              "is a polynomial of degree 8 in the half-angle tangent, matching the at most 8 assembly modes of "
@@ -720,3 +737,8 @@ def audit_numbers(dv, solver, audit_dir):
     from .underactuated_wrist_audit import audit_numbers as run
 
     return run(dv, solver, audit_dir)
+
+
+def casadi_functions(dv, ks) -> dict:
+    from ..to_casadi import casadi_functions as wrist_functions
+    return wrist_functions(dv, ks)
