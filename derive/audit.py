@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import hashlib
+import importlib
 import importlib.util
 import sys
 from pathlib import Path
@@ -31,18 +33,21 @@ def step_view(step) -> dict:
 
 
 def load_generated(out: Path, name: str):
-    """Import the freshly generated solver from `out` (not whatever is installed)."""
-    path = out / "python" / "wristkin" / f"{name}.py"
-    mod_name = f"_wristkin_audit_{name}"
-    spec = importlib.util.spec_from_file_location(mod_name, path)
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[mod_name] = mod
+    """Import the freshly generated solver from `out` (not whatever is installed), as a module of a package
+    of its own so that it imports the fresh runtime beside it."""
+    folder = out / "python" / "wristkin"
+    pkg_name = "_wristkin_audit_" + hashlib.sha256(str(folder.resolve()).encode()).hexdigest()[:12]
     saved, sys.dont_write_bytecode = sys.dont_write_bytecode, True  # no __pycache__ inside generated/
     try:
-        spec.loader.exec_module(mod)
+        if pkg_name not in sys.modules:
+            spec = importlib.util.spec_from_file_location(pkg_name, folder / "__init__.py",
+                                                          submodule_search_locations=[str(folder)])
+            pkg = importlib.util.module_from_spec(spec)
+            sys.modules[pkg_name] = pkg
+            spec.loader.exec_module(pkg)
+        return importlib.import_module(f"{pkg_name}.{name}")
     finally:
         sys.dont_write_bytecode = saved
-    return mod
 
 
 def write_report(name: str, dv, out: Path) -> list[Path]:

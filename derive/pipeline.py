@@ -90,7 +90,10 @@ def _job(args) -> list[Path]:
 
 
 def _shared_files(out: Path) -> list[Path]:
-    return [_write(out / "python" / "wristkin" / "__init__.py",
+    """The runtime and package files every mechanism's products import (written before any mechanism)."""
+    return [_write(out / "python" / "wristkin" / "_runtime.py",
+                   render("python/_runtime.py.jinja", header=header_lines())),
+            _write(out / "python" / "wristkin" / "__init__.py",
                    render("python/__init__.py.jinja", header=header_lines(), names=sorted(REGISTRY))),
             _write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja", header=header_lines()))]
 
@@ -104,6 +107,7 @@ def default_jobs() -> int:
 def generate(out: Path, names=None, jobs: int | None = None) -> list[Path]:
     """Derive and write the given mechanisms (all by default) with `jobs` processes. Each job's bytes depend on
     its mechanism alone, so the output is the same whatever the number of processes or their order."""
+    shared = _shared_files(out)
     work = [(g, out) for g in tasks(names)]
     jobs = min(jobs or default_jobs(), len(work)) or 1
     if jobs == 1:
@@ -112,7 +116,7 @@ def generate(out: Path, names=None, jobs: int | None = None) -> list[Path]:
         ctx = multiprocessing.get_context("fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn")
         with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
             results = list(pool.map(_job, work))
-    return [p for r in results for p in r] + _shared_files(out)
+    return shared + [p for r in results for p in r]
 
 
 def _manifest(out: Path) -> Path:
