@@ -1,322 +1,68 @@
-"""The `wristkin` command line (docs/API.md, section "CLI").
+"""The derivation's verbs of the `wristkin` command line: regenerate, check, audit (docs/API.md, "CLI").
 
-    wristkin list
-    wristkin ik M --pose PSI THETA PHI [--rad] [--design k=v ...] [--json] [--motor]
-    wristkin fk M --joints T1 T2 T3   [--rad] [--design k=v ...] [--json] [--motor]
-    wristkin regenerate [--out DIR] [--jobs N]
-    wristkin check
-    wristkin audit [M] [--out DIR] [--jobs N]
+    python -m derive.cli regenerate [--out DIR] [--jobs N]
+    python -m derive.cli check [--jobs N]
+    python -m derive.cli audit [M] [--out DIR] [--jobs N]
 
-`list`, `ik` and `fk` import only the generated package `wristkin` (numpy + math): never
-sympy, so a solve starts fast. `regenerate`, `check` and `audit` import `derive.pipeline`
-lazily.
+`wristkin regenerate|check|audit` (the runtime's CLI, wristkin/cli.py) hands its parsed arguments to `run`;
+`python -m derive.cli` parses them itself, so the derivation never depends on the generated CLI it rebuilds.
+The pipeline (SymPy, CasADi, Jinja2) is imported only when a verb runs.
 
-Exit codes: 0 solved (possibly an empty set; the output says why), 1 generated/ is stale
-(`check`) or the generated package is missing, 2 bad input or design.
+Exit codes: 0 done, 1 generated/ is stale (`check`) or the derivation stack is missing, 2 bad arguments.
 """
 
 from __future__ import annotations
 
 import argparse
 import importlib
-import json
-import math
-import re
 import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
 
-REPO_ROOT = Path(__file__).resolve().parent.parent
-GENERATED_DIR = REPO_ROOT / "generated"
-GENERATED_PYTHON = GENERATED_DIR / "python"
-PACKAGE = "wristkin"
-
-EXIT_OK = 0
-EXIT_FAILED = 1  # generated/ stale, generated package missing
-EXIT_USAGE = 2  # bad input or design
-
-# Aux columns that are not angles when a module does not say (see `_is_angle`).
-_NON_ANGLE_AUX = re.compile(r"^(cond_.*|r\d\d)$")
+ROOT = Path(__file__).resolve().parent.parent
+EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
 
-class UsageError(Exception):
-    """Bad command-line input: reported as one line on stderr, exit code 2."""
+class _Error(Exception):
+    def __init__(self, message: str, code: int):
+        super().__init__(message)
+        self.code = code
 
 
-class Failure(Exception):
-    """Environment problem (e.g. generated package missing): one line on stderr, exit code 1."""
+def checkout_generated() -> Path | None:
+    """The checkout's generated/ when derive/ runs from a source checkout (templates/ beside it), else None."""
+    return ROOT / "generated" if (ROOT / "templates").is_dir() and (ROOT / "pyproject.toml").is_file() else None
 
 
-class _Parser(argparse.ArgumentParser):
-    """argparse with one-line errors and negative numbers such as -1e-3 or -inf taken as values."""
-
-    def __init__(self, *args, **kwargs):
-        super().__init__(*args, **kwargs)
-        # The default only accepts -12 and -1.5; angles are often -1e-3, and -inf/-nan must
-        # reach our own validation (one clear error) instead of being taken for options.
-        self._negative_number_matcher = re.compile(
-            r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE)
-
-    def error(self, message):
-        raise UsageError(message)
+def _out(args) -> Path:
+    if getattr(args, "out", None):
+        return Path(args.out)
+    default = checkout_generated()
+    if default is None:
+        raise _Error("--out DIR is required outside a source checkout (derivation verbs write only where told)",
+                     EXIT_USAGE)
+    return default
 
 
-# ---------------------------------------------------------------------------- generated package
-def _import_package():
+def _pipeline():
     try:
-        return importlib.import_module(PACKAGE)
-    except ImportError:
-        # Running from a checkout without `pip install -e .`: use generated/python directly.
-        if GENERATED_PYTHON.is_dir() and str(GENERATED_PYTHON) not in sys.path:
-            sys.path.append(str(GENERATED_PYTHON))
-            importlib.invalidate_caches()
-            try:
-                return importlib.import_module(PACKAGE)
-            except ImportError:
-                pass
-    raise Failure(f"the generated package '{PACKAGE}' is not importable: run `make regenerate` "
-                  f"(or `wristkin regenerate`) first")
+        return importlib.import_module("derive.pipeline")
+    except ImportError as exc:
+        raise _Error(f"the derivation stack is not installed ({exc}): pip install 'wristkin[derive]' "
+                     "(in a checkout: make venv)", EXIT_FAILED) from exc
 
 
-def mechanism_names() -> tuple[str, ...]:
-    names = getattr(_import_package(), "MECHANISMS", None)
-    if names is None:
-        raise Failure(f"the generated package '{PACKAGE}' defines no MECHANISMS: run `make regenerate`")
-    return tuple(names)
-
-
-def load_mechanism(name: str):
-    names = mechanism_names()
-    if name not in names:
-        raise UsageError(f"unknown mechanism {name!r} (known: {', '.join(names) or 'none'})")
-    return importlib.import_module(f"{PACKAGE}.{name}")
-
-
-# ---------------------------------------------------------------------------- units and names
-def _is_angle(module, name: str, group: str) -> bool:
-    """Whether the quantity `name` (in `group`: joint, pose, design, aux, motor) is an angle.
-
-    A module may declare `ANGLE_NAMES` (every angular name it uses). Without it: joint, pose,
-    design and motor quantities are angles (true of every mechanism in docs/API.md so far) and
-    aux columns are angles unless named cond_* (conditioning) or rIJ (rotation entries).
-    """
-    declared = getattr(module, "ANGLE_NAMES", None)
-    if declared is not None:
-        return name in declared
-    if group == "aux":
-        return not _NON_ANGLE_AUX.match(name)
-    return True
-
-
-def _to_internal(module, names, values, group, rad: bool) -> list[float]:
-    return [v if rad or not _is_angle(module, n, group) else math.radians(v)
-            for n, v in zip(names, values, strict=True)]
-
-
-def _to_user(module, names, values, group, rad: bool) -> list[float]:
-    return [float(v) if rad or not _is_angle(module, n, group) else math.degrees(float(v))
-            for n, v in zip(names, values, strict=True)]
-
-
-def motor_names(module) -> tuple[str, ...]:
-    names = getattr(module, "MOTOR_NAMES", None)
-    if names is not None:
-        return tuple(names)
-    return tuple(f"Phi{i + 1}" for i in range(len(module.JOINT_NAMES)))
-
-
-def status_name(module, code: int) -> str:
-    table = getattr(module, "STATUS_NAMES", None)
-    if table is None:
-        table = {v: a[len("STATUS_"):].lower() for a in dir(module)
-                 if a.startswith("STATUS_") and isinstance(v := getattr(module, a), int)}
-    return table.get(int(code), f"status_{int(code)}")
-
-
-def flag_names(module, bits: int) -> list[str]:
-    table = getattr(module, "FLAG_NAMES", None)
-    if table is None:
-        table = {v: a[len("FLAG_"):].lower() for a in dir(module)
-                 if a.startswith("FLAG_") and isinstance(v := getattr(module, a), int)}
-    bits = int(bits)
-    out = [table[b] for b in sorted(table) if bits & b]
-    rest = bits & ~sum(table)
-    out += [f"bit{i}" for i in range(rest.bit_length()) if rest >> i & 1]
-    return out
-
-
-# ---------------------------------------------------------------------------- input parsing
-def parse_number(text: str, what: str) -> float:
+def _known_mechanisms() -> tuple[str, ...] | None:
     try:
-        value = float(text)
-    except ValueError:
-        raise UsageError(f"{what}: {text!r} is not a number") from None
-    if not math.isfinite(value):
-        raise UsageError(f"{what}: {text!r} is not finite")
-    return value
-
-
-def parse_vector(texts: Sequence[str], names: Sequence[str], option: str) -> list[float]:
-    if len(texts) != len(names):
-        raise UsageError(f"{option} takes {len(names)} values ({' '.join(names)}), got {len(texts)}")
-    return [parse_number(t, f"{option} {n}") for t, n in zip(texts, names, strict=True)]
-
-
-def parse_design(items: Sequence[str] | None, module) -> dict[str, float]:
-    """`k=v` overrides (user units) keyed by design name; unknown or repeated keys are errors."""
-    out: dict[str, float] = {}
-    for item in items or ():
-        key, sep, text = item.partition("=")
-        key = key.strip()
-        if not sep or not key:
-            raise UsageError(f"--design expects NAME=VALUE, got {item!r}")
-        if key not in module.DESIGN_NAMES:
-            raise UsageError(f"unknown design parameter {key!r} for {module.NAME} "
-                             f"(known: {', '.join(module.DESIGN_NAMES)})")
-        if key in out:
-            raise UsageError(f"design parameter {key!r} given twice")
-        out[key] = parse_number(text, f"--design {key}")
-    return out
-
-
-# ---------------------------------------------------------------------------- solve
-def solve(verb: str, module, values_text: Sequence[str], design_items, rad: bool, motor: bool) -> dict:
-    """Run ik/fk; return the JSON-ready result (angles in degrees unless rad)."""
-    err = getattr(module, "WristkinError", ValueError)
-    if verb == "ik":
-        in_names, in_group, option = tuple(module.POSE_NAMES), "pose", "--pose"
-        out_names, out_group = tuple(module.JOINT_NAMES), "joint"
-        aux_names = tuple(module.IK_AUX_NAMES)
-    else:
-        in_names, in_group, option = tuple(module.JOINT_NAMES), "joint", "--joints"
-        out_names, out_group = tuple(module.POSE_NAMES), "pose"
-        aux_names = tuple(module.FK_AUX_NAMES)
-    if motor:
-        if not (hasattr(module, "motor_angles") and hasattr(module, "joints_from_motor_angles")):
-            raise UsageError(f"{module.NAME} has no motor angles (--motor)")
-        if verb == "ik":
-            out_names, out_group = motor_names(module), "motor"
-        else:
-            in_names, in_group = motor_names(module), "motor"
-
-    short = getattr(module, "POSE_MIN_LEN", None)
-    if verb == "ik" and short is not None and len(values_text) == short:  # optional trailing pose entries
-        in_names = in_names[:short]
-    user_in = parse_vector(values_text, in_names, option)
-    overrides = parse_design(design_items, module)
-    user_design = dict(zip(module.DESIGN_NAMES,
-                           _to_user(module, module.DESIGN_NAMES, module.DESIGN_DEFAULT, "design", rad),
-                           strict=True))
-    user_design.update(overrides)
-    params = _to_internal(module, module.DESIGN_NAMES, [user_design[n] for n in module.DESIGN_NAMES],
-                          "design", rad)
-    x = _to_internal(module, in_names, user_in, in_group, rad)
-    try:
-        design = module.make_design(params)
-        if motor and verb == "fk":
-            x = [float(v) for v in module.joints_from_motor_angles(x, design)]
-        sols = module.ik(x, design) if verb == "ik" else module.fk(x, design)
-        rows = []
-        for k in range(len(sols.valid)):
-            valid = bool(sols.valid[k])
-            vals = aux = None
-            if valid:
-                vals = [float(v) for v in sols.values[k]]
-                if motor and verb == "ik":
-                    vals = [float(v) for v in module.motor_angles(vals, design)]
-                vals = _to_user(module, out_names, vals, out_group, rad)
-                aux = _to_user(module, aux_names, sols.aux[k], "aux", rad)
-            rows.append({
-                "index": k,
-                "valid": valid,
-                "values": {n: _finite_or_none(vals[i] if vals else None) for i, n in enumerate(out_names)},
-                "aux": {n: _finite_or_none(aux[i] if aux else None) for i, n in enumerate(aux_names)},
-                "flags": flag_names(module, sols.flags[k]),
-            })
-    except err as exc:
-        raise UsageError(f"{module.NAME} {verb}: {exc}") from None
-    return {
-        "mechanism": module.NAME,
-        "verb": verb,
-        "input": dict(zip(in_names, user_in, strict=True)),
-        "design": user_design,
-        "status": status_name(module, sols.status),
-        "reason": str(sols.reason),
-        "count": int(sum(r["valid"] for r in rows)),
-        "solutions": rows,
-    }
-
-
-def _finite_or_none(v):
-    return v if v is not None and math.isfinite(v) else None
-
-
-# ---------------------------------------------------------------------------- human output
-def _num(v: float) -> str:
-    return format(v, ".10g")
-
-
-def format_human(result: dict, rad: bool, angles=None) -> str:
-    """The result as a table; `angles` = the output names that carry the angle unit (None: all)."""
-    unit = "rad" if rad else "deg"
-    lines = [
-        f"{result['mechanism']} {result['verb']}  "
-        + " ".join(f"{k}={_num(v)}" for k, v in result["input"].items()) + f"  (angles in {unit})",
-        "design  " + " ".join(f"{k}={_num(v)}" for k, v in result["design"].items()) + f"  (angles in {unit})",
-        f"status  {result['status']}: {result['count']} of {len(result['solutions'])} valid"
-        + (f"; {result['reason']}" if result["reason"] else ""),
-    ]
-    rows = result["solutions"]
-    if not rows:
-        return "\n".join(lines) + "\n"
-    names = list(rows[0]["values"])
-    angles = set(names if angles is None else angles)
-    cells = [["#", "valid", *(f"{n} ({unit})" if n in angles else n for n in names), "flags"]]
-    for r in rows:
-        # 12 significant digits: a printed pose pastes back into `ik` (its rotation is then within 1e-11 of SO(3),
-        # well inside the 1e-6 that is projected) and joints read back to 1e-12 relative
-        vals = [("-" if r["values"][n] is None else format(float(r["values"][n]), ".12g")) for n in names]
-        cells.append([str(r["index"]), "yes" if r["valid"] else "no", *vals, ",".join(r["flags"]) or "-"])
-    widths = [max(len(c[j]) for c in cells) for j in range(len(cells[0]))]
-    for c in cells:
-        parts = [c[0].rjust(widths[0]), c[1].ljust(widths[1])]
-        parts += [c[j].rjust(widths[j]) for j in range(2, len(c) - 1)]
-        parts.append(c[-1])
-        lines.append("  ".join(parts).rstrip())
-    return "\n".join(lines) + "\n"
-
-
-# ---------------------------------------------------------------------------- commands
-def cmd_list(args) -> int:
-    for name in mechanism_names():
-        try:
-            m = importlib.import_module(f"{PACKAGE}.{name}")
-        except ImportError as exc:
-            print(f"{name}  (cannot import: {exc})")
-            continue
-        print(f"{name}  joints=({', '.join(m.JOINT_NAMES)})  pose=({', '.join(m.POSE_NAMES)})  "
-              f"design=({', '.join(m.DESIGN_NAMES)})  max_ik={m.MAX_IK}  max_fk={m.MAX_FK}")
-    return EXIT_OK
-
-
-def cmd_solve(args) -> int:
-    module = load_mechanism(args.mechanism)
-    values = args.pose if args.verb == "ik" else args.joints
-    result = solve(args.verb, module, values, args.design, args.rad, args.motor)
-    if args.json:
-        print(json.dumps(result, sort_keys=True, allow_nan=False))
-    else:
-        group = "joint" if args.verb == "ik" else "pose"
-        names = list(result["solutions"][0]["values"]) if result["solutions"] else []
-        sys.stdout.write(format_human(result, args.rad, [n for n in names if _is_angle(module, n, group)]))
-    return EXIT_OK
+        return tuple(importlib.import_module("wristkin").MECHANISMS)
+    except (ImportError, AttributeError):
+        return None  # no generated package yet: the pipeline judges the name
 
 
 def cmd_regenerate(args) -> int:
-    from derive import pipeline
-
-    out = Path(args.out) if args.out else GENERATED_DIR
+    pipeline = _pipeline()
+    out = _out(args)
     t0 = time.perf_counter()
     files = pipeline.regenerate(out, jobs=args.jobs)
     print(f"regenerated {len(files)} file(s) in {out} ({time.perf_counter() - t0:.1f} s)")
@@ -324,8 +70,7 @@ def cmd_regenerate(args) -> int:
 
 
 def cmd_check(args) -> int:
-    from derive import pipeline
-
+    pipeline = _pipeline()
     ok, diff = pipeline.check(jobs=args.jobs)
     if ok:
         print("generated/ is up to date")
@@ -338,83 +83,47 @@ def cmd_check(args) -> int:
 def cmd_audit(args) -> int:
     names = None
     if args.mechanism:
-        try:
-            known = mechanism_names()
-        except Failure:
-            known = None  # no generated package yet: let the pipeline judge the name
+        known = _known_mechanisms()
         if known is not None and args.mechanism not in known:
-            raise UsageError(f"unknown mechanism {args.mechanism!r} (known: {', '.join(known)})")
+            raise _Error(f"unknown mechanism {args.mechanism!r} (known: {', '.join(known)})", EXIT_USAGE)
         names = [args.mechanism]
-    from derive import pipeline
-
-    out = Path(args.out) if args.out else GENERATED_DIR
+    pipeline = _pipeline()
+    out = _out(args)
     for path in pipeline.audit(names, out, jobs=args.jobs):
         print(path)
     return EXIT_OK
 
 
+COMMANDS = {"regenerate": cmd_regenerate, "check": cmd_check, "audit": cmd_audit}
+
+
+def run(args) -> int:
+    """Run the verb `args.verb` with parsed arguments (out, jobs, mechanism); errors: one line on stderr."""
+    try:
+        return COMMANDS[args.verb](args)
+    except _Error as exc:
+        print(f"wristkin: error: {exc}", file=sys.stderr)
+        return exc.code
+
+
 def build_parser() -> argparse.ArgumentParser:
-    from derive import __version__
-
-    p = _Parser(prog="wristkin", description="Closed-form IK/FK of robot wrists (generated solvers).")
-    p.add_argument("--version", action="version", version=f"wristkin {__version__}")
-    sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    sub.required = True
-
-    s = sub.add_parser("list", help="list the generated mechanisms")
-    s.set_defaults(func=cmd_list)
-
-    for verb, option, meta, what in (("ik", "--pose", "POSE", "inverse kinematics: every solution set"),
-                                     ("fk", "--joints", "JOINT", "forward kinematics: every assembly mode")):
-        s = sub.add_parser(verb, help=what)
-        s.add_argument("mechanism", metavar="M")
-        s.add_argument(option, nargs="+", required=True, metavar=meta,
-                       help="degrees unless --rad (underactuated_wrist: "
-                            + ("psi theta phi, ZXZ Euler)" if verb == "ik" else "theta1 theta2 theta3)"))
-        s.add_argument("--rad", action="store_true", help="angles in and out in radians")
-        s.add_argument("--design", nargs="+", action="extend", metavar="NAME=VALUE",
-                       help="design overrides (degrees unless --rad); others keep the paper default")
-        s.add_argument("--json", action="store_true", help="print one JSON object")
-        s.add_argument("--motor", action="store_true",
-                       help="joint values are motor/sensor angles Phi_i = theta_i - theta0")
-        s.set_defaults(func=cmd_solve, verb=verb)
-
+    p = argparse.ArgumentParser(prog="python -m derive.cli", description="Derive and write wristkin's generated files.")
+    sub = p.add_subparsers(dest="verb", metavar="VERB", required=True)
     jobs_help = "derivation processes (default: WRISTKIN_JOBS, else one per core); the bytes do not depend on it"
-    s = sub.add_parser("regenerate", help="derive and write every generated file")
-    s.add_argument("--out", metavar="DIR", help=f"output directory (default {GENERATED_DIR})")
-    s.add_argument("--jobs", type=int, metavar="N", help=jobs_help)
-    s.set_defaults(func=cmd_regenerate)
-
-    s = sub.add_parser("check", help="regenerate into a temporary directory and diff against generated/")
-    s.add_argument("--jobs", type=int, metavar="N", help=jobs_help)
-    s.set_defaults(func=cmd_check)
-
-    s = sub.add_parser("audit", help="derive mechanism M alone (all without M): its solvers, CasADi functions "
-                                     "and audit report; print the report paths")
-    s.add_argument("mechanism", nargs="?", metavar="M")
-    s.add_argument("--out", metavar="DIR", help=f"output directory (default {GENERATED_DIR})")
-    s.add_argument("--jobs", type=int, metavar="N", help=jobs_help)
-    s.set_defaults(func=cmd_audit)
+    for verb, helptext in (("regenerate", "derive and write every generated file"),
+                           ("check", "regenerate into a temporary directory and diff against generated/"),
+                           ("audit", "derive mechanism M alone (all without M) and print its report path")):
+        s = sub.add_parser(verb, help=helptext)
+        if verb == "audit":
+            s.add_argument("mechanism", nargs="?", metavar="M")
+        if verb != "check":
+            s.add_argument("--out", metavar="DIR", help="output directory (default: the checkout's generated/)")
+        s.add_argument("--jobs", type=int, metavar="N", help=jobs_help)
     return p
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = build_parser()
-    try:
-        args = parser.parse_args(argv)
-        return args.func(args)
-    except UsageError as exc:
-        print(f"wristkin: error: {exc}", file=sys.stderr)
-        return EXIT_USAGE
-    except Failure as exc:
-        print(f"wristkin: error: {exc}", file=sys.stderr)
-        return EXIT_FAILED
-    except SystemExit as exc:  # --help / --version
-        return exc.code if isinstance(exc.code, int) else EXIT_OK
-    except BrokenPipeError:
-        # `wristkin list | head`: the reader went away; not an error of ours.
-        sys.stderr.close()
-        return EXIT_OK
+    return run(build_parser().parse_args(argv))
 
 
 if __name__ == "__main__":

@@ -91,11 +91,13 @@ def _job(args) -> list[Path]:
 
 def _shared_files(out: Path) -> list[Path]:
     """The runtime and package files every mechanism's products import (written before any mechanism)."""
-    return [_write(out / "python" / "wristkin" / "_runtime.py",
-                   render("python/_runtime.py.jinja", header=header_lines())),
-            _write(out / "python" / "wristkin" / "__init__.py",
-                   render("python/__init__.py.jinja", header=header_lines(), names=sorted(REGISTRY))),
-            _write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja", header=header_lines()))]
+    pkg = out / "python" / "wristkin"
+    files = [_write(pkg / f"{stem}.py", render(f"python/{stem}.py.jinja", header=header_lines()))
+             for stem in ("_runtime", "cli", "__main__")]
+    files.append(_write(pkg / "__init__.py", render("python/__init__.py.jinja", header=header_lines(),
+                                                     names=sorted(REGISTRY))))
+    files.append(_write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja", header=header_lines())))
+    return files
 
 
 def default_jobs() -> int:

@@ -1,4 +1,5 @@
-"""The `wristkin` command line (derive/cli.py): parsing, output and error paths.
+"""The `wristkin` command line (wristkin/cli.py, from templates/python/cli.py.jinja; the derivation verbs in
+derive/cli.py): parsing, output and error paths.
 
 Most tests run against a small fake generated package (`wristkin` with one mechanism,
 `toy_wrist`) written to a temporary directory and put first on sys.path, so they do not
@@ -19,8 +20,7 @@ import types
 from pathlib import Path
 
 import pytest
-
-from derive import cli
+from wristkin import cli
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 REAL_MODULE = REPO_ROOT / "generated" / "python" / "wristkin" / "underactuated_wrist.py"
@@ -402,7 +402,6 @@ def test_missing_generated_package(capsys, monkeypatch, tmp_path):
     saved = _drop_wristkin_modules()
     try:
         monkeypatch.setattr(cli, "PACKAGE", "wristkin_package_that_does_not_exist")
-        monkeypatch.setattr(cli, "GENERATED_PYTHON", tmp_path)
         code, out, err = run(capsys, "ik", "underactuated_wrist", "--pose", "1", "2", "3")
         assert code == 1 and "make regenerate" in err and "Traceback" not in err
     finally:
@@ -416,25 +415,36 @@ def _env(*paths: Path) -> dict:
     return env
 
 
+# The real CLI module loaded from its file, so that `import wristkin` inside it finds the fake package first on
+# PYTHONPATH (the CLI ships inside the real package, which the fake one shadows).
+CLI_FILE = REPO_ROOT / "generated" / "python" / "wristkin" / "cli.py"
+RUN_CLI = f"""
+import importlib.util, sys
+spec = importlib.util.spec_from_file_location("wk_cli_under_test", {str(CLI_FILE)!r})
+cli = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(cli)
+main = cli.main
+"""
+
+
 def test_subprocess_ik_json(fake_dir):
     argv = ["ik", "toy_wrist", "--pose", "-35.99", "0.26", "38.93", "--json"]
-    proc = subprocess.run([sys.executable, "-m", "derive.cli", *argv], capture_output=True, text=True,
-                          env=_env(fake_dir), cwd=REPO_ROOT, stdin=subprocess.DEVNULL, timeout=120)
+    proc = subprocess.run([sys.executable, "-c", RUN_CLI + "sys.exit(main(sys.argv[1:]))", *argv],
+                          capture_output=True, text=True, env=_env(fake_dir), cwd=REPO_ROOT,
+                          stdin=subprocess.DEVNULL, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert json.loads(proc.stdout)["input"] == {"psi": -35.99, "theta": 0.26, "phi": 38.93}
 
 
 def test_subprocess_error_is_one_line(fake_dir):
-    proc = subprocess.run([sys.executable, "-m", "derive.cli", "fk", "toy_wrist", "--joints", "1", "x", "3"],
-                          capture_output=True, text=True, env=_env(fake_dir), cwd=REPO_ROOT,
-                          stdin=subprocess.DEVNULL, timeout=120)
+    proc = subprocess.run([sys.executable, "-c", RUN_CLI + "sys.exit(main(sys.argv[1:]))", "fk", "toy_wrist",
+                           "--joints", "1", "x", "3"], capture_output=True, text=True, env=_env(fake_dir),
+                          cwd=REPO_ROOT, stdin=subprocess.DEVNULL, timeout=120)
     assert proc.returncode == 2 and proc.stdout == ""
     assert proc.stderr.count("\n") == 1 and "Traceback" not in proc.stderr
 
 
-NO_SYMPY = """
-import sys
-from derive.cli import main
+NO_SYMPY = RUN_CLI + """
 code = main(sys.argv[1:])
 heavy = sorted(m for m in ("sympy", "casadi", "jinja2", "derive.pipeline") if m in sys.modules)
 assert not heavy, f"ik/fk imported {heavy}"
@@ -696,7 +706,7 @@ def test_printed_fk_pose_pastes_back_into_ik_and_huge_joints_are_wrapped():
     import sys
 
     def run_cli(*argv):
-        return subprocess.run([sys.executable, "-m", "derive.cli", *argv], cwd=REPO_ROOT, capture_output=True,
+        return subprocess.run([sys.executable, "-m", "wristkin", *argv], cwd=REPO_ROOT, capture_output=True,
                               text=True, timeout=120)
 
     q = ["0.1", "0.2", "0.3", "0.4", "0.5", "0.6"]

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from c_solvers import RsrC, SerialC
+from c_solvers import RsrC, SerialC, UnderactuatedWristC
 
 FLAG_SINGULAR_INVERSE, FLAG_PROJECTED = 1, 32
 
@@ -132,3 +132,47 @@ def test_rsr_centre_distance_is_signed_and_round_trips():
         signs.add(bool(fk.values[0][2] > 0))
         assert min(wrapped(v, q) for v in mod.ik(fk.values[0])) < 1e-9
     assert signs == {True, False}
+
+
+def _euler_distance(a, b):
+    """ZXZ pose distance through the rotation matrices (Euler angles are not unique at a gimbal)."""
+    def rot(e):
+        c, s = np.cos(e), np.sin(e)
+        rz = lambda i: np.array([[c[i], -s[i], 0], [s[i], c[i], 0], [0, 0, 1.0]])  # noqa: E731
+        rx = np.array([[1.0, 0, 0], [0, c[1], -s[1]], [0, s[1], c[1]]])
+        return rz(0) @ rx @ rz(2)
+    return float(np.max(np.abs(rot(np.asarray(a)) - rot(np.asarray(b)))))
+
+
+def test_wrist_fk_resolves_two_modes_a_fold_apart_python_and_c():
+    """make fuzz, case 33675 of 1e6: joints whose pose is 1 of 2 real assembly modes 1e-7 apart in the eliminant's
+    x (cond_direct 6.7e-6). FK stopped polishing after 8 Gauss-Newton steps, 1.3e-5 from either mode, so IK -> FK
+    did not close. Both modes polish to rounding level now; each IK set's FK holds its pose to ~eps / cond_direct."""
+    uw = importlib.import_module("wristkin.underactuated_wrist")
+    c = UnderactuatedWristC()
+    q = [-1.4413949531617787, 0.8592568522758901, -0.018014722277741146]
+    for fk in (uw.fk, c.fk):
+        for pose in fk(q).values[fk(q).valid]:
+            sets = uw.ik(pose)
+            assert sets.count == 8
+            for k in np.flatnonzero(sets.valid):
+                cond = max(float(sets.aux[k, -1]), uw.SINGULAR_EPS)
+                tol = 1e-9 + 1e-13 / cond  # rounding of the joints (1e-16 ... 1e-13) amplified by 1 / cond_direct
+                for fk2 in (uw.fk, c.fk):
+                    back = fk2(sets.values[k])
+                    best = min(_euler_distance(p, pose) for p in back.values[back.valid])
+                    assert best <= tol, (k, best, tol)
+
+
+def test_dh_designs_with_a_vanishing_nonzero_length_are_rejected_python_and_c():
+    """make fuzz, scara_wrist: links of 1e-7 m made every stage coefficient (a product of two lengths) fall below
+    DEGENERATE_EPS and the IK of FK poses came back empty; such designs are InvalidDesign (exactly 0 is another
+    structure and stays accepted), a centimetre-scale robot stays fine."""
+    mod, c = serial("scara_wrist")
+    for bad in ([-1e-7, -1e-7, -math.pi], [0.4, 3e-6, 0.1]):
+        with pytest.raises(mod.InvalidDesign, match="DH lengths must be 0 or at least"):
+            mod.make_design(bad)
+        assert c.design(np.array(bad))[0] == -3  # WK_ERR_DESIGN
+    for good in ([0.4, 0.3, 0.0], [0.004, 0.003, 0.001], [2e-5, 0.3, 0.1]):
+        mod.make_design(good)
+        assert c.design(np.array(good))[0] == 0

@@ -99,3 +99,59 @@ def test_generated_and_hand_written_python_pass_ruff():
     run = subprocess.run([ruff, "check", "derive", "tests", "generated/python"], cwd=ROOT, capture_output=True,
                          text=True, timeout=120)
     assert run.returncode == 0, run.stdout + run.stderr
+
+
+# ---------------------------------------------------------------------------- the numpy-only install
+BLOCKER = """
+import importlib.abc, sys
+HEAVY = ("sympy", "casadi", "jinja2", "matplotlib", "mpmath", "scipy", "derive")
+class Block(importlib.abc.MetaPathFinder):
+    def find_spec(self, name, path=None, target=None):
+        if name.split(".")[0] in HEAVY:
+            raise ImportError(f"blocked for this test: {name}", name=name)
+sys.meta_path.insert(0, Block())
+"""
+
+
+def test_install_requires_numpy_alone_on_python_3_10():
+    import tomllib
+
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]
+    assert [d.split(">")[0].split("=")[0].split("<")[0].strip() for d in project["dependencies"]] == ["numpy"]
+    assert not any("==" in d for d in project["dependencies"]), "a range, not a pin"
+    assert project["requires-python"] == ">=3.10"
+    assert project["scripts"]["wristkin"] == "wristkin.cli:main"
+    assert "sympy==1.14.0" in project["optional-dependencies"]["derive"]
+
+
+def test_solving_from_python_and_the_cli_needs_no_derivation_stack():
+    code = BLOCKER + """
+import numpy as np
+import wristkin
+from wristkin import cli
+for name in wristkin.MECHANISMS:
+    m = getattr(wristkin, name)
+    q = np.full(len(m.JOINT_NAMES), 0.3)
+    sol = m.fk(q)
+    assert sol.count >= 1, name
+pose = ["1", "0", "0", "0.5", "0", "1", "0", "0.1", "0", "0", "1", "0.6"]
+assert cli.main(["ik", "puma560", "--rad", "--pose", *pose]) == 0
+assert cli.main(["fk", "underactuated_wrist", "--joints", "137.92", "138.44", "137.82"]) == 0
+assert cli.main(["list"]) == 0
+print("solved without", ", ".join(sorted(m for m in ("sympy", "casadi", "jinja2") if m not in sys.modules)))
+"""
+    run = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert "solved without casadi, jinja2, sympy" in run.stdout
+
+
+def test_derivation_verbs_without_the_derivation_stack_name_the_extra():
+    code = BLOCKER + """
+from wristkin import cli
+sys.exit(cli.main(sys.argv[1:]))
+"""
+    for argv in (["regenerate", "--out", "x"], ["check"], ["audit", "puma560"]):
+        run = subprocess.run([sys.executable, "-c", code, *argv], cwd=ROOT, capture_output=True, text=True,
+                             timeout=120)
+        assert run.returncode == 1 and "pip install 'wristkin[derive]'" in run.stderr, run.stderr
+        assert "Traceback" not in run.stderr and run.stderr.count("\n") == 1

@@ -207,7 +207,9 @@ class SerialMechanism:
                 "joint_kinds": list(sp_.kinds), "design_names": [str(d) for d in sp_.design],
                 "design_values": [repr(float(v)) for v in sp_.design_default], "n_joints": n,
                 "max_ik": n_combos, "stages": dh_serial.stage_view(sp_), "upper": self.NAME.upper(),
-                "design_default": [repr(float(v)) for v in sp_.design_default]}
+                "design_default": [repr(float(v)) for v in sp_.design_default],
+                # DH design values are link lengths and offsets: each is 0 or at least DESIGN_SCALE_MIN
+                "lengths_floor": True}
 
 
     def audit_numbers(self, dv, solver, audit_dir) -> dict:
