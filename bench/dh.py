@@ -90,7 +90,7 @@ def casadi_c() -> dict:
     import casadi as ca
 
     sys.path.insert(0, str(ROOT))
-    from derive.to_casadi import load_casadi
+    from derive.casadi_export import load_casadi
 
     fns = load_casadi(CASADI_DIR / "puma560.casadi")
     BUILD.mkdir(parents=True, exist_ok=True)

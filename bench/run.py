@@ -198,7 +198,7 @@ def casadi_row(path: Path, poses: np.ndarray) -> dict:
     import casadi as ca
     from wristkin import underactuated_wrist as uw
 
-    from derive.to_casadi import load_casadi
+    from derive.casadi_export import load_casadi
 
     f = load_casadi(path)["uw_ik_branch"]
     p = np.array(uw.DESIGN_DEFAULT)

@@ -73,13 +73,14 @@ def mechanism_products(name: str, out: Path) -> list[Path]:
     written = [_write(out / "python" / "wristkin" / f"{name}.py", render(t_py, **ctx)),
                _write(out / "c" / f"{name}.h", render(t_h, **ctx)),
                _write(out / "c" / f"{name}.c", render(t_c, **ctx))]
-    from . import audit, to_casadi
+    from . import audit, casadi_export
 
     fns = mod.casadi_functions(dv, ks)
     # the entries of the functions' design input: the solver's DESIGN_NAMES unless the mechanism's CasADi
     # functions take fewer (the 3-RSR wrist's take only L)
     design_names = getattr(mod, "CASADI_DESIGN_NAMES", None) or audit.load_generated(out, name).DESIGN_NAMES
-    written += to_casadi.write_casadi(fns, out / "casadi", name=name, design_names=design_names)
+    written += casadi_export.write_casadi(fns, out / "casadi", name=name, design_names=design_names,
+                                          docs=getattr(mod, "CASADI_DOCS", None))
     written += audit.write_report(name, dv, out)
     return written
 
@@ -97,6 +98,8 @@ def _shared_files(out: Path) -> list[Path]:
     files.append(_write(pkg / "__init__.py", render("python/__init__.py.jinja", header=header_lines(),
                                                      names=sorted(REGISTRY))))
     files.append(_write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja", header=header_lines())))
+    files.append(_write(out / "c" / "CMakeLists.txt", render("c/CMakeLists.txt.jinja", header=header_lines(),
+                                                             names=sorted(REGISTRY))))
     return files
 
 

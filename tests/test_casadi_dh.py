@@ -11,7 +11,7 @@ import pytest
 from reference import dh as ref
 from seeding import case_rng
 
-from derive.to_casadi import load_casadi
+from derive.casadi_export import load_casadi
 
 ROOT = Path(__file__).resolve().parent.parent
 CHAINS = ["puma560", "rpp_wrist", "scara_wrist", "spherical_wrist", "wrist_1dof"]

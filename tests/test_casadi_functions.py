@@ -20,7 +20,7 @@ import pytest
 import sympy as sp
 from seeding import case_rng
 
-from derive import to_casadi as tc
+from derive import casadi_export as tc
 
 DELTAS = (0.0, 2 * math.pi / 3, 4 * math.pi / 3)
 PAPER = np.radians([60.0, 60.0, 30.0, 43.89])
@@ -370,7 +370,9 @@ def test_serialisation_round_trip_and_determinism(fns, tmp_path):
     """Loaded and written again, the functions give the committed bytes (regenerating them from fresh SX
     graphs in other processes is tests/test_generated_fresh.py's job)."""
     design_names = json.loads((GENERATED_CASADI / "underactuated_wrist.json").read_text())["design_names"]
-    paths = tc.write_casadi(fns, tmp_path, design_names=design_names)
+    from derive.mechanisms.wrist_casadi import FUNCTION_DOCS
+
+    paths = tc.write_casadi(fns, tmp_path, "underactuated_wrist", design_names, FUNCTION_DOCS)
     assert [p.relative_to(tmp_path).as_posix() for p in paths] == ["underactuated_wrist.casadi",
                                                                    "underactuated_wrist.json"]
     blob = paths[0].read_bytes()

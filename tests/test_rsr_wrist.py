@@ -116,7 +116,7 @@ def test_bad_design_is_a_typed_error(design):
 
 def test_jacobians_match_casadi_and_finite_differences():
     from derive.mechanisms import rsr_wrist as mech
-    from derive.rsr_casadi import wrist_functions
+    from derive.mechanisms.rsr_casadi import wrist_functions
 
     fns = wrist_functions(mech.kernels(mech.derive_cached()))
     rng = case_rng(9)

@@ -172,7 +172,7 @@ def test_c_bad_input(hc):
 
 
 def test_casadi_fk_and_jacobian_from_the_generated_file():
-    from derive.to_casadi import load_casadi
+    from derive.casadi_export import load_casadi
 
     fns = load_casadi(Path(__file__).resolve().parent.parent / "generated" / "casadi" / "scara_rsr.casadi")
     rng = case_rng(14)

@@ -16,7 +16,7 @@ from c_solvers import SerialC
 from reference import screws as ref
 from seeding import case_rng
 
-from derive.to_casadi import load_casadi
+from derive.casadi_export import load_casadi
 
 ROOT = Path(__file__).resolve().parent.parent
 NAMES = ["p1p2p3rarb", "rarararbrb"]

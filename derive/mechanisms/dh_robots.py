@@ -196,7 +196,7 @@ class SerialMechanism:
         return dh_serial.kernels_spec(self.spec, dv)
 
     def casadi_functions(self, dv, kernels) -> dict:
-        from ..to_casadi import serial_functions
+        from .serial_casadi import serial_functions
         return serial_functions(self.NAME, kernels)
 
     def extra_context(self, ks) -> dict:

@@ -14,7 +14,7 @@ import numpy as np
 
 from ..model import Finding
 from ..report_numbers import error_bucket
-from .rsr_wrist import max_gamma_difference, seed_fd
+from .rsr_geometry import max_gamma_difference, seed_fd
 
 _BETA_GRID = np.radians(np.arange(0.0, 179.5, 0.25))
 
@@ -119,7 +119,7 @@ def _gamma_plot(audit_dir):
 def _singularity_scan(solver, design, kernels):
     """Over the limited workspace on the middle curve: conditioning of the branch within the leg limits,
     the 6x6 closed-chain constraint Jacobian (CasADi), and where the unlimited singular sets lie."""
-    from ..rsr_casadi import wrist_functions
+    from .rsr_casadi import wrist_functions
 
     jc = wrist_functions(kernels)["rsr_wrist_constraint_jacobian"]
     lo = [design.params[1]] * 3

@@ -10,6 +10,8 @@ mirror-plane normal n = (sin(beta/2) cos alpha, sin(beta/2) sin alpha, cos(beta/
 
 from __future__ import annotations
 
+import math
+
 import sympy as sp
 
 from ..identities.frames import E_X, E_Z, rot_z
@@ -70,3 +72,15 @@ def leg_equation_coefficients(i: int, alpha=ALPHA, beta=BETA):
 __all__ = ["ALPHA", "BETA", "E_Z", "L", "LBW", "LEG_ANGLES", "PHI", "base_axis", "leg_equation_coefficients",
            "leg_point", "mirror_normal", "plane_normal_unnormalised", "platform_rotation_mirror", "reflection",
            "rot_y", "tilt_rotation"]
+
+
+def seed_fd(beta_deg: float) -> float:
+    """The seed's fitted maximum (rotation - azimuth) difference f_d(beta), degrees."""
+    k1, k2, k3, k4, k5, w = 54.02, -53.32, -12.04, -0.6695, 5.766, 0.01853
+    b = beta_deg * w
+    return k1 + k2 * math.cos(b) + k3 * math.sin(b) + k4 * math.cos(2 * b) + k5 * math.sin(2 * b)
+
+
+def max_gamma_difference(beta: float) -> float:
+    """max over alpha1 of gamma - alpha1 (degrees) for our gamma: asin(tan^2(beta/2)) in closed form."""
+    return math.degrees(math.asin(math.tan(beta / 2) ** 2))

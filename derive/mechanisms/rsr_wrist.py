@@ -17,7 +17,7 @@ from ..checks import numeric_identity, numeric_predicate, symbolic_identity
 from ..model import Derivation, Finding, Step
 from ..report_numbers import measured
 from . import rsr_geometry as g
-from .rsr_geometry import ALPHA, BETA, LBW, PHI, L
+from .rsr_geometry import ALPHA, BETA, LBW, PHI, L, max_gamma_difference, seed_fd
 
 NAME = "rsr_wrist"
 TITLE = "3-RSR (2R1T) symmetric parallel wrist: mirror-plane FK, closed-form IK, swing-rotation attitude"
@@ -327,18 +327,6 @@ def _rates(dv: Derivation) -> None:
 
 
 # ------------------------------------------------------------------------------------------------- findings
-def seed_fd(beta_deg: float) -> float:
-    """The seed's fitted maximum (rotation - azimuth) difference f_d(beta), degrees."""
-    k1, k2, k3, k4, k5, w = 54.02, -53.32, -12.04, -0.6695, 5.766, 0.01853
-    b = beta_deg * w
-    return k1 + k2 * math.cos(b) + k3 * math.sin(b) + k4 * math.cos(2 * b) + k5 * math.sin(2 * b)
-
-
-def max_gamma_difference(beta: float) -> float:
-    """max over alpha1 of gamma - alpha1 (degrees) for our gamma: asin(tan^2(beta/2)) in closed form."""
-    return math.degrees(math.asin(math.tan(beta / 2) ** 2))
-
-
 def _findings() -> list[Finding]:
     rows = ", ".join(f"{b} deg: {max_gamma_difference(math.radians(b)):.2f} vs {seed_fd(b):.2f}"
                      for b in (15, 30, 45, 60, 65))
@@ -434,7 +422,7 @@ def extra_context(ks) -> dict:
 
 
 def casadi_functions(dv, ks):
-    from ..rsr_casadi import wrist_functions
+    from .rsr_casadi import wrist_functions
 
     return wrist_functions(ks)
 

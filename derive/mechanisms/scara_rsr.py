@@ -267,7 +267,7 @@ def extra_context(ks) -> dict:
 
 
 def casadi_functions(dv, ks):
-    from ..rsr_casadi import hybrid_functions
+    from .rsr_casadi import hybrid_functions
 
     return hybrid_functions(ks)
 

@@ -178,10 +178,10 @@ class ScrewMechanism(SerialMechanism):
         Jacobian by CasADi's AD: linear rows d p / d q, angular rows vee(d R / d q_k R^T) (tested equal)."""
         import casadi as ca
 
-        from .. import to_casadi
+        from .serial_casadi import serial_functions
 
         name = self.NAME
-        fns = to_casadi.serial_functions(name, kernels)
+        fns = serial_functions(name, kernels)
         n, m = len(self.spec.joints), len(self.spec.design)
         q, p = ca.SX.sym("q", n), ca.SX.sym("p", m)
         T = fns[f"{name}_fk"](q, p)

@@ -28,6 +28,7 @@ from ..identities.spherical import (
     triangle_direction_cosines,
 )
 from ..model import Check, Derivation, Step
+from . import wrist_casadi
 
 NAME = "underactuated_wrist"
 TITLE = "Underactuated 3-DOF spherical wrist (2 motors + 1 sensed passive branch)"
@@ -35,6 +36,7 @@ SEED = "seed 000: 'Kinematics analysis of a novel underactuated robot wrist', Pr
 
 # Paper design (alpha1 = alpha2 = 60 deg, beta1 = 30 deg, beta2 = 43.89 deg).
 DESIGN_NAMES = ("alpha1", "alpha2", "beta1", "beta2")
+CASADI_DOCS = wrist_casadi.FUNCTION_DOCS  # the CasADi index's function descriptions
 DERIVE_SECONDS = 28  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
 VECTORISED_KERNELS = ("ik_abc", "middle_axes", "platform_axes", "base_axes", "fk_def", "fk_rotation")
 DESIGN_DEFAULT_DEG = (60.0, 60.0, 30.0, 43.89)
@@ -736,9 +738,10 @@ def extra_context(ks) -> dict:
 def audit_numbers(dv, solver, audit_dir):
     from .underactuated_wrist_audit import audit_numbers as run
 
-    return run(dv, solver, audit_dir)
+    ks = kernels(dv)
+    return run(dv, solver, audit_dir, ks, extra_context(ks)["default_constants"], DESIGN_CONSTANTS)
 
 
 def casadi_functions(dv, ks) -> dict:
-    from ..to_casadi import casadi_functions as wrist_functions
+    from .wrist_casadi import casadi_functions as wrist_functions
     return wrist_functions(dv, ks)

@@ -74,7 +74,7 @@ def _table2(solver):
     return body, reproduced
 
 
-def audit_numbers(dv, solver, audit_dir: Path) -> dict:
+def audit_numbers(dv, solver, audit_dir: Path, kernels, default_constants, design_constants) -> dict:
     d = solver.make_design()
     theta0 = math.degrees(d.theta0)
     a1, a2, b1, b2 = d.params
@@ -144,7 +144,7 @@ def audit_numbers(dv, solver, audit_dir: Path) -> dict:
                  "loop Jacobians (jq q̇ = jx ω and its time derivative).\n\n"
                  "![drive case](underactuated_wrist_drive.svg)"},
     ]
-    expanded_ops, expanded_terms, kernel_ops = _expansion_measure(dv)
+    expanded_ops, expanded_terms, kernel_ops = _expansion_measure(kernels, default_constants, design_constants)
     decisions = [("Ki formed at run time from Di, Ei, Fi",
                   "the 18 coefficients of Di, Ei, Fi in (1, cos η, sin η) lower to a kernel of "
                   f"{kernel_ops} operations after CSE, and K0..K8 follow from 9 quadratic products and 3 squares "
@@ -158,16 +158,14 @@ def audit_numbers(dv, solver, audit_dir: Path) -> dict:
             "files": files}
 
 
-def _expansion_measure(dv):
+def _expansion_measure(kernels, default_constants, design_constants):
     """Operation counts: symbolic expansion of part of K8 in theta vs the run-time route (deterministic)."""
     import sympy as sp
 
     from ..lower import lower
-    from . import underactuated_wrist as mech
 
-    ks = {k.name: k for k in mech.kernels(dv)}
-    consts = [float(v) for v in mech.extra_context(list(ks.values()))["default_constants"]]
-    dc = dict(zip(mech.DESIGN_CONSTANTS, consts, strict=True))
+    ks = {k.name: k for k in kernels}
+    dc = dict(zip(design_constants, [float(v) for v in default_constants], strict=True))
     coef = [sp.sympify(e).xreplace(dc) for _, e in ks["fk_def"].outputs]
     quad = [(coef[3 * j] + coef[3 * j + 1], 2 * coef[3 * j + 2], coef[3 * j] - coef[3 * j + 1]) for j in range(6)]
     _, e1, f1, _, e2, f2 = quad

@@ -1,31 +1,20 @@
-"""SymPy -> CasADi: the underactuated wrist's kernels as algorithmic-differentiation-ready functions.
+"""SymPy -> CasADi and the .casadi files: the generic part every mechanism's CasADi functions go through.
 
-Two layers:
+* `to_sx(exprs, symbol_map)`: a deterministic converter of SymPy expressions to `casadi.SX`. It walks the
+  expression tree (SymPy's canonical argument order) with a memo, so structurally equal subtrees become one
+  shared SX node; numbers without free symbols are evaluated once to 30 digits and enter as double constants.
+* `write_casadi(functions, out_dir, name, design_names)` serialises a mechanism's functions with
+  `casadi.FileSerializer` into one file `<out_dir>/<name>.casadi` (a single packed list of Functions, sorted by
+  name) plus a JSON index `<out_dir>/<name>.json`. The bytes are a pure function of the expression graphs: the
+  same kernels give the same file in any process (checked across PYTHONHASHSEED values), so the file sits under
+  the drift check of generated/ (the format is CasADi's, so it changes with the pinned casadi version).
 
-* `to_sx(exprs, symbol_map)`: a generic, deterministic converter of SymPy expressions to
-  `casadi.SX`. It walks the expression tree (SymPy's canonical argument order) with a memo, so
-  structurally equal subtrees become one shared SX node; numbers without free symbols are
-  evaluated once to 30 digits and enter as double constants.
-* `casadi_functions(dv, kernels)`: the underactuated wrist's CasADi functions, assembled only from
-  the checked kernel expressions of `derive.mechanisms.underactuated_wrist.kernels` (the design
-  constants kernel is composed in, so every function takes the design parameters
-  p = (alpha1, alpha2, beta1, beta2) as an explicit input). Outputs are densified.
-
-`write_casadi(functions, out_dir)` serialises them with `casadi.FileSerializer` into one file
-`<out_dir>/underactuated_wrist.casadi` (a single packed list of Functions, sorted by name) plus a
-JSON index `<out_dir>/underactuated_wrist.json`; the pipeline passes out_dir = generated/casadi.
-The bytes are a pure function of the expression graphs: the same kernels give the same file in
-any process (checked across PYTHONHASHSEED values), so the file can sit under the drift check of
-generated/ (the format is CasADi's, so it changes with the pinned casadi version).
-
-Conventions (as in docs/API.md): angles in radians; e = (psi, theta, phi) are ZXZ Euler angles,
-R = Rz(psi) Rx(theta) Rz(phi); q = (theta1, theta2, theta3) the exterior joint angles; loop i is
-Zi2(theta_i) . (R p_i) - cos(alpha2) = A_i cos theta_i + B_i sin theta_i + C_i; jq * qdot = jx @ w.
+Each family builds its functions from its checked kernels (derive/mechanisms/*_casadi.py); this module names
+no mechanism.
 """
 
 from __future__ import annotations
 
-import argparse
 import hashlib
 import json
 import os
@@ -36,8 +25,6 @@ from pathlib import Path
 import casadi as ca
 import sympy as sp
 
-MECHANISM = "underactuated_wrist"
-DESIGN_NAMES = ("alpha1", "alpha2", "beta1", "beta2")
 _EVAL_DIGITS = 30
 
 # ------------------------------------------------------------------------------ SymPy -> SX
@@ -238,119 +225,6 @@ def _elems(v: ca.SX) -> list[ca.SX]:
     return [v[i, j] for i in range(v.shape[0]) for j in range(v.shape[1])]
 
 
-def _rot_x(a):
-    c, s = ca.cos(a), ca.sin(a)
-    return ca.vertcat(ca.horzcat(1, 0, 0), ca.horzcat(0, c, -s), ca.horzcat(0, s, c))
-
-
-def _rot_z(a):
-    c, s = ca.cos(a), ca.sin(a)
-    return ca.vertcat(ca.horzcat(c, -s, 0), ca.horzcat(s, c, 0), ca.horzcat(0, 0, 1))
-
-
-def rotation_zxz(e: ca.SX) -> ca.SX:
-    """R = Rz(psi) Rx(theta) Rz(phi) for e = (psi, theta, phi) (docs/API.md)."""
-    return ca.mtimes([_rot_z(e[0]), _rot_x(e[1]), _rot_z(e[2])])
-
-
-def _mat3(out: Mapping[str, ca.SX], prefix: str) -> ca.SX:
-    return ca.vertcat(*[ca.horzcat(*[out[f"{prefix}{i}{j}"] for j in range(3)]) for i in range(3)])
-
-
-FUNCTION_DOCS = {
-    "uw_loop": "g_i = A_i cos q_i + B_i sin q_i + C_i = Zi2(q_i) . (R(e) p_i) - cos(alpha2), i = 1..3.",
-    "uw_ik_branch": "Closed-form IK per branch: q_i = atan2(B_i, A_i) + sigma_i acos(-C_i / "
-                    "sqrt(A_i^2 + B_i^2)), sigma_i = +/-1; not wrapped (q_i in (-2 pi, 2 pi]); "
-                    "NaN where branch i is unreachable.",
-    "uw_fk_rotation": "R = Rx(pi - beta1) Rz(theta1) Rx(alpha1) Rz(zeta) Rx(alpha2) Rz(eta) G for "
-                      "tze = (theta1, zeta, eta).",
-    "uw_jacobians": "jq_i = det[Zi1, Zi2, Zi3], row i of jx = Zi2 x Zi3, with R = R(e): jq * qdot = jx @ w.",
-    "uw_rates": "w = jx^-1 (jq * qd); wdot = jx^-1 (jq * qdd + jqdot * qd - jxdot w); ed = E^-1 w; "
-                "edd = E^-1 (wdot - Edot ed) with w = E(e) ed (singular at sin theta = 0).",
-    "uw_loop_jac": "dg/dq and dg/de of uw_loop (CasADi AD).",
-    "uw_singularity": "det_jq = jq1 jq2 jq3 (inverse/serial singularity at 0), det_jx = det jx "
-                      "(direct/parallel singularity at 0).",
-}
-
-
-def casadi_functions(dv=None, kernels=None) -> dict[str, ca.Function]:
-    """The underactuated wrist's CasADi functions, built from the kernels' SymPy expressions.
-
-    dv: the Derivation (`underactuated_wrist.derive()`); kernels: `underactuated_wrist.kernels(dv)`
-    (computed from dv when None). Returns a dict name -> casadi.Function (insertion order fixed).
-    """
-    if kernels is None:
-        if dv is None:
-            raise ValueError("need the derivation or its kernels")
-        from .mechanisms import underactuated_wrist as uw
-        kernels = uw.kernels(dv)
-    if dv is not None and not dv.all_passed:
-        raise AssertionError("derivation has failed steps")
-    K = {k.name: k for k in kernels}
-    missing = {"design_constants", "ik_abc", "fk_rotation", "jacobians", "jacobian_rates",
-               "euler_rate_matrix"} - set(K)
-    if missing:
-        raise ValueError(f"missing kernels: {sorted(missing)}")
-    (pname, psyms), = K["design_constants"].inputs
-    if tuple(s.name for s in psyms) != DESIGN_NAMES:
-        raise ValueError(f"design_constants takes {[s.name for s in psyms]}, expected {DESIGN_NAMES}")
-
-    q = ca.SX.sym("q", 3)
-    e = ca.SX.sym("e", 3)
-    p = ca.SX.sym("p", 4)
-    sigma = ca.SX.sym("sigma", 3)
-    tze = ca.SX.sym("tze", 3)
-    qd = ca.SX.sym("qd", 3)
-    qdd = ca.SX.sym("qdd", 3)
-
-    dc_out = _kernel_sx(K["design_constants"], {pname: _elems(p)})
-    dc = [dc_out[name] for name, _ in K["design_constants"].outputs]
-
-    # ik_abc takes the entries of R (row-major), built here from the ZXZ angles
-    abc = _kernel_sx(K["ik_abc"], {"rot": _elems(rotation_zxz(e)), "dc": dc})
-    A = [abc[f"A{i}"] for i in (1, 2, 3)]
-    B = [abc[f"B{i}"] for i in (1, 2, 3)]
-    C = [abc[f"C{i}"] for i in (1, 2, 3)]
-    g = ca.vertcat(*[A[i] * ca.cos(q[i]) + B[i] * ca.sin(q[i]) + C[i] for i in range(3)])
-    q_ik = ca.vertcat(*[ca.atan2(B[i], A[i]) + sigma[i] * ca.acos(-C[i] / ca.sqrt(A[i] ** 2 + B[i] ** 2))
-                        for i in range(3)])
-
-    R_fk = _mat3(_kernel_sx(K["fk_rotation"], {"tze": _elems(tze), "dc": dc}), "r")
-
-    R = rotation_zxz(e)
-    jac = _kernel_sx(K["jacobians"], {"q": _elems(q), "rot": _elems(R), "dc": dc})
-    jq = ca.vertcat(*[jac[f"jq{i}"] for i in (1, 2, 3)])
-    jx = _mat3(jac, "jx")
-
-    w = ca.solve(jx, jq * qd)
-    rates = _kernel_sx(K["jacobian_rates"], {"q": _elems(q), "rot": _elems(R), "qd": _elems(qd),
-                                            "w": _elems(w), "dc": dc})
-    jqdot = ca.vertcat(*[rates[f"jqd{i}"] for i in (1, 2, 3)])
-    jxdot = _mat3(rates, "jxd")
-    wdot = ca.solve(jx, jq * qdd + jqdot * qd - ca.mtimes(jxdot, w))
-    E = _mat3(_kernel_sx(K["euler_rate_matrix"], {"pose": _elems(e)}), "e")
-    ed = ca.solve(E, w)
-    Edot = ca.jtimes(E, e, ed)  # dE/dt along e' = ed
-    edd = ca.solve(E, wdot - ca.mtimes(Edot, ed))
-
-    d = ca.densify
-    specs = [
-        ("uw_loop", [q, e, p], [g], ["q", "e", "p"], ["g"]),
-        ("uw_ik_branch", [e, p, sigma], [q_ik], ["e", "p", "sigma"], ["q"]),
-        ("uw_fk_rotation", [tze, p], [R_fk], ["tze", "p"], ["R"]),
-        ("uw_jacobians", [q, e, p], [jq, jx], ["q", "e", "p"], ["jq", "jx"]),
-        ("uw_rates", [q, e, qd, qdd, p], [w, wdot, ed, edd], ["q", "e", "qd", "qdd", "p"],
-         ["w", "wdot", "ed", "edd"]),
-        ("uw_loop_jac", [q, e, p], [ca.jacobian(g, q), ca.jacobian(g, e)], ["q", "e", "p"],
-         ["dg_dq", "dg_de"]),
-        ("uw_singularity", [q, e, p], [jq[0] * jq[1] * jq[2], ca.det(jx)], ["q", "e", "p"],
-         ["det_jq", "det_jx"]),
-    ]
-    return {name: ca.Function(name, ins, [d(o) for o in outs], nin, nout)
-            for name, ins, outs, nin, nout in specs}
-
-
-# ------------------------------------------------------------------------------ serialisation
 def serialize_functions(functions: Mapping[str, ca.Function]) -> bytes:
     """The bytes of the .casadi file: one `FileSerializer.pack` of the Functions sorted by name."""
     for name, f in functions.items():
@@ -386,7 +260,7 @@ def _io(f: ca.Function, kind: str) -> list[dict]:
 
 
 def index_json(functions: Mapping[str, ca.Function], blob: bytes, file_name: str, name: str,
-               design_names: Sequence[str]) -> str:
+               design_names: Sequence[str], docs: Mapping[str, str] | None = None) -> str:
     idx = {
         "mechanism": name,
         "file": file_name,
@@ -396,7 +270,7 @@ def index_json(functions: Mapping[str, ca.Function], blob: bytes, file_name: str
         "sha256": hashlib.sha256(blob).hexdigest(),
         "design_names": list(design_names),
         "functions": {
-            n: {"doc": FUNCTION_DOCS.get(n, ""), "inputs": _io(f, "in"), "outputs": _io(f, "out"),
+            n: {"doc": (docs or {}).get(n, ""), "inputs": _io(f, "in"), "outputs": _io(f, "out"),
                 "n_instructions": int(f.n_instructions())}
             for n, f in sorted(functions.items())
         },
@@ -404,28 +278,8 @@ def index_json(functions: Mapping[str, ca.Function], blob: bytes, file_name: str
     return json.dumps(idx, sort_keys=True, indent=2) + "\n"
 
 
-def serial_functions(name: str, kernels) -> dict[str, ca.Function]:
-    """A DH chain's FK (3x4 [R | p]) and geometric Jacobian (6 x n) from its kernels, plus the Jacobian of
-    the position by CasADi's AD, which must equal the linear rows of the geometric one (tested)."""
-    K = {k.name: k for k in kernels}
-    n = len(K["fk"].inputs[0][1])
-    q = ca.SX.sym("q", n)
-    p = ca.SX.sym("p", len(K["fk"].inputs[1][1]))
-    groups = {"q": _elems(q), "dp": _elems(p)}
-    fk = _kernel_sx(K["fk"], groups)
-    T = ca.reshape(ca.vertcat(*[fk[k] for k, _ in K["fk"].outputs]), 4, 3).T
-    jo = _kernel_sx(K["jacobian"], groups)
-    J = ca.reshape(ca.vertcat(*[jo[k] for k, _ in K["jacobian"].outputs]), n, 6).T
-    return {
-        f"{name}_fk": ca.Function(f"{name}_fk", [q, p], [ca.densify(T)], ["q", "p"], ["T"]),
-        f"{name}_jacobian": ca.Function(f"{name}_jacobian", [q, p], [ca.densify(J)], ["q", "p"], ["J"]),
-        f"{name}_position_jacobian_ad": ca.Function(f"{name}_position_jacobian_ad", [q, p],
-                                                    [ca.densify(ca.jacobian(T[:, 3], q))], ["q", "p"], ["Jp"]),
-    }
-
-
-def write_casadi(functions: Mapping[str, ca.Function], out_dir, name: str = MECHANISM,
-                 design_names: Sequence[str] = DESIGN_NAMES) -> list[Path]:
+def write_casadi(functions: Mapping[str, ca.Function], out_dir, name: str,
+                 design_names: Sequence[str], docs: Mapping[str, str] | None = None) -> list[Path]:
     """Write `<out_dir>/<name>.casadi` and `<out_dir>/<name>.json` (index); return both paths.
 
     design_names: the mechanism's design parameters in the order of the functions' design input (the
@@ -443,25 +297,10 @@ def write_casadi(functions: Mapping[str, ca.Function], out_dir, name: str = MECH
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths = [out / f"{name}.casadi", out / f"{name}.json"]
-    contents = [blob, index_json(functions, blob, paths[0].name, name, design_names).encode()]
+    contents = [blob, index_json(functions, blob, paths[0].name, name, design_names, docs).encode()]
     for path, data in zip(paths, contents, strict=True):
         if not path.exists() or path.read_bytes() != data:
             tmp = path.with_suffix(path.suffix + ".tmp")
             tmp.write_bytes(data)
             os.replace(tmp, path)
     return paths
-
-
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description="Write the underactuated wrist's CasADi functions.")
-    ap.add_argument("--out", default="generated/casadi", help="output directory")
-    args = ap.parse_args(argv)
-    from .mechanisms import underactuated_wrist as uw
-    dv = uw.derive()
-    for path in write_casadi(casadi_functions(dv, uw.kernels(dv)), args.out):
-        print(path)
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
