@@ -100,7 +100,7 @@ test-portable: $(STAMP)
 # 1e6 cases per mechanism through the C fuzz driver (10 mechanisms: 1e7), then 20x the Python examples.
 FUZZ_CASES ?= 1000000
 fuzz: $(STAMP)
-	WRISTKIN_FUZZ_CASES=$(FUZZ_CASES) WRISTKIN_FUZZ_EXAMPLES=3000 $(PY) -m pytest -n $(TEST_WORKERS) -s \
+	WRISTKIN_FUZZ_CASES=$(FUZZ_CASES) WRISTKIN_FUZZ_EXAMPLES=3000 $(PY) -m pytest -n $(TEST_WORKERS) -rP \
 	tests/test_fuzz.py tests/test_fuzz_python.py $(PYTEST_ARGS)
 
 # All three checks run; the target fails if any of them failed.
