@@ -40,7 +40,7 @@ def c_loops(n: int) -> dict[str, dict]:
     out = {}
     for name in CHAINS:
         dof = importlib.import_module(f"wristkin.{name}").N_JOINTS
-        exe = _compile(name, [ROOT / "bench" / "bench_serial.c", C_DIR / f"{name}.c"],
+        exe = _compile(name, [ROOT / "bench" / "bench_serial.c", C_DIR / f"{name}.c", C_DIR / "wristkin_runtime.c"],
                        [f"-DMECH={name}", f'-DMECH_H="{name}.h"', f"-DN={dof}"])
         out[name] = json.loads(subprocess.run([str(exe), str(n)], check=True, capture_output=True,
                                               text=True).stdout)

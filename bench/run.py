@@ -124,7 +124,7 @@ def c_loop(n_ik: int, n_fk: int) -> tuple[dict, dict]:
     BUILD_DIR.mkdir(parents=True, exist_ok=True)
     exe = BUILD_DIR / "bench_underactuated_wrist"
     cmd = ["gcc", *C_FLAGS, f"-I{C_DIR}", "-o", str(exe), str(BENCH_DIR / "bench_underactuated_wrist.c"),
-           str(C_DIR / "underactuated_wrist.c"), "-lm"]
+           str(C_DIR / "underactuated_wrist.c"), str(C_DIR / "wristkin_runtime.c"), "-lm"]
     subprocess.run(cmd, check=True)
     out = subprocess.run([str(exe), str(n_ik), str(n_fk), str(C_REPEATS)], check=True, capture_output=True,
                          text=True)

@@ -33,7 +33,7 @@ def _c_loop(name: str, dof: int, n: int) -> dict:
     import json
     import subprocess
 
-    exe = _compile(name, [ROOT / "bench" / "bench_serial.c", C_DIR / f"{name}.c"],
+    exe = _compile(name, [ROOT / "bench" / "bench_serial.c", C_DIR / f"{name}.c", C_DIR / "wristkin_runtime.c"],
                    [f"-DMECH={name}", f'-DMECH_H="{name}.h"', f"-DN={dof}"])
     return json.loads(subprocess.run([str(exe), str(n)], check=True, capture_output=True, text=True).stdout)
 

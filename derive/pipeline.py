@@ -98,6 +98,7 @@ def _shared_files(out: Path) -> list[Path]:
     files.append(_write(pkg / "__init__.py", render("python/__init__.py.jinja", header=header_lines(),
                                                      names=sorted(REGISTRY))))
     files.append(_write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja", header=header_lines())))
+    files.append(_write(out / "c" / "wristkin_runtime.c", render("c/wristkin_runtime.c.jinja", header=header_lines())))
     files.append(_write(out / "c" / "CMakeLists.txt", render("c/CMakeLists.txt.jinja", header=header_lines(),
                                                              names=sorted(REGISTRY))))
     return files

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from cbuild import compile_shared, load
+from cbuild import RUNTIME_C, compile_shared, load
 
 ROOT = Path(__file__).resolve().parent.parent
 C_DIR = ROOT / "generated" / "c"
@@ -44,7 +44,7 @@ class UnderactuatedWristC:
     """Thin wrapper: same verbs and result layout as wristkin.underactuated_wrist."""
 
     def __init__(self, extra_flags=()):
-        so = compile_shared([C_DIR / "underactuated_wrist.c"], [C_DIR], "underactuated_wrist",
+        so = compile_shared([C_DIR / "underactuated_wrist.c", RUNTIME_C], [C_DIR], "underactuated_wrist",
                             extra_flags=list(extra_flags))
         self.lib = load(so)
         self.IK = _solutions_struct(8, 3, 5)
@@ -111,7 +111,7 @@ class SerialC:
     """ctypes wrapper for a generated serial-chain mechanism (same layout as its Python module)."""
 
     def __init__(self, name: str, n_joints: int, max_ik: int, n_params: int, extra_flags=()):
-        so = compile_shared([C_DIR / f"{name}.c"], [C_DIR], name, extra_flags=list(extra_flags))
+        so = compile_shared([C_DIR / f"{name}.c", RUNTIME_C], [C_DIR], name, extra_flags=list(extra_flags))
         self.lib = load(so)
         self.name, self.n, self.max_ik = name, n_joints, max_ik
         self.IK = _solutions_struct(max_ik, n_joints, 1)
@@ -177,7 +177,7 @@ class RsrC:
     LAYOUT = {"rsr_wrist": (3, 3, 8, 3, 3, 14, 5), "scara_rsr": (7, 13, 16, 6, 6, 6, 9)}
 
     def __init__(self, name: str, extra_flags=()):
-        so = compile_shared([C_DIR / f"{name}.c"], [C_DIR], name, extra_flags=list(extra_flags))
+        so = compile_shared([C_DIR / f"{name}.c", RUNTIME_C], [C_DIR], name, extra_flags=list(extra_flags))
         self.lib = load(so)
         self.name = name
         self.n, self.n_pose, self.max_ik, n_ik_aux, _, n_fk_aux, n_params = self.LAYOUT[name]

@@ -15,6 +15,8 @@ from pathlib import Path
 
 STRICT_FLAGS = ["-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-O2", "-fPIC"]
 SANITIZE_FLAGS = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-g", "-O1"]
+C_DIR = Path(__file__).resolve().parent.parent / "generated" / "c"
+RUNTIME_C = C_DIR / "wristkin_runtime.c"  # every generated mechanism links the shared runtime
 BUILD_DIR = Path(os.environ.get("WRISTKIN_BUILD_DIR", Path(__file__).resolve().parent.parent / "build" / "c"))
 
 

@@ -7,7 +7,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from cbuild import SANITIZE_FLAGS, compile_executable, compiler
+from cbuild import RUNTIME_C, SANITIZE_FLAGS, compile_executable, compiler
 
 ROOT = Path(__file__).resolve().parent.parent
 C_DIR = ROOT / "generated" / "c"
@@ -21,8 +21,8 @@ def _sanitizer_available() -> bool:
 
 @pytest.mark.skipif(not _sanitizer_available(), reason="compiler has no ASan/UBSan runtime")
 def test_generated_c_is_clean_under_asan_ubsan():
-    exe = compile_executable([ROOT / "tests" / "c" / "uw_sanitize.c", C_DIR / "underactuated_wrist.c"], [C_DIR],
-                             "uw_sanitize", extra_flags=SANITIZE_FLAGS)
+    exe = compile_executable([ROOT / "tests" / "c" / "uw_sanitize.c", C_DIR / "underactuated_wrist.c", RUNTIME_C],
+                             [C_DIR], "uw_sanitize", extra_flags=SANITIZE_FLAGS)
     run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300,
                          env={"ASAN_OPTIONS": "detect_leaks=1:abort_on_error=1",
                               "UBSAN_OPTIONS": "halt_on_error=1:print_stacktrace=1"})
@@ -38,7 +38,7 @@ SERIAL = ["puma560", "rpp_wrist", "scara_wrist", "spherical_wrist", "wrist_1dof"
 def test_serial_chains_are_clean_under_asan_ubsan(name):
     n_joints = importlib.import_module(f"wristkin.{name}").N_JOINTS
     flags = [*SANITIZE_FLAGS, f"-DMECH={name}", f'-DMECH_H="{name}.h"', f"-DN={n_joints}"]
-    exe = compile_executable([ROOT / "tests" / "c" / "serial_sanitize.c", C_DIR / f"{name}.c"], [C_DIR],
+    exe = compile_executable([ROOT / "tests" / "c" / "serial_sanitize.c", C_DIR / f"{name}.c", RUNTIME_C], [C_DIR],
                              f"{name}_sanitize", extra_flags=flags)
     run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300,
                          env={"ASAN_OPTIONS": "detect_leaks=1:abort_on_error=1",
@@ -55,7 +55,8 @@ def test_generated_c_compiles_with_strict_flags_as_a_unit():
 
 @pytest.mark.skipif(not _sanitizer_available(), reason="compiler has no ASan/UBSan runtime")
 def test_rsr_wrist_and_hybrid_are_clean_under_asan_ubsan():
-    exe = compile_executable([ROOT / "tests" / "c" / "rsr_sanitize.c", C_DIR / "rsr_wrist.c", C_DIR / "scara_rsr.c"],
+    exe = compile_executable([ROOT / "tests" / "c" / "rsr_sanitize.c", C_DIR / "rsr_wrist.c", C_DIR / "scara_rsr.c",
+                              RUNTIME_C],
                              [C_DIR], "rsr_sanitize", extra_flags=SANITIZE_FLAGS)
     run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300,
                          env={"ASAN_OPTIONS": "detect_leaks=1:abort_on_error=1",

@@ -176,3 +176,20 @@ def test_dh_designs_with_a_vanishing_nonzero_length_are_rejected_python_and_c():
     for good in ([0.4, 0.3, 0.0], [0.004, 0.003, 0.001], [2e-5, 0.3, 0.1]):
         mod.make_design(good)
         assert c.design(np.array(good))[0] == 0
+
+
+def test_rsr_select_ranks_flagged_sets_by_distance_in_c_as_in_python():
+    """The C selection of the 3-RSR wrist skipped singular sets whenever a regular one existed, while Python (and
+    docs/API.md) rank every valid set by distance to `previous`: both now use the runtime's one rule."""
+    mod = importlib.import_module("wristkin.rsr_wrist")
+    c = RsrC("rsr_wrist")
+    q = [0.3047357643748719, 0.6733437539769431, 1.5653269596422297]  # FK mode 0: IK set 4 flagged, others not
+    pose = mod.fk(q).values[0]
+    sol = mod.ik(pose)
+    flagged = [k for k in np.flatnonzero(sol.valid) if sol.flags[k] & (FLAG_SINGULAR_INVERSE | 2)]
+    assert flagged and len(flagged) < sol.count
+    for k in np.flatnonzero(sol.valid):
+        prev = sol.values[k] + 1e-6
+        assert mod.select(sol, previous=prev) == k
+        assert c.select(pose, previous=prev) == k
+    assert mod.select(sol) == c.select(pose) and not sol.flags[mod.select(sol)] & 3
