@@ -10,7 +10,7 @@ from pathlib import Path
 
 import sympy as sp
 
-from .mechanisms import REGISTRY
+from .families import REGISTRY
 from .render import header_lines, render
 from .tolerances import TOLERANCES
 

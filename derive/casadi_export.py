@@ -9,7 +9,7 @@
   same kernels give the same file in any process (checked across PYTHONHASHSEED values), so the file sits under
   the drift check of generated/ (the format is CasADi's, so it changes with the pinned casadi version).
 
-Each family builds its functions from its checked kernels (derive/mechanisms/*_casadi.py); this module names
+Each family builds its functions from its checked kernels (derive/families/*/*_casadi.py); this module names
 no mechanism.
 """
 

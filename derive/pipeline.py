@@ -14,8 +14,8 @@ import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
+from .families import REGISTRY
 from .lower import lower
-from .mechanisms import REGISTRY
 from .render import ROOT, header_lines, render, tool_versions
 from .tolerances import TOLERANCES
 

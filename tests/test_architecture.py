@@ -83,9 +83,9 @@ def test_the_cycle_finder_finds_a_cycle():
 
 
 def test_the_core_names_no_mechanism():
-    from derive.mechanisms import REGISTRY
+    from derive.families import REGISTRY
 
-    core = sorted(DERIVE.glob("*.py"))  # the core: derive/*.py; mechanisms live in derive/mechanisms/
+    core = sorted(DERIVE.glob("*.py"))  # the core: derive/*.py; mechanisms live in derive/families/
     assert core
     for p in core:
         text = p.read_text()

@@ -374,7 +374,7 @@ def test_serialisation_round_trip_and_determinism(fns, tmp_path):
     """Loaded and written again, the functions give the committed bytes (regenerating them from fresh SX
     graphs in other processes is tests/test_generated_fresh.py's job)."""
     design_names = json.loads((GENERATED_CASADI / "underactuated_wrist.json").read_text())["design_names"]
-    from derive.mechanisms.wrist_casadi import FUNCTION_DOCS
+    from derive.families.spherical_parallel.wrist_casadi import FUNCTION_DOCS
 
     paths = tc.write_casadi(fns, tmp_path, "underactuated_wrist", design_names, FUNCTION_DOCS)
     assert [p.relative_to(tmp_path).as_posix() for p in paths] == ["underactuated_wrist.casadi",

@@ -9,6 +9,7 @@ import numpy as np
 import sympy as sp
 from seeding import case_rng
 
+from derive.families.serial import dh_robots, dh_serial
 from derive.identities.dh import (
     DHRow,
     dh_modified,
@@ -18,7 +19,6 @@ from derive.identities.dh import (
     hrot_x,
     trans,
 )
-from derive.mechanisms import dh_robots, dh_serial
 
 
 def test_link_transforms_equal_their_closed_forms():

@@ -115,8 +115,8 @@ def test_bad_design_is_a_typed_error(design):
 
 
 def test_jacobians_match_casadi_and_finite_differences():
-    from derive.mechanisms import rsr_wrist as mech
-    from derive.mechanisms.rsr_casadi import wrist_functions
+    from derive.families.rsr import rsr_wrist as mech
+    from derive.families.rsr.rsr_casadi import wrist_functions
 
     fns = wrist_functions(mech.kernels(mech.derive_cached()))
     rng = case_rng(9)

@@ -119,7 +119,7 @@ def test_seed_representation_round_trip_and_arc_endpoints():
         back = h.abg_from_pose(t)
         assert abs(math.remainder(back[0] - a, 2 * math.pi)) < 1e-10 and abs(back[1] - b) < 1e-12
         assert abs(math.remainder(back[2] - g, 2 * math.pi)) < 1e-10
-    from derive.mechanisms.rsr_audit import ARC_POINTS
+    from derive.families.rsr.rsr_audit import ARC_POINTS
 
     for x, y, z, a, b, g in ARC_POINTS:
         t = h.pose_from_abg((x / 1e3, y / 1e3, z / 1e3), math.radians(a), math.radians(b), math.radians(g))

@@ -12,8 +12,8 @@ import math
 import numpy as np
 import sympy as sp
 
-from ..checks import numeric_predicate
-from ..model import Step
+from ...checks import numeric_predicate
+from ...model import Step
 from . import rsr_geometry as g
 
 

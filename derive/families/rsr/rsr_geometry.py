@@ -14,7 +14,7 @@ import math
 
 import sympy as sp
 
-from ..identities.frames import E_X, E_Z, rot_z
+from ...identities.frames import E_X, E_Z, rot_z
 
 L = sp.Symbol("L", positive=True)
 PHI = sp.symbols("phi1:4", real=True)

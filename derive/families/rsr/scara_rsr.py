@@ -14,11 +14,11 @@ import math
 import numpy as np
 import sympy as sp
 
-from ..checks import numeric_predicate, symbolic_identity
-from ..identities.dh import dh_modified
-from ..identities.frames import rot_x, rot_z
-from ..model import Derivation, Finding, Step
-from ..report_numbers import measured
+from ...checks import numeric_predicate, symbolic_identity
+from ...identities.dh import dh_modified
+from ...identities.frames import rot_x, rot_z
+from ...model import Derivation, Finding, Step
+from ...report_numbers import measured
 from . import rsr_geometry as g
 from . import rsr_wrist
 from .rsr_geometry import BETA, LBW, PHI, L
@@ -236,7 +236,7 @@ def _findings() -> list[Finding]:
 
 
 def kernels(dv: Derivation):
-    from ..lower import Kernel
+    from ...lower import Kernel
 
     scara = ("qs", (TH1, TH2, D3, TH4))
     design = ("design", (L1, L2, D, DF))

@@ -24,13 +24,13 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from ..checks import numeric_predicate
-from ..identities import screws
-from ..identities.frames import skew
-from ..lower import Kernel
-from ..model import Check, Derivation, Finding, Step
-from . import dh_serial
-from .dh_serial import POSE_SYMBOLS, Stage
+from ...checks import numeric_predicate
+from ...identities import screws
+from ...identities.frames import skew
+from ...lower import Kernel
+from ...model import Check, Derivation, Finding, Step
+from ..serial import dh_serial
+from ..serial.dh_serial import POSE_SYMBOLS, Stage
 
 DESIGN_NONZERO_TOL = 1e-9  # a squared norm / determinant of the design at or below this is degenerate
 DESIGN_UNIT_TOL = 1e-9  # | |s|^2 - 1 | above this: a direction is not a unit vector

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model import Finding
-from ..report_numbers import error_bucket
+from ...model import Finding
+from ...report_numbers import error_bucket
 from .rsr_geometry import max_gamma_difference, seed_fd
 
 _BETA_GRID = np.radians(np.arange(0.0, 179.5, 0.25))

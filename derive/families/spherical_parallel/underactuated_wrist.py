@@ -12,22 +12,22 @@ import math
 import numpy as np
 import sympy as sp
 
-from ..checks import identity, numeric_identity, numeric_predicate, symbolic_identity
-from ..identities.frames import E_Z, rot_x, rot_z, rot_zxz, zxz_rate_matrix
-from ..identities.polynomial import (
+from ...checks import identity, numeric_identity, numeric_predicate, symbolic_identity
+from ...identities.frames import E_Z, rot_x, rot_z, rot_zxz, zxz_rate_matrix
+from ...identities.polynomial import (
     affine_cs_coefficients,
     cramer_cs,
     elimination_identity,
     half_angle_quadratic,
     weierstrass,
 )
-from ..identities.spherical import (
+from ...identities.spherical import (
     cos_angle_between_cone_axes,
     equilateral_interior_angle_cos,
     polygon_vertex,
     triangle_direction_cosines,
 )
-from ..model import Check, Derivation, Step
+from ...model import Check, Derivation, Step
 from . import wrist_casadi
 
 NAME = "underactuated_wrist"
@@ -661,7 +661,7 @@ def _to_constants(e):
 
 def kernels(dv: Derivation):
     """Straight-line kernels the solvers are assembled from (all expressions come from checked steps)."""
-    from ..lower import Kernel
+    from ...lower import Kernel
 
     params = ("params", (a1, a2, b1, b2))
     dc = ("dc", DESIGN_CONSTANTS)

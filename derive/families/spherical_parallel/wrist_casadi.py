@@ -13,7 +13,7 @@ from collections.abc import Mapping
 
 import casadi as ca
 
-from ..casadi_export import _elems, _kernel_sx
+from ...casadi_export import _elems, _kernel_sx
 
 DESIGN_NAMES = ("alpha1", "alpha2", "beta1", "beta2")
 

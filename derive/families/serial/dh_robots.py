@@ -6,8 +6,8 @@ import math
 
 import sympy as sp
 
-from ..identities.dh import DHRow, chain
-from ..model import Finding
+from ...identities.dh import DHRow, chain
+from ...model import Finding
 from . import dh_serial
 from .dh_serial import P_POSE, R_POSE, SerialSpec, Stage, wrist_stage
 
@@ -144,7 +144,7 @@ def puma560() -> SerialSpec:
     v_fk = sp.simplify(o4[2] - d1)
     r2 = sp.expand(sp.simplify(sp.expand_trig(u_fk**2 + v_fk**2)))
     cq, sq = sp.symbols("cq sq")
-    from ..identities.polynomial import affine_cs_coefficients
+    from ...identities.polynomial import affine_cs_coefficients
 
     k0, kc, ks = affine_cs_coefficients(r2.subs({c(th[3]): cq, s(th[3]): sq}), cq, sq)
     u = c(th[1]) * pc[0] + s(th[1]) * pc[1]

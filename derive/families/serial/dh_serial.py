@@ -20,9 +20,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from ..checks import numeric_predicate, symbolic_identity
-from ..identities.dh import DHRow, chain, explicit
-from ..model import Check, Derivation, Finding, Step
+from ...checks import numeric_predicate, symbolic_identity
+from ...identities.dh import DHRow, chain, explicit
+from ...model import Check, Derivation, Finding, Step
 
 POSE = sp.Matrix(3, 4, sp.symbols("r00 r01 r02 px r10 r11 r12 py r20 r21 r22 pz", real=True))
 POSE_SYMBOLS = tuple(POSE)  # row-major [R | p]
@@ -253,7 +253,7 @@ def _on_cs(expr, spec: SerialSpec):
 
 
 def kernels_spec(spec: SerialSpec, dv: Derivation):
-    from ..lower import Kernel
+    from ...lower import Kernel
 
     q = ("q", spec.joints)
     dp = ("dp", spec.design)

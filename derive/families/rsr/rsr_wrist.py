@@ -13,9 +13,9 @@ import math
 import numpy as np
 import sympy as sp
 
-from ..checks import numeric_identity, numeric_predicate, symbolic_identity
-from ..model import Derivation, Finding, Step
-from ..report_numbers import measured
+from ...checks import numeric_identity, numeric_predicate, symbolic_identity
+from ...model import Derivation, Finding, Step
+from ...report_numbers import measured
 from . import rsr_geometry as g
 from .rsr_geometry import ALPHA, BETA, LBW, PHI, L, max_gamma_difference, seed_fd
 
@@ -377,7 +377,7 @@ def _findings() -> list[Finding]:
 
 # --------------------------------------------------------------------------------------------------- kernels
 def kernels(dv: Derivation):
-    from ..lower import Kernel
+    from ...lower import Kernel
 
     design = ("design", (L,))
     pose = ("pose", (ALPHA, BETA, LBW))

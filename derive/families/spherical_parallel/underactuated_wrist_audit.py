@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model import Finding
+from ...model import Finding
 
 # Seed 000, Table 2 as printed in the text (deg). t: (theta1, theta2, theta3), (psi, theta, phi) or None.
 TABLE2 = [
@@ -162,7 +162,7 @@ def _expansion_measure(kernels, default_constants, design_constants):
     """Operation counts: symbolic expansion of part of K8 in theta vs the run-time route (deterministic)."""
     import sympy as sp
 
-    from ..lower import lower
+    from ...lower import lower
 
     ks = {k.name: k for k in kernels}
     dc = dict(zip(design_constants, [float(v) for v in default_constants], strict=True))

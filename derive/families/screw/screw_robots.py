@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import sympy as sp
 
-from ..identities.frames import skew
-from ..identities.screws import JointAxis
+from ...identities.frames import skew
+from ...identities.screws import JointAxis
+from ..serial.dh_robots import SerialMechanism
+from ..serial.dh_serial import P_POSE, R_POSE, Stage
 from . import screw_seed
-from .dh_robots import SerialMechanism
-from .dh_serial import P_POSE, R_POSE, Stage
 from .screw_serial import DESIGN_NONZERO_TOL, DESIGN_UNIT_TOL, DesignCheck, ScrewSpec
 
 SEED = "seed 003: finite-screw displacement models of serial robots (MDPI Machines 2024, 12(9), 658), section 4"
@@ -178,7 +178,7 @@ class ScrewMechanism(SerialMechanism):
         Jacobian by CasADi's AD: linear rows d p / d q, angular rows vee(d R / d q_k R^T) (tested equal)."""
         import casadi as ca
 
-        from .serial_casadi import serial_functions
+        from ..serial.serial_casadi import serial_functions
 
         name = self.NAME
         fns = serial_functions(name, kernels)

@@ -12,11 +12,11 @@ import math
 import numpy as np
 import sympy as sp
 
-from ..checks import numeric_predicate, symbolic_identity
-from ..identities import screws
-from ..identities.polynomial import half_angle_quadratic
-from ..model import Derivation, Finding, Step
-from ..report_numbers import error_bucket, measured
+from ...checks import numeric_predicate, symbolic_identity
+from ...identities import screws
+from ...identities.polynomial import half_angle_quadratic
+from ...model import Derivation, Finding, Step
+from ...report_numbers import error_bucket, measured
 from .screw_serial import ScrewSpec, numeric_axes, sample_design, sample_joints
 
 N_AUDIT = 300  # seeded samples behind each number of the report

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import casadi as ca
 
-from ..casadi_export import _elems, _kernel_sx
+from ...casadi_export import _elems, _kernel_sx
 
 _AXES = ((1.0, 0.0), (-0.5, 0.8660254037844386), (-0.5, -0.8660254037844386))  # u_i = Rz(a_i) e_x
 
