@@ -10,7 +10,6 @@ from pathlib import Path
 
 import sympy as sp
 
-from .families import REGISTRY
 from .render import header_lines, render
 from .tolerances import TOLERANCES
 
@@ -50,9 +49,9 @@ def load_generated(out: Path, name: str):
         sys.dont_write_bytecode = saved
 
 
-def write_report(name: str, dv, out: Path) -> list[Path]:
+def write_report(mech, dv, out: Path) -> list[Path]:
     """The audit report of one mechanism (and the figures it draws) into out/audit."""
-    mech = REGISTRY[name]
+    name = mech.NAME
     solver = load_generated(out, name)
     audit_dir = out / "audit"
     audit_dir.mkdir(parents=True, exist_ok=True)

@@ -1,14 +1,18 @@
 """The derivation's verbs of the `wristkin` command line: regenerate, check, audit (docs/API.md, "CLI").
 
-    python -m derive.cli regenerate [--out DIR] [--jobs N]
+    python -m derive.cli regenerate [--out DIR] [--jobs N] [--catalogue DIR]
     python -m derive.cli check [--jobs N]
-    python -m derive.cli audit [M] [--out DIR] [--jobs N]
+    python -m derive.cli audit [M] [--out DIR] [--jobs N] [--catalogue DIR]
+
+--catalogue DIR derives the spec files (*.toml, docs/specs.md) in DIR instead of the catalogue; a malformed spec
+is reported as one line naming the file, the field and what was expected.
 
 `wristkin regenerate|check|audit` (the runtime's CLI, wristkin/cli.py) hands its parsed arguments to `run`;
 `python -m derive.cli` parses them itself, so the derivation never depends on the generated CLI it rebuilds.
 The pipeline (SymPy, CasADi, Jinja2) is imported only when a verb runs.
 
-Exit codes: 0 done, 1 generated/ is stale (`check`) or the derivation stack is missing, 2 bad arguments.
+Exit codes: 0 done, 1 generated/ is stale (`check`) or the derivation stack is missing, 2 bad arguments or a
+malformed spec file.
 """
 
 from __future__ import annotations
@@ -60,11 +64,21 @@ def _known_mechanisms() -> tuple[str, ...] | None:
         return None  # no generated package yet: the pipeline judges the name
 
 
+def _catalogue(args) -> dict:
+    """The pipeline's catalogue argument: {} for the default catalogue."""
+    folder = getattr(args, "catalogue", None)
+    if folder is None:
+        return {}
+    if not Path(folder).is_dir():
+        raise _Error(f"--catalogue {folder}: not a directory", EXIT_USAGE)
+    return {"catalogue": Path(folder)}
+
+
 def cmd_regenerate(args) -> int:
     pipeline = _pipeline()
     out = _out(args)
     t0 = time.perf_counter()
-    files = pipeline.regenerate(out, jobs=args.jobs)
+    files = pipeline.regenerate(out, jobs=args.jobs, **_catalogue(args))
     print(f"regenerated {len(files)} file(s) in {out} ({time.perf_counter() - t0:.1f} s)")
     return EXIT_OK
 
@@ -81,15 +95,16 @@ def cmd_check(args) -> int:
 
 
 def cmd_audit(args) -> int:
+    where = _catalogue(args)
+    pipeline = _pipeline()
     names = None
     if args.mechanism:
-        known = _known_mechanisms()
+        known = tuple(pipeline.registry(where["catalogue"])) if where else _known_mechanisms()
         if known is not None and args.mechanism not in known:
             raise _Error(f"unknown mechanism {args.mechanism!r} (known: {', '.join(known)})", EXIT_USAGE)
         names = [args.mechanism]
-    pipeline = _pipeline()
     out = _out(args)
-    for path in pipeline.audit(names, out, jobs=args.jobs):
+    for path in pipeline.audit(names, out, jobs=args.jobs, **where):
         print(path)
     return EXIT_OK
 
@@ -104,6 +119,11 @@ def run(args) -> int:
     except _Error as exc:
         print(f"wristkin: error: {exc}", file=sys.stderr)
         return exc.code
+    except ValueError as exc:
+        if type(exc).__name__ != "SpecError":  # derive.spec is imported only with the stack, inside the verbs
+            raise
+        print(f"wristkin: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -118,6 +138,8 @@ def build_parser() -> argparse.ArgumentParser:
             s.add_argument("mechanism", nargs="?", metavar="M")
         if verb != "check":
             s.add_argument("--out", metavar="DIR", help="output directory (default: the checkout's generated/)")
+            s.add_argument("--catalogue", metavar="DIR", help="derive the *.toml spec files in DIR (default: the "
+                                                              "catalogue)")
         s.add_argument("--jobs", type=int, metavar="N", help=jobs_help)
     return p
 

@@ -14,7 +14,7 @@ import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from .families import REGISTRY
+from .catalogue import CATALOGUE, registry
 from .lower import lower
 from .render import ROOT, header_lines, render, tool_versions
 from .tolerances import TOLERANCES
@@ -49,23 +49,23 @@ def _templates(name: str, mod) -> tuple[str, str, str]:
     return getattr(mod, "TEMPLATES", (f"python/{name}.py.jinja", f"c/{name}.h.jinja", f"c/{name}.c.jinja"))
 
 
-def tasks(names=None) -> list[tuple[str, ...]]:
-    """Mechanisms grouped into independent jobs, costliest first: a mechanism whose derivation builds on
-    another's (DERIVE_AFTER) runs after it in the same process, reusing the cached derivation."""
-    chosen = sorted(n for n in REGISTRY if not names or n in names)
-    heads = {}
+def tasks(names=None, catalogue: Path = CATALOGUE) -> list[tuple[str, ...]]:
+    """Mechanisms grouped into independent jobs, costliest first: mechanisms that share a cached derivation
+    (the same DERIVE_GROUP) run one after another in one process, costliest first."""
+    reg = registry(catalogue)
+    chosen = sorted(n for n in reg if not names or n in names)
+    cost = {n: getattr(reg[n], "DERIVE_SECONDS", 5) for n in chosen}
+    groups: dict[str, list[str]] = {}
     for n in chosen:
-        after = getattr(REGISTRY[n], "DERIVE_AFTER", None)
-        heads[n] = after if after in chosen else n
-    jobs = [(h, *(n for n in chosen if heads[n] == h and n != h)) for h in sorted(set(heads.values()))]
-    cost = {n: getattr(REGISTRY[n], "DERIVE_SECONDS", 5) for n in chosen}
+        groups.setdefault(getattr(reg[n], "DERIVE_GROUP", n), []).append(n)
+    jobs = [tuple(sorted(g, key=lambda n: (-cost[n], n))) for g in groups.values()]
     return sorted(jobs, key=lambda g: (-sum(cost[n] for n in g), g))
 
 
-def mechanism_products(name: str, out: Path) -> list[Path]:
+def mechanism_products(name: str, out: Path, catalogue: Path = CATALOGUE) -> list[Path]:
     """Everything one mechanism contributes to `out`: its Python and C solvers, CasADi functions and audit
     report (the audit imports the freshly written solver)."""
-    mod = REGISTRY[name]
+    mod = registry(catalogue)[name]
     dv = mod.derive()
     ks = mod.kernels(dv)
     ctx = _context(mod, ks)
@@ -81,26 +81,26 @@ def mechanism_products(name: str, out: Path) -> list[Path]:
     design_names = getattr(mod, "CASADI_DESIGN_NAMES", None) or audit.load_generated(out, name).DESIGN_NAMES
     written += casadi_export.write_casadi(fns, out / "casadi", name=name, design_names=design_names,
                                           docs=getattr(mod, "CASADI_DOCS", None))
-    written += audit.write_report(name, dv, out)
+    written += audit.write_report(mod, dv, out)
     return written
 
 
 def _job(args) -> list[Path]:
-    group, out = args
-    return [p for name in group for p in mechanism_products(name, out)]
+    group, out, catalogue = args
+    return [p for name in group for p in mechanism_products(name, out, catalogue)]
 
 
-def _shared_files(out: Path) -> list[Path]:
+def _shared_files(out: Path, catalogue: Path = CATALOGUE) -> list[Path]:
     """The runtime and package files every mechanism's products import (written before any mechanism)."""
     pkg = out / "python" / "wristkin"
     files = [_write(pkg / f"{stem}.py", render(f"python/{stem}.py.jinja", header=header_lines()))
              for stem in ("_runtime", "cli", "__main__")]
     files.append(_write(pkg / "__init__.py", render("python/__init__.py.jinja", header=header_lines(),
-                                                     names=sorted(REGISTRY))))
+                                                     names=sorted(registry(catalogue)))))
     files.append(_write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja", header=header_lines())))
     files.append(_write(out / "c" / "wristkin_runtime.c", render("c/wristkin_runtime.c.jinja", header=header_lines())))
     files.append(_write(out / "c" / "CMakeLists.txt", render("c/CMakeLists.txt.jinja", header=header_lines(),
-                                                             names=sorted(REGISTRY))))
+                                                             names=sorted(registry(catalogue)))))
     return files
 
 
@@ -110,11 +110,11 @@ def default_jobs() -> int:
     return max(1, int(env)) if env.strip().isdigit() else max(1, os.cpu_count() or 1)
 
 
-def generate(out: Path, names=None, jobs: int | None = None) -> list[Path]:
+def generate(out: Path, names=None, jobs: int | None = None, catalogue: Path = CATALOGUE) -> list[Path]:
     """Derive and write the given mechanisms (all by default) with `jobs` processes. Each job's bytes depend on
     its mechanism alone, so the output is the same whatever the number of processes or their order."""
-    shared = _shared_files(out)
-    work = [(g, out) for g in tasks(names)]
+    shared = _shared_files(out, catalogue)
+    work = [(g, out, Path(catalogue)) for g in tasks(names, catalogue)]
     jobs = min(jobs or default_jobs(), len(work)) or 1
     if jobs == 1:
         results = [_job(w) for w in work]
@@ -133,12 +133,13 @@ def _manifest(out: Path) -> Path:
                                                     sort_keys=True, indent=2) + "\n")
 
 
-def regenerate(out_dir: Path = GENERATED, jobs: int | None = None) -> list[Path]:
+def regenerate(out_dir: Path = GENERATED, jobs: int | None = None, catalogue: Path = CATALOGUE) -> list[Path]:
+    registry(catalogue)  # every spec read and validated before anything in out_dir is touched
     out = Path(out_dir)
     for sub in ("python", "c", "casadi", "audit"):
         if (out / sub).exists():
             shutil.rmtree(out / sub)
-    written = generate(out, jobs=jobs)
+    written = generate(out, jobs=jobs, catalogue=catalogue)
     written.append(_manifest(out))
     return written
 
@@ -166,13 +167,15 @@ def check(out_dir: Path = GENERATED, jobs: int | None = None) -> tuple[bool, str
         return not diffs, "".join(diffs)
 
 
-def audit(names: list[str] | None = None, out_dir: Path = GENERATED, jobs: int | None = None) -> list[Path]:
+def audit(names: list[str] | None = None, out_dir: Path = GENERATED, jobs: int | None = None,
+          catalogue: Path = CATALOGUE) -> list[Path]:
     """Derive the named mechanisms (all when None) alone into out_dir (their solvers, CasADi functions and
     reports: the bytes a full regeneration writes) and refresh the manifest; returns the report paths."""
-    unknown = sorted(set(names or ()) - set(REGISTRY))
+    known = registry(catalogue)
+    unknown = sorted(set(names or ()) - set(known))
     if unknown:
-        raise KeyError(f"unknown mechanism(s) {unknown} (known: {', '.join(sorted(REGISTRY))})")
+        raise KeyError(f"unknown mechanism(s) {unknown} (known: {', '.join(sorted(known))})")
     out = Path(out_dir)
-    written = generate(out, names, jobs)
+    written = generate(out, names, jobs, catalogue)
     _manifest(out)
     return [p for p in written if p.parent.name == "audit" and p.suffix == ".md"]

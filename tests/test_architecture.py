@@ -4,6 +4,7 @@ core that names no mechanism (it talks to mechanisms only through the registry's
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -82,12 +83,28 @@ def test_the_cycle_finder_finds_a_cycle():
     assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
 
 
-def test_the_core_names_no_mechanism():
-    from derive.families import REGISTRY
+def test_the_core_names_no_mechanism_and_no_family():
+    from derive.catalogue import registry
+    from derive.families import FAMILIES
 
     core = sorted(DERIVE.glob("*.py"))  # the core: derive/*.py; mechanisms live in derive/families/
     assert core
-    for p in core:
+    names = [*registry(), *FAMILIES]
+    for p in [*core, DERIVE / "families" / "__init__.py"]:
         text = p.read_text()
-        named = [n for n in REGISTRY if n in text]
+        named = [n for n in names if re.search(rf"\b{n}\b", text)]
         assert not named, f"{p.relative_to(ROOT)} names {named}"
+
+
+def test_the_catalogue_is_the_spec_files():
+    """make regenerate derives exactly catalogue/*.toml, and every family is found without being listed."""
+    from derive.catalogue import CATALOGUE, registry
+    from derive.families import FAMILIES
+    from derive.pipeline import tasks
+
+    stems = sorted(p.stem for p in CATALOGUE.glob("*.toml"))
+    assert len(stems) == 10 and sorted(registry()) == stems
+    assert sorted(n for job in tasks() for n in job) == stems
+    assert set(FAMILIES) == {p.name for p in (DERIVE / "families").iterdir() if (p / "__init__.py").is_file()}
+    for family in FAMILIES.values():
+        assert callable(family.from_spec) and family.SPEC_FIELDS

@@ -9,7 +9,8 @@ import numpy as np
 import sympy as sp
 from seeding import case_rng
 
-from derive.families.serial import dh_robots, dh_serial
+from derive.catalogue import registry
+from derive.families.serial import dh_serial
 from derive.identities.dh import (
     DHRow,
     dh_modified,
@@ -30,7 +31,7 @@ def test_link_transforms_equal_their_closed_forms():
 def _modified_scara():
     """The seed-001 SCARA re-described in modified DH: row i takes (a, alpha) of standard row i-1; the last
     standard (a, alpha) becomes the tool transform Tx(a_n) Rx(alpha_n)."""
-    std = dh_robots.scara_wrist()
+    std = registry()["scara_wrist"].spec  # catalogue/scara_wrist.toml
     rows, prev_a, prev_alpha = [], 0, 0
     for r in std.rows:
         rows.append(DHRow(prev_a, prev_alpha, r.d, r.theta, r.joint, r.kind))

@@ -19,17 +19,14 @@ from ...report_numbers import measured
 from . import rsr_geometry as g
 from .rsr_geometry import ALPHA, BETA, LBW, PHI, L, max_gamma_difference, seed_fd
 
-NAME = "rsr_wrist"
-TITLE = "3-RSR (2R1T) symmetric parallel wrist: mirror-plane FK, closed-form IK, swing-rotation attitude"
-SEED = "seed 002: Liang, Zhang, Zhang, Guan & Liu, hybrid robot of a SCARA and a 3-RSR parallel wrist"
+# name, title, source and the default design come from the spec (catalogue/rsr_wrist.toml)
+FAMILY = "rsr"
 VECTORISED_KERNELS = ()
 DERIVE_SECONDS = 12  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
 TEMPLATES = ("python/rsr_wrist.py.jinja", "c/rsr_wrist.h.jinja", "c/rsr_wrist.c.jinja")
 # Design: link length and the workspace limits the middle curve is taken between (explicit, not published).
 DESIGN_NAMES = ("L", "phi_min", "phi_max", "lbw_min", "lbw_max")
 CASADI_DESIGN_NAMES = ("L",)  # the CasADi functions take the platform link length only (limits do not enter)
-# phi in [25, 75] deg reproduces the seed's workspace shape (max swing ~56 deg over the cycle, ~75 deg at 30 deg).
-DESIGN_DEFAULT = (0.06, math.radians(25.0), math.radians(75.0), 0.02, 0.11)
 GAMMA, ALPHA1 = sp.symbols("gamma alpha_1", real=True)
 CQ = sp.symbols("c1:4", real=True)  # cos phi_i
 SQ = sp.symbols("s1:4", real=True)  # sin phi_i
@@ -71,7 +68,7 @@ derive_cached = derive
 
 
 def _derive() -> Derivation:
-    dv = Derivation(NAME, TITLE, SEED, {s.name: s for s in (L, *PHI, ALPHA, BETA, LBW, GAMMA, ALPHA1)})
+    dv = Derivation(FAMILY, FAMILY, "", {s.name: s for s in (L, *PHI, ALPHA, BETA, LBW, GAMMA, ALPHA1)})
     _forward(dv)
     _mirror_proofs(dv)
     _inverse(dv)
@@ -415,9 +412,9 @@ def kernels(dv: Derivation):
     ]
 
 
-def extra_context(ks) -> dict:
-    return {"name": NAME, "upper": NAME.upper(), "design_names": DESIGN_NAMES,
-            "design_values": [repr(v) for v in DESIGN_DEFAULT], "leg_angles": [repr(2 * math.pi * i / 3)
+def extra_context(ks, name: str, design_default) -> dict:
+    return {"name": name, "upper": name.upper(), "design_names": DESIGN_NAMES,
+            "design_values": [repr(v) for v in design_default], "leg_angles": [repr(2 * math.pi * i / 3)
                                                                                 for i in range(3)]}
 
 

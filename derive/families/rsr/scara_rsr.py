@@ -23,11 +23,10 @@ from . import rsr_geometry as g
 from . import rsr_wrist
 from .rsr_geometry import BETA, LBW, PHI, L
 
-NAME = "scara_rsr"
-TITLE = "Hybrid robot: SCARA (modified DH) + 3-RSR parallel wrist, decoupled closed-form IK with every branch"
-SEED = rsr_wrist.SEED
+# name, title, source and the default design come from the spec (catalogue/scara_rsr.toml)
+FAMILY = "rsr"
 VECTORISED_KERNELS = ()
-DERIVE_AFTER = "rsr_wrist"  # regenerated in the wrist's process: it builds on the wrist's cached derivation
+DERIVE_GROUP = "rsr"  # regenerated in the wrist's process: it builds on the wrist's cached derivation
 DERIVE_SECONDS = 9
 TEMPLATES = ("python/scara_rsr.py.jinja", "c/scara_rsr.h.jinja", "c/scara_rsr.c.jinja")
 TH1, TH2, D3, TH4 = sp.symbols("theta1 theta2 d3 theta4", real=True)
@@ -35,8 +34,6 @@ L1, L2, D, DF = sp.symbols("L1 L2 d d_f", real=True)
 ALPHA1, THETA = sp.symbols("alpha1 theta", real=True)
 JOINTS = (TH1, TH2, D3, TH4, *PHI)
 DESIGN_NAMES = ("L1", "L2", "d", "d_f", *rsr_wrist.DESIGN_NAMES)
-# Link dimensions are not published; these reach the seed's arc example (see the audit report).
-DESIGN_DEFAULT = (0.25, 0.25, 0.2, 0.05, *rsr_wrist.DESIGN_DEFAULT)
 C_FLIP = sp.diag(1, -1, -1)
 
 
@@ -74,7 +71,7 @@ def eq1_matrix() -> sp.Matrix:
 
 
 def derive() -> Derivation:
-    dv = Derivation(NAME, TITLE, SEED, {s.name: s for s in (TH1, TH2, D3, TH4, *PHI, L1, L2, D, DF, L, ALPHA1,
+    dv = Derivation(FAMILY, FAMILY, "", {s.name: s for s in (TH1, TH2, D3, TH4, *PHI, L1, L2, D, DF, L, ALPHA1,
                                                              BETA, LBW, THETA)})
     ts = scara_transform(-1)
     ts_printed = scara_transform(+1)
@@ -260,9 +257,9 @@ def kernels(dv: Derivation):
     ]
 
 
-def extra_context(ks) -> dict:
-    return {"name": NAME, "upper": NAME.upper(), "design_names": DESIGN_NAMES,
-            "design_values": [repr(v) for v in DESIGN_DEFAULT], "joint_kinds": ("R", "R", "P", "R", "R", "R", "R"),
+def extra_context(ks, name: str, design_default) -> dict:
+    return {"name": name, "upper": name.upper(), "design_names": DESIGN_NAMES,
+            "design_values": [repr(v) for v in design_default], "joint_kinds": ("R", "R", "P", "R", "R", "R", "R"),
             "leg_angles": [repr(2 * math.pi * i / 3) for i in range(3)]}
 
 

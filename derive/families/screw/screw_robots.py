@@ -1,4 +1,5 @@
-"""The seed's two 3T2R robots as ScrewSpecs of the generic finite-screw chain (seed 003, section 4).
+"""The 3T2R structures of seed 003 (section 4) as ScrewSpecs of the generic finite-screw chain: a spec file names
+the structure and gives its joints' axes at the initial pose (the default design).
 
 Design = every axis direction and position at the initial pose, as symbols: one derivation covers every robot of
 the structure (random robots in the tests are just other designs). Directions must be unit vectors.
@@ -14,12 +15,10 @@ import sympy as sp
 
 from ...identities.frames import skew
 from ...identities.screws import JointAxis
-from ..serial.dh_robots import SerialMechanism
 from ..serial.dh_serial import P_POSE, R_POSE, Stage
+from ..serial.mechanism import SerialMechanism
 from . import screw_seed
 from .screw_serial import DESIGN_NONZERO_TOL, DESIGN_UNIT_TOL, DesignCheck, ScrewSpec
-
-SEED = "seed 003: finite-screw displacement models of serial robots (MDPI Machines 2024, 12(9), 658), section 4"
 
 
 def _vec(name: str) -> sp.Matrix:
@@ -61,7 +60,9 @@ def _sq(v):
 
 
 # ------------------------------------------------------------------------------------- P1P2P3RaRb
-def p1p2p3rarb() -> ScrewSpec:
+def p1p2p3rarb(name: str, title: str, source: str, default: tuple[float, ...], seed: bool) -> ScrewSpec:
+    """Three slides p1, p2, p3, then rotations about a (through ra) and b (through rb); default (p1, p2, p3, a, ra,
+    b, rb)."""
     p1, p2, p3, a, ra, b, rb = (_vec(n) for n in ("p1", "p2", "p3", "a", "ra", "b", "rb"))
     t1, t2, t3 = sp.symbols("t1 t2 t3", real=True)
     tha, thb = sp.symbols("theta_a theta_b", real=True)
@@ -69,10 +70,6 @@ def p1p2p3rarb() -> ScrewSpec:
     axes = (JointAxis("P", tuple(p1)), JointAxis("P", tuple(p2)), JointAxis("P", tuple(p3)),
             JointAxis("R", tuple(a), tuple(ra)), JointAxis("R", tuple(b), tuple(rb)))
     design = tuple(x for v in (p1, p2, p3, a, ra, b, rb) for x in v)
-    # non-orthogonal prismatic directions on purpose (the seed's projections would be wrong here)
-    default = (1.0, 0.0, 0.0, 0.6, 0.8, 0.0, 0.0, 0.6, 0.8,  # p1, p2, p3
-               0.0, 0.0, 1.0, 0.2, 0.1, 0.0,  # a, ra
-               0.0, 0.6, 0.8, 0.3, -0.2, 0.5)  # b, rb
     Ra = _rot(a, sp.cos(tha), sp.sin(tha))
     # p = t1 p1 + t2 p2 + t3 p3 + (I - Ra) ra + Ra (I - Rb) rb and Ra Rb = R
     d = P_POSE - ra + Ra * ra - Ra * rb + R_POSE * rb
@@ -93,21 +90,20 @@ def p1p2p3rarb() -> ScrewSpec:
               _apart("prismatic directions p1, p2, p3 independent (det[p1 p2 p3] != 0)", det),
               _apart("rotation axes not parallel (|a x b|^2 != 0)", _sq(a.cross(b))))
     image = (("a.(R b) - a.b (orientation reachable by Rot(a) Rot(b))", _dot(a, R_POSE * b) - _dot(a, b)),)
-    return ScrewSpec("p1p2p3rarb", "P1P2P3RaRb 3T2R serial robot (finite-screw model, seed 003 section 4.1)",
-                     SEED, axes, joints, design, default, (tuple(p1), tuple(p2), tuple(p3), tuple(a), tuple(b)),
-                     stages, checks, image, extra_steps=screw_seed.p_robot_steps)
+    return ScrewSpec(name, title, source, axes, joints, design, default,
+                     (tuple(p1), tuple(p2), tuple(p3), tuple(a), tuple(b)), stages, checks, image,
+                     extra_steps=screw_seed.p_robot_steps if seed else None, structure="P1P2P3RaRb")
 
 
 # ------------------------------------------------------------------------------------- RaRaRaRbRb
-def rarararbrb() -> ScrewSpec:
+def rarararbrb(name: str, title: str, source: str, default: tuple[float, ...], seed: bool) -> ScrewSpec:
+    """Three rotations about parallel axes a (through r1, r2, r3), then two about parallel axes b (through r4, r5);
+    default (a, r1, r2, r3, b, r4, r5)."""
     a, b = _vec("a"), _vec("b")
     r1, r2, r3, r4, r5 = (_vec(f"r{i}") for i in range(1, 6))
     th = sp.symbols("theta1:6", real=True)
     axes = tuple(JointAxis("R", tuple(s), tuple(r)) for s, r in ((a, r1), (a, r2), (a, r3), (b, r4), (b, r5)))
     design = tuple(x for v in (a, r1, r2, r3, b, r4, r5) for x in v)
-    # home pose (q = 0) away from the singular set: the elbow is bent, theta4 = 0 is not an extremum of a.p
-    default = (0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.4, 0.0, 0.0, 0.7, 0.15, 0.0,  # a, r1, r2, r3
-               1.0, 0.0, 0.0, 0.8, 0.0, 0.1, 0.8, 0.2, 0.1)  # b, r4, r5
     c4, s4, c5, s5 = sp.cos(th[3]), sp.sin(th[3]), sp.cos(th[4]), sp.sin(th[4])
     w45 = r5 - r4
     ab = _dot(a, b)
@@ -144,18 +140,17 @@ def rarararbrb() -> ScrewSpec:
               _apart("Ra axes 2 and 3 distinct (|a x (r3 - r2)|^2 != 0)", _sq(a.cross(r3 - r2))),
               _apart("Rb axes distinct (|b x (r5 - r4)|^2 != 0)", _sq(b.cross(w45))))
     image = (("a.(R b) - a.b (orientation reachable by Rot(a) Rot(b))", _dot(a, R_POSE * b) - ab),)
-    return ScrewSpec("rarararbrb", "RaRaRaRbRb 3T2R serial robot (finite-screw model, seed 003 section 4.2)",
-                     SEED, axes, th, design, default, (tuple(a), tuple(b)), stages, checks, image,
-                     extra_steps=screw_seed.r_robot_steps)
+    return ScrewSpec(name, title, source, axes, th, design, default, (tuple(a), tuple(b)), stages, checks, image,
+                     extra_steps=screw_seed.r_robot_steps if seed else None, structure="RaRaRaRbRb")
 
 
-SPECS = {f.__name__: f for f in (p1p2p3rarb, rarararbrb)}
+# structure -> (joint kinds, which joints share a direction, the builder)
+STRUCTURES = {"P1P2P3RaRb": ("PPPRR", (), p1p2p3rarb), "RaRaRaRbRb": ("RRRRR", ((0, 1, 2), (3, 4)), rarararbrb)}
 
 
 class ScrewMechanism(SerialMechanism):
-    """Registry adapter: a ScrewSpec rendered through the serial-chain templates (same API as the DH chains)."""
+    """A ScrewSpec rendered through the serial-chain templates (same API as the DH chains)."""
 
-    SPECS = SPECS
     DERIVE_SECONDS = 16
 
     def derive(self):
@@ -193,6 +188,3 @@ class ScrewMechanism(SerialMechanism):
         J = ca.vertcat(ca.jacobian(T[:, 3], q), ca.horzcat(*cols))
         fns[f"{name}_jacobian_ad"] = ca.Function(f"{name}_jacobian_ad", [q, p], [ca.densify(J)], ["q", "p"], ["J"])
         return fns
-
-
-MECHANISMS = {name: ScrewMechanism(name) for name in SPECS}

@@ -320,7 +320,7 @@ def audit_numbers(spec: ScrewSpec, dv: Derivation, solver) -> dict:
         unreach += solver.ik(T).status == solver.STATUS_UNREACHABLE
     sing = _singular_numbers(spec, solver)
     findings = []
-    if spec.name == "rarararbrb":
+    if spec.structure == "RaRaRaRbRb":
         findings.append(Finding(
             "number of IK solutions", "two sets of joint parameters in the Matlab example (section 5.2)",
             "up to 4 = 2 (theta4: A cos + B sin + C = 0) x 2 (elbow: law of cosines); each stage is the lowest "
@@ -352,7 +352,7 @@ def audit_numbers(spec: ScrewSpec, dv: Derivation, solver) -> dict:
 
 def _singular_numbers(spec: ScrewSpec, solver) -> str:
     rng = np.random.default_rng(77)
-    if spec.name == "p1p2p3rarb":
+    if spec.structure == "P1P2P3RaRb":
         worst = math.inf
         for _ in range(N_AUDIT):
             dsn = sample_design(spec, rng, margin=0.1)

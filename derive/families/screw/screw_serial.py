@@ -62,6 +62,7 @@ class ScrewSpec:
     findings: list[Finding] = field(default_factory=list)
     extra_steps: Callable | None = None  # (dv, spec) -> None: robot-specific derivations (the seed's routes)
     notes: str = ""
+    structure: str = ""  # the seed's name of the joint structure (e.g. P1P2P3RaRb): what the plan was built for
 
     @property
     def kinds(self) -> tuple[str, ...]:

@@ -1,6 +1,16 @@
 """Serial chains from DH tables (seed 001's wrists and arms, the PUMA-560): chain products, Jacobians, staged
-closed-form IK, audit numbers and CasADi functions. Templates: templates/{python,c}/serial.*.jinja."""
+closed-form IK from the plan the spec names, audit numbers and CasADi functions. Templates:
+templates/{python,c}/serial.*.jinja.
 
-from . import dh_robots
+Spec fields (docs/specs.md): `convention`, `ik` (a plan of plans.py), `[design]` (metres), `positive`,
+`[[joint]]` rows (name, type, a, alpha, d, theta), the seed's `[[printed]]` matrices and `[[finding]]` notes."""
 
-MECHANISMS = dict(dh_robots.MECHANISMS)
+from ...spec import Spec
+from .dh_spec import SPEC_FIELDS, load
+from .mechanism import SerialMechanism
+
+__all__ = ["SPEC_FIELDS", "from_spec"]
+
+
+def from_spec(spec: Spec) -> SerialMechanism:
+    return SerialMechanism(load(spec))

@@ -1,7 +1,57 @@
 """Spherical parallel wrists (seed 000: the underactuated 3-RRR wrist with 2 motors and a sensed passive
 branch): the derivation (spherical trigonometry, IK coefficients, the degree-8 FK eliminant), its audit numbers
-and CasADi functions. Templates: templates/{python,c}/underactuated_wrist.*.jinja."""
+and CasADi functions. Templates: templates/{python,c}/underactuated_wrist.*.jinja (named by the spec).
 
-from . import underactuated_wrist
+Spec fields (docs/specs.md): `[design]` alpha1, alpha2, beta1, beta2 in degrees (the default design of the
+generated module; every design is a run-time argument), `seed = "000"` to audit seed 000's printed numbers
+(they hold at the paper's design only)."""
 
-MECHANISMS = {underactuated_wrist.NAME: underactuated_wrist}
+from __future__ import annotations
+
+import dataclasses
+
+from ...spec import COMMON_FIELDS, Spec, common
+from . import underactuated_wrist as uw
+
+SPEC_FIELDS = ("design", "seed")
+SEEDS = ("000",)
+
+
+class SphericalParallelWrist:
+    TEMPLATES = ("python/underactuated_wrist.py.jinja", "c/underactuated_wrist.h.jinja",
+                 "c/underactuated_wrist.c.jinja")
+    VECTORISED_KERNELS = uw.VECTORISED_KERNELS
+    CASADI_DOCS = uw.CASADI_DOCS
+    DERIVE_SECONDS = uw.DERIVE_SECONDS
+    DESIGN_CONSTANTS = uw.DESIGN_CONSTANTS
+
+    def __init__(self, name: str, title: str, source: str, design_deg: tuple[float, ...], seed: str | None):
+        self.NAME, self.title, self.source = name, title, source
+        self.DESIGN_DEFAULT_DEG, self.seed = design_deg, seed
+
+    def derive(self):
+        return dataclasses.replace(uw.derive(), mechanism=self.NAME, title=self.title, seed=self.source)
+
+    def kernels(self, dv):
+        return uw.kernels(dv)
+
+    def extra_context(self, ks) -> dict:
+        return {"name": self.NAME, "upper": self.NAME.upper(), **uw.extra_context(ks, self.DESIGN_DEFAULT_DEG)}
+
+    def casadi_functions(self, dv, ks) -> dict:
+        return uw.casadi_functions(dv, ks)
+
+    def audit_numbers(self, dv, solver, audit_dir) -> dict:
+        return uw.audit_numbers(dv, solver, audit_dir, self.DESIGN_DEFAULT_DEG) if self.seed == "000" else {}
+
+
+def from_spec(spec: Spec) -> SphericalParallelWrist:
+    spec.only((*COMMON_FIELDS, *SPEC_FIELDS))
+    head = common(spec)
+    design = spec.table("design")
+    design.only(uw.DESIGN_NAMES)
+    # the generated make_design's ranges (with its margin of a few 1e-x rad checked again at run time)
+    ranges = {"alpha1": (0.0, 180.0), "alpha2": (0.0, 180.0), "beta1": (0.0, 90.0), "beta2": (0.0, 90.0)}
+    degrees = tuple(design.number(n, lo=ranges[n][0], hi=ranges[n][1], unit="degrees") for n in uw.DESIGN_NAMES)
+    seed = spec.choice("seed", SEEDS, None) if spec.has("seed") else None
+    return SphericalParallelWrist(head["name"], head["title"], head["source"], degrees, seed)

@@ -30,15 +30,14 @@ from ...identities.spherical import (
 from ...model import Check, Derivation, Step
 from . import wrist_casadi
 
-NAME = "underactuated_wrist"
-TITLE = "Underactuated 3-DOF spherical wrist (2 motors + 1 sensed passive branch)"
-SEED = "seed 000: 'Kinematics analysis of a novel underactuated robot wrist', Proc. IMechE B, 10.1177/0954405414535592"
+# name, title and source come from the spec (catalogue/underactuated_wrist.toml); the derivation is the same
+FAMILY = "spherical_parallel"
 
-# Paper design (alpha1 = alpha2 = 60 deg, beta1 = 30 deg, beta2 = 43.89 deg).
 DESIGN_NAMES = ("alpha1", "alpha2", "beta1", "beta2")
 CASADI_DOCS = wrist_casadi.FUNCTION_DOCS  # the CasADi index's function descriptions
 DERIVE_SECONDS = 28  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
 VECTORISED_KERNELS = ("ik_abc", "middle_axes", "platform_axes", "base_axes", "fk_def", "fk_rotation")
+# the paper's design (alpha1 = alpha2 = 60 deg, beta1 = 30 deg, beta2 = 43.89 deg): its printed numbers hold there
 DESIGN_DEFAULT_DEG = (60.0, 60.0, 30.0, 43.89)
 JOINT_NAMES = ("theta1", "theta2", "theta3")
 POSE_NAMES = ("psi", "theta", "phi")
@@ -102,7 +101,7 @@ def _rand_design(rng):
 
 def derive() -> Derivation:
     """Run the whole derivation; every step is checked as it is added."""
-    dv = Derivation(NAME, TITLE, SEED, {s.name: s for s in (a1, a2, b1, b2, *th, psi, nu, phi, zeta, eta)})
+    dv = Derivation(FAMILY, FAMILY, "", {s.name: s for s in (a1, a2, b1, b2, *th, psi, nu, phi, zeta, eta)})
     _design_relations(dv)
     _inverse_kinematics(dv)
     _forward_kinematics(dv)
@@ -725,21 +724,22 @@ def kernels(dv: Derivation):
     ]
 
 
-def extra_context(ks) -> dict:
+def extra_context(ks, design_deg=DESIGN_DEFAULT_DEG) -> dict:
     """Default design evaluated at generation time, so C needs no initialiser call for it."""
     k = next(k for k in ks if k.name == "design_constants")
-    params = [math.radians(v) for v in DESIGN_DEFAULT_DEG]
+    params = [math.radians(v) for v in design_deg]
     f = sp.lambdify([s for s in k.inputs[0][1]], [e for _, e in k.outputs], "math")
     consts = [float(v) for v in f(*params)]
     return {"default_params": [repr(p) for p in params], "default_constants": [repr(c) for c in consts],
             "default_theta0": repr(math.acos(max(-1.0, min(1.0, consts[-1]))))}
 
 
-def audit_numbers(dv, solver, audit_dir):
+def audit_numbers(dv, solver, audit_dir, design_deg=DESIGN_DEFAULT_DEG):
+    """Seed 000's numbers, reproduced or refuted at the paper's design (`design_deg`)."""
     from .underactuated_wrist_audit import audit_numbers as run
 
     ks = kernels(dv)
-    return run(dv, solver, audit_dir, ks, extra_context(ks)["default_constants"], DESIGN_CONSTANTS)
+    return run(dv, solver, audit_dir, ks, extra_context(ks, design_deg)["default_constants"], DESIGN_CONSTANTS)
 
 
 def casadi_functions(dv, ks) -> dict:
