@@ -53,4 +53,4 @@ def from_spec(spec: Spec) -> ScrewMechanism:
         default = (*joints[0][0], *joints[0][1], *joints[1][1], *joints[2][1], *joints[3][0], *joints[3][1],
                    *joints[4][1])
     seed = (spec.choice("seed", SEEDS, None) if spec.has("seed") else None) == "003"
-    return ScrewMechanism(build(head["name"], head["title"], head["source"], default, seed))
+    return ScrewMechanism(head["name"], lambda: build(head["name"], head["title"], head["source"], default, seed))

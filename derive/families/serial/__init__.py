@@ -5,6 +5,8 @@ templates/{python,c}/serial.*.jinja.
 Spec fields (docs/specs.md): `convention`, `ik` (a plan of plans.py), `[design]` (metres), `positive`,
 `[[joint]]` rows (name, type, a, alpha, d, theta), the seed's `[[printed]]` matrices and `[[finding]]` notes."""
 
+import dataclasses
+
 from ...spec import Spec
 from .dh_spec import SPEC_FIELDS, load
 from .mechanism import SerialMechanism
@@ -13,4 +15,5 @@ __all__ = ["SPEC_FIELDS", "from_spec"]
 
 
 def from_spec(spec: Spec) -> SerialMechanism:
-    return SerialMechanism(load(spec))
+    base, stages = load(spec)
+    return SerialMechanism(base.name, lambda: dataclasses.replace(base, stages=stages()))

@@ -3,13 +3,15 @@ matrices (docs/specs.md, "serial")."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import sympy as sp
 
 from ...identities.dh import DHRow, chain
 from ...model import Finding
 from ...spec import COMMON_FIELDS, Spec, common
 from .dh_serial import SerialSpec
-from .plans import PLANS, Chain, PlanError
+from .plans import PLANS, Chain, PlanError, check_structure
 
 SPEC_FIELDS = ("convention", "ik", "design", "positive", "joint", "printed", "finding")
 JOINT_FIELDS = ("name", "type", "a", "alpha", "d", "theta")
@@ -51,7 +53,9 @@ def _symbol(spec: Spec, field: str, taken: set, **assumptions) -> sp.Symbol:
     return sp.Symbol(name, **assumptions)
 
 
-def load(spec: Spec) -> SerialSpec:
+def load(spec: Spec) -> tuple[SerialSpec, Callable[[], list]]:
+    """The SerialSpec without its IK stages, and the function that builds them (symbolic work, done when the
+    mechanism is derived; the plan's structure is checked here)."""
     spec.only((*COMMON_FIELDS, *SPEC_FIELDS))
     head = common(spec)
     convention = spec.choice("convention", ("standard", "modified"), "standard")
@@ -86,12 +90,13 @@ def load(spec: Spec) -> SerialSpec:
     if not rows:
         raise spec.error("joint", "at least one [[joint]] row")
     try:
-        stages = PLANS[plan_name](Chain(tuple(rows), tuple(joints), tuple(kinds)))
+        check_structure(plan_name, kinds)
     except PlanError as exc:
         raise spec.error("ik", str(exc)) from None
-    return SerialSpec(head["name"], head["title"], head["source"], rows, tuple(joints), tuple(kinds), tuple(design),
-                      tuple(values), stages, _printed(spec, rows, convention, {**names, **{str(q): q for q in joints}}),
+    base = SerialSpec(head["name"], head["title"], head["source"], rows, tuple(joints), tuple(kinds), tuple(design),
+                      tuple(values), [], _printed(spec, rows, convention, {**names, **{str(q): q for q in joints}}),
                       _findings(spec), convention=convention)
+    return base, lambda: PLANS[plan_name](Chain(tuple(rows), tuple(joints), tuple(kinds)))
 
 
 def _printed(spec: Spec, rows, convention, symbols) -> dict:

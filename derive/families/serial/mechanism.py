@@ -15,9 +15,17 @@ class SerialMechanism:
     VECTORISED_KERNELS = ("fk",)
     DERIVE_SECONDS = 5  # a scheduling hint for parallel regeneration
 
-    def __init__(self, spec):
-        self.NAME = spec.name
-        self.spec = spec
+    def __init__(self, name: str, build):
+        self.NAME = name
+        self._spec, self._build = None, build
+
+    @property
+    def spec(self):
+        """The spec with its IK stages, built on first use (symbolic work that reading a catalogue should not
+        pay: the spec's fields were validated when it was read)."""
+        if self._spec is None:
+            self._spec = self._build()
+        return self._spec
 
     def derive(self):
         return dh_serial.derive_spec(self.spec)

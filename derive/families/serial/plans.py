@@ -34,10 +34,16 @@ class Chain:
     kinds: tuple[str, ...]
 
 
+def check_structure(plan: str, kinds) -> None:
+    """The cheap part of a plan's precondition, checked when the spec is read (the stages are built later)."""
+    need = KINDS[plan]
+    if "".join(kinds) != need:
+        raise PlanError(f"plan {plan!r} needs joints {' '.join(need)} (R revolute, P prismatic), the table has "
+                        f"{' '.join(kinds) or 'none'}")
+
+
 def _need(ch: Chain, kinds: str, plan: str) -> None:
-    if "".join(ch.kinds) != kinds:
-        raise PlanError(f"plan {plan!r} needs joints {' '.join(kinds)} (R revolute, P prismatic), the table has "
-                        f"{' '.join(ch.kinds) or 'none'}")
+    check_structure(plan, ch.kinds)
 
 
 def _wrist_rule(rows, joints) -> str:
@@ -131,5 +137,7 @@ def articulated_arm_spherical_wrist(ch: Chain) -> list[Stage]:
     ]
 
 
+KINDS = {"roll": "R", "spherical_wrist": "RRR", "cylindrical_arm_spherical_wrist": "RPPRRR", "scara": "RRPR",
+         "articulated_arm_spherical_wrist": "RRRRRR"}
 PLANS = {f.__name__: f for f in (roll, spherical_wrist, cylindrical_arm_spherical_wrist, scara,
                                  articulated_arm_spherical_wrist)}
