@@ -31,7 +31,8 @@ PORTABLE_SEED ?= 2
 SENSITIVE_TESTS := tests/test_underactuated_wrist.py tests/test_reference_underactuated_wrist.py \
 	tests/test_poly_real_roots.py tests/test_dh.py tests/test_reference_dh.py tests/test_screw_robots.py \
 	tests/test_rsr_wrist.py tests/test_scara_rsr.py tests/test_reference_rsr_selfcheck.py \
-	tests/test_casadi_functions.py tests/test_fuzz.py tests/test_fuzz_python.py tests/test_generated_fresh.py
+	tests/test_casadi_functions.py tests/test_fuzz.py tests/test_fuzz_python.py tests/test_generated_fresh.py \
+	tests/test_native.py tests/test_reproducers.py
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 export PIP_NO_INPUT := 1
@@ -40,7 +41,7 @@ export MPLBACKEND := Agg
 DEMO_POSE := -35.99 0.26 38.93
 DEMO_JOINTS := 137.92 138.44 137.82
 
-.PHONY: all setup venv regenerate check-generated demo test test-portable fuzz lint bench clean distclean help
+.PHONY: all setup venv native regenerate check-generated demo test test-portable fuzz lint bench clean distclean help
 
 all: venv regenerate demo
 
@@ -51,7 +52,8 @@ help:
 	@echo "make test             the full pytest suite, incl. drift check and C compile tests (WRISTKIN_TEST_SEED=N: other cases)"
 	@echo "make test-portable    the numerically sensitive tests again as another CPU computes (Sandybridge kernels, no AVX2)"
 	@echo "make fuzz             1e6 fuzz cases per mechanism (1e7 in all) on the generated C under ASan/UBSan, then Python"
-	@echo "make regenerate       rebuild generated/ from the derivations"
+	@echo "make regenerate       rebuild generated/ from the derivations (and the C extension)"
+	@echo "make native           compile the generated C into wristkin._native (Python then runs the C)"
 	@echo "make check-generated  regenerate into a temp dir and diff against generated/"
 	@echo "make demo             IK and FK of the paper's design on the command line"
 	@echo "make lint             ruff on hand-written and generated Python; gcc $(CSTRICT) on generated C"
@@ -64,7 +66,7 @@ venv: $(STAMP)
 # Re-install when the dependency pins change. A venv left half-made (no pip) is rebuilt.
 # generated/python/wristkin must exist for the editable install (it is committed; mkdir
 # only covers a checkout where it has not been generated yet).
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml setup.py
 	@command -v $(PYTHON3) >/dev/null || { echo "error: $(PYTHON3) not found" >&2; exit 1; }
 	@if ! $(PY) -m pip --version >/dev/null 2>&1; then \
 		echo "creating $(VENV)"; rm -rf $(VENV); \
@@ -76,6 +78,12 @@ $(STAMP): pyproject.toml
 
 regenerate: $(STAMP)
 	@TIMEFORMAT='regenerate: wall time %1R s'; time $(PY) -m derive.cli regenerate
+	$(PY) setup.py -q build_ext --inplace 2>&1 | grep -v -i "beta\|warnings.warn" || true
+
+# The generated C compiled as wristkin._native beside the modules (pip install does the same); without it the
+# modules run on numpy (wristkin.M.BACKEND).
+native: $(STAMP)
+	$(PY) setup.py -q build_ext --inplace
 
 check-generated: $(STAMP)
 	$(PY) -m derive.cli check
@@ -90,9 +98,11 @@ test: $(STAMP)
 	if [ $$rc -eq 5 ]; then echo "error: pytest collected no tests (exit code 5)" >&2; fi; \
 	exit $$rc
 
-# As a CPU without AVX2 computes: OpenBLAS's Sandybridge kernels, numpy's AVX2/FMA3 loops off, other cases.
+# As a CPU without AVX2 computes: OpenBLAS's Sandybridge kernels, numpy's AVX2/FMA3 loops off, other cases, and
+# the numpy fallback instead of the C extension (the first pass runs the C wherever it is built).
 test-portable: $(STAMP)
 	@rc=0; OPENBLAS_CORETYPE=Sandybridge NPY_DISABLE_CPU_FEATURES=X86_V3 WRISTKIN_TEST_SEED=$(PORTABLE_SEED) \
+	WRISTKIN_BACKEND=numpy \
 	$(PY) -m pytest -n $(TEST_WORKERS) --dist worksteal $(SENSITIVE_TESTS) $(PYTEST_ARGS) || rc=$$?; \
 	if [ $$rc -eq 5 ]; then echo "error: pytest collected no tests (exit code 5)" >&2; fi; \
 	exit $$rc

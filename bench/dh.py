@@ -127,8 +127,20 @@ def generated_python_and_ctypes(n: int) -> list[dict]:
     rng = np.random.default_rng(7)
     qs = rng.uniform(-math.pi, math.pi, (n, 6))
     poses = [m.fk_matrix(q) for q in qs]
-    rows = [{"name": "wristkin generated Python (scalar)", "ik_us": _best(m.ik, poses), "fk_us": _best(m.fk, qs),
-             "jac_us": _best(m.jacobian, qs), "note": "Solutions objects, all 8 branches verified by FK"}]
+    rows = []
+    native, fallback = m.make_design(), m.Design(m.make_design().params)  # the second has no C design: numpy
+    for label, d in ((f"wristkin from Python, backend {m.BACKEND}", native), ("wristkin from Python, numpy", fallback)):
+        rows.append({"name": label, "ik_us": _best(lambda T, d=d: m.ik(T, d), poses),
+                     "fk_us": _best(lambda q, d=d: m.fk_matrix(q, d), qs),
+                     "jac_us": _best(lambda q, d=d: m.jacobian(q, d), qs),
+                     "note": "wristkin.puma560.ik / fk_matrix / jacobian: Solutions objects, all 8 branches "
+                             "verified by FK"})
+    batch = np.array(poses)
+    for label, d in (("wristkin ik_batch / fk_batch from Python, per pose, backend " + m.BACKEND, native),
+                     ("wristkin ik_batch / fk_batch from Python, per pose, numpy", fallback)):
+        rows.append({"name": label, "ik_us": per_call(lambda b, d=d: m.ik_batch(b, d), [batch], 3, 1) * 1e6 / n,
+                     "fk_us": per_call(lambda b, d=d: m.fk_batch(b, d), [qs], 3, 1) * 1e6 / n, "jac_us": None,
+                     "note": f"{n} poses / joint rows per call"})
     c = SerialC("puma560", 6, m.MAX_IK, 6)
     out, jac = c.IK(), np.zeros(36)
     ik_fn, jac_fn = c.lib.wk_puma560_ik, c.lib.wk_puma560_jacobian

@@ -5,6 +5,7 @@ from __future__ import annotations
 import hashlib
 import importlib
 import importlib.util
+import os
 import sys
 from pathlib import Path
 
@@ -37,6 +38,8 @@ def load_generated(out: Path, name: str):
     folder = out / "python" / "wristkin"
     pkg_name = "_wristkin_audit_" + hashlib.sha256(str(folder.resolve()).encode()).hexdigest()[:12]
     saved, sys.dont_write_bytecode = sys.dont_write_bytecode, True  # no __pycache__ inside generated/
+    # the audit's numbers come from the numpy modules: they must not depend on whether an extension was built
+    backend, os.environ["WRISTKIN_BACKEND"] = os.environ.get("WRISTKIN_BACKEND"), "numpy"
     try:
         if pkg_name not in sys.modules:
             spec = importlib.util.spec_from_file_location(pkg_name, folder / "__init__.py",
@@ -47,6 +50,10 @@ def load_generated(out: Path, name: str):
         return importlib.import_module(f"{pkg_name}.{name}")
     finally:
         sys.dont_write_bytecode = saved
+        if backend is None:
+            del os.environ["WRISTKIN_BACKEND"]
+        else:
+            os.environ["WRISTKIN_BACKEND"] = backend
 
 
 def write_report(mech, dv, out: Path) -> list[Path]:

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from .catalogue import CATALOGUE, registry
 from .lower import lower
-from .render import ROOT, header_lines, render, tool_versions
+from .render import ROOT, header_lines, input_hash, render, tool_versions
 from .tolerances import TOLERANCES
 
 GENERATED = ROOT / "generated"
@@ -37,6 +37,7 @@ def _context(mod, ks) -> dict:
         "vkernels": [lower(k, "numpy") for k in ks if k.name in mod.VECTORISED_KERNELS],
         "ckernels": [lower(k, "c") for k in ks],
         "tol": TOLERANCES,
+        "inputs_hash": input_hash(),
     }
     if hasattr(mod, "DESIGN_DEFAULT_DEG"):
         ctx["design_default"] = [repr(math.radians(v)) for v in mod.DESIGN_DEFAULT_DEG]
@@ -104,6 +105,22 @@ def _shared_files(out: Path, catalogue: Path = CATALOGUE) -> list[Path]:
     return files
 
 
+def _c_api(header: str, name: str) -> dict:
+    """What the C binding needs to know of a mechanism, read from its generated header (its API, not its family)."""
+    def has(fn: str) -> bool:
+        return f"wk_{name}_{fn}(" in header
+    return {"name": name, "pose12": f"#define WK_{name.upper()}_N_POSE 12" in header, "ik_near": has("ik_near"),
+            "jacobian": has("jacobian"), "fk_matrix": has("fk_matrix")}
+
+
+def _native_binding(out: Path) -> Path:
+    """The CPython extension source over every mechanism whose C is in out/c (setup.py compiles it)."""
+    headers = sorted(p for p in (out / "c").glob("*.h") if p.stem not in ("wristkin_common",))
+    mechs = [_c_api(p.read_text(), p.stem) for p in headers]
+    return _write(out / "native" / "_native.c", render("c/native.c.jinja", header_lines=header_lines(), mechs=mechs,
+                                                        inputs_hash=input_hash(), row_tol="WK_ROTATION_PROJECT_TOL"))
+
+
 def default_jobs() -> int:
     """Worker processes: WRISTKIN_JOBS, else one per core."""
     env = os.environ.get("WRISTKIN_JOBS", "")
@@ -122,12 +139,21 @@ def generate(out: Path, names=None, jobs: int | None = None, catalogue: Path = C
         ctx = multiprocessing.get_context("fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn")
         with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
             results = list(pool.map(_job, work))
-    return shared + [p for r in results for p in r]
+    written = shared + [p for r in results for p in r]
+    return written + [_native_binding(out)]
+
+
+BUILD_OUTPUTS = (".so", ".pyd", ".o")  # the compiled extension an editable install puts beside the modules
+
+
+def generated_files(folder: Path) -> list[Path]:
+    """Every file regeneration writes in `folder` (not caches, not the compiled extension)."""
+    return [p for p in Path(folder).rglob("*")
+            if p.is_file() and "__pycache__" not in p.parts and p.suffix not in BUILD_OUTPUTS]
 
 
 def _manifest(out: Path) -> Path:
-    files = sorted(p for p in out.rglob("*") if p.is_file() and p.name != "MANIFEST.json"
-                   and "__pycache__" not in p.parts)
+    files = sorted(p for p in generated_files(out) if p.name != "MANIFEST.json")
     entries = {p.relative_to(out).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest() for p in files}
     return _write(out / "MANIFEST.json", json.dumps({"tools": tool_versions(), "files": entries},
                                                     sort_keys=True, indent=2) + "\n")
@@ -136,7 +162,7 @@ def _manifest(out: Path) -> Path:
 def regenerate(out_dir: Path = GENERATED, jobs: int | None = None, catalogue: Path = CATALOGUE) -> list[Path]:
     registry(catalogue)  # every spec read and validated before anything in out_dir is touched
     out = Path(out_dir)
-    for sub in ("python", "c", "casadi", "audit"):
+    for sub in ("python", "c", "casadi", "audit", "native"):
         if (out / sub).exists():
             shutil.rmtree(out / sub)
     written = generate(out, jobs=jobs, catalogue=catalogue)
@@ -150,10 +176,8 @@ def check(out_dir: Path = GENERATED, jobs: int | None = None) -> tuple[bool, str
         fresh = Path(tmp) / "generated"
         regenerate(fresh, jobs=jobs)
         diffs = []
-        a_files = {p.relative_to(out_dir).as_posix() for p in Path(out_dir).rglob("*")
-                   if p.is_file() and "__pycache__" not in p.parts}
-        b_files = {p.relative_to(fresh).as_posix() for p in fresh.rglob("*")
-                   if p.is_file() and "__pycache__" not in p.parts}
+        a_files = {p.relative_to(out_dir).as_posix() for p in generated_files(out_dir)}
+        b_files = {p.relative_to(fresh).as_posix() for p in generated_files(fresh)}
         for rel in sorted(a_files | b_files):
             a, b = Path(out_dir) / rel, fresh / rel
             if rel not in a_files or rel not in b_files:

@@ -33,7 +33,7 @@ OTHER = "haswell-hashseed0" if os.environ.get("OPENBLAS_CORETYPE") == "Sandybrid
 
 def _files(folder: Path) -> list[str]:
     return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*")
-                  if p.is_file() and "__pycache__" not in p.parts)
+                  if p.is_file() and "__pycache__" not in p.parts and p.suffix not in (".so", ".pyd", ".o"))
 
 
 @pytest.mark.parametrize("machine", [OTHER])

@@ -1,0 +1,178 @@
+"""Python runs the generated C (wristkin._native) and falls back to numpy: both must give the same solution sets.
+
+`make test` runs the suite with the extension (the default where it is built), `make test-portable` runs the
+numerically sensitive tests again with WRISTKIN_BACKEND=numpy, and this file compares the two backends call by
+call: a Design made without its C counterpart (`Design(params)`) takes the numpy path in the same process.
+"""
+
+from __future__ import annotations
+
+import importlib
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import wristkin
+from seeding import case_rng
+
+ROOT = Path(__file__).resolve().parent.parent
+FORCED_NUMPY = os.environ.get("WRISTKIN_BACKEND", "").strip().lower() == "numpy"
+NAMES = sorted(wristkin.MECHANISMS)
+# the mechanisms whose verbs run in C: the serial chains (pose matrices) and the underactuated wrist (Euler
+# angles); the 3-RSR modules still run on numpy
+NATIVE = [n for n in NAMES if "ik" in importlib.import_module(f"wristkin.{n}").NATIVE_VERBS]
+SERIAL = [n for n in NATIVE if "fk_matrix" in importlib.import_module(f"wristkin.{n}").NATIVE_VERBS]
+# Away from singularities both backends evaluate the same formulas: rounding-level agreement, with room for the
+# few operations they order differently (each O(eps) relative, lengths of order 1 m).
+REGULAR_TOL = 1e-12
+# At special joint values (0, +-pi/2, pi, 1e-7) a set may sit next to a singularity, where a joint is only
+# accurate to eps / sigma_min ~ 1e-16 / 1e-7 = 1e-9 (and a polished tangent root to sqrt(eps) ~ 1e-8).
+SPECIAL_TOL = 1e-7
+SPECIAL = [0.0, math.pi / 2, -math.pi / 2, math.pi, 1e-7, -1e-7]
+
+
+def module(name):
+    return importlib.import_module(f"wristkin.{name}")
+
+
+@pytest.mark.skipif(FORCED_NUMPY, reason="WRISTKIN_BACKEND=numpy: the fallback pass")
+def test_the_extension_is_built_from_these_generated_files_and_runs():
+    native = importlib.import_module("wristkin._native")
+    for name in NAMES:
+        mod = module(name)
+        assert native.INPUTS_HASH == mod.INPUTS_HASH, "stale extension: run `make native`"
+        assert mod.BACKEND == ("c" if mod.NATIVE_VERBS else "numpy"), name
+    assert len(SERIAL) == 7 and NATIVE == sorted([*SERIAL, "underactuated_wrist"])
+
+
+def test_backend_can_be_forced_to_numpy():
+    code = "import wristkin; print(wristkin.puma560.BACKEND, wristkin.puma560.make_design().native)"
+    run = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=120,
+                         env={**os.environ, "WRISTKIN_BACKEND": "numpy"})
+    assert run.returncode == 0 and run.stdout.split() == ["numpy", "None"], run.stderr
+
+
+def _diff(a, b, revolute):
+    """a - b with revolute entries wrapped to (-pi, pi]: pi and -pi are one angle (both lie in [-pi, pi])."""
+    d = a - b
+    return np.where(revolute, np.remainder(d + math.pi, 2 * math.pi) - math.pi, d) if revolute is not None else d
+
+
+def _same(a, b, tol, what, revolute=None):
+    assert a.status == b.status, what
+    assert np.array_equal(a.valid, b.valid), what
+    assert np.array_equal(a.flags, b.flags), what
+    d = _diff(a.values[a.valid], b.values[b.valid], revolute)
+    assert d.size == 0 or float(np.max(np.abs(d))) <= tol, f"{what}: {d}"
+    assert np.all(np.isnan(a.values[~a.valid])) and np.all(np.isnan(b.values[~b.valid])), what
+
+
+def _joints(mod, rng, special: bool):
+    q = np.where(np.array(mod.JOINT_KINDS) == "R", rng.uniform(-math.pi, math.pi, mod.N_JOINTS),
+                 rng.uniform(-0.4, 0.4, mod.N_JOINTS))
+    if special:
+        for i in range(mod.N_JOINTS):
+            if mod.JOINT_KINDS[i] == "R" and rng.random() < 0.5:
+                q[i] = SPECIAL[rng.integers(len(SPECIAL))]
+    return q
+
+
+@pytest.mark.skipif(FORCED_NUMPY, reason="WRISTKIN_BACKEND=numpy: the fallback pass")
+@pytest.mark.parametrize("name", SERIAL)
+def test_serial_c_and_numpy_give_the_same_solution_sets(name):
+    mod = module(name)
+    c_design = mod.make_design()
+    py_design = mod.Design(c_design.params)
+    assert c_design.native is not None and py_design.native is None
+    rng = case_rng(71)
+    rev = np.array(mod.JOINT_KINDS) == "R"
+    poses = []
+    for k in range(120):
+        special = k % 2 == 1
+        tol = SPECIAL_TOL if special else REGULAR_TOL
+        q = _joints(mod, rng, special)
+        _same(mod.fk(q, c_design), mod.fk(q, py_design), tol, f"{name} fk {q.tolist()}")
+        np.testing.assert_allclose(mod.jacobian(q, c_design), mod.jacobian(q, py_design), atol=tol, rtol=0)
+        T = mod.fk_matrix(q, py_design)
+        np.testing.assert_allclose(mod.fk_matrix(q, c_design), T, atol=tol, rtol=0)
+        _same(mod.ik(T, c_design), mod.ik(T, py_design), tol, f"{name} ik of fk({q.tolist()})", rev)
+        prev = _joints(mod, rng, False)
+        _same(mod.ik(T, c_design, previous=prev), mod.ik(T, py_design, previous=prev), tol,
+              f"{name} ik near {prev.tolist()}", rev)
+        poses.append(T)
+    # poses the chain cannot reach, and rotations a little off SO(3) (projected, reported): the C path hands
+    # these to the numpy path for the reason, so the result is the same object either way
+    off = poses[0].copy()
+    off[:3, :3] *= 1.0 + 1e-8
+    far = poses[1].copy()
+    far[:3, 3] += 50.0
+    for T in (off, far):
+        a, b = mod.ik(T, c_design), mod.ik(T, py_design)
+        _same(a, b, REGULAR_TOL, f"{name} ik of an odd pose", rev)
+        assert a.reason == b.reason
+    batch = np.array(poses)
+    cb, pb = mod.ik_batch(batch, c_design), mod.ik_batch(batch, py_design)
+    for f in ("valid", "flags", "status"):
+        assert np.array_equal(getattr(cb, f), getattr(pb, f)), f
+    assert float(np.max(np.abs(_diff(cb.values[cb.valid], pb.values[pb.valid], rev)))) <= SPECIAL_TOL
+    qs = np.array([_joints(mod, rng, False) for _ in range(20)])
+    cf, pf = mod.fk_batch(qs, c_design), mod.fk_batch(qs, py_design)
+    np.testing.assert_allclose(cf.values, pf.values, atol=REGULAR_TOL, rtol=0)
+    assert np.array_equal(cf.flags, pf.flags) and np.array_equal(cf.status, pf.status)
+
+
+@pytest.mark.parametrize("name", sorted(set(SERIAL) | {"puma560"}))
+def test_bad_input_raises_the_same_typed_error_on_both_paths(name):
+    """The C path rejects, then the numpy path explains: one InvalidInput with the detailed message."""
+    mod = module(name)
+    T = mod.fk_matrix(np.zeros(mod.N_JOINTS))
+    for bad in (np.full((4, 4), np.nan), T * 2.0, np.zeros(5), [[1, 2], [3, 4]], "pose"):
+        for design in (mod.make_design(), mod.Design(mod.make_design().params)):
+            with pytest.raises(wristkin.InvalidInput):
+                mod.ik(bad, design)
+    with pytest.raises(wristkin.InvalidInput):
+        mod.fk(np.full(mod.N_JOINTS, np.inf))
+    with pytest.raises(wristkin.InvalidInput):
+        mod.ik_batch(np.array([T, np.full((4, 4), np.nan)]))
+    with pytest.raises(wristkin.InvalidInput):
+        mod.fk_batch(np.full((3, mod.N_JOINTS), np.nan))
+
+
+def _match_modes(a, b, tol, what):
+    """FK assembly modes as sets: the two backends may find the roots in another order."""
+    assert a.status == b.status and a.count == b.count, what
+    rest = list(np.flatnonzero(b.valid))
+    for k in np.flatnonzero(a.valid):
+        d = [float(np.max(np.abs(_diff(a.values[k], b.values[j], np.ones(3, bool))))) for j in rest]
+        j = rest.pop(int(np.argmin(d)))
+        assert min(d) <= tol and a.flags[k] == b.flags[j], f"{what}: mode {a.values[k]} ({min(d):.2e})"
+
+
+@pytest.mark.skipif(FORCED_NUMPY, reason="WRISTKIN_BACKEND=numpy: the fallback pass")
+def test_underactuated_wrist_c_and_numpy_give_the_same_solution_sets():
+    mod = module("underactuated_wrist")
+    c_design = mod.make_design()
+    py_design = mod.Design(c_design.params, c_design.constants, c_design.theta0)
+    assert c_design.native is not None and py_design.native is None
+    rng = case_rng(72)
+    # FK modes are polished to rounding level (cond_direct >= 1e-6 away from folds): 1e-9 leaves room for the
+    # modes near a fold, where a root is only accurate to sqrt(eps) ~ 1e-8 (flagged)
+    fold_tol = 1e-7
+    qs = rng.uniform(0.0, 2 * math.pi, (150, 3))
+    for q in qs:
+        a, b = mod.fk(q, c_design), mod.fk(q, py_design)
+        _match_modes(a, b, fold_tol, f"fk {q.tolist()}")
+        for pose in b:
+            ia, ib = mod.ik(pose, c_design), mod.ik(pose, py_design)
+            _same(ia, ib, REGULAR_TOL * 100, f"ik {pose.tolist()}", np.ones(3, bool))
+    fa, fb = mod.fk_batch(qs[:40], c_design), mod.fk_batch(qs[:40], py_design)
+    assert np.array_equal(fa.count, fb.count) and np.array_equal(fa.status, fb.status)
+    poses = rng.uniform(-math.pi, math.pi, (60, 3))
+    ia, ib = mod.ik_batch(poses, c_design), mod.ik_batch(poses, py_design)
+    for f in ("valid", "flags", "status"):
+        assert np.array_equal(getattr(ia, f), getattr(ib, f)), f
+    assert float(np.max(np.abs(_diff(ia.values[ia.valid], ib.values[ib.valid], np.ones(3, bool))), initial=0.0)) <= 1e-9
