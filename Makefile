@@ -78,12 +78,12 @@ $(STAMP): pyproject.toml setup.py
 
 regenerate: $(STAMP)
 	@TIMEFORMAT='regenerate: wall time %1R s'; time $(PY) -m derive.cli regenerate
-	$(PY) setup.py -q build_ext --inplace 2>&1 | grep -v -i "beta\|warnings.warn" || true
+	$(PY) -m derive.cli native
 
 # The generated C compiled as wristkin._native beside the modules (pip install does the same); without it the
 # modules run on numpy (wristkin.M.BACKEND).
 native: $(STAMP)
-	$(PY) setup.py -q build_ext --inplace
+	$(PY) -m derive.cli native
 
 check-generated: $(STAMP)
 	$(PY) -m derive.cli check

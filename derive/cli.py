@@ -3,6 +3,10 @@
     python -m derive.cli regenerate [--out DIR] [--jobs N] [--catalogue DIR]
     python -m derive.cli check [--jobs N]
     python -m derive.cli audit [M] [--out DIR] [--jobs N] [--catalogue DIR]
+    python -m derive.cli native [--out DIR]
+
+`native` compiles DIR's generated C into DIR/python/wristkin/_native (the solvers of DIR then run the C; needs a
+C compiler and the Python headers, not the derivation stack).
 
 --catalogue DIR derives the spec files (*.toml, docs/specs.md) in DIR instead of the catalogue; a malformed spec
 is reported as one line naming the file, the field and what was expected.
@@ -109,7 +113,17 @@ def cmd_audit(args) -> int:
     return EXIT_OK
 
 
-COMMANDS = {"regenerate": cmd_regenerate, "check": cmd_check, "audit": cmd_audit}
+def cmd_native(args) -> int:
+    from .native_build import BuildError, build
+
+    try:
+        print(build(_out(args)))
+    except BuildError as exc:
+        raise _Error(str(exc), EXIT_FAILED) from None
+    return EXIT_OK
+
+
+COMMANDS = {"regenerate": cmd_regenerate, "check": cmd_check, "audit": cmd_audit, "native": cmd_native}
 
 
 def run(args) -> int:
@@ -132,15 +146,18 @@ def build_parser() -> argparse.ArgumentParser:
     jobs_help = "derivation processes (default: WRISTKIN_JOBS, else one per core); the bytes do not depend on it"
     for verb, helptext in (("regenerate", "derive and write every generated file"),
                            ("check", "regenerate into a temporary directory and diff against generated/"),
-                           ("audit", "derive mechanism M alone (all without M) and print its report path")):
+                           ("audit", "derive mechanism M alone (all without M) and print its report path"),
+                           ("native", "compile DIR's generated C into the extension its Python modules call")):
         s = sub.add_parser(verb, help=helptext)
         if verb == "audit":
             s.add_argument("mechanism", nargs="?", metavar="M")
         if verb != "check":
             s.add_argument("--out", metavar="DIR", help="output directory (default: the checkout's generated/)")
+        if verb in ("regenerate", "audit"):
             s.add_argument("--catalogue", metavar="DIR", help="derive the *.toml spec files in DIR (default: the "
                                                               "catalogue)")
-        s.add_argument("--jobs", type=int, metavar="N", help=jobs_help)
+        if verb != "native":
+            s.add_argument("--jobs", type=int, metavar="N", help=jobs_help)
     return p
 
 

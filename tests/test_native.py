@@ -8,6 +8,7 @@ call: a Design made without its C counterpart (`Design(params)`) takes the numpy
 from __future__ import annotations
 
 import importlib
+import inspect
 import math
 import os
 import subprocess
@@ -22,10 +23,11 @@ from seeding import case_rng
 ROOT = Path(__file__).resolve().parent.parent
 FORCED_NUMPY = os.environ.get("WRISTKIN_BACKEND", "").strip().lower() == "numpy"
 NAMES = sorted(wristkin.MECHANISMS)
-# the mechanisms whose verbs run in C: the serial chains (pose matrices) and the underactuated wrist (Euler
-# angles); the 3-RSR modules still run on numpy
+# the mechanisms whose verbs run in C (all, where the extension is built): the serial chains (pose matrices, ik
+# with `previous`), the underactuated wrist (Euler angles, several assembly modes) and the 3-RSR wrist and hybrid
 NATIVE = [n for n in NAMES if "ik" in importlib.import_module(f"wristkin.{n}").NATIVE_VERBS]
-SERIAL = [n for n in NATIVE if "fk_matrix" in importlib.import_module(f"wristkin.{n}").NATIVE_VERBS]
+SERIAL = [n for n in NATIVE if "previous" in inspect.signature(importlib.import_module(f"wristkin.{n}").ik).parameters]
+RSR = [n for n in NATIVE if n not in SERIAL and n != "underactuated_wrist"]
 # Away from singularities both backends evaluate the same formulas: rounding-level agreement, with room for the
 # few operations they order differently (each O(eps) relative, lengths of order 1 m).
 REGULAR_TOL = 1e-12
@@ -46,7 +48,7 @@ def test_the_extension_is_built_from_these_generated_files_and_runs():
         mod = module(name)
         assert native.INPUTS_HASH == mod.INPUTS_HASH, "stale extension: run `make native`"
         assert mod.BACKEND == ("c" if mod.NATIVE_VERBS else "numpy"), name
-    assert len(SERIAL) == 7 and NATIVE == sorted([*SERIAL, "underactuated_wrist"])
+    assert len(SERIAL) == 7 and sorted(RSR) == ["rsr_wrist", "scara_rsr"] and NATIVE == NAMES
 
 
 def test_backend_can_be_forced_to_numpy():
@@ -176,3 +178,30 @@ def test_underactuated_wrist_c_and_numpy_give_the_same_solution_sets():
     for f in ("valid", "flags", "status"):
         assert np.array_equal(getattr(ia, f), getattr(ib, f)), f
     assert float(np.max(np.abs(_diff(ia.values[ia.valid], ib.values[ib.valid], np.ones(3, bool))), initial=0.0)) <= 1e-9
+
+
+@pytest.mark.skipif(FORCED_NUMPY, reason="WRISTKIN_BACKEND=numpy: the fallback pass")
+@pytest.mark.parametrize("name", RSR)
+def test_rsr_c_and_numpy_give_the_same_solution_sets(name):
+    """FK values are the IK input ((alpha, beta, l_bw), or [R | p] and l_bw): the round trip runs both paths."""
+    mod = module(name)
+    c_design = mod.make_design()
+    py_design = mod.Design(c_design.params)
+    rev = np.array(mod.JOINT_KINDS) == "R"
+    rng = case_rng(73)
+    qs, poses = [], []
+    for _ in range(100):
+        q = np.where(rev, rng.uniform(-math.pi, math.pi, mod.N_JOINTS), rng.uniform(-0.1, 0.1, mod.N_JOINTS))
+        q[-3:] = rng.uniform(math.radians(20), math.radians(80), 3)  # the legs where the wrist assembles
+        a, b = mod.fk(q, c_design), mod.fk(q, py_design)
+        _same(a, b, REGULAR_TOL, f"{name} fk {q.tolist()}")
+        np.testing.assert_allclose(mod.jacobian(q, c_design), mod.jacobian(q, py_design), atol=REGULAR_TOL, rtol=0)
+        _same(mod.ik(b.values[0], c_design), mod.ik(b.values[0], py_design), 1e-9, f"{name} ik", rev)
+        qs.append(q)
+        poses.append(b.values[0])
+    for verb, rows in (("fk_batch", qs), ("ik_batch", poses)):
+        ca, pa = getattr(mod, verb)(np.array(rows), c_design), getattr(mod, verb)(np.array(rows), py_design)
+        for f in ("valid", "flags", "status"):
+            assert np.array_equal(getattr(ca, f), getattr(pa, f)), (verb, f)
+        d = _diff(ca.values[ca.valid], pa.values[pa.valid], rev if verb == "ik_batch" else None)
+        assert float(np.max(np.abs(d), initial=0.0)) <= 1e-9, verb

@@ -4,6 +4,7 @@ and what was expected (never a traceback), and a new mechanism of an existing fa
 from __future__ import annotations
 
 import math
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -149,6 +150,15 @@ def test_a_new_mechanism_of_a_family_is_one_spec_file(tmp_path):
         assert f in rel
     report = (out / "audit" / "tiny_wrist.md").read_text()
     assert "A user's spherical wrist" in report and "FAILED" not in report
+    # its C runs from Python after one command (python -m derive.cli native --out OUT)
+    from derive.native_build import build
+
+    build(out)
+    code = ("import numpy as np, wristkin.tiny_wrist as m; T = m.fk_matrix([0.3, 0.4, 0.5]); "
+            "print(m.BACKEND, m.ik(T).count, m.ik(T, m.Design(m.make_design().params)).count)")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
+                         env={**os.environ, "PYTHONPATH": str(out / "python")}, cwd=tmp_path)
+    assert run.returncode == 0 and run.stdout.split() == ["c", "2", "2"], run.stdout + run.stderr
     solver = load_generated(out, "tiny_wrist")
     assert solver.DESIGN_NAMES == ("flange",) and solver.JOINT_NAMES == ("q1", "q2", "q3")
     rng = case_rng(41)
