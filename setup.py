@@ -1,7 +1,7 @@
 """Builds wristkin._native, the generated C solvers as a CPython extension (metadata is in pyproject.toml).
 
-A plain CPython extension over the buffer protocol: no build dependency beyond a C compiler and the Python
-headers (not even numpy's), one shared object for every mechanism, and the generated C compiled as it is.
+A plain CPython extension (numpy's C API for the result arrays; numpy is the one runtime dependency anyway):
+one shared object for every mechanism, and the generated C compiled as it is.
 Where no compiler works the install goes on without it and the solvers run on numpy (wristkin.M.BACKEND).
 """
 
@@ -37,8 +37,10 @@ class OptionalBuildExt(build_ext):
 def extensions() -> list[Extension]:
     if not (ROOT / BINDING).is_file():  # generated/ not there yet (make regenerate writes it)
         return []
+    import numpy
+
     sources = [BINDING.as_posix(), *sorted(p.as_posix() for p in C_DIR.glob("*.c"))]
-    return [Extension("wristkin._native", sources=sources, include_dirs=[C_DIR.as_posix()],
+    return [Extension("wristkin._native", sources=sources, include_dirs=[C_DIR.as_posix(), numpy.get_include()],
                       extra_compile_args=["-O2", "-std=c99"], libraries=["m"])]
 
 

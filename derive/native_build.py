@@ -25,7 +25,10 @@ def build(out: Path, cc: str | None = None) -> Path:
         raise BuildError("no C compiler found (set CC): the solvers run on numpy")
     target = out / "python" / "wristkin" / f"_native{sysconfig.get_config_var('EXT_SUFFIX') or '.so'}"
     sources = [binding, *sorted((out / "c").glob("*.c"))]
-    cmd = [cc, "-O2", "-std=c99", "-shared", "-fPIC", f"-I{sysconfig.get_paths()['include']}", f"-I{out / 'c'}",
+    import numpy
+
+    cmd = [cc, "-O2", "-std=c99", "-shared", "-fPIC", f"-I{sysconfig.get_paths()['include']}",
+           f"-I{numpy.get_include()}", f"-I{out / 'c'}",
            *map(str, sources), "-o", str(target), "-lm"]
     run = subprocess.run(cmd, capture_output=True, text=True)
     if run.returncode != 0:
