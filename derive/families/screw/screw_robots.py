@@ -152,6 +152,7 @@ class ScrewMechanism(SerialMechanism):
     """A ScrewSpec rendered through the serial-chain templates (same API as the DH chains)."""
 
     DERIVE_SECONDS = 16
+    DERIVE_GROUP = "screw"  # one process for every screw chain: the screw algebra they share is derived once
 
     def derive(self):
         from .screw_serial import derive_spec
