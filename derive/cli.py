@@ -28,6 +28,8 @@ import time
 from collections.abc import Sequence
 from pathlib import Path
 
+from .spec import SpecError  # standard library only: imports without the derivation stack
+
 ROOT = Path(__file__).resolve().parent.parent
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 
@@ -133,9 +135,7 @@ def run(args) -> int:
     except _Error as exc:
         print(f"wristkin: error: {exc}", file=sys.stderr)
         return exc.code
-    except ValueError as exc:
-        if type(exc).__name__ != "SpecError":  # derive.spec is imported only with the stack, inside the verbs
-            raise
+    except SpecError as exc:
         print(f"wristkin: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
 

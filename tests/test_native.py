@@ -73,6 +73,14 @@ def _same(a, b, tol, what, revolute=None):
     assert np.all(np.isnan(a.values[~a.valid])) and np.all(np.isnan(b.values[~b.valid])), what
 
 
+def _same_batch(a, b, tol, what, revolute=None):
+    """Two BatchSolutions: the same valid sets, flags and statuses, values within tol (angles wrapped)."""
+    for f in ("valid", "flags", "status"):
+        assert np.array_equal(getattr(a, f), getattr(b, f)), (what, f)
+    d = _diff(a.values[a.valid], b.values[b.valid], revolute)
+    assert float(np.max(np.abs(d), initial=0.0)) <= tol, what
+
+
 def _joints(mod, rng, special: bool):
     q = np.where(np.array(mod.JOINT_KINDS) == "R", rng.uniform(-math.pi, math.pi, mod.N_JOINTS),
                  rng.uniform(-0.4, 0.4, mod.N_JOINTS))
@@ -117,10 +125,7 @@ def test_serial_c_and_numpy_give_the_same_solution_sets(name):
         _same(a, b, REGULAR_TOL, f"{name} ik of an odd pose", rev)
         assert a.reason == b.reason
     batch = np.array(poses)
-    cb, pb = mod.ik_batch(batch, c_design), mod.ik_batch(batch, py_design)
-    for f in ("valid", "flags", "status"):
-        assert np.array_equal(getattr(cb, f), getattr(pb, f)), f
-    assert float(np.max(np.abs(_diff(cb.values[cb.valid], pb.values[pb.valid], rev)))) <= SPECIAL_TOL
+    _same_batch(mod.ik_batch(batch, c_design), mod.ik_batch(batch, py_design), SPECIAL_TOL, f"{name} ik_batch", rev)
     qs = np.array([_joints(mod, rng, False) for _ in range(20)])
     cf, pf = mod.fk_batch(qs, c_design), mod.fk_batch(qs, py_design)
     np.testing.assert_allclose(cf.values, pf.values, atol=REGULAR_TOL, rtol=0)
@@ -174,10 +179,8 @@ def test_underactuated_wrist_c_and_numpy_give_the_same_solution_sets():
     fa, fb = mod.fk_batch(qs[:40], c_design), mod.fk_batch(qs[:40], py_design)
     assert np.array_equal(fa.count, fb.count) and np.array_equal(fa.status, fb.status)
     poses = rng.uniform(-math.pi, math.pi, (60, 3))
-    ia, ib = mod.ik_batch(poses, c_design), mod.ik_batch(poses, py_design)
-    for f in ("valid", "flags", "status"):
-        assert np.array_equal(getattr(ia, f), getattr(ib, f)), f
-    assert float(np.max(np.abs(_diff(ia.values[ia.valid], ib.values[ib.valid], np.ones(3, bool))), initial=0.0)) <= 1e-9
+    _same_batch(mod.ik_batch(poses, c_design), mod.ik_batch(poses, py_design), 1e-9, "wrist ik_batch",
+                np.ones(3, bool))
 
 
 @pytest.mark.skipif(FORCED_NUMPY, reason="WRISTKIN_BACKEND=numpy: the fallback pass")
@@ -200,8 +203,5 @@ def test_rsr_c_and_numpy_give_the_same_solution_sets(name):
         qs.append(q)
         poses.append(b.values[0])
     for verb, rows in (("fk_batch", qs), ("ik_batch", poses)):
-        ca, pa = getattr(mod, verb)(np.array(rows), c_design), getattr(mod, verb)(np.array(rows), py_design)
-        for f in ("valid", "flags", "status"):
-            assert np.array_equal(getattr(ca, f), getattr(pa, f)), (verb, f)
-        d = _diff(ca.values[ca.valid], pa.values[pa.valid], rev if verb == "ik_batch" else None)
-        assert float(np.max(np.abs(d), initial=0.0)) <= 1e-9, verb
+        _same_batch(getattr(mod, verb)(np.array(rows), c_design), getattr(mod, verb)(np.array(rows), py_design),
+                    1e-9, f"{name} {verb}", rev if verb == "ik_batch" else None)

@@ -78,6 +78,7 @@ BROKEN = [
     (PUMA, lambda t: t.replace('alpha = "pi/2"\nd = "d1"', 'alpha = "__import__(1)"\nd = "d1"'),
      "joint[0].alpha", "expression"),
     (PUMA, lambda t: t.replace('name = "theta2"', 'name = "theta1"'), "joint[1].name", "not used before"),
+    (PUMA, lambda t: t.replace("d1 = 0.6718", "d1 = 0.6718\npi = 1.0"), "design.pi", "not used before"),
     (PUMA, lambda t: t.replace('type = "revolute"\na = "a2"', 'type = "spherical"\na = "a2"'), "joint[1].type",
      "'prismatic'"),
     (PUMA, lambda t: t.replace('a = "a2"', 'a = "a2"\nlength = 3'), "joint[1].length", "unknown field"),

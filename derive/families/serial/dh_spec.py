@@ -45,10 +45,9 @@ def expression(spec: Spec, field: str, symbols: dict, default=None) -> sp.Expr:
 
 
 def _symbol(spec: Spec, field: str, taken: set, **assumptions) -> sp.Symbol:
-    name = spec.identifier(field) if field == "name" else field
+    name = spec.identifier(field) if field == "name" else field  # a joint's `name`, or a design table's key
     if name in taken or name in _FUNCTIONS:
-        raise spec.error(field if field == "name" else "", f"a name not used before (and not {', '.join(_FUNCTIONS)})",
-                         name)
+        raise spec.error(field, f"a name not used before (and not {', '.join(_FUNCTIONS)})", name)
     taken.add(name)
     return sp.Symbol(name, **assumptions)
 
