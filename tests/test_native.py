@@ -137,7 +137,9 @@ def test_bad_input_raises_the_same_typed_error_on_both_paths(name):
     """The C path rejects, then the numpy path explains: one InvalidInput with the detailed message."""
     mod = module(name)
     T = mod.fk_matrix(np.zeros(mod.N_JOINTS))
-    for bad in (np.full((4, 4), np.nan), T * 2.0, np.zeros(5), [[1, 2], [3, 4]], "pose"):
+    # numeric strings and complex values: refused on both paths (the C path once converted the strings)
+    for bad in (np.full((4, 4), np.nan), T * 2.0, np.zeros(5), [[1, 2], [3, 4]], "pose", T.astype(str),
+                T.astype(complex)):
         for design in (mod.make_design(), mod.Design(mod.make_design().params)):
             with pytest.raises(wristkin.InvalidInput):
                 mod.ik(bad, design)
