@@ -316,6 +316,10 @@ def main(argv=None) -> int:
     screws_text = screws.tables(quick=args.quick)
     print()
     print(screws_text)
+    import own_robots  # bench/own_robots.py: `wristkin derive` on the test robots vs EAIK / ik-geo, same run
+
+    print()
+    own_robots.main(["--n", "50" if args.quick else "200"])
     print(f"\ntimed in {time.perf_counter() - t_start:.1f} s; "
           f"results in {BUILD_DIR.relative_to(ROOT)}/results.json")
 

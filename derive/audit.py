@@ -56,10 +56,11 @@ def load_generated(out: Path, name: str):
             os.environ["WRISTKIN_BACKEND"] = backend
 
 
-def write_report(mech, dv, out: Path) -> list[Path]:
-    """The audit report of one mechanism (and the figures it draws) into out/audit."""
+def write_report(mech, dv, out: Path, solver=None) -> list[Path]:
+    """The audit report of one mechanism (and the figures it draws) into out/audit; `solver`: the generated module
+    to audit (default: out's generated package)."""
     name = mech.NAME
-    solver = load_generated(out, name)
+    solver = solver or load_generated(out, name)
     audit_dir = out / "audit"
     audit_dir.mkdir(parents=True, exist_ok=True)
     numeric = {"summary": [], "sections": [], "findings": [], "decisions": [], "files": []}

@@ -4,6 +4,8 @@
     python -m derive.cli check [--jobs N]
     python -m derive.cli audit [M] [--out DIR] [--jobs N] [--catalogue DIR]
     python -m derive.cli native [--out DIR]
+    python -m derive.cli derive SOURCE --out DIR [--name N] [--base LINK] [--tip LINK] [--free JOINT]
+                                [--geometry-tol TOL]
 
 `native` compiles DIR's generated C into DIR/python/wristkin/_native (the solvers of DIR then run the C; needs a
 C compiler and the Python headers, not the derivation stack).
@@ -115,6 +117,23 @@ def cmd_audit(args) -> int:
     return EXIT_OK
 
 
+def cmd_derive(args) -> int:
+    try:
+        from . import own_robot
+    except ImportError as exc:
+        raise _Error(f"the derivation stack is not installed ({exc}): pip install 'wristkin[derive]' "
+                     "(in a checkout: make venv)", EXIT_FAILED) from exc
+    from .families.chain.planner import NoClosedForm
+
+    if not Path(args.source).is_file():
+        raise _Error(f"{args.source}: no such file (a URDF or a spec file)", EXIT_USAGE)
+    try:
+        own_robot.derive(args.source, Path(args.out), args.name, args.base, args.tip, args.free, args.geometry_tol)
+    except NoClosedForm as exc:
+        raise _Error(str(exc), EXIT_FAILED) from None
+    return EXIT_OK
+
+
 def cmd_native(args) -> int:
     from .native_build import BuildError, build
 
@@ -125,7 +144,8 @@ def cmd_native(args) -> int:
     return EXIT_OK
 
 
-COMMANDS = {"regenerate": cmd_regenerate, "check": cmd_check, "audit": cmd_audit, "native": cmd_native}
+COMMANDS = {"regenerate": cmd_regenerate, "check": cmd_check, "audit": cmd_audit, "native": cmd_native,
+            "derive": cmd_derive}
 
 
 def run(args) -> int:
@@ -158,7 +178,23 @@ def build_parser() -> argparse.ArgumentParser:
                                                               "catalogue)")
         if verb != "native":
             s.add_argument("--jobs", type=int, metavar="N", help=jobs_help)
+    add_derive_parser(sub)
     return p
+
+
+def add_derive_parser(sub) -> None:
+    """`derive SOURCE --out DIR`: shared by `python -m derive.cli` and the `wristkin` command."""
+    s = sub.add_parser("derive", help="derive your own robot (a URDF or a spec file) into DIR: Python, C, CasADi "
+                                      "and an audit report")
+    s.add_argument("source", metavar="SOURCE", help="ROBOT.urdf, or a spec file (docs/specs.md)")
+    s.add_argument("--out", metavar="DIR", required=True, help="output directory")
+    s.add_argument("--name", help="the solver's name (default: the spec's name / the URDF file's stem)")
+    s.add_argument("--base", metavar="LINK", help="URDF: the chain's base link (default: the root)")
+    s.add_argument("--tip", metavar="LINK", help="URDF: the chain's tip link (default: the only leaf)")
+    s.add_argument("--free", metavar="JOINT", help="a redundant chain's joint held as a run-time parameter")
+    s.add_argument("--geometry-tol", type=float, metavar="TOL", help="axes within TOL count as parallel / meeting "
+                                                                    "(default 1e-6: metres and sin of angles)")
+    s.set_defaults(verb="derive")
 
 
 def main(argv: Sequence[str] | None = None) -> int:

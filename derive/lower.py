@@ -48,7 +48,14 @@ def _fold_constants(e: sp.Expr) -> sp.Expr:
 def cse_kernel(kernel: Kernel):
     exprs = [_fold_constants(sp.sympify(e)) for _, e in kernel.outputs]
     temps, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("t"), order="canonical")
-    return temps, reduced
+    # CSE can leave a temp no output needs (its uses cancelled after extraction): drop those, last first
+    needed = set().union(*(e.free_symbols for e in reduced))
+    kept = []
+    for sym, e in reversed(temps):
+        if sym in needed:
+            kept.append((sym, e))
+            needed |= sp.sympify(e).free_symbols
+    return kept[::-1], reduced
 
 
 def lower(kernel: Kernel, target: str) -> Lowered:

@@ -1,5 +1,5 @@
-"""A DH chain's spec file -> SerialSpec: the table, the design parameters, the IK plan and the seed's printed
-matrices (docs/specs.md, "serial")."""
+"""A DH chain's spec file -> SerialSpec: the table, the design parameters and the seed's printed matrices
+(docs/specs.md, "serial"); the IK stages come from the geometric planner (planned.py)."""
 
 from __future__ import annotations
 
@@ -11,9 +11,9 @@ from ...identities.dh import DHRow, chain
 from ...model import Finding
 from ...spec import COMMON_FIELDS, Spec, common
 from .dh_serial import SerialSpec
-from .plans import PLANS, Chain, PlanError, check_structure
+from .planned import stages as planned_stages
 
-SPEC_FIELDS = ("convention", "ik", "design", "positive", "joint", "printed", "finding")
+SPEC_FIELDS = ("convention", "design", "positive", "joint", "printed", "finding")
 JOINT_FIELDS = ("name", "type", "a", "alpha", "d", "theta")
 _FUNCTIONS = {"pi": sp.pi, "sin": sp.sin, "cos": sp.cos, "sqrt": sp.sqrt}
 VERDICTS = ("reproduced", "wrong in seed", "not reproducible", "clarified")
@@ -53,12 +53,11 @@ def _symbol(spec: Spec, field: str, taken: set, **assumptions) -> sp.Symbol:
 
 
 def load(spec: Spec) -> tuple[SerialSpec, Callable[[], list]]:
-    """The SerialSpec without its IK stages, and the function that builds them (symbolic work, done when the
-    mechanism is derived; the plan's structure is checked here)."""
+    """The SerialSpec without its IK stages, and the function that builds them from the planner's decomposition
+    (symbolic work, done when the mechanism is derived)."""
     spec.only((*COMMON_FIELDS, *SPEC_FIELDS))
     head = common(spec)
     convention = spec.choice("convention", ("standard", "modified"), "standard")
-    plan_name = spec.choice("ik", tuple(PLANS))
     taken: set[str] = set()
     design_tbl = spec.table("design", {})
     positive = spec.raw("positive", [])
@@ -88,14 +87,11 @@ def load(spec: Spec) -> tuple[SerialSpec, Callable[[], list]]:
         kinds.append(kind)
     if not rows:
         raise spec.error("joint", "at least one [[joint]] row")
-    try:
-        check_structure(plan_name, kinds)
-    except PlanError as exc:
-        raise spec.error("ik", str(exc)) from None
     base = SerialSpec(head["name"], head["title"], head["source"], rows, tuple(joints), tuple(kinds), tuple(design),
                       tuple(values), [], _printed(spec, rows, convention, {**names, **{str(q): q for q in joints}}),
                       _findings(spec), convention=convention)
-    return base, lambda: PLANS[plan_name](Chain(tuple(rows), tuple(joints), tuple(kinds)))
+    return base, lambda: planned_stages(rows, tuple(joints), tuple(kinds), tuple(design), tuple(values),
+                                        convention)[0]
 
 
 def _printed(spec: Spec, rows, convention, symbols) -> dict:

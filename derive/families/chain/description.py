@@ -1,0 +1,207 @@
+"""A chain's spec file (DH standard / modified, POE, or a URDF it names) -> Chain, with the description's own
+forward kinematics kept beside it: the derivation checks the product-of-exponentials form against it."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ...spec import COMMON_FIELDS, Spec, common
+from . import urdf
+from .description_names import JOINT_NAME
+from .planner import DEFAULT_GEOMETRY_TOL
+from .robot import Chain, dh_link, from_dh, from_frames, rot, rpy_matrix, screw, transform
+
+SPEC_FIELDS = ("convention", "joint", "home", "base", "tool", "free", "geometry_tol", "urdf", "base_link",
+               "tip_link")
+DH_FIELDS = ("name", "type", "a", "alpha", "d", "theta", "direction", "lower", "upper")
+POE_FIELDS = ("name", "type", "axis", "point", "lower", "upper")
+_ALLOWED = set("0123456789.+-*/() epi")
+
+
+@dataclass
+class Description:
+    chain: Chain
+    fk: Callable  # q -> 4x4 by the description's own products (DH matrices / URDF transforms / POE)
+    rule: str  # how the description composes, for the audit
+    free: int  # index of the free joint, or -1
+    geometry_tol: float
+    source: str
+    info: dict
+
+
+def angle(spec: Spec, field: str, default=0.0) -> float:
+    """A number, or a string of numbers, pi and + - * / ( ) (e.g. "pi/2", "-pi/2")."""
+    v = spec.raw(field, default)
+    if isinstance(v, bool):
+        raise spec.error(field, "a number or an expression of numbers and pi", v)
+    if isinstance(v, int | float):
+        return spec.number(field, default)
+    if not isinstance(v, str) or not v.strip() or len(v) > 100 or not set(v) <= _ALLOWED or "__" in v:
+        raise spec.error(field, "a number or an expression of numbers and pi (e.g. \"pi/2\")", v)
+    try:
+        x = float(eval(v, {"__builtins__": {}}, {"pi": math.pi, "e": math.e}))  # noqa: S307 - charset checked
+    except Exception:  # noqa: BLE001 - any evaluation failure is the same user error
+        raise spec.error(field, "a number or an expression of numbers and pi (e.g. \"pi/2\")", v) from None
+    if not math.isfinite(x):
+        raise spec.error(field, "a finite value", v)
+    return x
+
+
+def _frame(spec: Spec, field: str) -> np.ndarray:
+    if not spec.has(field):
+        return np.eye(4)
+    t = spec.table(field)
+    t.only(("xyz", "rpy"))
+    return transform(rpy_matrix(t.vector("rpy", 3, [0.0, 0.0, 0.0], unit="rad")), t.vector("xyz", 3, [0.0, 0.0, 0.0],
+                                                                                             unit="m"))
+
+
+def _limits(js: Spec) -> tuple[float, float]:
+    lo = js.number("lower", -math.inf if not js.has("lower") else None) if js.has("lower") else -math.inf
+    hi = js.number("upper") if js.has("upper") else math.inf
+    if lo > hi:
+        raise js.error("upper", f"an upper limit >= lower ({lo})", hi)
+    return lo, hi
+
+
+def _unit(spec: Spec, field: str) -> np.ndarray:
+    v = np.array(spec.vector(field, 3))
+    if not np.linalg.norm(v) > 1e-9:
+        raise spec.error(field, "a nonzero direction", list(v))
+    return v / np.linalg.norm(v)
+
+
+def read(spec: Spec, path_hint: Path | None = None) -> Description:
+    spec.only((*COMMON_FIELDS, *SPEC_FIELDS))
+    head = common(spec)
+    convention = spec.choice("convention", ("standard", "modified", "poe", "urdf"))
+    base, tool = _frame(spec, "base"), _frame(spec, "tool")
+    tol = spec.number("geometry_tol", DEFAULT_GEOMETRY_TOL, lo=1e-14, hi=1e-2)
+    info: dict = {}
+    if convention == "urdf":
+        if spec.has("joint") or spec.has("home"):
+            raise spec.error("joint", "no [[joint]] or [home] in a URDF spec (the URDF describes the joints)")
+        file = Path(spec.text("urdf"))
+        file = file if file.is_absolute() else Path(spec.file).parent / file
+        try:
+            chain, info = urdf.read(file, spec.text("base_link", None) if spec.has("base_link") else None,
+                                    spec.text("tip_link", None) if spec.has("tip_link") else None, head["name"])
+        except urdf.URDFError as exc:
+            raise spec.error("urdf", f"a URDF with a serial chain ({exc})") from None
+        fk_desc = _poe_fk(chain)
+        rule = (f"URDF joint origins composed from {info['base_link']} to {info['tip_link']} (fixed joints "
+                f"{', '.join(info['folded_fixed_joints']) or 'none'} folded), each movable joint's axis taken "
+                "in its joint frame at zero")
+        fk_desc = urdf_fk(file, info["base_link"], info["tip_link"])
+    else:
+        joints = spec.tables("joint")
+        if not joints:
+            raise spec.error("joint", "at least one [[joint]] table")
+        names, kinds, lower, upper = [], [], [], []
+        for js in joints:
+            js.only(DH_FIELDS if convention != "poe" else POE_FIELDS)
+            nm = js.text("name")
+            if not JOINT_NAME.fullmatch(nm):
+                raise js.error("name", "a joint name of letters, digits and _ . - : / (at most 63 characters)", nm)
+            if nm in names:
+                raise js.error("name", "a joint name not used before", nm)
+            names.append(nm)
+            kinds.append({"revolute": "R", "prismatic": "P"}[js.choice("type", ("revolute", "prismatic"), "revolute")])
+            lo, hi = _limits(js)
+            lower.append(lo)
+            upper.append(hi)
+        if convention == "poe":
+            pairs = [(_unit(js, "axis"), np.array(js.vector("point", 3, [0.0, 0.0, 0.0], unit="m"))) for js in joints]
+            home_t = spec.table("home")
+            home_t.only(("position", "rpy"))
+            home = transform(rpy_matrix(home_t.vector("rpy", 3, [0.0, 0.0, 0.0])), home_t.vector("position", 3))
+            chain = from_frames(head["name"], names, kinds, pairs, home, lower=np.array(lower),
+                                upper=np.array(upper), source_format="poe")
+            fk_desc = _poe_fk(chain)
+            rule = "product of exponentials: exp(S_1 q_1) ... exp(S_n q_n) M from the spec's axes, points and home"
+        else:
+            if spec.has("home"):
+                raise spec.error("home", "no [home] in a DH spec (use [tool] for a flange offset)")
+            rows = []
+            for js, nm, kd in zip(joints, names, kinds, strict=True):
+                direction = js.number("direction", 1.0)
+                if direction not in (1.0, -1.0):
+                    raise js.error("direction", "1 or -1", direction)
+                rows.append((nm, kd, angle(js, "a"), angle(js, "alpha"), angle(js, "d"), angle(js, "theta"),
+                             direction))
+            chain = from_dh(head["name"], convention, rows, lower=np.array(lower), upper=np.array(upper))
+            fk_desc = _dh_fk(convention, rows)
+            rule = ("standard DH: A_i = Rz(theta_i + q_i) Tz(d_i) Tx(a_i) Rx(alpha_i)" if convention == "standard" else
+                    "modified (Craig) DH: A_i = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta_i + q_i) Tz(d_i)") + (
+                    "; joint axes and points read from the frames at q = 0")
+    from dataclasses import replace
+    chain = replace(chain, base=base, tool=tool)
+    free = -1
+    if spec.has("free"):
+        fname = spec.text("free")
+        if fname not in chain.joint_names:
+            raise spec.error("free", f"one of the joints ({', '.join(chain.joint_names)})", fname)
+        free = chain.joint_names.index(fname)
+    elif chain.n > 6:
+        raise spec.error("free", f"the name of the joint held as a parameter (the chain has {chain.n} joints; a "
+                                 "closed form needs at most 6 solved)")
+    return Description(chain, lambda q: base @ fk_desc(q) @ tool, rule, free, tol, head["source"], info)
+
+
+def _poe_fk(chain: Chain):
+    def fk(q):
+        t = np.eye(4)
+        for k, a, p, v in zip(chain.kinds, chain.axes, chain.points, q, strict=True):
+            t = t @ screw(k, a, p, v)
+        return t @ chain.home
+    return fk
+
+
+def _dh_fk(convention, rows):
+    def fk(q):
+        t = np.eye(4)
+        for (_, kind, a, alpha, d, theta, direction), v in zip(rows, q, strict=True):
+            if kind == "R":
+                t = t @ dh_link(convention, a, alpha, d, theta + direction * v)
+            else:
+                t = t @ dh_link(convention, a, alpha, d + direction * v, theta)
+        return t
+    return fk
+
+
+def urdf_fk(file, base_link, tip_link):
+    """The URDF's own composition: origin_i . motion_i(q_i) along the joint path (independent of the POE form)."""
+    import xml.etree.ElementTree as ET
+
+    root = ET.parse(file).getroot()
+    by_child = {j.find("child").get("link"): j for j in root.iter("joint")}
+    path, lk = [], tip_link
+    while lk != base_link:
+        j = by_child[lk]
+        path.append(j)
+        lk = j.find("parent").get("link")
+    path.reverse()
+    steps = []
+    for j in path:
+        o = j.find("origin")
+        xyz = [float(v) for v in (o.get("xyz", "0 0 0") if o is not None else "0 0 0").split()]
+        rpy = [float(v) for v in (o.get("rpy", "0 0 0") if o is not None else "0 0 0").split()]
+        ax = j.find("axis")
+        axis = np.array([float(v) for v in (ax.get("xyz") if ax is not None else "1 0 0").split()])
+        steps.append((transform(rpy_matrix(rpy), xyz), j.get("type"), axis / np.linalg.norm(axis)))
+
+    def fk(q):
+        t, i = np.eye(4), 0
+        for origin, kind, axis in steps:
+            t = t @ origin
+            if kind == "fixed":
+                continue
+            t = t @ (transform(None, axis * q[i]) if kind == "prismatic" else transform(rot(axis, q[i])))
+            i += 1
+        return t
+    return fk

@@ -1,0 +1,394 @@
+"""Closed-form IK from geometry: find a decomposition of a chain into subproblems, never from a robot's name.
+
+The planner looks only at the axes (parallel, intersecting, within the geometry tolerance) and searches a
+small set of decompositions, read from the base or from the tool (the chain reversed):
+
+  wrist at the end      the last r revolute axes meet in one point W (r = 3: a spherical wrist, r = 2, 1)
+                        or r = 0: the first n - r joints place W (a point problem, below), the last r
+                        orient the end frame (subproblem 2, then 1);
+  three parallel axes   joints 2-4 parallel (UR type): joint 1 from the plane normal to them (subproblem 4),
+                        the orientation of (the parallel group's sum, joint 5, joint 6) by subproblems 2 + 1,
+                        then the planar pair by subproblem 3 + 1 and the third from the sum.
+
+A point problem e_a ... e_c x = y (x fixed by the joints after c) is solved one joint at a time from an
+invariant of the others: a point S on the axes of all the others keeps its distance (subproblem 3, or a
+quadratic for a prismatic joint), a direction n along all the others' axes (and normal to their slides) keeps
+x's component along n (subproblem 4, or linear), two intersecting axes at the end (subproblem 2), one axis
+(subproblem 1), slides only (linear least squares). Each op's equation is checked on sampled configurations
+of the chain by `replay` before the plan is accepted.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .geometry import common_point, line_distance, parallel_deviation
+from .robot import Chain, reverse, screw
+
+DEFAULT_GEOMETRY_TOL = 1e-6  # metres and radians (sin of an angle): documented in docs/specs.md
+
+
+class NoClosedForm(ValueError):
+    """No decomposition fits the chain's axes; the message names what each one needed."""
+
+
+@dataclass(frozen=True)
+class Relation:
+    kind: str  # "parallel" | "meet"
+    joints: tuple[int, ...]
+    deviation: float
+
+    def text(self, names) -> str:
+        js = ", ".join(names[j] for j in self.joints)
+        what = "parallel" if self.kind == "parallel" else "meet in one point"
+        unit = "sin of the largest angle" if self.kind == "parallel" else "largest distance from the common point, m"
+        return f"axes {js} {what} (deviation {self.deviation:.1e}, {unit})"
+
+
+@dataclass
+class Plan:
+    ops: list[dict]
+    reversed: bool
+    strategy: str
+    relations: list[Relation] = field(default_factory=list)
+
+    @property
+    def branches(self) -> int:
+        out = 1
+        for op in self.ops:
+            out *= op_branches(op)
+        return out
+
+
+def op_branches(op: dict) -> int:
+    if op["op"] in ("first_plane", "last_plane"):
+        return 2 if op["kind"] == "R" else 1
+    if op["op"] in ("first_dist", "last_dist", "pair"):
+        return 2
+    if op["op"] == "orient":
+        return 2 if len(op["units"]) == 3 else 1
+    return 1
+
+
+class Geometry:
+    """The chain's axis relations under a tolerance (every relation the plan relies on is recorded)."""
+
+    def __init__(self, chain: Chain, tol: float):
+        self.c, self.tol = chain, tol
+        self.used: dict[tuple, Relation] = {}
+
+    def rev(self, j) -> bool:
+        return self.c.kinds[j] == "R"
+
+    def parallel(self, js) -> bool:
+        js = tuple(js)
+        dev = max(parallel_deviation(self.c.axes[js[0]], self.c.axes[j]) for j in js[1:])
+        if dev <= self.tol:
+            self.used[("parallel", js)] = Relation("parallel", js, dev)
+            return True
+        return False
+
+    def not_parallel(self, a, b) -> bool:
+        return parallel_deviation(a, b) > 10 * self.tol
+
+    def meet(self, js) -> np.ndarray | None:
+        js = tuple(js)
+        dirs = [self.c.axes[j] for j in js]
+        if all(parallel_deviation(dirs[0], d) <= self.tol for d in dirs[1:]):
+            return None  # parallel axes do not meet in one point
+        w, dev = common_point([self.c.points[j] for j in js], dirs)
+        if dev <= self.tol:
+            self.used[("meet", js)] = Relation("meet", js, dev)
+            return w
+        return None
+
+    def on_axis(self, p, j) -> bool:
+        return line_distance(self.c.points[j], self.c.axes[j], p, self.c.axes[j]) <= 10 * self.tol
+
+    def point(self, spec) -> np.ndarray:
+        if spec[0] == "meet":
+            return common_point([self.c.points[j] for j in spec[1:]], [self.c.axes[j] for j in spec[1:]])[0]
+        if spec[0] == "on":
+            return self.c.points[spec[1]]
+        return self.c.home[:3, 3]
+
+    def direction(self, spec) -> np.ndarray:
+        if spec[0] == "dir":
+            return self.c.axes[spec[1]]
+        n = np.cross(self.c.axes[spec[1]], self.c.axes[spec[2]])
+        return n / np.linalg.norm(n)
+
+
+# ------------------------------------------------------------------------------------------------ point problems
+def _invariant_point(g: Geometry, js):
+    """A point fixed by every joint in js (all revolute): their common point, or any point on a lone axis."""
+    if not js or not all(g.rev(j) for j in js):
+        return None
+    if len(js) == 1:
+        return ("on", js[0])
+    return ("meet", *js) if g.meet(js) is not None else None
+
+
+def _invariant_direction(g: Geometry, js):
+    """A direction n whose component every joint in js keeps: along their (parallel) axes, normal to their slides."""
+    revs = [j for j in js if g.rev(j)]
+    slides = [j for j in js if not g.rev(j)]
+    if revs:
+        if len(revs) > 1 and not g.parallel(revs):
+            return None
+        n = g.c.axes[revs[0]]
+        if all(abs(float(np.dot(n, g.c.axes[j]))) <= g.tol for j in slides):
+            return ("dir", revs[0])
+        return None
+    if len(slides) == 2 and g.not_parallel(g.c.axes[slides[0]], g.c.axes[slides[1]]):
+        return ("cross", slides[0], slides[1])
+    return None
+
+
+def _plane_ok(g: Geometry, j, nspec) -> bool:
+    n = g.direction(nspec)
+    if g.rev(j):
+        return g.not_parallel(g.c.axes[j], n)
+    return abs(float(np.dot(g.c.axes[j], n))) > 10 * g.tol
+
+
+def plan_point(g: Geometry, js: list[int], x: np.ndarray) -> list[list[dict]]:
+    """Every op sequence solving e_js x = y (x at home), best first."""
+    if not js:
+        return [[]]
+    if len(js) > 3:
+        return []
+    if all(not g.rev(j) for j in js):
+        dirs = np.array([g.c.axes[j] for j in js])
+        return [[{"op": "linear", "js": list(js)}]] if np.linalg.matrix_rank(dirs, tol=10 * g.tol) == len(js) else []
+    if len(js) == 1:
+        j = js[0]
+        if g.rev(j) and g.on_axis(x, j):
+            return []
+        return [[{"op": "single", "j": j, "kind": g.c.kinds[j]}]]
+    out = []
+    a, c = js[0], js[-1]
+    if len(js) == 2 and g.rev(a) and g.rev(c):
+        s = g.meet((a, c))
+        if s is not None and g.not_parallel(g.c.axes[a], g.c.axes[c]) and not g.on_axis(x, c):
+            out.append([{"op": "pair", "j": a, "k": c, "s": ("meet", a, c)}])
+    sspec = _invariant_point(g, js[:-1])
+    if sspec is not None:
+        s = g.point(sspec)
+        if not g.rev(c) or (not g.on_axis(s, c) and not g.on_axis(x, c)):
+            step = {"op": "last_dist", "j": c, "kind": g.c.kinds[c], "s": sspec}
+            xs = x if not g.rev(c) else x  # x moves with joint c at run time; at home it is x
+            out += [[step] + rest for rest in plan_point(g, js[:-1], xs)]
+    sspec = _invariant_point(g, js[1:])
+    if sspec is not None:
+        s = g.point(sspec)
+        if not g.rev(a) or not g.on_axis(s, a):
+            out += [[{"op": "first_dist", "j": a, "kind": g.c.kinds[a], "s": sspec}] + rest
+                    for rest in plan_point(g, js[1:], x)]
+    nspec = _invariant_direction(g, js[1:])
+    if nspec is not None and _plane_ok(g, a, nspec):
+        out += [[{"op": "first_plane", "j": a, "kind": g.c.kinds[a], "n": nspec}] + rest
+                for rest in plan_point(g, js[1:], x)]
+    nspec = _invariant_direction(g, js[:-1])
+    if nspec is not None and _plane_ok(g, c, nspec):
+        out += [[{"op": "last_plane", "j": c, "kind": g.c.kinds[c], "n": nspec}] + rest
+                for rest in plan_point(g, js[:-1], x)]
+    return sorted(out, key=_cost)
+
+
+def _cost(ops) -> tuple:
+    b = 1
+    for op in ops:
+        b *= op_branches(op)
+    return (b, len(ops))
+
+
+def _x_spec(g: Geometry, fixed: list[int]):
+    """The point the position joints place: fixed by the joints after them (their common point / an axis point),
+    or the end frame's origin when no joint follows."""
+    if not fixed:
+        return ("home",)
+    return _invariant_point(g, fixed)
+
+
+def _orient_ok(g: Geometry, units: list[list[int]]) -> bool:
+    dirs = [g.c.axes[u[0]] for u in units]
+    if len(dirs) == 3:
+        return g.not_parallel(dirs[0], dirs[1]) and g.not_parallel(dirs[1], dirs[2])
+    if len(dirs) == 2:
+        return g.not_parallel(dirs[0], dirs[1])
+    return len(dirs) == 1
+
+
+# ------------------------------------------------------------------------------------------------ strategies
+def _wrist_at_end(g: Geometry) -> list[Plan]:
+    n = g.c.n
+    plans = []
+    for r in (3, 2, 1, 0):
+        if r > n or n - r > 3:
+            continue
+        tail = list(range(n - r, n))
+        if not all(g.rev(j) for j in tail):
+            continue
+        xspec = _x_spec(g, tail)
+        if xspec is None or (r and not _orient_ok(g, [[j] for j in tail])):
+            continue
+        head = list(range(n - r))
+        for ops in plan_point(g, head, g.point(xspec)):
+            begin = [{"op": "begin", "x": xspec, "lo": 0, "hi": n - 1}] if head else []
+            orient = [{"op": "orient", "units": [[j] for j in tail], "lo": n - r, "hi": n - 1}] if r else []
+            what = {3: "a spherical wrist at the end (the last three axes meet in one point)",
+                    2: "two intersecting axes at the end", 1: "one axis at the end", 0: "no wrist"}[r]
+            plans.append(Plan(begin + ops + orient, False, f"{what}: position of "
+                              f"{_x_text(g, xspec)} by joints {_names(g, head)}, then orientation by joints "
+                              f"{_names(g, tail)}" if head else f"{what}: orientation by joints {_names(g, tail)}"))
+    return plans
+
+
+def _three_parallel(g: Geometry) -> list[Plan]:
+    n = g.c.n
+    plans = []
+    for i in (0, 1):
+        grp = list(range(i, i + 3))
+        if grp[-1] >= n or not all(g.rev(j) for j in grp) or not g.parallel(grp):
+            continue
+        tail = list(range(i + 3, n))
+        if len(tail) > 2 or not all(g.rev(j) for j in tail):
+            continue
+        xspec = _x_spec(g, tail)
+        if xspec is None:
+            continue
+        ops = []
+        if i == 1:
+            nspec = ("dir", grp[0])
+            if not _plane_ok(g, 0, nspec):
+                continue
+            ops += [{"op": "begin", "x": xspec, "lo": 0, "hi": n - 1},
+                    {"op": "first_plane", "j": 0, "kind": g.c.kinds[0], "n": nspec}]
+        units = [grp] + [[j] for j in tail]
+        if not _orient_ok(g, units):
+            continue
+        ops.append({"op": "orient", "units": units, "lo": i, "hi": n - 1})
+        ops += [{"op": "begin", "x": ("on", grp[2]), "lo": grp[0], "hi": grp[2]},
+                {"op": "last_dist", "j": grp[1], "kind": "R", "s": ("on", grp[0])},
+                {"op": "single", "j": grp[0], "kind": "R"},
+                {"op": "group_rest", "j": grp[2], "group": grp}]
+        plans.append(Plan(ops, False, f"three parallel axes {_names(g, grp)}: "
+                          + (f"joint {g.c.joint_names[0]} from the plane normal to them, " if i else "")
+                          + f"the orientation by (their sum, {_names(g, tail) or 'nothing'}), then the planar pair"))
+    return plans
+
+
+def _names(g: Geometry, js) -> str:
+    return ", ".join(g.c.joint_names[j] for j in js)
+
+
+def _x_text(g: Geometry, xspec) -> str:
+    if xspec[0] == "meet":
+        return f"the point where axes {_names(g, xspec[1:])} meet"
+    if xspec[0] == "on":
+        return f"a point on axis {g.c.joint_names[xspec[1]]}"
+    return "the end frame's origin"
+
+
+def find_plan(chain: Chain, tol: float = DEFAULT_GEOMETRY_TOL, check=None) -> Plan:
+    """The best decomposition (fewest branches, then from the base) whose ops pass `check(chain, plan)`."""
+    tried = []
+    for rev, c in ((False, chain), (True, reverse(chain))):
+        for strategy in (_wrist_at_end, _three_parallel):
+            g = Geometry(c, tol)
+            for plan in strategy(g):
+                plan.reversed = rev
+                plan.relations = list(g.used.values())
+                if rev:
+                    plan.strategy = "from the tool (the chain reversed): " + plan.strategy
+                tried.append(plan)
+    tried.sort(key=lambda p: (p.branches, p.reversed, len(p.ops)))
+    for plan in tried:
+        if check is None or check(chain, plan):
+            return plan
+    raise NoClosedForm(refusal(chain, tol))
+
+
+def refusal(chain: Chain, tol: float) -> str:
+    """Why no decomposition fits, naming the axes."""
+    n = chain.n
+    g = Geometry(chain, tol)
+    facts = []
+    for i in range(n - 1):
+        a, b = chain.axes[i], chain.axes[i + 1]
+        if chain.kinds[i] == chain.kinds[i + 1] == "R":
+            dev = parallel_deviation(a, b)
+            dist = line_distance(chain.points[i], a, chain.points[i + 1], b)
+            facts.append(f"{chain.joint_names[i]}/{chain.joint_names[i + 1]}: angle sin {dev:.2e}, distance "
+                         f"{dist:.2e} m")
+    del g
+    return (f"no closed-form decomposition for the {n}-joint chain {chain.name!r} at geometry tolerance {tol:g}: "
+            "it needs the last 3 (or 2, 1) revolute axes to meet in a point with at most 3 joints before them "
+            "(or the same from the base), or three consecutive parallel axes (joints 1-3 or 2-4); neighbouring "
+            "axes: " + "; ".join(facts) + ". Raise --geometry-tol if the axes are meant to be parallel or to meet.")
+
+
+# ------------------------------------------------------------------------------------------------ replay
+def replay(chain: Chain, plan: Plan, q) -> list[float]:
+    """The residual of every op's equation at the true joint values q (0 up to rounding when the op's invariant
+    holds on this chain): the derivation's numeric check of each step."""
+    c = reverse(chain) if plan.reversed else chain
+    qv = list(q)[::-1] if plan.reversed else list(q)
+    g = Geometry(c, 1.0)
+    e = [screw(k, a, p, v) for k, a, p, v in zip(c.kinds, c.axes, c.points, qv, strict=True)]
+    G = c.fk(qv) @ np.linalg.inv(c.home)
+
+    def prod(js):
+        t = np.eye(4)
+        for j in js:
+            t = t @ e[j]
+        return t
+
+    def app(t, x):
+        return t[:3, :3] @ x + t[:3, 3]
+
+    out = []
+    x = y = None
+    for op in plan.ops:
+        kind = op["op"]
+        if kind == "begin":
+            lo, hi = op["lo"], op["hi"]
+            x = g.point(op["x"])
+            gp = np.linalg.inv(prod(range(lo))) @ G @ np.linalg.inv(prod(range(hi + 1, c.n)))
+            y = app(gp, x)
+            out.append(float(np.linalg.norm(y - app(prod(range(lo, hi + 1)), x))))
+        elif kind == "first_plane":
+            n = g.direction(op["n"])
+            y = app(np.linalg.inv(e[op["j"]]), y)
+            out.append(float(abs(np.dot(n, y) - np.dot(n, x))))
+        elif kind == "last_plane":
+            n = g.direction(op["n"])
+            x = app(e[op["j"]], x)
+            out.append(float(abs(np.dot(n, y) - np.dot(n, x))))
+        elif kind == "first_dist":
+            s = g.point(op["s"])
+            y = app(np.linalg.inv(e[op["j"]]), y)
+            out.append(float(abs(np.linalg.norm(y - s) - np.linalg.norm(x - s))))
+        elif kind == "last_dist":
+            s = g.point(op["s"])
+            x = app(e[op["j"]], x)
+            out.append(float(abs(np.linalg.norm(y - s) - np.linalg.norm(x - s))))
+        elif kind == "pair":
+            out.append(float(np.linalg.norm(app(e[op["j"]] @ e[op["k"]], x) - y)))
+        elif kind == "single":
+            out.append(float(np.linalg.norm(app(e[op["j"]], x) - y)))
+        elif kind == "linear":
+            out.append(float(np.linalg.norm(app(prod(op["js"]), x) - y)))
+        elif kind == "orient":
+            lo, hi = op["lo"], op["hi"]
+            rd = (np.linalg.inv(prod(range(lo))) @ G @ np.linalg.inv(prod(range(hi + 1, c.n))))[:3, :3]
+            units = np.eye(3)
+            for u in op["units"]:
+                units = units @ prod(u)[:3, :3]
+            out.append(float(np.max(np.abs(units - rd))))
+        elif kind == "group_rest":
+            out.append(0.0)
+    return out

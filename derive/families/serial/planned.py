@@ -1,0 +1,197 @@
+"""The serial family's IK stages from the geometric planner (derive/families/chain/planner.py): the planner
+reads the DH chain's axes at its default design and finds the decomposition; each op becomes a symbolic stage
+over the pose, the design and the joints solved before it, in the stage kinds dh_serial emits. Each stage is
+then checked against the chain's own FK by the derivation (dh_serial._ik_steps) at sampled designs, so a
+relation that held only at the defaults fails there, with the stage named.
+
+  first/last_plane, first/last_dist (revolute)  -> trig_linear  (subproblems 4 and 3)
+  single (revolute)                             -> rotation2d   (subproblem 1)
+  prismatic ops, orient (one axis)              -> value
+  orient (three axes at the end)                -> wrist        (dh_serial.wrist_stage)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import sympy as sp
+
+from ...identities.dh import chain as dh_chain
+from ..chain.planner import NoClosedForm, find_plan
+from ..chain.robot import Chain
+from .dh_serial import P_POSE, R_POSE, Stage, wrist_stage
+
+SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient"}
+
+
+class PlanError(ValueError):
+    """No decomposition of the planner fits the chain in the serial family's stage kinds."""
+
+
+def _rodrigues(h, q):
+    k = sp.Matrix([[0, -h[2], h[1]], [h[2], 0, -h[0]], [-h[1], h[0], 0]])
+    return sp.eye(3) + sp.sin(q) * k + (1 - sp.cos(q)) * k * k
+
+
+class _Motion:
+    """A rigid motion (R, t) over symbols."""
+
+    def __init__(self, r, t):
+        self.r, self.t = r, t
+
+    def __mul__(self, o):
+        return _Motion(self.r * o.r, self.r * o.t + self.t)
+
+    def inv(self):
+        return _Motion(self.r.T, -self.r.T * self.t)
+
+    def apply(self, x):
+        return self.r * x + self.t
+
+
+def _screw(kind, h, r, q):
+    if kind == "P":
+        return _Motion(sp.eye(3), h * q)
+    rot = _rodrigues(h, q)
+    return _Motion(rot, r - rot * r)
+
+
+def _perp(h):
+    """A unit vector normal to the (constant) axis direction h, exact when h is."""
+    hn = np.array([float(v) for v in h])
+    e = sp.Matrix([1, 0, 0]) if abs(hn[0]) <= min(abs(hn[1]), abs(hn[2])) + 1e-12 else (
+        sp.Matrix([0, 1, 0]) if abs(hn[1]) <= abs(hn[2]) + 1e-12 else sp.Matrix([0, 0, 1]))
+    v = h.cross(e)
+    return sp.simplify(v / sp.sqrt(v.dot(v)))
+
+
+def stages(rows, joints, kinds, design, defaults, convention="standard", names=None):
+    """(stages, strategy) for the DH rows: the planner's decomposition as symbolic stages."""
+    if convention != "standard":
+        raise PlanError("the serial family's stages are built for standard DH tables")
+    ts = dh_chain(rows, convention)
+    zero = {q: 0 for q in joints}
+    frames = [sp.eye(4)] + [sp.simplify(t.subs(zero)) for t in ts]
+    axes = [sp.simplify(frames[i][:3, 2]) for i in range(len(rows))]
+    points = [frames[i][:3, 3] for i in range(len(rows))]
+    home = _Motion(frames[-1][:3, :3], frames[-1][:3, 3])
+    at = dict(zip(design, defaults, strict=True))
+
+    def num(v):
+        return np.array([float(sp.sympify(x).subs(at)) for x in v])
+    numeric = Chain("dh", tuple(names or (str(q) for q in joints)), tuple(kinds),
+                    np.array([num(a) for a in axes]), np.array([num(p) for p in points]),
+                    np.vstack([np.hstack([np.array(frames[-1][:3, :3].subs(at), dtype=float),
+                                          num(frames[-1][:3, 3])[:, None]]), [0, 0, 0, 1]]))
+    try:
+        plan = find_plan(numeric, 1e-9, lambda _c, p: not p.reversed and all(o["op"] in SUPPORTED for o in p.ops)
+                         and all(o["op"] != "orient" or len(o["units"]) in (1, 3) for o in p.ops))
+    except NoClosedForm as exc:
+        raise PlanError(str(exc)) from None
+    target = _Motion(R_POSE, P_POSE) * home.inv()  # the product of the joints' exponentials
+    n = len(rows)
+
+    def point(spec):
+        if spec[0] == "home":
+            return home.t
+        if spec[0] == "on":
+            return points[spec[1]]
+        w = numeric_point(numeric, spec[1:])
+        for f in frames:  # the meeting point as the frame origin it is (exact, design-symbolic)
+            if np.allclose(num(f[:3, 3]), w, atol=1e-9):
+                return f[:3, 3]
+        raise PlanError(f"axes {spec[1:]} meet at {w}, which is no DH frame origin")
+
+    def direction(spec):
+        if spec[0] == "dir":
+            return axes[spec[1]]
+        c = axes[spec[1]].cross(axes[spec[2]])
+        return sp.simplify(c / sp.sqrt(c.dot(c)))
+
+    def prefix(js):
+        m = _Motion(sp.eye(3), sp.zeros(3, 1))
+        for j in js:
+            m = m * _screw(kinds[j], axes[j], points[j], joints[j])
+        return m
+    out = []
+    x = y = None
+    for op in plan.ops:
+        k = op["op"]
+        j = op.get("j")
+        if k == "begin":
+            x = point(op["x"])
+            y = (prefix(range(op["lo"])).inv() * target * prefix(range(op["hi"] + 1, n)).inv()).apply(x)
+            continue
+        if k == "linear":
+            js = op["js"]
+            a = sp.Matrix.hstack(*[axes[i] for i in js])
+            sol = (a.T * a).inv() * a.T * (y - x)
+            out += [Stage("value", (i,), (sol[m],), f"slide {joints[i]}", "the slides add: x + sum q_i h_i = y")
+                    for m, i in enumerate(js)]
+            continue
+        if k == "orient":
+            units = [u[0] for u in op["units"]]
+            rd = (prefix(range(op["lo"])).inv() * target * prefix(range(op["hi"] + 1, n)).inv()).r
+            if len(units) == 1:
+                h = axes[units[0]]
+                w = _perp(h)
+                v = rd * w
+                out.append(Stage("value", (units[0],), (sp.atan2(h.dot(w.cross(v)), w.dot(v)),),
+                                 f"turn {joints[units[0]]} from the rotation", "subproblem 1: rot(h, q) w = R_d w "
+                                 "for w normal to h"))
+            else:
+                lo = op["lo"]
+                m = R_POSE if lo == 0 else ts[lo - 1][:3, :3].T * R_POSE
+                out.append(wrist_stage(list(rows[lo:]), joints[lo:], tuple(m), "spherical wrist from R_6^3 = "
+                                       "(R_3^0)^T R (flip / no flip)" if lo else "spherical wrist from R",
+                                       "kinematic decoupling at the wrist centre" if lo else "three intersecting "
+                                       "axes", tuple(range(lo, n))))
+            continue
+        h, r, q = axes[j], points[j], joints[j]
+        first = k.startswith("first")
+        if kinds[j] == "P":
+            if k == "single":
+                val = h.dot(y - x)
+            else:
+                nv = direction(op["n"]) if "n" in op else None
+                if nv is None:
+                    raise PlanError("a prismatic distance op has no serial stage")
+                val = nv.dot(y - x) / nv.dot(h)
+            out.append(Stage("value", (j,), (val,), f"slide {q}", f"{k}: the slide's component"))
+            if k != "single":
+                y, x = (y - h * q, x) if first else (y, x + h * q)
+            continue
+        if k == "single":
+            e1 = _perp(h)
+            e2 = h.cross(e1)
+            p0, p1 = x - r, y - r
+            out.append(Stage("rotation2d", (j,), (e1.dot(p1), e2.dot(p1), e1.dot(p0), e2.dot(p0)), f"angle {q}",
+                             "subproblem 1: (u, v) = Rot(q) (u0, v0) in the plane normal to the axis"))
+            continue
+        moving, fixed = (y, x) if first else (x, y)
+        p = moving - r
+        hp = h.dot(p)
+        if k.endswith("plane"):
+            nv = direction(op["n"])
+            a, b = nv.dot(p - h * hp), nv.dot(h.cross(p))
+            c = nv.dot(fixed - r) - hp * nv.dot(h)
+            rule = "subproblem 4: n . rot(h, q) p = d (the other joints keep the component along n)"
+        else:
+            s = point(op["s"])
+            p2 = s - r
+            a, b = p2.dot(p - h * hp), p2.dot(h.cross(p))
+            c = (p.dot(p) + p2.dot(p2) - (fixed - s).dot(fixed - s)) / 2 - hp * h.dot(p2)
+            rule = "subproblem 3: |rot(h, q) p1 - p2| = d (the other joints keep the distance to s)"
+        # A cos t + B sin t = C with t = -q (first: the joint is undone from y) or t = q
+        out.append(Stage("trig_linear", (j,), (a, -b if first else b, -c), f"angle {q} ({'two roots'})", rule))
+        e = _screw("R", h, r, q)
+        if first:
+            y = e.inv().apply(y)
+        else:
+            x = e.apply(x)
+    return out, plan.strategy
+
+
+def numeric_point(c: Chain, js) -> np.ndarray:
+    from ..chain.geometry import common_point
+
+    return common_point([c.points[j] for j in js], [c.axes[j] for j in js])[0]

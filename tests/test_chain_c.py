@@ -1,0 +1,525 @@
+"""The chain family's C solver (templates/c/chain.h.jinja, chain.c.jinja) against its Python solver
+(templates/python/chain.py.jinja), both rendered from the same derivation of two test arms: a PUMA-type 6R
+(spherical wrist: position of the wrist centre, then the orientation) and a UR5e-type 6R (three parallel axes).
+
+The C interprets the same plan as the Python module, so the two must agree on everything: the same solutions in
+the same order (to 1e-9 rad, rounding and the least-squares polish aside), the same flags and status codes, the
+same residuals; FK, its flag and manipulability, and the Jacobian to 1e-12. The C compiles with the strict flag
+set (tests/cbuild.py) and runs clean under ASan/UBSan on random, singular and hostile inputs.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import math
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+from cbuild import SANITIZE_FLAGS, compile_executable, compile_shared, compiler, load
+from seeding import case_rng
+
+from derive import own_robot, pipeline
+from derive.catalogue import load as load_spec
+from derive.render import header_lines, render
+
+SPECS = {
+    "puma_t": """family = "chain"
+name = "puma_t"
+title = "PUMA-type test arm"
+convention = "standard"
+[[joint]]
+name = "q1"
+alpha = "pi/2"
+d = 0.6718
+[[joint]]
+name = "q2"
+a = 0.4318
+[[joint]]
+name = "q3"
+a = 0.0203
+alpha = "-pi/2"
+d = 0.15005
+[[joint]]
+name = "q4"
+alpha = "pi/2"
+d = 0.4318
+[[joint]]
+name = "q5"
+alpha = "-pi/2"
+[[joint]]
+name = "q6"
+d = 0.05
+""",
+    "ur_t": """family = "chain"
+name = "ur_t"
+title = "UR5e-type test arm"
+convention = "standard"
+[[joint]]
+name = "q1"
+alpha = "pi/2"
+d = 0.1625
+[[joint]]
+name = "q2"
+a = -0.425
+[[joint]]
+name = "q3"
+a = -0.3922
+[[joint]]
+name = "q4"
+alpha = "pi/2"
+d = 0.1333
+[[joint]]
+name = "q5"
+alpha = "-pi/2"
+d = 0.0997
+[[joint]]
+name = "q6"
+d = 0.0996
+""",
+}
+NAMES = tuple(SPECS)
+WRIST = 4  # q5: the middle wrist joint of both arms (0: the wrist singularity)
+
+WK_OK, WK_ERR_NULL, WK_ERR_NONFINITE, WK_ERR_DESIGN, WK_ERR_RANGE = 0, -1, -2, -3, -4
+STATUS_OK, STATUS_UNREACHABLE, STATUS_INDETERMINATE = 0, 1, 3
+FLAG_SINGULAR_INVERSE, FLAG_INDETERMINATE, FLAG_PROJECTED = 1, 16, 32
+D = ctypes.POINTER(ctypes.c_double)
+
+
+# ------------------------------------------------------------------------------------------------ rendering
+@pytest.fixture(scope="module")
+def rendered(tmp_path_factory):
+    """name -> (Python module, folder of its C): both rendered from one derivation, as pipeline / own_robot do."""
+    out = tmp_path_factory.mktemp("chain_c")
+    hdr = header_lines()
+    (out / "python").mkdir()
+    (out / "c").mkdir()
+    (out / "python" / "_wristkin_runtime.py").write_text(render("python/_runtime.py.jinja", header=hdr))
+    (out / "c" / "wristkin_common.h").write_text(render("c/wristkin_common.h.jinja", header=hdr))
+    (out / "c" / "wristkin_runtime.c").write_text(render("c/wristkin_runtime.c.jinja", header=hdr))
+    mods = {}
+    for name, text in SPECS.items():
+        spec = out / f"{name}.toml"
+        spec.write_text(text)
+        mech = load_spec(spec)
+        mech.derive()
+        ctx = pipeline._context(mech, [])
+        t_py, t_h, t_c = pipeline._templates(name, mech)
+        assert (t_h, t_c) == ("c/chain.h.jinja", "c/chain.c.jinja")
+        (out / "python" / f"{name}.py").write_text(render(t_py, **ctx))
+        h, c = render(t_h, **ctx), render(t_c, **ctx)
+        assert (h, c) == (render(t_h, **ctx), render(t_c, **ctx))  # byte-stable
+        (out / "c" / f"{name}.h").write_text(h)
+        (out / "c" / f"{name}.c").write_text(c)
+        mods[name] = own_robot.import_solver(out, name)
+    return {name: (mods[name], out / "c") for name in NAMES}
+
+
+class ChainC:
+    """ctypes binding of one rendered chain solver (strict flags, -O2)."""
+
+    def __init__(self, py, cdir: Path):
+        name = py.NAME
+        so = compile_shared([cdir / f"{name}.c", cdir / "wristkin_runtime.c"], [cdir], f"chain_{name}")
+        self.lib = load(so)
+        self.name, self.n, self.max_ik = name, py.N_JOINTS, py.MAX_IK
+
+        def solutions(max_n, nv):
+            class S(ctypes.Structure):
+                _fields_ = [("count", ctypes.c_int), ("status", ctypes.c_int), ("valid", ctypes.c_int * max_n),
+                            ("flags", ctypes.c_uint * max_n), ("values", (ctypes.c_double * nv) * max_n),
+                            ("aux", (ctypes.c_double * 1) * max_n)]
+            return S
+        self.IK, self.FK = solutions(py.MAX_IK, py.N_JOINTS), solutions(1, 12)
+
+        class Design(ctypes.Structure):
+            _fields_ = [("params", ctypes.c_double * max(1, len(py.DESIGN_NAMES))), ("base", ctypes.c_double * 12),
+                        ("tool", ctypes.c_double * 12)]
+        self.Design = Design
+        dp, ik, fk = ctypes.POINTER(Design), ctypes.POINTER(self.IK), ctypes.POINTER(self.FK)
+        for verb, args in (("design_init", [D, dp]), ("design_set_frames", [dp, D, D]), ("ik", [D, dp, ik]),
+                           ("ik_near", [D, dp, D, ik]), ("fk", [D, dp, fk]), ("fk_matrix", [D, dp, D]),
+                           ("jacobian", [D, dp, D]), ("ik_batch", [ctypes.c_size_t, D, dp, ik]),
+                           ("fk_batch", [ctypes.c_size_t, D, dp, fk]), ("select_ik", [ik, D, D, D])):
+            self.fn(verb).argtypes = args
+
+    def fn(self, verb):
+        return getattr(self.lib, f"wk_{self.name}_{verb}")
+
+    @staticmethod
+    def ptr(a):
+        return None if a is None else np.ascontiguousarray(a, dtype=float).ctypes.data_as(D)
+
+    def design(self, base=None, tool=None):
+        d = self.Design()
+        rc = self.fn("design_init")(None, ctypes.byref(d))
+        if rc == WK_OK and (base is not None or tool is not None):
+            rows = [None if m is None else np.ascontiguousarray(np.asarray(m, float)[:3].ravel()) for m in (base, tool)]
+            rc = self.fn("design_set_frames")(ctypes.byref(d), self.ptr(rows[0]), self.ptr(rows[1]))
+        return rc, d
+
+    def ik(self, pose, design=None, previous=None):
+        p = np.ascontiguousarray(np.asarray(pose, float)[:3].ravel())
+        out = self.IK()
+        dp = None if design is None else ctypes.byref(design)
+        if previous is None:
+            rc = self.fn("ik")(self.ptr(p), dp, ctypes.byref(out))
+        else:
+            prev = np.ascontiguousarray(previous, dtype=float)
+            rc = self.fn("ik_near")(self.ptr(p), dp, self.ptr(prev), ctypes.byref(out))
+        return rc, out
+
+    def fk(self, q, design=None):
+        out = self.FK()
+        rc = self.fn("fk")(self.ptr(np.asarray(q, float)), None if design is None else ctypes.byref(design),
+                           ctypes.byref(out))
+        return rc, out
+
+    def fk_matrix(self, q, design=None):
+        o = np.zeros(12)
+        rc = self.fn("fk_matrix")(self.ptr(np.asarray(q, float)), None if design is None else ctypes.byref(design),
+                                  o.ctypes.data_as(D))
+        return rc, np.vstack([o.reshape(3, 4), [0.0, 0.0, 0.0, 1.0]])
+
+    def jacobian(self, q, design=None):
+        o = np.zeros(6 * self.n)
+        rc = self.fn("jacobian")(self.ptr(np.asarray(q, float)), None if design is None else ctypes.byref(design),
+                                 o.ctypes.data_as(D))
+        return rc, o.reshape(6, self.n)
+
+
+@pytest.fixture(scope="module")
+def solvers(rendered):
+    return {name: (py, ChainC(py, cdir)) for name, (py, cdir) in rendered.items()}
+
+
+# ------------------------------------------------------------------------------------------------ helpers
+def _gap(a, b, kinds) -> float:
+    return max((abs(math.remainder(x - y, 2 * math.pi)) if k == "R" else abs(x - y))
+               for x, y, k in zip(a, b, kinds, strict=True))
+
+
+def _joints(rng, py):
+    return np.array([rng.uniform(-math.pi, math.pi) if k == "R" else rng.uniform(-0.5, 0.5) for k in py.JOINT_KINDS])
+
+
+def _frame(rng):
+    """A random rigid transform (4x4)."""
+    x, y, z, w = rng.normal(size=4)
+    n = math.sqrt(x * x + y * y + z * z + w * w)
+    x, y, z, w = x / n, y / n, z / n, w / n
+    m = np.eye(4)
+    m[:3, :3] = [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                 [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                 [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
+    m[:3, 3] = rng.uniform(-0.3, 0.3, 3)
+    return m
+
+
+def _assert_same(py, s, c_result, what=""):
+    """The C result equals the Python Solutions: status, and row by row (same order) values, flags, residuals."""
+    rc, o = c_result
+    worst = 0.0
+    assert rc == WK_OK, what
+    assert o.status == s.status, f"{what}: status {o.status} != {s.status}"
+    assert o.count == s.count, f"{what}: count {o.count} != {s.count}"
+    for k in range(py.MAX_IK):
+        assert bool(o.valid[k]) == bool(s.valid[k]), what
+        if not s.valid[k]:
+            assert int(o.flags[k]) == 0 and all(math.isnan(v) for v in o.values[k]), what
+            continue
+        gap = _gap(s.values[k], list(o.values[k]), py.JOINT_KINDS)
+        assert gap <= 1e-9, f"{what}: solution {k} differs by {gap:.3g}"
+        worst = max(worst, gap)
+        assert int(o.flags[k]) == int(s.flags[k]), f"{what}: flags of {k}: {o.flags[k]} != {s.flags[k]}"
+        assert o.aux[k][0] <= 1e-9 and abs(o.aux[k][0] - s.aux[k, 0]) <= 1e-10, what  # the FK residuals
+    return worst
+
+
+# ------------------------------------------------------------------------------------------------ FK, Jacobian
+@pytest.mark.parametrize("name", NAMES)
+def test_fk_and_jacobian_equal_python(solvers, name):
+    py, c = solvers[name]
+    rng = case_rng(9101)
+    worst = 0.0
+    for i in range(150):
+        q = _joints(rng, py) * (1.0 if i % 5 else 7.0)  # unwrapped angles too
+        if i % 3 == 0:  # run-time base and tool frames
+            b, t = _frame(rng), _frame(rng)
+            dpy = py.make_design(None, base=b, tool=t)
+            rc, dc = c.design(b, t)
+            assert rc == WK_OK
+        else:
+            dpy, dc = None, None
+        rc, t_c = c.fk_matrix(q, dc)
+        assert rc == WK_OK
+        rc, j_c = c.jacobian(q, dc)
+        assert rc == WK_OK
+        f = py.fk(q, dpy)
+        rc, fc = c.fk(q, dc)
+        assert rc == WK_OK and fc.count == 1 and fc.status == STATUS_OK
+        worst = max(worst, float(np.max(np.abs(t_c - py.fk_matrix(q, dpy)))),
+                    float(np.max(np.abs(j_c - py.jacobian(q, dpy)))),
+                    float(np.max(np.abs(np.array(fc.values[0][:]) - f.values[0]))), abs(fc.aux[0][0] - f.aux[0, 0]))
+        assert int(fc.flags[0]) == int(f.flags[0])
+    assert worst <= 1e-12, worst
+
+
+# ------------------------------------------------------------------------------------------------ IK
+@pytest.mark.parametrize("name", NAMES)
+def test_ik_equals_python_on_random_poses(solvers, name):
+    """Seeded random configurations (a third with `previous`, a fifth with run-time frames): the same solution
+    sets in the same order, flags, residuals and status."""
+    py, c = solvers[name]
+    rng = case_rng(9102)
+    worst, counts = 0.0, {}
+    for i in range(300):
+        q = _joints(rng, py)
+        if i % 5 == 0:
+            b, t = _frame(rng), _frame(rng)
+            dpy = py.make_design(None, base=b, tool=t)
+            rc, dc = c.design(b, t)
+            assert rc == WK_OK
+        else:
+            dpy, dc = None, None
+        pose = py.fk_matrix(q, dpy)
+        prev = None if i % 3 else q + rng.normal(0.0, 0.05, py.N_JOINTS)
+        s = py.ik(pose, dpy, prev)
+        worst = max(worst, _assert_same(py, s, c.ik(pose, dc, prev), f"{name} pose {i}"))
+        counts[s.count] = counts.get(s.count, 0) + 1
+        assert any(_gap(v, q, py.JOINT_KINDS) < 1e-6 for v in s)  # the generating joints are among them
+    assert counts.get(8, 0) > 150, counts  # most random poses of both arms have all eight sets
+    assert worst <= 1e-9
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_singular_wrist_is_one_flagged_family(solvers, name):
+    """q5 = 0: the two wrist branches of the generating arm configuration merge into one family, returned once
+    (flagged singular and indeterminate, status indeterminate) with its free angle at 0 (the UR type: the angle
+    of the parallel group, so the generating arm's group sum is set to 0 here; at another sum the Python
+    representative need not reach the wrist point), equal to Python's; with `previous`, equal to Python's."""
+    py, c = solvers[name]
+    rng = case_rng(9103)
+    for i in range(30):
+        q = _joints(rng, py)
+        q[WRIST] = 0.0
+        if name == "ur_t":
+            q[3] = math.remainder(-q[1] - q[2], 2 * math.pi)
+        pose = py.fk_matrix(q)
+        s = py.ik(pose)
+        _assert_same(py, s, c.ik(pose), f"{name} singular {i}")
+        assert s.status == STATUS_INDETERMINATE
+        family = [k for k in range(py.MAX_IK) if s.valid[k] and s.flags[k] & FLAG_INDETERMINATE]
+        assert family and all(s.flags[k] & FLAG_SINGULAR_INVERSE for k in family)
+        arms = {tuple(np.round(s.values[k][:4], 6)) for k in family}
+        assert len(arms) == len(family)  # one member per arm configuration
+        for k in family:
+            assert abs(math.remainder(s.values[k][WRIST], 2 * math.pi)) < 1e-9
+            assert np.max(np.abs(c.fk_matrix(s.values[k])[1] - pose)) <= 1e-9
+        prev = q + rng.normal(0.0, 0.05, py.N_JOINTS)
+        _assert_same(py, py.ik(pose, None, prev), c.ik(pose, None, prev), f"{name} singular {i} near")
+        rc, fc = c.fk(q)
+        assert rc == WK_OK and fc.flags[0] & FLAG_SINGULAR_INVERSE and py.fk(q).flags[0] & FLAG_SINGULAR_INVERSE
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_unreachable_and_invalid_inputs(solvers, name):
+    py, c = solvers[name]
+    rng = case_rng(9104)
+    q = _joints(rng, py)
+    pose = py.fk_matrix(q)
+
+    far = np.eye(4)
+    far[:3, 3] = (3.0, -2.0, 1.0)  # beyond the arm's reach
+    assert py.ik(far).status == STATUS_UNREACHABLE
+    rc, o = c.ik(far)
+    assert (rc, o.status, o.count) == (WK_OK, STATUS_UNREACHABLE, 0)
+    assert not any(o.valid) and all(math.isnan(v) for row in o.values for v in row)
+
+    for bad_value in (math.nan, math.inf):
+        bad = pose.copy()
+        bad[1, 3] = bad_value
+        rc, o = c.ik(bad)
+        assert (rc, o.status, o.count) == (WK_ERR_NONFINITE, WK_ERR_NONFINITE, 0)
+        assert all(math.isnan(v) for row in o.values for v in row)
+    rc, o = c.ik(pose, None, np.full(py.N_JOINTS, math.nan))
+    assert (rc, o.count) == (WK_ERR_NONFINITE, 0)
+    rc, _ = c.fk(np.full(py.N_JOINTS, math.inf))
+    assert rc == WK_ERR_NONFINITE
+    assert c.fk_matrix(np.full(py.N_JOINTS, math.nan))[0] == WK_ERR_NONFINITE
+
+    skew = pose.copy()
+    skew[:3, :3] *= 1.01  # not a rotation
+    assert c.ik(skew)[0] == WK_ERR_RANGE
+    huge = pose.copy()
+    huge[0, 3] = 2e6  # beyond LENGTH_MAX
+    assert c.ik(huge)[0] == WK_ERR_RANGE
+
+    # a rotation a little off SO(3) is projected and flagged, as in Python
+    near = pose.copy()
+    near[:3, :3] += rng.normal(0.0, 1e-8, (3, 3))
+    s = py.ik(near)
+    _assert_same(py, s, c.ik(near), "projected")
+    assert s.count and all(s.flags[k] & FLAG_PROJECTED for k in range(py.MAX_IK) if s.valid[k])
+
+    # NULL pointers and bad designs
+    out = c.IK()
+    assert c.fn("ik")(None, None, ctypes.byref(out)) == WK_ERR_NULL and out.count == 0
+    assert c.fn("ik")(c.ptr(pose[:3].ravel()), None, None) == WK_ERR_NULL
+    assert c.fn("design_init")(None, None) == WK_ERR_NULL
+    rc, d = c.design()
+    assert rc == WK_OK
+    frame = np.eye(4)[:3].ravel().copy()
+    frame[5] = math.nan
+    assert c.fn("design_set_frames")(ctypes.byref(d), c.ptr(frame), None) == WK_ERR_NONFINITE
+    frame[5] = 1.5  # not a rotation
+    assert c.fn("design_set_frames")(ctypes.byref(d), None, c.ptr(frame)) == WK_ERR_DESIGN
+    assert list(d.base) == list(np.eye(4)[:3].ravel())  # unchanged on error
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_batch_and_select_equal_python(solvers, name):
+    py, c = solvers[name]
+    rng = case_rng(9105)
+    qs = np.array([_joints(rng, py) for _ in range(20)])
+    fks = (c.FK * len(qs))()
+    assert c.fn("fk_batch")(len(qs), c.ptr(qs.ravel()), None, fks) == WK_OK
+    poses = np.array([list(f.values[0]) for f in fks])
+    for q, row in zip(qs, poses, strict=True):
+        assert np.max(np.abs(row - py.fk_matrix(q)[:3].ravel())) <= 1e-12
+    iks = (c.IK * len(qs))()
+    assert c.fn("ik_batch")(len(qs), c.ptr(poses.ravel()), None, iks) == WK_OK
+    for q, row, o in zip(qs, poses, iks, strict=True):
+        pose = np.vstack([row.reshape(3, 4), [0.0, 0.0, 0.0, 1.0]])
+        s = py.ik(pose)
+        _assert_same(py, s, (WK_OK, o), "batch")
+        prev = q + 0.01
+        assert c.fn("select_ik")(ctypes.byref(o), c.ptr(prev), None, None) == py.select(s, prev)
+        assert c.fn("select_ik")(ctypes.byref(o), None, None, None) == py.select(s)
+        lo, hi = np.full(py.N_JOINTS, -2.0), np.full(py.N_JOINTS, 2.0)
+        assert (c.fn("select_ik")(ctypes.byref(o), c.ptr(prev), c.ptr(lo), c.ptr(hi))
+                == py.select(s, prev, lower=lo, upper=hi))
+
+
+# ------------------------------------------------------------------------------------------------ sanitizers
+SANITIZE_DRIVER = r"""
+/* Sanitizer driver for a generated chain solver: random, singular and hostile inputs; every returned set must
+   reproduce the pose. Compile with -DMECH=name -DMECH_H='"name.h"' -DN=joints -DMAX_IK=sets (-DFREE=index of the
+   free joint, if any). */
+#include <math.h>
+#include <stdio.h>
+#include MECH_H
+
+#define CAT3(a, b, c) a##b##c
+#define FN(mech, verb) CAT3(wk_, mech, verb)
+#define TYPE(mech, suffix) CAT3(wk_, mech, suffix)
+
+static unsigned long long state = 88172645463325252ULL;
+static double uniform(double lo, double hi)
+{
+    state ^= state << 13; state ^= state >> 7; state ^= state << 17;
+    return lo + (hi - lo) * (double)(state >> 11) / 9007199254740992.0;
+}
+
+/* a random rotation (unit quaternion) and translation as the top 3x4 of a frame */
+static void random_frame(double *f)
+{
+    double x = uniform(-1, 1), y = uniform(-1, 1), z = uniform(-1, 1), w = uniform(-1, 1);
+    const double n = sqrt(x * x + y * y + z * z + w * w);
+    x /= n; y /= n; z /= n; w /= n;
+    f[0] = 1 - 2 * (y * y + z * z); f[1] = 2 * (x * y - z * w); f[2] = 2 * (x * z + y * w);
+    f[4] = 2 * (x * y + z * w); f[5] = 1 - 2 * (x * x + z * z); f[6] = 2 * (y * z - x * w);
+    f[8] = 2 * (x * z - y * w); f[9] = 2 * (y * z + x * w); f[10] = 1 - 2 * (x * x + y * y);
+    f[3] = uniform(-0.3, 0.3); f[7] = uniform(-0.3, 0.3); f[11] = uniform(-0.3, 0.3);
+}
+
+int main(void)
+{
+    TYPE(MECH, _design) d;
+    TYPE(MECH, _ik_solutions) ik, ikb[3];
+    TYPE(MECH, _fk_solutions) fk, fkb[3];
+    const double special[] = {0.0, 1.5707963267948966, -1.5707963267948966, 3.141592653589793};
+    double q[N], jac[6 * N], rows[3 * N], poses[36], t[12], base[12], tool[12], params[1] = {0.4};
+    long checksum = 0;
+    int i, j, k;
+    if (FN(MECH, _design_init)(params, &d) != WK_OK) return 1;
+    for (i = 0; i < 1500; ++i) {
+        if (i % 100 == 50) {
+            random_frame(base);
+            random_frame(tool);
+            if (FN(MECH, _design_set_frames)(&d, base, i % 200 == 50 ? tool : NULL) != WK_OK) return 2;
+        }
+        for (j = 0; j < N; ++j) q[j] = (i % 3 == 0) ? special[(i + j) % 4] : uniform(-3.2, 3.2);
+#if N > 4
+        if (i % 7 == 0) q[4] = 0.0; /* the wrist singularity of a 6R arm */
+#endif
+#ifdef FREE
+        q[FREE] = params[0]; /* a redundant chain: its free joint at the design's value */
+#endif
+        if (FN(MECH, _fk)(q, &d, &fk) != WK_OK) return 3;
+        checksum += FN(MECH, _ik)(fk.values[0], &d, &ik) + ik.count;
+        /* a generic pose FK made has its solutions (a special or singular one may lose its family: see the
+           Python module) */
+        if (ik.count > MAX_IK || (ik.count < 1 && i % 3 != 0 && i % 7 != 0)) return 4;
+        for (k = 0; k < MAX_IK; ++k) {
+            if (!ik.valid[k]) continue;
+            if (FN(MECH, _fk_matrix)(ik.values[k], &d, t) != WK_OK) return 5;
+            for (j = 0; j < 12; ++j)
+                if (!(fabs(t[j] - fk.values[0][j]) <= 1e-8)) return 6;
+        }
+        checksum += FN(MECH, _ik_near)(fk.values[0], &d, q, &ik) + ik.count;
+        checksum += FN(MECH, _select_ik)(&ik, q, NULL, NULL) + FN(MECH, _select_ik)(&ik, NULL, NULL, NULL);
+        checksum += FN(MECH, _jacobian)(q, &d, jac);
+        if (i % 50 == 0) {
+            double bad[12];
+            for (j = 0; j < 12; ++j) bad[j] = fk.values[0][j];
+            bad[i % 12] = (i % 100 == 0) ? NAN : INFINITY;
+            checksum += FN(MECH, _ik)(bad, &d, &ik);
+            bad[i % 12] = 0.3; /* not a rotation any more (or a moved position) */
+            checksum += FN(MECH, _ik)(bad, &d, &ik) + ik.count;
+            for (j = 0; j < 12; ++j) bad[j] = fk.values[0][j];
+            bad[3] = 5.0; /* out of reach */
+            checksum += FN(MECH, _ik)(bad, &d, &ik) + ik.count + ik.status;
+            bad[3] = 3e6; /* beyond the length limit */
+            checksum += FN(MECH, _ik)(bad, &d, &ik);
+        }
+    }
+    for (i = 0; i < 3 * N; ++i) rows[i] = uniform(-1.0, 1.0);
+    checksum += FN(MECH, _fk_batch)(3, rows, NULL, fkb);
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 12; ++j) poses[12 * i + j] = fkb[i].values[0][j];
+    checksum += FN(MECH, _ik_batch)(3, poses, NULL, ikb);
+    checksum += FN(MECH, _ik)(NULL, NULL, &ik) + FN(MECH, _fk)(NULL, NULL, &fk) + FN(MECH, _ik)(poses, NULL, NULL);
+    checksum += FN(MECH, _ik_batch)(0, NULL, NULL, NULL) + FN(MECH, _design_init)(NULL, NULL);
+    checksum += FN(MECH, _design_set_frames)(NULL, NULL, NULL) + FN(MECH, _design_set_frames)(&d, NULL, NULL);
+    q[0] = NAN;
+    checksum += FN(MECH, _ik_near)(poses, NULL, q, &ik) + FN(MECH, _jacobian)(q, NULL, jac);
+    printf("checksum %ld\n", checksum);
+    return 0;
+}
+"""
+
+
+def _sanitizer_available() -> bool:
+    probe = subprocess.run([compiler(), "-fsanitize=address,undefined", "-x", "c", "-", "-o", "/dev/null"],
+                           input="int main(void){return 0;}", capture_output=True, text=True)
+    return probe.returncode == 0
+
+
+@pytest.mark.skipif(not _sanitizer_available(), reason="compiler has no ASan/UBSan runtime")
+@pytest.mark.parametrize("name", NAMES)
+def test_clean_under_asan_ubsan(rendered, name):
+    py, cdir = rendered[name]
+    driver = cdir / "chain_sanitize.c"
+    driver.write_text(SANITIZE_DRIVER)
+    flags = [*SANITIZE_FLAGS, f"-DMECH={name}", f'-DMECH_H="{name}.h"', f"-DN={py.N_JOINTS}",
+             f"-DMAX_IK={py.MAX_IK}"]
+    exe = compile_executable([driver, cdir / f"{name}.c", cdir / "wristkin_runtime.c"], [cdir],
+                             f"chain_{name}_sanitize", extra_flags=flags)
+    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300,
+                         env={"ASAN_OPTIONS": "detect_leaks=1:abort_on_error=1",
+                              "UBSAN_OPTIONS": "halt_on_error=1:print_stacktrace=1"})
+    assert run.returncode == 0, (run.returncode, run.stderr[-4000:])
+    assert "runtime error" not in run.stderr and "AddressSanitizer" not in run.stderr

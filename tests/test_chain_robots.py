@@ -1,0 +1,424 @@
+"""Bring your own robot: classic arms written in three formats (tests/robots/: URDF, DH table, POE spec) go
+through `wristkin derive` and the emitted solvers are checked against the independent numeric reference
+(tests/reference/chain.py: its own URDF / DH / POE readers and a multistart Levenberg-Marquardt IK).
+
+Tolerances: FK and Jacobian agree to 1e-12 x the robot's size (two products of the same rigid motions in a
+different order: rounding only); IK sets reproduce the pose to 1e-9 (IK_VERIFY_TOL, the solver's own
+acceptance) and equal the reference's to 1e-6 rad (the reference deduplicates at 1e-6 and converges to 1e-10 in
+the pose, so its joints are good to ~1e-10 / sigma_min; poses are drawn away from singularities by requiring
+sigma_min / sigma_max > 1e-3).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from reference import chain as ref
+from seeding import case_rng
+
+from derive import own_robot
+
+ROBOTS = Path(__file__).parent / "robots"
+FREE = {"iiwa14": "a3"}  # the redundant arm's joint held as a run-time parameter
+SIX = ("kr6", "irb120", "tx2_60", "ur5e", "lrmate")
+ALL = SIX + ("youbot", "iiwa14")
+FORMATS = ("urdf", "dh", "poe")
+_CACHE: dict = {}
+
+
+def _file(robot: str, fmt: str) -> Path:
+    return ROBOTS / robot / (f"{robot}.urdf" if fmt == "urdf" else f"{robot}_{fmt}.toml")
+
+
+def solver(robot: str, fmt: str = "urdf", **options):
+    """The solver `wristkin derive` writes for the robot's description (derived once per process)."""
+    key = (robot, fmt, tuple(sorted(options.items())))
+    if key not in _CACHE:
+        import tempfile
+
+        out = Path(tempfile.mkdtemp(prefix=f"wk_{robot}_{fmt}_"))
+        name = f"{robot}_{fmt}_solver"
+        own_robot.derive(_file(robot, fmt), out, name=name, free=FREE.get(robot), progress=lambda _: None,
+                         **options)
+        _CACHE[key] = (own_robot.import_solver(out, name), out)
+    return _CACHE[key][0]
+
+
+def reference(robot: str, fmt: str = "urdf"):
+    return ref.load(_file(robot, fmt))
+
+
+def _design(m, q):
+    return [q[m._FREE]] if m.DESIGN_NAMES else None
+
+
+def _gap(a, b, kinds) -> float:
+    return max((abs(math.remainder(x - y, 2 * math.pi)) if k == "R" else abs(x - y)) for x, y, k in
+               zip(a, b, kinds, strict=False))
+
+
+def _regular_joints(m, rng, margin=1e-3):
+    """Random joints (uniform in (-pi, pi]) whose Jacobian has sigma_min / sigma_max > margin."""
+    while True:
+        q = rng.uniform(-math.pi, math.pi, m.N_JOINTS)
+        s = np.linalg.svd(m.jacobian(q, _design(m, q)), compute_uv=False)
+        if s[-1] / s[0] > margin:
+            return q
+
+
+def _size(m) -> float:
+    return max(1.0, float(m.SCALE))
+
+
+# ------------------------------------------------------------------------------------------------ forward
+@pytest.mark.parametrize("fmt", FORMATS)
+@pytest.mark.parametrize("robot", ALL)
+def test_fk_and_jacobian_equal_the_reference(robot, fmt):
+    m, r = solver(robot, fmt), reference(robot, fmt)
+    rng = case_rng(11)
+    for _ in range(20):
+        q = rng.uniform(-math.pi, math.pi, m.N_JOINTS)
+        d = _design(m, q)
+        np.testing.assert_allclose(m.fk_matrix(q, d), r(q), atol=1e-12 * _size(m))
+        np.testing.assert_allclose(m.jacobian(q, d), r.jacobian(q), atol=1e-12 * _size(m))
+
+
+# ------------------------------------------------------------------------------------------------ inverse
+@pytest.mark.parametrize("fmt", FORMATS)
+@pytest.mark.parametrize("robot", ALL)
+def test_ik_contains_the_generating_joints_and_every_set_reproduces_the_pose(robot, fmt):
+    m = solver(robot, fmt)
+    rng = case_rng(12)
+    for _ in range(40):
+        q = rng.uniform(-math.pi, math.pi, m.N_JOINTS)
+        d = _design(m, q)
+        T = m.fk_matrix(q, d)
+        sol = m.ik(T, d)
+        assert sol.status in (m.STATUS_OK, m.STATUS_INDETERMINATE), sol.reason
+        assert min(_gap(v, q, m.JOINT_KINDS) for v in sol) < 1e-7
+        for v in sol:
+            assert np.max(np.abs(m.fk_matrix(v, d) - T)) <= m.IK_VERIFY_TOL
+
+
+@pytest.mark.parametrize("robot", ALL)
+def test_ik_sets_equal_the_multistart_reference(robot):
+    """None missed, none spurious: the closed form's sets equal every solution the numeric reference finds."""
+    m, r = solver(robot), reference(robot)
+    rng = case_rng(13)
+    for k in range(3):
+        q = _regular_joints(m, rng)
+        d = _design(m, q)
+        T = m.fk_matrix(q, d)
+        fixed = {m._FREE: q[m._FREE]} if m._FREE >= 0 else None
+        found = ref.ik_all(r, m.N_JOINTS, T, fixed=fixed, seed=k)
+        ours = list(m.ik(T, d))
+        assert len(ours) == len(found), (robot, len(ours), len(found))
+        for v in found:
+            assert min(_gap(v, w, m.JOINT_KINDS) for w in ours) < 1e-6
+
+
+@pytest.mark.parametrize("robot", SIX + ("youbot",))
+def test_three_formats_give_the_same_solution_sets(robot):
+    ms = [solver(robot, f) for f in FORMATS]
+    rng = case_rng(14)
+    for _ in range(10):
+        q = rng.uniform(-math.pi, math.pi, ms[0].N_JOINTS)
+        T = ms[0].fk_matrix(q)
+        sets = [sorted(tuple(np.round(v, 7)) for v in m.ik(T)) for m in ms]
+        assert len(sets[0]) == len(sets[1]) == len(sets[2])
+        for a in sets[0]:
+            for other in sets[1:]:
+                assert min(_gap(a, b, ms[0].JOINT_KINDS) for b in other) < 1e-7
+
+
+def test_the_decomposition_is_read_from_the_axes():
+    assert "spherical wrist" in solver("kr6").DECOMPOSITION
+    assert "three parallel axes" in solver("ur5e").DECOMPOSITION
+    assert solver("kr6").MAX_IK == solver("ur5e").MAX_IK == 8
+    assert solver("youbot").MAX_IK == 4
+    assert "5 of the 6 pose components" in solver("youbot").CONTROLS
+
+
+# ------------------------------------------------------------------------------------------------ partial / redundant
+def test_a_five_joint_arm_reports_poses_outside_what_it_controls():
+    m = solver("youbot")
+    rng = case_rng(15)
+    q = rng.uniform(-1.0, 1.0, 5)
+    T = m.fk_matrix(q)
+    tilted = T.copy()
+    c, s = math.cos(0.3), math.sin(0.3)
+    tilted[:3, :3] = T[:3, :3] @ np.array([[1, 0, 0], [0, c, -s], [0, s, c]])  # a roll the arm cannot make
+    out = m.ik(tilted)
+    assert out.count == 0 and out.status == m.STATUS_UNREACHABLE
+    assert "controls" in out.reason
+
+
+def test_a_redundant_arm_takes_its_free_joint_per_call():
+    m = solver("iiwa14")
+    assert m.DESIGN_NAMES == ("a3",)
+    rng = case_rng(16)
+    q = rng.uniform(-2.0, 2.0, 7)
+    T = m.fk_matrix(q, [q[2]])
+    for v in (q[2], q[2] + 0.4):
+        sol = m.ik(T, [v])
+        assert all(abs(s[2] - math.remainder(v, 2 * math.pi)) < 1e-12 for s in sol)
+        for s in sol:
+            assert np.max(np.abs(m.fk_matrix(s, [v]) - T)) <= m.IK_VERIFY_TOL
+    assert min(_gap(s, q, m.JOINT_KINDS) for s in m.ik(T, [q[2]])) < 1e-7
+
+
+# ------------------------------------------------------------------------------------------------ near-special geometry
+def test_a_calibrated_arm_is_solved_on_ideal_axes_and_polished_on_the_true_ones():
+    m = solver("kr6_calibrated")
+    assert 0.0 < m.GEOMETRY_DEVIATION <= m.GEOMETRY_TOL
+    r = reference("kr6_calibrated")
+    rng = case_rng(17)
+    for _ in range(20):
+        q = _regular_joints(m, rng)
+        T = r(q)
+        sol = m.ik(T)
+        assert min(_gap(v, q, m.JOINT_KINDS) for v in sol) < 1e-7
+        for v in sol:
+            assert ref.pose_error(r(v), T) < 1e-10
+
+
+def test_a_tolerance_below_the_deviation_is_refused_naming_the_axes():
+    from derive.families.chain.planner import NoClosedForm
+
+    with pytest.raises(NoClosedForm, match="a2/a3"):
+        own_robot.load(_file("kr6_calibrated", "urdf"), geometry_tol=1e-9).plan()
+
+
+# ------------------------------------------------------------------------------------------------ singular and tangent
+def test_the_wrist_singularity_gives_one_flagged_set_per_family():
+    m = solver("kr6")
+    q = np.array([0.3, -1.2, 0.8, 0.5, 0.0, -0.4])
+    T = m.fk_matrix(q)
+    sol = m.ik(T, previous=q)
+    # the arm configuration of q has its wrist at the singularity: the one-parameter family once, flagged, its
+    # member nearest `previous` (q itself); the other arm configurations have regular wrists (two sets each)
+    k = int(np.argmin([_gap(v, q, m.JOINT_KINDS) if ok else 9.0 for v, ok in zip(sol.values, sol.valid, strict=True)]))
+    assert _gap(sol.values[k], q, m.JOINT_KINDS) < 1e-7
+    assert sol.flags[k] & m.FLAG_INDETERMINATE and sol.status == m.STATUS_INDETERMINATE
+    same_arm = [v for v in sol if _gap(v[:3], q[:3], "RRR") < 1e-7]
+    assert len(same_arm) == 1
+    assert sol.count % 2 == 1
+    for v in sol:
+        assert np.max(np.abs(m.fk_matrix(v) - T)) <= m.IK_VERIFY_TOL
+
+
+def test_the_stretched_elbow_is_one_double_root():
+    m = solver("ur5e")
+    q = np.array([0.4, -0.7, 0.0, 0.9, 1.1, -0.2])  # elbow straight: the elbow subproblem is tangent
+    T = m.fk_matrix(q)
+    sol = m.ik(T)
+    assert min(_gap(v, q, m.JOINT_KINDS) for v in sol) < 1e-6  # sqrt(eps) at a double root
+    assert any(sol.flags[k] & m.FLAG_DOUBLE_ROOT for k in range(sol.count))
+    for v in sol:
+        assert np.max(np.abs(m.fk_matrix(v) - T)) <= m.IK_VERIFY_TOL
+
+
+# ------------------------------------------------------------------------------------------------ as users describe it
+def test_poses_as_matrix_xyz_rpy_and_xyz_quaternion():
+    m = solver("kr6")
+    q = np.array([0.2, -0.9, 0.4, 0.3, 0.7, -0.1])
+    T = m.fk_matrix(q)
+    r = T[:3, :3]
+    yaw, pitch, roll = math.atan2(r[1, 0], r[0, 0]), -math.asin(r[2, 0]), math.atan2(r[2, 1], r[2, 2])
+    w = 0.5 * math.sqrt(1 + np.trace(r))
+    quat = [(r[2, 1] - r[1, 2]) / (4 * w), (r[0, 2] - r[2, 0]) / (4 * w), (r[1, 0] - r[0, 1]) / (4 * w), w]
+    a = np.array(list(m.ik(T)))
+    for pose in ([*T[:3, 3], roll, pitch, yaw], [*T[:3, 3], *quat], T[:3], T.ravel()):
+        np.testing.assert_allclose(np.array(list(m.ik(pose))), a, atol=1e-9)
+
+
+def test_base_and_tool_change_at_run_time():
+    m = solver("ur5e")
+    base = np.eye(4)
+    base[:3, :3] = np.array([[0, -1, 0], [1, 0, 0], [0, 0, 1]])
+    base[:3, 3] = (0.1, -0.2, 0.8)
+    tool = np.eye(4)
+    tool[:3, 3] = (0.0, 0.0, 0.15)
+    d = m.make_design(base=base, tool=tool)
+    q = np.array([0.3, -1.1, 1.2, -0.4, 0.9, 0.2])
+    T = m.fk_matrix(q, d)
+    np.testing.assert_allclose(T, base @ m.fk_matrix(q) @ tool, atol=1e-14)
+    sol = m.ik(T, d)
+    assert min(_gap(v, q, m.JOINT_KINDS) for v in sol) < 1e-7
+    jac_fd = ref.finite_difference_jacobian(lambda x: m.fk_matrix(x, d), q)
+    np.testing.assert_allclose(m.jacobian(q, d), jac_fd, atol=1e-6)
+
+
+def test_branches_are_named_and_selectable():
+    m = solver("kr6")
+    assert set(m.BRANCHES) == {"shoulder", "elbow", "wrist"}
+    rng = case_rng(18)
+    while True:
+        q = rng.uniform(-math.pi, math.pi, 6)
+        sol = m.ik(m.fk_matrix(q))
+        if sol.count == 8:
+            break
+    labels = [tuple(sorted(m.branch_of(v).items())) for v in sol]
+    assert len(set(labels)) == 8  # each set is one combination of the named branches
+    wide = ([-10.0] * 6, [10.0] * 6)  # every set is within these: the branch alone decides
+    for want in ({"elbow": "up", "wrist": "flip"}, {"shoulder": "back", "elbow": "down"}):
+        k = m.select(sol, None, *wide, branch=want)
+        assert k >= 0 and all(m.branch_of(sol.values[k])[b] == lab for b, lab in want.items())
+    with pytest.raises(m.InvalidInput, match="unknown branch"):
+        m.select(sol, branch={"knee": "up"})
+
+
+def test_limits_from_the_description_filter_the_selection():
+    m = solver("kr6")
+    assert np.isfinite(m.LOWER).all() and np.isfinite(m.UPPER).all()
+    q = np.array([0.2, -0.9, 0.4, 0.3, 0.7, -0.1])
+    sol = m.ik(m.fk_matrix(q))
+    k = m.select(sol, previous=q)
+    assert np.all(sol.values[k] >= m.LOWER) and np.all(sol.values[k] <= m.UPPER)
+
+
+def test_bad_input_is_a_typed_error():
+    m = solver("kr6")
+    for pose in (np.full((4, 4), np.nan), np.zeros(5), np.diag([2.0, 1.0, 1.0, 1.0]), "pose"):
+        with pytest.raises(m.InvalidInput):
+            m.ik(pose)
+    with pytest.raises(m.InvalidInput):
+        m.fk_matrix([0.0] * 5)
+    with pytest.raises(m.InvalidDesign):
+        m.make_design(base=np.zeros((3, 3)))
+    far = np.eye(4)
+    far[:3, 3] = (10.0, 0.0, 0.0)
+    out = m.ik(far)
+    assert out.count == 0 and out.status == m.STATUS_UNREACHABLE and "reachable" in out.reason
+
+
+# ------------------------------------------------------------------------------------------------ the command
+def test_the_command_writes_importable_solvers_and_an_audit(tmp_path):
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).parent.parent)}
+    cmd = [sys.executable, "-m", "derive.cli", "derive", str(_file("ur5e", "urdf")), "--out", str(tmp_path),
+           "--name", "my_ur"]
+    done = subprocess.run(cmd, capture_output=True, text=True, env=env, check=False)
+    assert done.returncode == 0, done.stderr
+    assert "wrote" in done.stdout
+    for rel in ("python/my_ur.py", "python/_wristkin_runtime.py", "c/my_ur.h", "c/my_ur.c", "casadi/my_ur.casadi",
+                "audit/my_ur.md"):
+        assert (tmp_path / rel).is_file(), rel
+    report = (tmp_path / "audit" / "my_ur.md").read_text()
+    assert "three parallel axes" in report and "Subproblem formula" in report
+    probe = ("import sys; sys.path.insert(0, sys.argv[1]); import my_ur; import numpy as np; "
+             "print(my_ur.ik(my_ur.fk_matrix([0.1, -1, 1, 0.2, 0.3, 0.4])).count)")
+    run = subprocess.run([sys.executable, "-S", "-c", probe, str(tmp_path / "python")], capture_output=True,
+                         text=True, check=False, env={"PYTHONPATH": str(Path(np.__file__).parent.parent)})
+    assert run.returncode == 0 and int(run.stdout) >= 1, run.stderr
+
+
+def test_the_command_refuses_a_chain_without_a_closed_form(tmp_path):
+    spec = tmp_path / "skew.toml"
+    spec.write_text('family = "chain"\nname = "skew"\ntitle = "six skew axes"\nconvention = "poe"\n' + "".join(
+        f'[[joint]]\nname = "j{i}"\naxis = [{math.cos(i)}, {math.sin(i)}, {0.3 * i}]\npoint = [{0.1 * i}, '
+        f'{0.2 * i * i}, {0.05 * i}]\n' for i in range(6)) + "[home]\nposition = [0.5, 0.1, 0.2]\n")
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).parent.parent)}
+    done = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(spec), "--out", str(tmp_path / "o")],
+                          capture_output=True, text=True, env=env, check=False)
+    assert done.returncode == 1
+    assert "no closed-form decomposition" in done.stderr and "j0/j1" in done.stderr
+    assert "Traceback" not in done.stderr
+
+
+def test_the_module_solves_from_the_command_line():
+    m = solver("kr6")
+    path = _CACHE[("kr6", "urdf", ())][1] / "python" / "kr6_urdf_solver.py"
+    q = [0.2, -0.9, 0.4, 0.3, 0.7, -0.1]
+    T = m.fk_matrix(q)
+    r = T[:3, :3]
+    rpy = [math.atan2(r[2, 1], r[2, 2]), -math.asin(r[2, 0]), math.atan2(r[1, 0], r[0, 0])]
+    import json
+
+    run = subprocess.run([sys.executable, str(path), "ik", "--pose", *map(str, [*T[:3, 3], *rpy]), "--json"],
+                         capture_output=True, text=True, check=True)
+    out = json.loads(run.stdout)
+    assert out["status"] == "ok" and len(out["solutions"]) == m.ik(T).count
+    assert min(_gap(s["values"], q, m.JOINT_KINDS) for s in out["solutions"]) < 1e-7
+    assert set(out["solutions"][0]["branches"]) == set(m.BRANCHES)
+    bad = subprocess.run([sys.executable, str(path), "ik", "--pose", "1", "2"], capture_output=True, text=True)
+    assert bad.returncode == 2 and "error" in bad.stderr
+
+
+SMALL = {
+    # name: (DH rows (type, a, alpha, d, theta), expected decomposition words, max sets)
+    "roll": ([("revolute", 0.0, "0", 0.05, 0.0)], "one axis at the end", 1),
+    "wrist3": ([("revolute", 0.0, "-pi/2", 0.0, 0.0), ("revolute", 0.0, "pi/2", 0.0, 0.0),
+                ("revolute", 0.0, "0", 0.1, 0.0)], "spherical wrist", 2),
+    "scara": ([("revolute", 0.4, "0", 0.3, 0.0), ("revolute", 0.3, "pi", 0.0, 0.0),
+               ("prismatic", 0.0, "0", 0.0, 0.0), ("revolute", 0.0, "0", 0.1, 0.0)], "one axis at the end", 2),
+    "cylindrical": ([("revolute", 0.0, "0", 0.5, 0.0), ("prismatic", 0.0, "-pi/2", 0.2, 0.0),
+                     ("prismatic", 0.0, "0", 0.3, 0.0), ("revolute", 0.0, "-pi/2", 0.0, 0.0),
+                     ("revolute", 0.0, "pi/2", 0.0, 0.0), ("revolute", 0.0, "0", 0.1, 0.0)], "spherical wrist", 4),
+}
+
+
+def _dh_spec(name, rows) -> str:
+    text = f'family = "chain"\nname = "{name}"\ntitle = "{name}"\nconvention = "standard"\n'
+    for i, (kind, a, alpha, d, theta) in enumerate(rows):
+        text += (f'[[joint]]\nname = "j{i + 1}"\ntype = "{kind}"\na = {a}\nalpha = "{alpha}"\nd = {d}\n'
+                 f'theta = {theta}\n')
+    return text
+
+
+@pytest.mark.parametrize("name", sorted(SMALL))
+def test_chains_with_fewer_joints_and_slides(name, tmp_path):
+    rows, words, max_sets = SMALL[name]
+    spec = tmp_path / f"{name}.toml"
+    spec.write_text(_dh_spec(name, rows))
+    own_robot.derive(spec, tmp_path / "out", progress=lambda _: None)
+    m, r = own_robot.import_solver(tmp_path / "out", name), ref.load(spec)
+    assert words in m.DECOMPOSITION and m.MAX_IK == max_sets
+    rng = case_rng(19)
+    for k in range(12):
+        q = np.array([rng.uniform(-math.pi, math.pi) if t == "R" else rng.uniform(-0.4, 0.4) for t in m.JOINT_KINDS])
+        T = r(q)
+        np.testing.assert_allclose(m.fk_matrix(q), T, atol=1e-12)
+        sol = m.ik(T)
+        assert min(_gap(v, q, m.JOINT_KINDS) for v in sol) < 1e-7
+        if k < 3:
+            found = ref.ik_all(r, m.N_JOINTS, T, seed=k)
+            assert len(found) == sol.count
+    if len(rows) < 6:  # a pose off the chain's image: unreachable, saying what the chain controls
+        off = r(np.zeros(len(rows)))
+        off[:3, :3] = off[:3, :3] @ np.array([[1, 0, 0], [0, 0.8, -0.6], [0, 0.6, 0.8]])
+        off[:3, 3] += (0.01, 0.02, 0.03)
+        out = m.ik(off)
+        assert out.count == 0 and "controls" in out.reason
+
+
+def test_a_wrist_at_the_base_is_solved_from_the_tool(tmp_path):
+    """The KR6 read backwards (its spherical wrist at the base): the planner reverses the chain."""
+    from derive.families.chain.robot import reverse
+
+    kr6 = own_robot.load(_file("kr6", "poe")).chain
+    back = reverse(kr6)
+    text = 'family = "chain"\nname = "backwards"\ntitle = "KR6 reversed"\nconvention = "poe"\n'
+    for nm, a, p in zip(back.joint_names, back.axes, back.points, strict=True):
+        text += f'[[joint]]\nname = "{nm}"\naxis = {a.tolist()}\npoint = {p.tolist()}\n'
+    r = back.home[:3, :3]
+    rpy = [math.atan2(r[2, 1], r[2, 2]), -math.asin(r[2, 0]), math.atan2(r[1, 0], r[0, 0])]
+    text += f"[home]\nposition = {back.home[:3, 3].tolist()}\nrpy = {rpy}\n"
+    spec = tmp_path / "backwards.toml"
+    spec.write_text(text)
+    own_robot.derive(spec, tmp_path / "out", progress=lambda _: None)
+    m, ref_chain = own_robot.import_solver(tmp_path / "out", "backwards"), ref.load(spec)
+    assert m.DECOMPOSITION.startswith("from the tool") and m.MAX_IK == 8
+    rng = case_rng(20)
+    for k in range(10):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        T = ref_chain(q)
+        sol = m.ik(T)
+        assert min(_gap(v, q, m.JOINT_KINDS) for v in sol) < 1e-7
+        if k < 2:
+            assert len(ref.ik_all(ref_chain, 6, T, seed=k)) == sol.count
