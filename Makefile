@@ -32,7 +32,8 @@ SENSITIVE_TESTS := tests/test_underactuated_wrist.py tests/test_reference_undera
 	tests/test_poly_real_roots.py tests/test_dh.py tests/test_reference_dh.py tests/test_screw_robots.py \
 	tests/test_rsr_wrist.py tests/test_scara_rsr.py tests/test_reference_rsr_selfcheck.py \
 	tests/test_casadi_functions.py tests/test_fuzz.py tests/test_fuzz_python.py tests/test_generated_fresh.py \
-	tests/test_native.py tests/test_reproducers.py
+	tests/test_native.py tests/test_reproducers.py tests/test_chain_robots.py tests/test_chain_c.py \
+	tests/test_robot_descriptions.py
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 export PIP_NO_INPUT := 1

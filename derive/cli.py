@@ -123,13 +123,14 @@ def cmd_derive(args) -> int:
     except ImportError as exc:
         raise _Error(f"the derivation stack is not installed ({exc}): pip install 'wristkin[derive]' "
                      "(in a checkout: make venv)", EXIT_FAILED) from exc
-    from .families.chain.planner import NoClosedForm
+    from .model import NoDecomposition
 
     if not Path(args.source).is_file():
         raise _Error(f"{args.source}: no such file (a URDF or a spec file)", EXIT_USAGE)
     try:
-        own_robot.derive(args.source, Path(args.out), args.name, args.base, args.tip, args.free, args.geometry_tol)
-    except NoClosedForm as exc:
+        own_robot.derive(args.source, Path(args.out), args.name, args.base, args.tip, args.free, args.geometry_tol,
+                         native=not args.no_native)
+    except NoDecomposition as exc:
         raise _Error(str(exc), EXIT_FAILED) from None
     return EXIT_OK
 
@@ -189,11 +190,13 @@ def add_derive_parser(sub) -> None:
     s.add_argument("source", metavar="SOURCE", help="ROBOT.urdf, or a spec file (docs/specs.md)")
     s.add_argument("--out", metavar="DIR", required=True, help="output directory")
     s.add_argument("--name", help="the solver's name (default: the spec's name / the URDF file's stem)")
-    s.add_argument("--base", metavar="LINK", help="URDF: the chain's base link (default: the root)")
-    s.add_argument("--tip", metavar="LINK", help="URDF: the chain's tip link (default: the only leaf)")
-    s.add_argument("--free", metavar="JOINT", help="a redundant chain's joint held as a run-time parameter")
+    s.add_argument("--base", metavar="LINK", help="URDF: the base link (default: the root)")
+    s.add_argument("--tip", metavar="LINK", help="URDF: the tip link (default: the only leaf)")
+    s.add_argument("--free", metavar="JOINT", help="a redundant arm's joint held as a run-time parameter")
     s.add_argument("--geometry-tol", type=float, metavar="TOL", help="axes within TOL count as parallel / meeting "
                                                                     "(default 1e-6: metres and sin of angles)")
+    s.add_argument("--no-native", action="store_true", help="do not compile the C into the folder's Python "
+                                                            "extension (the Python solvers then run on numpy)")
     s.set_defaults(verb="derive")
 
 

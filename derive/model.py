@@ -14,6 +14,10 @@ import sympy as sp
 from .report_numbers import ROUNDING_FLOOR, error_bucket  # machine-independent bytes in the audit report
 
 
+class NoDecomposition(ValueError):
+    """No closed form fits the mechanism (a family's planner refuses it); the message names what prevents it."""
+
+
 @dataclass(frozen=True)
 class Check:
     """Evidence that a step is right: a symbolic identity or a sampled numeric check."""

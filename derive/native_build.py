@@ -15,7 +15,8 @@ class BuildError(RuntimeError):
     """No compiler, or the compile failed (the solvers then run on numpy)."""
 
 
-def build(out: Path, cc: str | None = None) -> Path:
+def build(out: Path, cc: str | None = None, target: Path | None = None) -> Path:
+    """Compile; `target` (default OUT/python/wristkin/_native<EXT_SUFFIX>) is where the extension goes."""
     out = Path(out)
     binding = out / "native" / "_native.c"
     if not binding.is_file():
@@ -23,7 +24,7 @@ def build(out: Path, cc: str | None = None) -> Path:
     cc = cc or os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc")
     if not cc:
         raise BuildError("no C compiler found (set CC): the solvers run on numpy")
-    target = out / "python" / "wristkin" / f"_native{sysconfig.get_config_var('EXT_SUFFIX') or '.so'}"
+    target = target or out / "python" / "wristkin" / f"_native{sysconfig.get_config_var('EXT_SUFFIX') or '.so'}"
     sources = [binding, *sorted((out / "c").glob("*.c"))]
     import numpy
 

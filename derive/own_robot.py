@@ -11,7 +11,9 @@ Progress goes to `progress` (one line per stage, with the seconds it took)."""
 from __future__ import annotations
 
 import importlib.util
+import os
 import sys
+import sysconfig
 import time
 from pathlib import Path
 
@@ -20,33 +22,21 @@ from .render import header_lines, render
 from .spec import Spec, SpecError
 
 
-def _spec_for_urdf(path: Path, name: str | None, base: str | None, tip: str | None, free: str | None,
-                   geometry_tol: float | None) -> Spec:
-    stem = name or path.stem.lower().replace("-", "_").replace(".", "_")
-    if stem and not stem[0].isalpha():
-        stem = "robot_" + stem
-    data = {"family": "chain", "name": stem, "title": f"{path.name} from {base or 'its root'} to {tip or 'its tip'}",
-            "source": f"URDF {path.name}", "convention": "urdf", "urdf": str(path.resolve())}
-    for key, value in (("base_link", base), ("tip_link", tip), ("free", free), ("geometry_tol", geometry_tol)):
-        if value is not None:
-            data[key] = value
-    return Spec(data, path)
-
-
 def load(source: str | Path, name=None, base=None, tip=None, free=None, geometry_tol=None):
     """The mechanism of a URDF or a spec file (command-line options override the spec's own fields)."""
     path = Path(source)
-    if path.suffix.lower() == ".urdf":
-        spec = _spec_for_urdf(path, name, base, tip, free, geometry_tol)
+    readers = [f for f in FAMILIES.values() if path.suffix.lower() in getattr(f, "SOURCE_SUFFIXES", ())]
+    if readers:  # a description file a family reads itself (a URDF)
+        spec = readers[0].spec_for_file(path, name=name, base=base, tip=tip, free=free, geometry_tol=geometry_tol)
     else:
         spec = Spec.load(path)
         for key, value in (("name", name), ("free", free), ("geometry_tol", geometry_tol)):
             if value is not None:
                 spec.data[key] = value
-        if (base or tip) and spec.data.get("convention") != "urdf":
-            raise SpecError(path, "base_link", "--base / --tip only for a URDF (or a spec with convention = \"urdf\")")
         for key, value in (("base_link", base), ("tip_link", tip)):
             if value is not None:
+                if "base_link" not in spec.data and "tip_link" not in spec.data and "urdf" not in spec.data:
+                    raise SpecError(path, key, "--base / --tip only for a description with links (a URDF)")
                 spec.data[key] = value
     family = FAMILIES.get(spec.data.get("family"))
     if family is None:
@@ -60,13 +50,17 @@ def _write(path: Path, text: str | bytes) -> Path:
     return path
 
 
-def import_solver(out: Path, name: str):
-    """The solver just written to out/python (its runtime beside it), imported under a private name."""
+def import_solver(out: Path, name: str, backend: str | None = None):
+    """The solver just written to out/python (its runtime and extension beside it), imported under a private name;
+    backend "numpy" forces the numpy path (the audit's numbers must not depend on a compiler)."""
     folder = out / "python"
     saved, sys.dont_write_bytecode = sys.dont_write_bytecode, True
     sys.path.insert(0, str(folder))
+    env = os.environ.get("WRISTKIN_BACKEND")
+    if backend:
+        os.environ["WRISTKIN_BACKEND"] = backend
     try:
-        key = f"_wristkin_own_{name}_{abs(hash(str(folder.resolve())))}"
+        key = f"_wristkin_own_{name}_{backend or 'auto'}_{abs(hash(str(folder.resolve())))}"
         spec = importlib.util.spec_from_file_location(key, folder / f"{name}.py")
         mod = importlib.util.module_from_spec(spec)
         sys.modules[key] = mod  # dataclasses look their module up there
@@ -75,10 +69,33 @@ def import_solver(out: Path, name: str):
     finally:
         sys.path.remove(str(folder))
         sys.dont_write_bytecode = saved
+        if backend:
+            if env is None:
+                del os.environ["WRISTKIN_BACKEND"]
+            else:
+                os.environ["WRISTKIN_BACKEND"] = env
 
 
-def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=None, progress=print) -> list[Path]:
-    """Derive, emit and audit one description into `out`; returns the files written."""
+def _extension(out: Path, progress) -> list[Path]:
+    """OUT/native/_native.c over every solver in OUT/c, compiled into OUT/python/_wristkin_native: the Python
+    solvers then run the C. Without a compiler they run on numpy (said, not an error)."""
+    from .native_build import BuildError, build
+    from .pipeline import _native_binding
+
+    binding = _native_binding(out, "_wristkin_native")
+    target = out / "python" / f"_wristkin_native{sysconfig.get_config_var('EXT_SUFFIX') or '.so'}"
+    try:
+        build(out, target=target)
+    except BuildError as exc:
+        progress(f"  no C extension ({str(exc).splitlines()[0]}): the Python solvers run on numpy")
+        return [binding]
+    return [binding, target]
+
+
+def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=None, progress=print,
+           native: bool = True) -> list[Path]:
+    """Derive, emit and audit one description into `out`; returns the files written. `native`: also compile the
+    folder's C into the Python extension the solvers call (skipped with native=False: they run on numpy)."""
     from . import audit, casadi_export, pipeline
 
     t0 = time.perf_counter()
@@ -106,8 +123,11 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
                _write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja", header=hdr)),
                _write(out / "c" / "wristkin_runtime.c", render("c/wristkin_runtime.c.jinja", header=hdr))]
     stage("emitted Python and C")
+    if native:
+        written += _extension(out, progress)
+        stage("compiled the C into the folder's Python extension (_wristkin_native)")
     fns = mech.casadi_functions(dv, ks)
-    solver = import_solver(out, nm)
+    solver = import_solver(out, nm, backend="numpy")
     names = getattr(mech, "CASADI_DESIGN_NAMES", None) or solver.DESIGN_NAMES
     written += casadi_export.write_casadi(fns, out / "casadi", name=nm, design_names=names,
                                           docs=getattr(mech, "CASADI_DOCS", None))

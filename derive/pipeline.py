@@ -110,15 +110,17 @@ def _c_api(header: str, name: str) -> dict:
     def has(fn: str) -> bool:
         return f"wk_{name}_{fn}(" in header
     return {"name": name, "pose12": f"#define WK_{name.upper()}_N_POSE 12" in header, "ik_near": has("ik_near"),
-            "jacobian": has("jacobian"), "fk_matrix": has("fk_matrix")}
+            "jacobian": has("jacobian"), "fk_matrix": has("fk_matrix"), "frames": has("design_set_frames")}
 
 
-def _native_binding(out: Path) -> Path:
-    """The CPython extension source over every mechanism whose C is in out/c (setup.py compiles it)."""
+def _native_binding(out: Path, module_path: str = "wristkin._native") -> Path:
+    """The CPython extension source over every mechanism whose C is in out/c (setup.py compiles it); `module_path`:
+    the extension's import name (a `wristkin derive` folder's is the top-level _wristkin_native)."""
     headers = sorted(p for p in (out / "c").glob("*.h") if p.stem not in ("wristkin_common",))
     mechs = [_c_api(p.read_text(), p.stem) for p in headers]
     return _write(out / "native" / "_native.c", render("c/native.c.jinja", header_lines=header_lines(), mechs=mechs,
-                                                        inputs_hash=input_hash(), row_tol="WK_ROTATION_PROJECT_TOL"))
+                                                        inputs_hash=input_hash(), row_tol="WK_ROTATION_PROJECT_TOL",
+                                                        module_path=module_path))
 
 
 def default_jobs() -> int:

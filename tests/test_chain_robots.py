@@ -44,8 +44,9 @@ def solver(robot: str, fmt: str = "urdf", **options):
 
         out = Path(tempfile.mkdtemp(prefix=f"wk_{robot}_{fmt}_"))
         name = f"{robot}_{fmt}_solver"
+        # the URDF solvers run the C (the folder's extension), the DH and POE ones numpy: both paths are tested
         own_robot.derive(_file(robot, fmt), out, name=name, free=FREE.get(robot), progress=lambda _: None,
-                         **options)
+                         native=fmt == "urdf", **options)
         _CACHE[key] = (own_robot.import_solver(out, name), out)
     return _CACHE[key][0]
 
@@ -135,6 +136,34 @@ def test_three_formats_give_the_same_solution_sets(robot):
         for a in sets[0]:
             for other in sets[1:]:
                 assert min(_gap(a, b, ms[0].JOINT_KINDS) for b in other) < 1e-7
+
+
+@pytest.mark.parametrize("robot", ALL)
+def test_the_folder_extension_and_numpy_give_the_same_answers(robot):
+    m = solver(robot)
+    if os.environ.get("WRISTKIN_BACKEND") != "numpy":
+        assert m.BACKEND == "c" and "ik" in m.NATIVE_VERBS
+    py = own_robot.import_solver(_CACHE[(robot, "urdf", ())][1], f"{robot}_urdf_solver", backend="numpy")
+    assert py.BACKEND == "numpy"
+    base = np.eye(4)
+    base[:3, 3] = (0.2, -0.1, 0.5)
+    tool = np.eye(4)
+    tool[:3, :3] = [[0, 0, 1], [0, 1, 0], [-1, 0, 0]]
+    rng = case_rng(21)
+    for frames in ({}, {"base": base, "tool": tool}):
+        for _ in range(15):
+            q = rng.uniform(-math.pi, math.pi, m.N_JOINTS)
+            params = [q[m._FREE]] if m.DESIGN_NAMES else None
+            dc, dp = m.make_design(params, **frames), py.make_design(params, **frames)
+            T = py.fk_matrix(q, dp)
+            np.testing.assert_allclose(m.fk_matrix(q, dc), T, atol=1e-13)
+            np.testing.assert_allclose(m.jacobian(q, dc), py.jacobian(q, dp), atol=1e-12)
+            a, b = m.ik(T, dc), py.ik(T, dp)
+            assert a.count == b.count and a.status == b.status
+            np.testing.assert_allclose(a.values[a.valid], b.values[b.valid], atol=1e-9)
+            np.testing.assert_array_equal(a.flags, b.flags)
+        batch = m.ik_batch(np.array([py.fk_matrix(x, dp) for x in rng.uniform(-3, 3, (5, m.N_JOINTS))]), dc)
+        assert batch.values.shape == (5, m.MAX_IK, m.N_JOINTS)
 
 
 def test_the_decomposition_is_read_from_the_axes():

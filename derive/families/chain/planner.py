@@ -24,13 +24,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...model import NoDecomposition
 from .geometry import common_point, line_distance, parallel_deviation
 from .robot import Chain, reverse, screw
 
 DEFAULT_GEOMETRY_TOL = 1e-6  # metres and radians (sin of an angle): documented in docs/specs.md
 
 
-class NoClosedForm(ValueError):
+class NoClosedForm(NoDecomposition):
     """No decomposition fits the chain's axes; the message names what each one needed."""
 
 
