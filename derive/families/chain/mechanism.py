@@ -131,12 +131,17 @@ class ChainMechanism:
                     {"ops": " -> ".join(_op_text(op, names) for op in plan.ops), "branches (max IK sets)":
                      str(plan.branches), "controls": self.controls()}, ()))
         rng_free = (FREE_SAMPLES if desc.free >= 0 else (0.0,))
+        chains = {v: self.solver_chain(ideal, v, plan.reversed) for v in rng_free}
+        residuals: dict = {}  # every op's check draws the same seeded samples: each replayed once
+
         for k, op in enumerate(plan.ops):
             def err(rng, k=k):
                 v = rng_free[int(rng.integers(len(rng_free)))]
-                ch = self.solver_chain(ideal, v, plan.reversed)
-                q = _random_joints(ch, rng)
-                return replay(ch, replace(plan, reversed=False), q)[k]
+                q = _random_joints(chains[v], rng)
+                key = (v, *q.tolist())
+                if key not in residuals:
+                    residuals[key] = replay(chains[v], replace(plan, reversed=False), q)
+                return residuals[key][k]
             dv.add(Step(f"op{k + 1}", f"IK op {k + 1}: {op['op']}", _op_rule(op, names), ("decomposition",),
                         {"equation": _op_text(op, names)},
                         (numeric_predicate(err, "the op's equation holds at the true joint values of sampled "

@@ -38,9 +38,49 @@ def rodrigues(k, c, s):
     return sp.eye(3) + s * kx + (1 - c) * kx * kx
 
 
+def _cache_file():
+    """Where the proofs' outcome is kept, keyed by this file's bytes and SymPy's version (a changed proof or SymPy
+    proves again); None when no cache folder is writable."""
+    import hashlib
+    import os
+    from pathlib import Path
+
+    key = hashlib.sha256(Path(__file__).read_bytes() + sp.__version__.encode()).hexdigest()[:16]
+    folder = Path(os.environ.get("WRISTKIN_CACHE") or Path.home() / ".cache" / "wristkin")
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError:
+        return None
+    return folder / f"subproblem-proofs-{key}.json"
+
+
 @lru_cache(maxsize=1)
 def subproblem_checks() -> tuple[tuple[str, str, Check], ...]:
-    """(name, statement, check) for every formula the generated solvers evaluate."""
+    """(name, statement, check) for every formula the generated solvers evaluate: proven by `prove`, once per
+    version of this file and of SymPy (the outcome is cached on disk; the claims are the same for every robot)."""
+    import json
+    import os
+
+    path = _cache_file()
+    if path is not None and path.is_file():
+        try:
+            rows = json.loads(path.read_text())
+            return tuple((n, s, Check("symbolic", s, bool(ok))) for n, s, ok in rows)
+        except (OSError, ValueError, TypeError):
+            pass
+    out = prove()
+    if path is not None:
+        try:
+            tmp = path.with_suffix(f".{os.getpid()}.tmp")  # parallel workers write their own, then one wins
+            tmp.write_text(json.dumps([[n, s, c.passed] for n, s, c in out]))
+            tmp.replace(path)
+        except OSError:
+            pass
+    return out
+
+
+def prove() -> tuple[tuple[str, str, Check], ...]:
+    """Run every proof (a few seconds of SymPy)."""
     k, h, p, p1, p2 = _vec("k"), _vec("h"), _vec("p"), _vec("a"), _vec("b")
     c, s, d = sp.symbols("c s d", real=True)
     R = rodrigues(k, c, s)
