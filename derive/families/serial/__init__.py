@@ -1,8 +1,8 @@
 """Serial chains from DH tables (seed 001's wrists and arms, the PUMA-560): chain products, Jacobians, staged
-closed-form IK from the plan the spec names, audit numbers and CasADi functions. Templates:
+closed-form IK from the geometric planner (planned.py), audit numbers and CasADi functions. Templates:
 templates/{python,c}/serial.*.jinja.
 
-Spec fields (docs/specs.md): `convention`, `ik` (a plan of plans.py), `[design]` (metres), `positive`,
+Spec fields (docs/specs.md): `convention`, `[design]` (metres), `positive`,
 `[[joint]]` rows (name, type, a, alpha, d, theta), the seed's `[[printed]]` matrices and `[[finding]]` notes."""
 
 import dataclasses

@@ -1,6 +1,6 @@
 """Serial DH chains: symbolic FK, geometric Jacobian and a closed-form IK solution tree, one generic module.
 
-A robot is a `SerialSpec`: DH rows plus an IK plan. The plan is a list of stages, each solving one or
+A robot is a `SerialSpec`: DH rows plus IK stages (from the planner, planned.py): a list of stages, each solving one or
 more joints from pose entries and the joints solved before it:
 
 - ``trig_linear``: A cos q + B sin q + C = 0 (two branches, atan2 +/- acos),
