@@ -78,6 +78,38 @@ d = 0.0997
 name = "q6"
 d = 0.0996
 """,
+    # a general 3R arm (no two of its first axes meet or are parallel: the polynomial op) + a ZYZ wrist
+    "skew3": """family = "chain"
+name = "skew3"
+title = "general 3R arm + spherical wrist"
+convention = "poe"
+[[joint]]
+name = "j1"
+axis = [0.0, 0.0, 1.0]
+point = [0.0, 0.0, 0.0]
+[[joint]]
+name = "j2"
+axis = [0.9759000729485331, 0.19518001458970663, 0.09759000729485331]
+point = [0.1, 0.0, 0.4]
+[[joint]]
+name = "j3"
+axis = [0.28221626051507914, 0.9407208683835973, 0.18814417367671946]
+point = [0.15, 0.05, 0.8]
+[[joint]]
+name = "j4"
+axis = [0.0, 0.0, 1.0]
+point = [0.6, 0.1, 0.9]
+[[joint]]
+name = "j5"
+axis = [0.0, 1.0, 0.0]
+point = [0.6, 0.1, 0.9]
+[[joint]]
+name = "j6"
+axis = [0.0, 0.0, 1.0]
+point = [0.6, 0.1, 0.9]
+[home]
+position = [0.6, 0.1, 1.0]
+""",
 }
 NAMES = tuple(SPECS)
 WRIST = 4  # q5: the middle wrist joint of both arms (0: the wrist singularity)

@@ -451,3 +451,34 @@ def test_a_wrist_at_the_base_is_solved_from_the_tool(tmp_path):
         assert min(_gap(v, q, m.JOINT_KINDS) for v in sol) < 1e-7
         if k < 2:
             assert len(ref.ik_all(ref_chain, 6, T, seed=k)) == sol.count
+
+
+def test_a_general_3r_arm_is_solved_by_its_polynomial(tmp_path):
+    """No two of the first three axes meet or are parallel: no invariant separates them, so their joints come
+    from every real root of a degree-8 polynomial (subproblem 5 in effect); the sets equal the reference's."""
+    def unit(v):
+        v = np.array(v, dtype=float)
+        return (v / np.linalg.norm(v)).tolist()
+    axes = [[0, 0, 1], unit([1.0, 0.2, 0.1]), unit([0.3, 1.0, 0.2]), [0, 0, 1], [0, 1, 0], [0, 0, 1]]
+    points = [[0, 0, 0], [0.1, 0, 0.4], [0.15, 0.05, 0.8]] + [[0.6, 0.1, 0.9]] * 3
+    text = 'family = "chain"\nname = "skew3"\ntitle = "general 3R arm + wrist"\nconvention = "poe"\n'
+    for i, (a, p) in enumerate(zip(axes, points, strict=True)):
+        text += f'[[joint]]\nname = "j{i + 1}"\naxis = {list(map(float, a))}\npoint = {list(map(float, p))}\n'
+    spec = tmp_path / "skew3.toml"
+    spec.write_text(text + "[home]\nposition = [0.6, 0.1, 1.0]\n")
+    own_robot.derive(spec, tmp_path / "out", progress=lambda _: None, native=False)
+    m, r = own_robot.import_solver(tmp_path / "out", "skew3"), ref.load(spec)
+    assert "spatial3" in repr(m._PLAN) and m.MAX_IK == 8
+    rng = case_rng(22)
+    for k in range(20):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        T = r(q)
+        sol = m.ik(T)
+        assert min(_gap(v, q, m.JOINT_KINDS) for v in sol) < 1e-7
+        for v in sol:
+            assert np.max(np.abs(m.fk_matrix(v) - T)) <= m.IK_VERIFY_TOL
+        if k < 4:
+            found = ref.ik_all(r, 6, T, seed=k)
+            assert len(found) == sol.count
+            for v in found:
+                assert min(_gap(v, w, m.JOINT_KINDS) for w in sol) < 1e-6

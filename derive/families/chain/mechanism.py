@@ -211,6 +211,7 @@ class ChainMechanism:
                 "roles": pprint.pformat(tuple(roles), width=110),
                 "strategy_literal": _text_literal(plan.strategy), "controls_literal": _text_literal(self.controls()),
                 "plan_ops": plan.ops, "roles_list": roles,
+                "has_spatial3": any(op["op"] == "spatial3" for op in plan.ops),
                 # the same data as plain numbers, for the C template
                 "c_data": {"axes": _floats(c.axes), "points": _floats(c.points), "home": _floats(c.home),
                            "ideal_axes": _floats(ideal.axes), "ideal_points": _floats(ideal.points),
@@ -327,6 +328,8 @@ def _plan_literal(plan: Plan) -> str:
             rows.append(f'("single", {op["j"]}, "{op["kind"]}")')
         elif k == "linear":
             rows.append(f'("linear", {_spec_literal(op["js"])})')
+        elif k == "spatial3":
+            rows.append(f'("spatial3", {op["js"][0]}, {op["js"][1]}, {op["js"][2]})')
         elif k == "orient":
             units = ("(" + ", ".join(_spec_literal(u) for u in op["units"]) + ("," if len(op["units"]) == 1 else "")
                      + ")")
@@ -374,6 +377,9 @@ def _op_text(op, names) -> str:
         return f"{nm(op['j'])} from e_{nm(op['j'])} x = y"
     if k == "linear":
         return ", ".join(nm(j) for j in op["js"]) + " from the slides: x + sum q_i h_i = y"
+    if k == "spatial3":
+        return (", ".join(nm(j) for j in op["js"]) + " from e x = y: the distance to the first axis's point and the "
+                "component along it, a degree-8 polynomial in tan(q/2) of the middle joint")
     if k == "orient":
         units = " ".join("R(" + "+".join(nm(j) for j in u) + ")" for u in op["units"])
         return f"{units} = R_d"
@@ -394,6 +400,8 @@ def _op_rule(op, names) -> str:
             "pair": "subproblem 2: two rotations about axes through s",
             "single": "subproblem 1 (the slide's component for a prismatic joint)",
             "linear": "linear least squares over the slides",
+            "spatial3": "three revolute axes in general position (subproblem 5 in effect): two invariants of the "
+                        "first joint, bilinear in the other two; every real root of the resulting polynomial",
             "orient": "subproblem 2 on the last unit's axis, then subproblem 1 about it (fewer units: subproblem 1)",
             "group_rest": "rotations about parallel axes add: the last one is the sum minus the others"}[op["op"]]
 
@@ -422,7 +430,7 @@ def _roles(plan: Plan, ch: Chain):
                    tuple(float(v) for v in ch.axes[0]))
             lab = ("up", "down")
         else:
-            j = op["j"]
+            j = op["js"][0] if op["op"] == "spatial3" else op["j"]
             name, kind = "shoulder", "shoulder"
             fwd = x_home - ch.points[j]
             fwd = fwd - np.dot(fwd, ch.axes[j]) * ch.axes[j]

@@ -14,8 +14,10 @@ A point problem e_a ... e_c x = y (x fixed by the joints after c) is solved one 
 invariant of the others: a point S on the axes of all the others keeps its distance (subproblem 3, or a
 quadratic for a prismatic joint), a direction n along all the others' axes (and normal to their slides) keeps
 x's component along n (subproblem 4, or linear), two intersecting axes at the end (subproblem 2), one axis
-(subproblem 1), slides only (linear least squares). Each op's equation is checked on sampled configurations
-of the chain by `replay` before the plan is accepted.
+(subproblem 1), slides only (linear least squares); three revolute axes where none of these applies (general
+position) by the distance to and the component along the first axis, bilinear in the other two joints: a
+degree-8 polynomial in tan(q/2) of the middle joint, every real root kept (subproblem 5 in effect). Each op's
+equation is checked on sampled configurations of the chain by `replay` before the plan is accepted.
 """
 
 from __future__ import annotations
@@ -68,6 +70,8 @@ def op_branches(op: dict) -> int:
         return 2 if op["kind"] == "R" else 1
     if op["op"] in ("first_dist", "last_dist", "pair"):
         return 2
+    if op["op"] == "spatial3":
+        return 4  # a general 3R positioning problem has at most 4 solutions (Pieper)
     if op["op"] == "orient":
         return 2 if len(op["units"]) == 3 else 1
     return 1
@@ -196,6 +200,9 @@ def plan_point(g: Geometry, js: list[int], x: np.ndarray) -> list[list[dict]]:
     if nspec is not None and _plane_ok(g, c, nspec):
         out += [[{"op": "last_plane", "j": c, "kind": g.c.kinds[c], "n": nspec}] + rest
                 for rest in plan_point(g, js[:-1], x)]
+    if not out and len(js) == 3 and all(g.rev(j) for j in js) and g.not_parallel(g.c.axes[a], g.c.axes[js[1]]):
+        # no invariant applies: the general 3R positioning problem, a polynomial with every real root
+        out.append([{"op": "spatial3", "js": list(js)}])
     return sorted(out, key=_cost)
 
 
@@ -381,7 +388,7 @@ def replay(chain: Chain, plan: Plan, q) -> list[float]:
             out.append(float(np.linalg.norm(app(e[op["j"]] @ e[op["k"]], x) - y)))
         elif kind == "single":
             out.append(float(np.linalg.norm(app(e[op["j"]], x) - y)))
-        elif kind == "linear":
+        elif kind in ("linear", "spatial3"):
             out.append(float(np.linalg.norm(app(prod(op["js"]), x) - y)))
         elif kind == "orient":
             lo, hi = op["lo"], op["hi"]
