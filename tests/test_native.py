@@ -207,3 +207,34 @@ def test_rsr_c_and_numpy_give_the_same_solution_sets(name):
     for verb, rows in (("fk_batch", qs), ("ik_batch", poses)):
         _same_batch(getattr(mod, verb)(np.array(rows), c_design), getattr(mod, verb)(np.array(rows), py_design),
                     1e-9, f"{name} {verb}", rev if verb == "ik_batch" else None)
+
+
+@pytest.mark.skipif(FORCED_NUMPY, reason="WRISTKIN_BACKEND=numpy: the fallback pass")
+@pytest.mark.parametrize("name", [n for n in NATIVE if hasattr(module(n), "_IK_RESULT")])
+def test_the_extension_hands_back_the_same_solutions_object_python_would_make(name):
+    """The Solutions the extension makes (ik, fk) is the frozen dataclass, with the fields and reason the Python
+    conversion of the same call gives; a projected pose still comes back through Python (it needs a word)."""
+    import dataclasses
+
+    from wristkin import _runtime
+
+    mod = module(name)
+    rng = case_rng(31)
+    kinds = np.array(list(getattr(mod, "JOINT_KINDS", "RRR")))
+    q = np.where(kinds == "R", rng.uniform(-math.pi, math.pi, kinds.size), 0.1)
+    if name == "rsr_wrist":  # its joints are leg angles: take them from a reachable pose instead
+        q = mod.ik(mod.fk(np.full(3, 0.3)).values[0]).values[0]
+    x = mod.fk(q).values[0]
+    pose = mod.fk_matrix(q) if name in SERIAL else x
+    d = mod.make_design()
+    for verb, arg, made in (("ik", pose, mod.ik(pose)), ("fk", q, mod.fk(q))):
+        fn = getattr(mod, f"_C_{verb.upper()}")
+        extra = (None,) if verb == "ik" and name in SERIAL else ()
+        plain = fn(np.asarray(arg, float), d.native, *extra)  # without the result spec: the tuple
+        assert type(made) is _runtime.Solutions and type(plain) is tuple, (name, verb)
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            made.status = 1
+        spec = getattr(mod, f"_{verb.upper()}_RESULT")
+        assert made.reason == spec[1][made.count] and made.status == plain[0] & 255, (name, verb)
+        for field, value in zip(("values", "valid", "flags", "aux"), plain[1:], strict=True):
+            np.testing.assert_array_equal(getattr(made, field), value, err_msg=f"{name} {verb} {field}")
