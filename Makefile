@@ -58,7 +58,7 @@ help:
 	@echo "make check-generated  regenerate into a temp dir and diff against generated/"
 	@echo "make demo             IK and FK of the paper's design on the command line"
 	@echo "make lint             ruff on hand-written and generated Python; gcc $(CSTRICT) on generated C"
-	@echo "make bench            benchmarks (bench/run.py)"
+	@echo "make bench            benchmarks side by side with the peers (bench/run.py); rewrites README.md's measured block"
 	@echo "make clean            remove caches and build outputs (keeps .venv)"
 	@echo "make distclean        clean + remove .venv"
 
@@ -129,7 +129,7 @@ lint: $(STAMP)
 
 bench: $(STAMP)
 	$(PY) -m pip install -q -e '.[dev,bench]'
-	$(PY) bench/run.py --regenerate
+	$(PY) bench/run.py --regenerate --readme
 
 clean:
 	rm -rf build .pytest_cache .ruff_cache .mypy_cache .hypothesis *.egg-info

@@ -169,18 +169,27 @@ def fmt(x) -> str:
     return f"{x * 1e3:.0f} ns" if x < 1 else f"{x:.2f} µs"
 
 
-def tables(quick: bool = False) -> str:
+def peer_versions() -> str:
+    """The peers' installed versions, as the tables name them."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    out = []
+    for label, dist in (("EAIK", "eaik"), ("ik-geo", "ik-geo"), ("pinocchio", "pin")):
+        try:
+            out.append(f"{label} {version(dist)}")
+        except PackageNotFoundError:
+            out.append(f"{label} not installed")
+    return ", ".join(out)
+
+
+def measure(quick: bool = False) -> tuple[dict, list[dict]]:
+    """(C-loop results per chain, PUMA-560 rows side by side): everything tables() prints, as numbers."""
     for sub in ("tests", "generated/python"):
         if str(ROOT / sub) not in sys.path:
             sys.path.insert(0, str(ROOT / sub))
     n_c = 20_000 if quick else 100_000
     n_py = 100 if quick else 1000
     loops = c_loops(n_c)
-    lines = ["DH chains, generated C in a C loop (IK returns every branch, each verified by FK):", "",
-             "| chain | IK | FK | FK + Jacobian | IK solutions per pose |", "|---|---:|---:|---:|---:|"]
-    for name, r in loops.items():
-        lines.append(f"| {name} | {fmt(r['ik_ns'] / 1e3)} | {fmt(r['fk_ns'] / 1e3)} | {fmt(r['fk_jac_ns'] / 1e3)} | "
-                     f"{r['ik_mean_count']:.2f} |")
     base = loops["puma560"]
     rows = [{"name": "wristkin generated C, C loop", "ik_us": base["ik_ns"] / 1e3, "fk_us": base["fk_ns"] / 1e3,
              "jac_us": (base["fk_jac_ns"] - base["fk_ns"]) / 1e3,
@@ -192,15 +201,26 @@ def tables(quick: bool = False) -> str:
     except Exception as exc:  # noqa: BLE001 - a missing compiler/casadi only skips the row
         rows.append({"name": "CasADi-generated C", "ik_us": None, "fk_us": None, "note": f"skipped: {exc!r}"})
     rows += peers(n_py)
-    lines += ["", "PUMA-560, side by side (peers from Python; ratio = time / wristkin C loop):", "",
-              "| implementation | IK (all branches) | FK | Jacobian | IK ratio | FK ratio | max error |",
+    return loops, rows
+
+
+def tables(quick: bool = False, measured: tuple[dict, list[dict]] | None = None) -> str:
+    """The DH chains' C-loop table and the PUMA-560 side-by-side table (ratios first)."""
+    loops, rows = measured or measure(quick)
+    lines = ["DH chains, generated C in a C loop (IK returns every branch, each verified by FK):", "",
+             "| chain | IK | FK | FK + Jacobian | IK solutions per pose |", "|---|---:|---:|---:|---:|"]
+    for name, r in loops.items():
+        lines.append(f"| {name} | {fmt(r['ik_ns'] / 1e3)} | {fmt(r['fk_ns'] / 1e3)} | {fmt(r['fk_jac_ns'] / 1e3)} | "
+                     f"{r['ik_mean_count']:.2f} |")
+    lines += ["", f"PUMA-560, side by side (peers from Python: {peer_versions()}; ratio = time / wristkin C loop):",
+              "", "| implementation | IK ratio | FK ratio | IK (all branches) | FK | Jacobian | max error |",
               "|---|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
         ik, fk, jac = r.get("ik_us"), r.get("fk_us"), r.get("jac_us")
         ikr = "-" if ik is None else f"{ik / rows[0]['ik_us']:.1f}x"
         fkr = "-" if fk is None else f"{fk / rows[0]['fk_us']:.1f}x"
         err = r.get("max_err")
-        lines.append(f"| {r['name']} | {fmt(ik)} | {fmt(fk)} | {fmt(jac)} | {ikr} | {fkr} | "
+        lines.append(f"| {r['name']} | {ikr} | {fkr} | {fmt(ik)} | {fmt(fk)} | {fmt(jac)} | "
                      f"{'-' if err is None else f'{err:.1e}'} |")
     lines += [""] + [f"- {r['name']}: {r['note']}" for r in rows if r.get("note")]
     return "\n".join(lines)

@@ -217,12 +217,10 @@ def _f(x, fmt="{:.2f}"):
     return "-" if x is None else fmt.format(x)
 
 
-def main(argv=None) -> int:
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--n", type=int, default=200)
-    ap.add_argument("--json", type=Path, default=ROOT / "build" / "bench" / "own_robots.json")
-    args = ap.parse_args(argv)
-    rows = [bench_robot(p, args.n) for p in sorted(ROBOTS.glob("*/*.urdf"))]
+def report(n: int = 200, json_path: Path = ROOT / "build" / "bench" / "own_robots.json") -> str:
+    """Derive every test robot's URDF, time its IK against the peers, and return the Markdown table (ratios
+    first); the numbers also go to `json_path`."""
+    rows = [bench_robot(p, n) for p in sorted(ROBOTS.glob("*/*.urdf"))]
     versions = {}
     for mod in ("eaik", "ik_geo"):
         try:
@@ -231,20 +229,31 @@ def main(argv=None) -> int:
             versions[mod] = version(mod.replace("_", "-"))
         except Exception:  # noqa: BLE001
             versions[mod] = "not installed"
-    print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, Python "
-          f"{platform.python_version()}; peers: EAIK {versions['eaik']}, ik-geo {versions['ik_geo']}")
-    print("| robot | decomposition | derive s | IK sets/pose | wristkin C loop us | EAIK us (Python) | "
-          "C / EAIK | ik-geo us (Python) | wristkin Python us | peers' sets equal / N |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---|")
+    lines = [f"Your own robots: `wristkin derive` on each test robot's URDF, {n} poses each (machine: "
+             f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores, Python "
+             f"{platform.python_version()}; peers: EAIK {versions['eaik']}, ik-geo {versions['ik_geo']}):", "",
+             "| robot | C loop / EAIK | decomposition | derive s | IK sets/pose | wristkin C loop us | "
+             "EAIK us (Python) | ik-geo us (Python) | wristkin Python us | peers' sets equal / N |",
+             "|---|---:|---|---:|---:|---:|---:|---:|---:|---|"]
     for r in rows:
         e, g = r["peers"]["EAIK"], r["peers"]["ik-geo"]
         ratio = r["c_us"] / e["us"] if r["c_us"] and e.get("us") else None
         same = "; ".join(f"{k} {p['same_counts']}/{r['n']} (err {p['err']:.0e})" if "same_counts" in p else
                          f"{k}: {p['note']}" for k, p in r["peers"].items())
-        print(f"| {r['robot']} | {r['decomposition']} | {r['derive_s']:.1f} | {r['sets']:.2f} | {_f(r['c_us'])} | "
-              f"{_f(e.get('us'))} | {_f(ratio, '{:.2f}x')} | {_f(g.get('us'))} | {r['py_us']:.0f} | {same} |")
-    args.json.parent.mkdir(parents=True, exist_ok=True)
-    args.json.write_text(json.dumps({"versions": versions, "rows": rows}, indent=2, default=str))
+        lines.append(f"| {r['robot']} | {_f(ratio, '{:.2f}x')} | {r['decomposition']} | {r['derive_s']:.1f} | "
+                     f"{r['sets']:.2f} | {_f(r['c_us'])} | {_f(e.get('us'))} | {_f(g.get('us'))} | "
+                     f"{r['py_us']:.0f} | {same} |")
+    json_path.parent.mkdir(parents=True, exist_ok=True)
+    json_path.write_text(json.dumps({"versions": versions, "rows": rows}, indent=2, default=str))
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--n", type=int, default=200)
+    ap.add_argument("--json", type=Path, default=ROOT / "build" / "bench" / "own_robots.json")
+    args = ap.parse_args(argv)
+    print(report(args.n, args.json))
     return 0
 
 

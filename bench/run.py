@@ -171,9 +171,10 @@ def python_rows(poses: np.ndarray, joints: np.ndarray, batch_poses: np.ndarray,
 
     reach = float(np.mean(uw.ik_batch(batch_poses).status == uw.STATUS_OK))
     return [
-        {"name": "generated Python, scalar (uw.ik/fk)", "ik": per_call(uw.ik, poses),
+        {"name": f"generated Python, scalar (uw.ik/fk), backend {uw.BACKEND}", "ik": per_call(uw.ik, poses),
          "fk": per_call(uw.fk, joints), "n_ik": len(poses), "n_fk": len(joints), "note": ""},
-        {"name": "generated Python, batch (per row)", "ik": per_row_batch(uw.ik_batch, batch_poses),
+        {"name": f"generated Python, batch (per row), backend {uw.BACKEND}",
+         "ik": per_row_batch(uw.ik_batch, batch_poses),
          "fk": per_row_batch(uw.fk_batch, batch_joints), "n_ik": len(batch_poses), "n_fk": len(batch_joints),
          "note": f"ik_batch N={len(batch_poses)}, fk_batch N={len(batch_joints)}; "
                  f"{100 * reach:.0f}% of the IK poses are reachable"},
@@ -251,16 +252,64 @@ def fmt_ratio(t: float | None, base: float | None) -> str:
 
 
 def table(rows: list[dict], base: dict) -> str:
-    lines = ["| implementation | IK per call | FK per call | IK ratio vs C loop | FK ratio vs C loop |",
+    lines = ["| implementation | IK ratio vs C loop | FK ratio vs C loop | IK per call | FK per call |",
              "|---|---:|---:|---:|---:|"]
     for r in rows:
         ik, fk = r.get("ik"), r.get("fk")
         if "wall_s" in r:
-            lines.append(f"| {r['name']} | {fmt_time(r['wall_s'])} | | | |")
+            lines.append(f"| {r['name']} | | | {fmt_time(r['wall_s'])} | |")
             continue
-        lines.append(f"| {r['name']} | {fmt_time(ik)} | {fmt_time(fk)} | {fmt_ratio(ik, base['ik'])} | "
-                     f"{fmt_ratio(fk, base['fk'])} |")
+        lines.append(f"| {r['name']} | {fmt_ratio(ik, base['ik'])} | {fmt_ratio(fk, base['fk'])} | {fmt_time(ik)} | "
+                     f"{fmt_time(fk)} |")
     return "\n".join(lines)
+
+
+def goals(wrist_rows: list[dict], dh_measured: tuple[dict, list[dict]], regen: dict | None) -> list[dict]:
+    """Issue 13's goals, each as (ratio or time measured in this run, the goal, met?)."""
+    loops, rows = dh_measured
+    by = {r["name"]: r for r in rows}
+    py = next((r for r in rows if r["name"].startswith("wristkin from Python, backend")), {})
+    batch = next((r for r in rows if r["name"].startswith("wristkin ik_batch / fk_batch from Python, per pose, "
+                                                           "backend")), {})
+    eaik, pin = by.get("EAIK (DhRobot)", {}), by.get("pinocchio", {})
+    wrist_c = wrist_rows[0]
+    wrist_py = next(r for r in wrist_rows if r["name"].startswith("generated Python, scalar"))
+
+    def ratio(a, b):
+        return None if a is None or not b else a / b
+    out = [
+        ("PUMA-560 IK from Python / EAIK's (scalar)", ratio(py.get("ik_us"), eaik.get("ik_us")), 0.5, "x"),
+        ("PUMA-560 IK from Python / EAIK's (batch, per pose)", ratio(batch.get("ik_us"), eaik.get("ik_us")), 0.5,
+         "x"),
+        ("PUMA-560 FK from Python / pinocchio's", ratio(py.get("fk_us"), pin.get("fk_us")), 0.5, "x"),
+        ("PUMA-560 Jacobian from Python / pinocchio's", ratio(py.get("jac_us"), pin.get("jac_us")), 0.5, "x"),
+        ("underactuated wrist FK (every mode) from Python", wrist_py["fk"], 5e-6, "s"),
+        ("underactuated wrist FK (every mode), C loop", wrist_c["fk"], 2e-6, "s"),
+        ("underactuated wrist IK, C loop", wrist_c["ik"], 200e-9, "s"),
+        ("PUMA-560 IK, C loop", loops["puma560"]["ik_ns"] * 1e-9, 600e-9, "s"),
+    ]
+    if regen is not None:
+        out.append(("`derive.cli regenerate` of the catalogue, wall", regen["wall_s"], 40.0, "s"))
+    return [{"goal": g, "measured": m, "target": t, "unit": u, "met": m is not None and m <= t} for g, m, t, u in out]
+
+
+def goals_table(rows: list[dict]) -> str:
+    lines = ["| goal | measured | target | met |", "|---|---:|---:|:---:|"]
+    for r in rows:
+        m = "-" if r["measured"] is None else (f"{r['measured']:.2f}x" if r["unit"] == "x" else fmt_time(r["measured"]))
+        t = f"≤ {r['target']}x" if r["unit"] == "x" else f"≤ {fmt_time(r['target'])}"
+        lines.append(f"| {r['goal']} | {m} | {t} | {'yes' if r['met'] else 'no'} |")
+    return "\n".join(lines)
+
+
+README_START, README_END = "<!-- bench:start (written by `make bench`) -->", "<!-- bench:end -->"
+
+
+def write_readme(text: str, readme: Path = ROOT / "README.md") -> None:
+    """Put `text` between the README's bench markers (the tables there come from this run only)."""
+    src = readme.read_text()
+    i, j = src.index(README_START), src.index(README_END)
+    readme.write_text(src[:i + len(README_START)] + "\n" + text.strip() + "\n" + src[j:])
 
 
 def main(argv=None) -> int:
@@ -269,6 +318,7 @@ def main(argv=None) -> int:
     ap.add_argument("--casadi", type=Path, default=CASADI_FILE,
                     help="the .casadi file (default: generated/casadi/underactuated_wrist.casadi)")
     ap.add_argument("--quick", action="store_true", help="fewer calls (smoke test)")
+    ap.add_argument("--readme", action="store_true", help="write the tables into README.md (between its markers)")
     args = ap.parse_args(argv)
     for sub in (".", "tests", "generated/python"):
         sys.path.insert(0, str(ROOT / sub))
@@ -290,8 +340,9 @@ def main(argv=None) -> int:
                         fk_joints(n["b_fk"]))
     rows.append(reference_row(ik_poses(n["ref_ik"]), fk_joints(n["ref_fk"])))
     rows.append(casadi_row(args.casadi, ik_poses(n["py_ik"])))
-    if args.regenerate:
-        rows.append(regenerate_row())
+    regen = regenerate_row() if args.regenerate else None
+    if regen is not None:
+        rows.append(regen)
 
     print(f"machine: {machine['arch']}, {machine['cpu']} ({machine['cpus']} CPUs), "
           f"Python {machine['python']}, {machine['gcc']}, numpy {machine['numpy']}; "
@@ -304,7 +355,8 @@ def main(argv=None) -> int:
     print()
     import dh  # bench/dh.py: the DH chains and the PUMA-560 peers, measured in this same run
 
-    dh_text = dh.tables(quick=args.quick)
+    dh_measured = dh.measure(quick=args.quick)
+    dh_text = dh.tables(measured=dh_measured)
     print(dh_text)
     print()
     import rsr  # bench/rsr.py: the 3-RSR wrist and the SCARA + 3-RSR hybrid, same run
@@ -319,7 +371,20 @@ def main(argv=None) -> int:
     import own_robots  # bench/own_robots.py: `wristkin derive` on the test robots vs EAIK / ik-geo, same run
 
     print()
-    own_robots.main(["--n", "50" if args.quick else "200"])
+    own_text = own_robots.report(50 if args.quick else 200)
+    print(own_text)
+    goal_rows = goals(rows, dh_measured, regen)
+    machine_line = (f"Machine: {machine['cpu']} ({machine['cpus']} CPUs), Python {machine['python']}, "
+                    f"{machine['gcc']}, numpy {machine['numpy']}; load average {machine['loadavg']}; peers: "
+                    f"{dh.peer_versions()}.")
+    summary = "\n\n".join([machine_line, "Goals (issue 13), measured in this run:", goals_table(goal_rows),
+                            "Underactuated wrist (paper design), per call; ratio = time / generated C loop:",
+                            table(rows, base), "\n".join(f"- {r['name']}: {r['note']}" for r in rows if r.get("note")),
+                            dh_text, rsr_text, screws_text, own_text])
+    print("\n" + goals_table(goal_rows))
+    if args.readme:
+        write_readme(summary)
+        print("README.md: the tables between the bench markers rewritten from this run")
     print(f"\ntimed in {time.perf_counter() - t_start:.1f} s; "
           f"results in {BUILD_DIR.relative_to(ROOT)}/results.json")
 
@@ -330,7 +395,7 @@ def main(argv=None) -> int:
             r[f"{k}_ratio_vs_c_loop"] = None if t is None else t / base[k]
     result = {"machine": machine, "unit": "seconds per call", "repeats_python": REPEATS, "counts": n,
               "c_loop_raw": c_raw, "rows": rows, "dh_tables_markdown": dh_text,
-              "rsr_tables_markdown": rsr_text, "screw_tables_markdown": screws_text}
+              "rsr_tables_markdown": rsr_text, "screw_tables_markdown": screws_text, "goals": goal_rows}
     (BUILD_DIR / "results.json").write_text(json.dumps(result, indent=2) + "\n")
     return 0
 
