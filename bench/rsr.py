@@ -27,7 +27,8 @@ def c_loop(n: int) -> dict:
     BUILD.mkdir(parents=True, exist_ok=True)
     exe = BUILD / "bench_rsr"
     subprocess.run(["gcc", *FLAGS, f"-I{C_DIR}", str(ROOT / "bench" / "bench_rsr.c"), str(C_DIR / "rsr_wrist.c"),
-                    str(C_DIR / "scara_rsr.c"), "-lm", "-o", str(exe)], check=True, capture_output=True, text=True)
+                    str(C_DIR / "scara_rsr.c"), str(C_DIR / "wristkin_runtime.c"), "-lm", "-o", str(exe)],
+                   check=True, capture_output=True, text=True)
     return json.loads(subprocess.run([str(exe), str(n)], check=True, capture_output=True, text=True).stdout)
 
 
