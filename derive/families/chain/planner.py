@@ -72,6 +72,8 @@ def op_branches(op: dict) -> int:
         return 2
     if op["op"] == "spatial3":
         return 4  # a general 3R positioning problem has at most 4 solutions (Pieper)
+    if op["op"] == "sp6":
+        return 4  # two equations linear in (cos, sin) of two angles: a quartic
     if op["op"] == "orient":
         return 2 if len(op["units"]) == 3 else 1
     return 1
@@ -267,6 +269,21 @@ def _three_parallel(g: Geometry) -> list[Plan]:
             continue
         xspec = _x_spec(g, tail)
         if xspec is None:
+            # the two joints after the group do not meet (a UR-type arm with an offset wrist): joints 1 and 5 from
+            # two equations, each linear in the cosines and sines of both (subproblem 6), joint 6 from the
+            # group's axis, then the group's sum and the planar pair
+            if i != 1 or len(tail) != 2 or not _plane_ok(g, 0, ("dir", grp[0])):
+                continue
+            ops = [{"op": "begin", "x": ("on", tail[1]), "lo": 0, "hi": n - 1},
+                   {"op": "sp6", "j": 0, "k": tail[0], "l": tail[1], "n": ("dir", grp[0])},
+                   {"op": "orient", "units": [grp], "lo": grp[0], "hi": grp[2]},
+                   {"op": "begin", "x": ("on", grp[2]), "lo": grp[0], "hi": grp[2]},
+                   {"op": "last_dist", "j": grp[1], "kind": "R", "s": ("on", grp[0])},
+                   {"op": "single", "j": grp[0], "kind": "R"},
+                   {"op": "group_rest", "j": grp[2], "group": grp}]
+            plans.append(Plan(ops, False, f"three parallel axes {_names(g, grp)} with an offset wrist: joints "
+                              f"{g.c.joint_names[0]}, {g.c.joint_names[tail[0]]} from two equations along their "
+                              f"axis (subproblem 6), {g.c.joint_names[tail[1]]} from it, then the planar pair"))
             continue
         ops = []
         if i == 1:
@@ -399,4 +416,12 @@ def replay(chain: Chain, plan: Plan, q) -> list[float]:
             out.append(float(np.max(np.abs(units - rd))))
         elif kind == "group_rest":
             out.append(0.0)
+        elif kind == "sp6":
+            n = g.direction(op["n"])
+            y = app(np.linalg.inv(e[op["j"]]), y)
+            pos = abs(np.dot(n, y) - np.dot(n, app(e[op["k"]], x)))
+            rg = G[:3, :3]
+            h5 = c.axes[op["l"]]
+            ori = abs(n @ e[op["j"]][:3, :3].T @ rg @ h5 - n @ e[op["k"]][:3, :3] @ h5)
+            out.append(float(max(pos, ori)))
     return out
