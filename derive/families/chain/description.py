@@ -93,7 +93,6 @@ def read(spec: Spec, path_hint: Path | None = None) -> Description:
                                     spec.text("tip_link", None) if spec.has("tip_link") else None, head["name"])
         except urdf.URDFError as exc:
             raise spec.error("urdf", f"a URDF with a serial chain ({exc})") from None
-        fk_desc = _poe_fk(chain)
         rule = (f"URDF joint origins composed from {info['base_link']} to {info['tip_link']} (fixed joints "
                 f"{', '.join(info['folded_fixed_joints']) or 'none'} folded), each movable joint's axis taken "
                 "in its joint frame at zero")

@@ -186,8 +186,8 @@ def plan_point(g: Geometry, js: list[int], x: np.ndarray) -> list[list[dict]]:
         s = g.point(sspec)
         if not g.rev(c) or (not g.on_axis(s, c) and not g.on_axis(x, c)):
             step = {"op": "last_dist", "j": c, "kind": g.c.kinds[c], "s": sspec}
-            xs = x if not g.rev(c) else x  # x moves with joint c at run time; at home it is x
-            out += [[step] + rest for rest in plan_point(g, js[:-1], xs)]
+            # x moves with joint c at run time; the structural checks below read it at home, where it is x
+            out += [[step] + rest for rest in plan_point(g, js[:-1], x)]
     sspec = _invariant_point(g, js[1:])
     if sspec is not None:
         s = g.point(sspec)
@@ -340,7 +340,6 @@ def find_plan(chain: Chain, tol: float = DEFAULT_GEOMETRY_TOL, check=None) -> Pl
 def refusal(chain: Chain, tol: float) -> str:
     """Why no decomposition fits, naming the axes."""
     n = chain.n
-    g = Geometry(chain, tol)
     facts = []
     for i in range(n - 1):
         a, b = chain.axes[i], chain.axes[i + 1]
@@ -349,7 +348,6 @@ def refusal(chain: Chain, tol: float) -> str:
             dist = line_distance(chain.points[i], a, chain.points[i + 1], b)
             facts.append(f"{chain.joint_names[i]}/{chain.joint_names[i + 1]}: angle sin {dev:.2e}, distance "
                          f"{dist:.2e} m")
-    del g
     return (f"no closed-form decomposition for the {n}-joint chain {chain.name!r} at geometry tolerance {tol:g}: "
             "it needs the last 3 (or 2, 1) revolute axes to meet in a point with at most 3 joints before them "
             "(or the same from the base), or three consecutive parallel axes (joints 1-3 or 2-4); neighbouring "
