@@ -20,10 +20,41 @@ def _as_matrix(e) -> sp.Matrix:
     return e if isinstance(e, sp.MatrixBase) else sp.Matrix([e])
 
 
+def trig_polynomial_zero(expr) -> bool:
+    """True when `expr` is proven identically zero by ideal reduction; False means "not proven here".
+
+    After expand_trig every trigonometric atom is sin, cos or tan of an argument that is no sum; each argument x
+    becomes a pair (s_x, c_x) on its circle s_x^2 + c_x^2 = 1, and the numerator of the expression a polynomial
+    in the pairs and the other symbols. The circles' equations form a Groebner basis (their leading terms s_x^2
+    share no variable), so the numerator vanishes on every circle point iff its remainder on division by them is
+    the zero polynomial: an exact proof, far cheaper than trigsimp. Arguments in a fixed relation (x and x/2,
+    x and x + 1) or any other function or root of a symbol make it answer False: the caller then simplifies.
+    """
+    e = sp.expand_trig(sp.sympify(expr))
+    atoms = e.atoms(sp.sin, sp.cos, sp.tan)
+    args = sorted({f.args[0] for f in atoms}, key=sp.default_sort_key)
+    for i, a in enumerate(args):
+        if any((a / b).is_Rational or (a - b).is_number for b in args[i + 1:]):
+            return False
+    pairs = {a: (sp.Dummy(f"s{i}"), sp.Dummy(f"c{i}")) for i, a in enumerate(args)}
+    rep = {f: {sp.sin: pairs[f.args[0]][0], sp.cos: pairs[f.args[0]][1],
+               sp.tan: pairs[f.args[0]][0] / pairs[f.args[0]][1]}[f.func] for f in atoms}
+    num = sp.expand(sp.fraction(sp.together(e.xreplace(rep)))[0])
+    if num.atoms(sp.Function) or any(not p.exp.is_Integer and not p.base.is_number for p in num.atoms(sp.Pow)):
+        return False
+    if num == 0 or not args:
+        return num == 0
+    gens = [v for a in args for v in pairs[a]]
+    gens += sorted(num.free_symbols - set(gens), key=lambda x: x.name)
+    _, rem = sp.reduced(num, [s**2 + c**2 - 1 for s, c in pairs.values()], *gens, order="lex")
+    return sp.expand(rem) == 0
+
+
 def symbolic_identity(lhs, rhs, claim: str, simplifier: Callable = sp.simplify) -> Check:
-    """Prove lhs == rhs by simplifying the difference to zero."""
+    """Prove lhs == rhs: each entry of the difference by ideal reduction (trig_polynomial_zero), else by
+    simplifying it to zero with `simplifier`."""
     diff = _as_matrix(lhs) - _as_matrix(rhs)
-    ok = all(simplifier(sp.expand_trig(d)) == 0 for d in diff)
+    ok = all(trig_polynomial_zero(d) or simplifier(sp.expand_trig(d)) == 0 for d in diff)
     return Check("symbolic", claim, bool(ok))
 
 

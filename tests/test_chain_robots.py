@@ -338,6 +338,10 @@ def test_the_command_writes_importable_solvers_and_an_audit(tmp_path):
     for rel in ("python/my_ur.py", "python/_wristkin_runtime.py", "c/my_ur.h", "c/my_ur.c", "casadi/my_ur.casadi",
                 "audit/my_ur.md"):
         assert (tmp_path / rel).is_file(), rel
+    lint = subprocess.run([sys.executable, "-m", "ruff", "check", "--no-cache", "--config",
+                           str(Path(__file__).parent.parent / "pyproject.toml"), str(tmp_path / "python")],
+                          capture_output=True, text=True, check=False)
+    assert lint.returncode == 0, lint.stdout  # generated code passes ruff (the project's settings)
     report = (tmp_path / "audit" / "my_ur.md").read_text()
     assert "three parallel axes" in report and "Subproblem formula" in report
     probe = ("import sys; sys.path.insert(0, sys.argv[1]); import my_ur; import numpy as np; "
@@ -482,3 +486,20 @@ def test_a_general_3r_arm_is_solved_by_its_polynomial(tmp_path):
             assert len(found) == sol.count
             for v in found:
                 assert min(_gap(v, w, m.JOINT_KINDS) for w in sol) < 1e-6
+
+
+def test_a_ur_wrist_singularity_is_never_empty():
+    """q5 = 0 or pi on a UR: axes 2, 3, 4 and 6 are parallel, a one-parameter family whose free angle also moves
+    the wrist point, so only an interval of it reaches the pose. Without `previous` a member is still returned
+    (the search over FAMILY_ANGLES stops at the first verified one); with it, the generating configuration."""
+    m = solver("ur5e")
+    rng = case_rng(23)
+    for i in range(60):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        q[4] = 0.0 if i % 2 else math.pi
+        T = m.fk_matrix(q)
+        sol = m.ik(T)
+        assert sol.count >= 1 and sol.status == m.STATUS_INDETERMINATE, (i, sol.reason)
+        for v in sol:
+            assert np.max(np.abs(m.fk_matrix(v) - T)) <= m.IK_VERIFY_TOL
+        assert min(_gap(v, q, m.JOINT_KINDS) for v in m.ik(T, previous=q)) < 1e-7

@@ -14,7 +14,7 @@ from ...spec import COMMON_FIELDS, Spec, common
 from . import urdf
 from .description_names import JOINT_NAME
 from .planner import DEFAULT_GEOMETRY_TOL
-from .robot import Chain, dh_link, from_dh, from_frames, rot, rpy_matrix, screw, transform
+from .robot import Chain, dh_link, from_dh, from_frames, rot, rpy_matrix, transform
 
 SPEC_FIELDS = ("convention", "joint", "home", "base", "tool", "free", "geometry_tol", "urdf", "base_link",
                "tip_link")
@@ -31,7 +31,6 @@ class Description:
     free: int  # index of the free joint, or -1
     geometry_tol: float
     source: str
-    info: dict
 
 
 def angle(spec: Spec, field: str, default=0.0) -> float:
@@ -82,7 +81,6 @@ def read(spec: Spec, path_hint: Path | None = None) -> Description:
     convention = spec.choice("convention", ("standard", "modified", "poe", "urdf"))
     base, tool = _frame(spec, "base"), _frame(spec, "tool")
     tol = spec.number("geometry_tol", DEFAULT_GEOMETRY_TOL, lo=1e-14, hi=1e-2)
-    info: dict = {}
     if convention == "urdf":
         if spec.has("joint") or spec.has("home"):
             raise spec.error("joint", "no [[joint]] or [home] in a URDF spec (the URDF describes the joints)")
@@ -121,7 +119,7 @@ def read(spec: Spec, path_hint: Path | None = None) -> Description:
             home = transform(rpy_matrix(home_t.vector("rpy", 3, [0.0, 0.0, 0.0])), home_t.vector("position", 3))
             chain = from_frames(head["name"], names, kinds, pairs, home, lower=np.array(lower),
                                 upper=np.array(upper), source_format="poe")
-            fk_desc = _poe_fk(chain)
+            fk_desc = _poe_fk(kinds, pairs, home)
             rule = "product of exponentials: exp(S_1 q_1) ... exp(S_n q_n) M from the spec's axes, points and home"
         else:
             if spec.has("home"):
@@ -149,15 +147,19 @@ def read(spec: Spec, path_hint: Path | None = None) -> Description:
     elif chain.n > 6:
         raise spec.error("free", f"the name of the joint held as a parameter (the chain has {chain.n} joints; a "
                                  "closed form needs at most 6 solved)")
-    return Description(chain, lambda q: base @ fk_desc(q) @ tool, rule, free, tol, head["source"], info)
+    return Description(chain, lambda q: base @ fk_desc(q) @ tool, rule, free, tol, head["source"])
 
 
-def _poe_fk(chain: Chain):
+def _poe_fk(kinds, pairs, home):
+    """The POE spec as written (its own points, not the chain's normalised ones): each turn as Tr(p) Rot Tr(-p)."""
     def fk(q):
         t = np.eye(4)
-        for k, a, p, v in zip(chain.kinds, chain.axes, chain.points, q, strict=True):
-            t = t @ screw(k, a, p, v)
-        return t @ chain.home
+        for kind, (axis, point), v in zip(kinds, pairs, q, strict=True):
+            if kind == "P":
+                t = t @ transform(None, axis * v)
+            else:
+                t = t @ transform(None, point) @ transform(rot(axis, v)) @ transform(None, -point)
+        return t @ home
     return fk
 
 

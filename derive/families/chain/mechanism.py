@@ -13,7 +13,7 @@ from ...checks import numeric_predicate
 from ...model import Check, Derivation, Finding, Step
 from .description import Description
 from .geometry import common_point
-from .planner import NoClosedForm, Plan, find_plan, op_branches, replay
+from .planner import Geometry, NoClosedForm, Plan, find_plan, op_branches, replay
 from .proofs import subproblem_checks
 from .robot import Chain, normalised, reduce_free, reverse
 
@@ -418,12 +418,13 @@ def _op_rule(op, names) -> str:
 
 def _roles(plan: Plan, ch: Chain):
     """Named branches: (name, kind, joint, reference data) per branching op, and name -> two labels."""
+    geometry = Geometry(ch, 1.0)  # its points only: the chain's meeting points, axis points, home origin
     roles, labels = [], {}
     x_home, count = None, 0
     place_end = 0
     for op in plan.ops:
         if op["op"] == "begin":
-            x_home = _point(ch, op["x"])
+            x_home = geometry.point(op["x"])
             place_end = op["hi"] + 1
         if op_branches(op) < 2:
             continue
@@ -434,7 +435,7 @@ def _roles(plan: Plan, ch: Chain):
             lab = ("noflip", "flip")
         elif op["op"] in ("first_dist", "last_dist") and op["kind"] == "R":
             name, kind, j = "elbow", "elbow", op["j"]
-            s = _point(ch, op["s"])
+            s = geometry.point(op["s"])
             s_index = min(op["s"][1:]) if op["s"][0] != "home" else 0
             ref = (s_index, tuple(float(v) for v in s), place_end, tuple(float(v) for v in x_home),
                    tuple(float(v) for v in ch.axes[0]))
@@ -453,11 +454,3 @@ def _roles(plan: Plan, ch: Chain):
         labels[name] = lab
         roles.append((name, kind, j, ref))
     return roles, labels
-
-
-def _point(ch: Chain, spec) -> np.ndarray:
-    if spec[0] == "meet":
-        return common_point([ch.points[j] for j in spec[1:]], [ch.axes[j] for j in spec[1:]])[0]
-    if spec[0] == "on":
-        return ch.points[spec[1]]
-    return ch.home[:3, 3]

@@ -287,7 +287,7 @@ def derive_spec(spec: ScrewSpec) -> Derivation:
 
     _design_step(dv, spec)
     _image_step(dv, spec, f_t)
-    _ik_steps(dv, spec, T)
+    _ik_steps(dv, spec, f_t)
     if spec.extra_steps is not None:
         spec.extra_steps(dv, spec)
     dv.findings.extend(spec.findings)
@@ -331,16 +331,18 @@ def _image_step(dv: Derivation, spec: ScrewSpec, f_t) -> None:
                                    tol=0.0))))
 
 
-def _ik_steps(dv: Derivation, spec: ScrewSpec, T: sp.Matrix) -> None:
-    sub_pose = {s: T[i // 4, i % 4] for i, s in enumerate(POSE_SYMBOLS)}
-    args = (*spec.joints, *spec.design)
+def _ik_steps(dv: Derivation, spec: ScrewSpec, f_t) -> None:
+    """Each stage's expressions evaluated at the pose the FK `f_t(joints, design)` gives (the pose as numbers,
+    not the FK substituted symbolically: the same check at a fraction of the compile time)."""
+    args = (*POSE_SYMBOLS, *spec.joints, *spec.design)
     solved: list[int] = []
     for k, st in enumerate(spec.stages, start=1):
-        fn = sp.lambdify(args, [sp.sympify(e).xreplace(sub_pose) for e in st.exprs], "numpy", cse=True)
+        fn = sp.lambdify(args, [sp.sympify(e) for e in st.exprs], "numpy")
 
         def err(rng, st=st, fn=fn):
             q, dsn = sample_joints(spec, rng), sample_design(spec, rng)
-            vals = [float(v) for v in fn(*q.values(), *dsn.values())]
+            pose = np.asarray(f_t(*q.values(), *dsn.values()), float)[:3].ravel()
+            vals = [float(v) for v in fn(*pose, *q.values(), *dsn.values())]
             qv = q[spec.joints[st.joints[0]]]
             if st.kind == "trig_linear":
                 return abs(vals[0] * math.cos(qv) + vals[1] * math.sin(qv) + vals[2])
