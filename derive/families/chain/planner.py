@@ -8,7 +8,11 @@ small set of decompositions, read from the base or from the tool (the chain reve
                         orient the end frame (subproblem 2, then 1);
   three parallel axes   joints 2-4 parallel (UR type): joint 1 from the plane normal to them (subproblem 4),
                         the orientation of (the parallel group's sum, joint 5, joint 6) by subproblems 2 + 1,
-                        then the planar pair by subproblem 3 + 1 and the third from the sum.
+                        then the planar pair by subproblem 3 + 1 and the third from the sum; when the last
+                        two axes do not meet (an offset wrist), joints 1 and 5 from two equations along the
+                        group's direction n (the component of the wrist point and of axis 6), each linear in
+                        the cosines and sines of both: a quartic in tan(q1/2), every real root (subproblem 6),
+                        then joint 6 about n (subproblem 1), the group's sum and the planar pair.
 
 A point problem e_a ... e_c x = y (x fixed by the joints after c) is solved one joint at a time from an
 invariant of the others: a point S on the axes of all the others keeps its distance (subproblem 3, or a
@@ -281,9 +285,11 @@ def _three_parallel(g: Geometry) -> list[Plan]:
                    {"op": "last_dist", "j": grp[1], "kind": "R", "s": ("on", grp[0])},
                    {"op": "single", "j": grp[0], "kind": "R"},
                    {"op": "group_rest", "j": grp[2], "group": grp}]
-            plans.append(Plan(ops, False, f"three parallel axes {_names(g, grp)} with an offset wrist: joints "
-                              f"{g.c.joint_names[0]}, {g.c.joint_names[tail[0]]} from two equations along their "
-                              f"axis (subproblem 6), {g.c.joint_names[tail[1]]} from it, then the planar pair"))
+            plans.append(Plan(ops, False, f"three parallel axes {_names(g, grp)} with an offset wrist (the last "
+                              f"two axes apart): joints {g.c.joint_names[0]} and {g.c.joint_names[tail[0]]} from two "
+                              f"equations along the parallel axes (subproblem 6, a quartic), "
+                              f"{g.c.joint_names[tail[1]]} about them (subproblem 1), then the group's angle and "
+                              f"the planar pair"))
             continue
         ops = []
         if i == 1:
