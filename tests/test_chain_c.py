@@ -110,6 +110,34 @@ point = [0.6, 0.1, 0.9]
 [home]
 position = [0.6, 0.1, 1.0]
 """,
+    # a UR5e with its last two axes apart (a5 = 3 cm): joints 1 and 5 from subproblem 6
+    "ur_off": """family = "chain"
+name = "ur_off"
+title = "UR5e with an offset wrist"
+convention = "standard"
+[[joint]]
+name = "q1"
+alpha = "pi/2"
+d = 0.1625
+[[joint]]
+name = "q2"
+a = -0.425
+[[joint]]
+name = "q3"
+a = -0.3922
+[[joint]]
+name = "q4"
+alpha = "pi/2"
+d = 0.1333
+[[joint]]
+name = "q5"
+alpha = "-pi/2"
+d = 0.0997
+a = 0.03
+[[joint]]
+name = "q6"
+d = 0.0996
+""",
 }
 NAMES = tuple(SPECS)
 WRIST = 4  # q5: the middle wrist joint of both arms (0: the wrist singularity)
@@ -354,6 +382,25 @@ def test_singular_wrist_is_one_flagged_family(solvers, name):
         _assert_same(py, py.ik(pose, None, prev), c.ik(pose, None, prev), f"{name} singular {i} near")
         rc, fc = c.fk(q)
         assert rc == WK_OK and fc.flags[0] & FLAG_SINGULAR_INVERSE and py.fk(q).flags[0] & FLAG_SINGULAR_INVERSE
+
+
+def test_offset_wrist_singularity_equals_python(solvers):
+    """The offset-wrist UR (subproblem 6) at its exact wrist singularity, q5 = 0 or pi at any group sum (the free
+    angle is q6's, and only an interval of it reaches the pose): C equals Python set for set (values, order, flags)
+    without `previous` (the FAMILY_ANGLES search) and with it (ik_near); never empty, the family flagged."""
+    py, c = solvers["ur_off"]
+    rng = case_rng(9106)
+    for i in range(200):
+        q = _joints(rng, py)
+        q[WRIST] = 0.0 if i % 2 else math.pi
+        pose = py.fk_matrix(q)
+        s = py.ik(pose)
+        _assert_same(py, s, c.ik(pose), f"ur_off singular {i}")
+        assert s.count >= 1 and s.status == STATUS_INDETERMINATE, (i, s.reason)
+        assert any(s.flags[k] & FLAG_INDETERMINATE for k in range(s.count))
+        near = py.ik(pose, None, q)
+        _assert_same(py, near, c.ik(pose, None, q), f"ur_off singular {i} near")
+        assert min(_gap(v, q, py.JOINT_KINDS) for v in near) < 1e-7
 
 
 @pytest.mark.parametrize("name", NAMES)

@@ -1,6 +1,8 @@
 """Bring your own robot: classic arms written in three formats (tests/robots/: URDF, DH table, POE spec) go
 through `wristkin derive` and the emitted solvers are checked against the independent numeric reference
 (tests/reference/chain.py: its own URDF / DH / POE readers and a multistart Levenberg-Marquardt IK).
+tests/robots/ur5e_offset (a DH table only, a test arm): the UR5e with its last two axes 3 cm apart, which the
+planner solves by subproblem 6; the same checks, plus its exact wrist singularity.
 
 Tolerances: FK and Jacobian agree to 1e-12 x the robot's size (two products of the same rigid motions in a
 different order: rounding only); IK sets reproduce the pose to 1e-9 (IK_VERIFY_TOL, the solver's own
@@ -503,3 +505,96 @@ def test_a_ur_wrist_singularity_is_never_empty():
         for v in sol:
             assert np.max(np.abs(m.fk_matrix(v) - T)) <= m.IK_VERIFY_TOL
         assert min(_gap(v, q, m.JOINT_KINDS) for v in m.ik(T, previous=q)) < 1e-7
+
+
+# ------------------------------------------------------------------------------------------ offset wrist (subproblem 6)
+OFFSET = "ur5e_offset"  # the UR5e with a5 = 3 cm (tests/robots/ur5e_offset, DH only): axes 5 and 6 apart
+
+
+def _joint_tol(m, q) -> float:
+    """How far from q a set may be that reproduces q's pose to IK_VERIFY_TOL (the solver's acceptance), from the
+    conditioning at q: to first order |dq| <= |dT| / sigma_min(J(q)), |dT| (a twist) at most sqrt(6) times the
+    largest entry error of [R | p]; a factor 10 for the second-order term (the poses are regular or the bound is
+    loose anyway). The solvers are far better (rounding), but nothing less follows from the acceptance."""
+    s = np.linalg.svd(m.jacobian(q), compute_uv=False)
+    return 10.0 * math.sqrt(6.0) * m.IK_VERIFY_TOL / max(float(s[-1]), 1e-300)
+
+
+def test_offset_wrist_is_subproblem_6_and_fk_equals_the_reference():
+    m, r = solver(OFFSET, "dh"), reference(OFFSET, "dh")
+    assert "offset wrist" in m.DECOMPOSITION and "subproblem 6" in m.DECOMPOSITION
+    assert "sp6" in repr(m._PLAN) and m.MAX_IK == 8  # a quartic in q1, two elbows each
+    rng = case_rng(24)
+    for _ in range(20):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        # two products of the same rigid motions in a different order: rounding only
+        np.testing.assert_allclose(m.fk_matrix(q), r(q), atol=1e-12 * _size(m))
+        np.testing.assert_allclose(m.jacobian(q), r.jacobian(q), atol=1e-12 * _size(m))
+
+
+def test_offset_wrist_ik_contains_the_generating_joints_and_every_set_reproduces_the_pose():
+    m, r = solver(OFFSET, "dh"), reference(OFFSET, "dh")
+    rng = case_rng(25)
+    counts = {}
+    for _ in range(60):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        T = r(q)  # the reference's FK: the pose does not come from the solver
+        sol = m.ik(T)
+        assert sol.status == m.STATUS_OK, sol.reason
+        assert min(_gap(v, q, m.JOINT_KINDS) for v in sol) <= _joint_tol(m, q)
+        for v in sol:
+            assert np.max(np.abs(r(v) - T)) <= m.IK_VERIFY_TOL + 1e-12 * _size(m)  # + the FK's rounding
+        counts[sol.count] = counts.get(sol.count, 0) + 1
+    assert counts.get(8, 0) >= 20, counts  # most random poses have all eight sets
+
+
+def test_offset_wrist_sets_equal_the_multistart_reference():
+    """None missed, none spurious: on regular poses (sigma_min / sigma_max > 1e-3) the sets equal every solution
+    the numeric reference finds, to 1e-6 rad (the reference's dedup; it converges to 1e-10 in the pose, so its
+    joints are good to ~1e-10 / sigma_min <= 1e-7 here)."""
+    m, r = solver(OFFSET, "dh"), reference(OFFSET, "dh")
+    rng = case_rng(26)
+    for k in range(4):
+        q = _regular_joints(m, rng)
+        T = r(q)
+        found = ref.ik_all(r, 6, T, seed=k)
+        ours = list(m.ik(T))
+        assert len(ours) == len(found), (len(ours), len(found))
+        for v in found:
+            assert min(_gap(v, w, m.JOINT_KINDS) for w in ours) < 1e-6
+
+
+def test_offset_wrist_singularity_gives_the_generating_family():
+    """q5 = 0 or pi exactly: axis 6 parallel to axes 2, 3, 4, a one-parameter family (q6 against the group's
+    sum) whose free angle also moves the wrist point. Without `previous` the family is still returned (flagged
+    singular and indeterminate), with q1 and q5 of the generating configuration; with `previous` = the generating
+    configuration, that configuration; with `previous` moved along the family, the member at its q6."""
+    m, r = solver(OFFSET, "dh"), reference(OFFSET, "dh")
+    rng = case_rng(27)
+    for i in range(60):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        # the elbow at least 0.3 rad from straight / folded: the 2R reach then has a margin of ~9 mm, so a 1e-3 rad
+        # step of q6 (which moves the wrist point by < 1 mm) stays inside the family's interval
+        q[2] = math.copysign(rng.uniform(0.3, math.pi - 0.3), q[2])
+        q[4] = 0.0 if i % 2 else math.pi
+        T = r(q)
+        sol = m.ik(T)
+        assert sol.count >= 1 and sol.status == m.STATUS_INDETERMINATE, (i, sol.reason)
+        family = [k for k in range(sol.count) if sol.flags[k] & m.FLAG_INDETERMINATE]
+        assert family and all(sol.flags[k] & m.FLAG_SINGULAR_INVERSE for k in family)
+        for v in sol:
+            assert np.max(np.abs(r(v) - T)) <= m.IK_VERIFY_TOL + 1e-12 * _size(m)
+        # q1 from subproblem 4 and q5 where axis 6 lines up with n: rounding, or sqrt(eps) ~ 1e-8 at a tangent
+        assert min(_gap(sol.values[k][[0, 4]], q[[0, 4]], "RR") for k in family) < 1e-7
+        # with `previous`: q6 taken from it, the rest from closed forms at that angle (the planar pair conditioned
+        # by the elbow's margin above), so again rounding, not the singular Jacobian's conditioning
+        near = m.ik(T, previous=q)
+        k = int(np.argmin([_gap(v, q, m.JOINT_KINDS) for v in near]))
+        assert _gap(near.values[k], q, m.JOINT_KINDS) < 1e-7 and near.flags[k] & m.FLAG_INDETERMINATE
+        prev = q.copy()
+        prev[5] += 1e-3
+        moved = m.ik(T, previous=prev)
+        k = int(np.argmin([_gap(v, prev, m.JOINT_KINDS) for v in moved]))
+        assert abs(math.remainder(moved.values[k][5] - prev[5], 2 * math.pi)) < 1e-12
+        assert _gap(moved.values[k], q, m.JOINT_KINDS) < 2e-2  # the same member of the family, 1e-3 along it
+        assert np.max(np.abs(r(moved.values[k]) - T)) <= m.IK_VERIFY_TOL + 1e-12 * _size(m)

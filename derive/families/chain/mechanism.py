@@ -212,6 +212,8 @@ class ChainMechanism:
                 "strategy_literal": _text_literal(plan.strategy), "controls_literal": _text_literal(self.controls()),
                 "plan_ops": plan.ops, "roles_list": roles,
                 "has_spatial3": any(op["op"] == "spatial3" for op in plan.ops),
+                "has_sp6": any(op["op"] == "sp6" for op in plan.ops),
+                "has_poly": any(op["op"] in ("spatial3", "sp6") for op in plan.ops),
                 # the same data as plain numbers, for the C template
                 "c_data": {"axes": _floats(c.axes), "points": _floats(c.points), "home": _floats(c.home),
                            "ideal_axes": _floats(ideal.axes), "ideal_points": _floats(ideal.points),
@@ -330,6 +332,8 @@ def _plan_literal(plan: Plan) -> str:
             rows.append(f'("linear", {_spec_literal(op["js"])})')
         elif k == "spatial3":
             rows.append(f'("spatial3", {op["js"][0]}, {op["js"][1]}, {op["js"][2]})')
+        elif k == "sp6":
+            rows.append(f'("sp6", {op["j"]}, {op["k"]}, {op["l"]}, {_spec_literal(op["n"])})')
         elif k == "orient":
             units = ("(" + ", ".join(_spec_literal(u) for u in op["units"]) + ("," if len(op["units"]) == 1 else "")
                      + ")")
@@ -377,6 +381,12 @@ def _op_text(op, names) -> str:
         return f"{nm(op['j'])} from e_{nm(op['j'])} x = y"
     if k == "linear":
         return ", ".join(nm(j) for j in op["js"]) + " from the slides: x + sum q_i h_i = y"
+    if k == "sp6":
+        return (f"{nm(op['j'])}, {nm(op['k'])} from n . e_{nm(op['j'])}^-1 y = n . e_{nm(op['k'])} x and "
+                f"n . R_{nm(op['j'])}^T R h = n . R_{nm(op['k'])} h (n = {_dir_words(op['n'], names)}, h = axis "
+                f"{nm(op['l'])}, R = the target's rotation), then {nm(op['l'])} from rot(h, -q) R_{nm(op['k'])}^T n = "
+                f"(R_{nm(op['j'])}^T R)^T n; where h lines up with n (the wrist singularity) {nm(op['l'])} is the "
+                f"family's free angle (from previous, else the first of FAMILY_ANGLES with a verified set)")
     if k == "spatial3":
         return (", ".join(nm(j) for j in op["js"]) + " from e x = y: the distance to the first axis's point and the "
                 "component along it, a degree-8 polynomial in tan(q/2) of the middle joint")
@@ -400,6 +410,10 @@ def _op_rule(op, names) -> str:
             "pair": "subproblem 2: two rotations about axes through s",
             "single": "subproblem 1 (the slide's component for a prismatic joint)",
             "linear": "linear least squares over the slides",
+            "sp6": "subproblem 6: the parallel group keeps the component along its direction n of a point and "
+                   "of a direction, two equations each linear in the cosines and sines of both joints; Cramer's "
+                   "rule and cos^2 + sin^2 = 1 give a quartic in tan(q/2), every real root (the wrist singularity, "
+                   "a double root, tried directly)",
             "spatial3": "three revolute axes in general position (subproblem 5 in effect): two invariants of the "
                         "first joint, bilinear in the other two; every real root of the resulting polynomial",
             "orient": "subproblem 2 on the last unit's axis, then subproblem 1 about it (fewer units: subproblem 1)",

@@ -8,7 +8,11 @@ small set of decompositions, read from the base or from the tool (the chain reve
                         orient the end frame (subproblem 2, then 1);
   three parallel axes   joints 2-4 parallel (UR type): joint 1 from the plane normal to them (subproblem 4),
                         the orientation of (the parallel group's sum, joint 5, joint 6) by subproblems 2 + 1,
-                        then the planar pair by subproblem 3 + 1 and the third from the sum.
+                        then the planar pair by subproblem 3 + 1 and the third from the sum; when the last
+                        two axes do not meet (an offset wrist), joints 1 and 5 from two equations along the
+                        group's direction n (the component of the wrist point and of axis 6), each linear in
+                        the cosines and sines of both: a quartic in tan(q1/2), every real root (subproblem 6),
+                        then joint 6 about n (subproblem 1), the group's sum and the planar pair.
 
 A point problem e_a ... e_c x = y (x fixed by the joints after c) is solved one joint at a time from an
 invariant of the others: a point S on the axes of all the others keeps its distance (subproblem 3, or a
@@ -72,6 +76,8 @@ def op_branches(op: dict) -> int:
         return 2
     if op["op"] == "spatial3":
         return 4  # a general 3R positioning problem has at most 4 solutions (Pieper)
+    if op["op"] == "sp6":
+        return 4  # two equations linear in (cos, sin) of two angles: a quartic
     if op["op"] == "orient":
         return 2 if len(op["units"]) == 3 else 1
     return 1
@@ -267,6 +273,23 @@ def _three_parallel(g: Geometry) -> list[Plan]:
             continue
         xspec = _x_spec(g, tail)
         if xspec is None:
+            # the two joints after the group do not meet (a UR-type arm with an offset wrist): joints 1 and 5 from
+            # two equations, each linear in the cosines and sines of both (subproblem 6), joint 6 from the
+            # group's axis, then the group's sum and the planar pair
+            if i != 1 or len(tail) != 2 or not _plane_ok(g, 0, ("dir", grp[0])):
+                continue
+            ops = [{"op": "begin", "x": ("on", tail[1]), "lo": 0, "hi": n - 1},
+                   {"op": "sp6", "j": 0, "k": tail[0], "l": tail[1], "n": ("dir", grp[0])},
+                   {"op": "orient", "units": [grp], "lo": grp[0], "hi": grp[2]},
+                   {"op": "begin", "x": ("on", grp[2]), "lo": grp[0], "hi": grp[2]},
+                   {"op": "last_dist", "j": grp[1], "kind": "R", "s": ("on", grp[0])},
+                   {"op": "single", "j": grp[0], "kind": "R"},
+                   {"op": "group_rest", "j": grp[2], "group": grp}]
+            plans.append(Plan(ops, False, f"three parallel axes {_names(g, grp)} with an offset wrist (the last "
+                              f"two axes apart): joints {g.c.joint_names[0]} and {g.c.joint_names[tail[0]]} from two "
+                              f"equations along the parallel axes (subproblem 6, a quartic), "
+                              f"{g.c.joint_names[tail[1]]} about them (subproblem 1), then the group's angle and "
+                              f"the planar pair"))
             continue
         ops = []
         if i == 1:
@@ -397,4 +420,12 @@ def replay(chain: Chain, plan: Plan, q) -> list[float]:
             out.append(float(np.max(np.abs(units - rd))))
         elif kind == "group_rest":
             out.append(0.0)
+        elif kind == "sp6":
+            n = g.direction(op["n"])
+            y = app(np.linalg.inv(e[op["j"]]), y)
+            pos = abs(np.dot(n, y) - np.dot(n, app(e[op["k"]], x)))
+            rg = G[:3, :3]
+            h5 = c.axes[op["l"]]
+            ori = abs(n @ e[op["j"]][:3, :3].T @ rg @ h5 - n @ e[op["k"]][:3, :3] @ h5)
+            out.append(float(max(pos, ori)))
     return out
