@@ -110,35 +110,11 @@ point = [0.6, 0.1, 0.9]
 [home]
 position = [0.6, 0.1, 1.0]
 """,
-    # a UR5e with its last two axes apart (a5 = 3 cm): joints 1 and 5 from subproblem 6
-    "ur_off": """family = "chain"
-name = "ur_off"
-title = "UR5e with an offset wrist"
-convention = "standard"
-[[joint]]
-name = "q1"
-alpha = "pi/2"
-d = 0.1625
-[[joint]]
-name = "q2"
-a = -0.425
-[[joint]]
-name = "q3"
-a = -0.3922
-[[joint]]
-name = "q4"
-alpha = "pi/2"
-d = 0.1333
-[[joint]]
-name = "q5"
-alpha = "-pi/2"
-d = 0.0997
-a = 0.03
-[[joint]]
-name = "q6"
-d = 0.0996
-""",
 }
+# a UR5e with its last two axes apart (a5 = 3 cm, in q5's row): joints 1 and 5 from subproblem 6
+SPECS["ur_off"] = (SPECS["ur_t"].replace('name = "ur_t"', 'name = "ur_off"')
+                   .replace('title = "UR5e-type test arm"', 'title = "UR5e with an offset wrist"')
+                   .replace('d = 0.0997\n', 'd = 0.0997\na = 0.03\n'))
 NAMES = tuple(SPECS)
 WRIST = 4  # q5: the middle wrist joint of both arms (0: the wrist singularity)
 
