@@ -44,12 +44,6 @@ def load(source: str | Path, name=None, base=None, tip=None, free=None, geometry
     return family.from_spec(spec)
 
 
-def _write(path: Path, text: str | bytes) -> Path:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_bytes(text.encode() if isinstance(text, str) else text)
-    return path
-
-
 def import_solver(out: Path, name: str, backend: str | None = None):
     """The solver just written to out/python (its runtime and extension beside it), imported under a private name;
     backend "numpy" forces the numpy path (the audit's numbers must not depend on a compiler)."""
@@ -80,9 +74,9 @@ def _extension(out: Path, progress) -> list[Path]:
     """OUT/native/_native.c over every solver in OUT/c, compiled into OUT/python/_wristkin_native: the Python
     solvers then run the C. Without a compiler they run on numpy (said, not an error)."""
     from .native_build import BuildError, build
-    from .pipeline import _native_binding
+    from .pipeline import native_binding
 
-    binding = _native_binding(out, "_wristkin_native")
+    binding = native_binding(out, "_wristkin_native")
     target = out / "python" / f"_wristkin_native{sysconfig.get_config_var('EXT_SUFFIX') or '.so'}"
     try:
         build(out, target=target)
@@ -96,7 +90,8 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
            native: bool = True) -> list[Path]:
     """Derive, emit and audit one description into `out`; returns the files written. `native`: also compile the
     folder's C into the Python extension the solvers call (skipped with native=False: they run on numpy)."""
-    from . import audit, casadi_export, pipeline
+    from . import audit
+    from .pipeline import emit_c_runtime, emit_casadi, emit_solvers, write_file
 
     t0 = time.perf_counter()
     last = [t0]
@@ -114,23 +109,15 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
     dv = mech.derive()
     stage(f"derived {len(dv.steps)} steps, {sum(len(s.checks) for s in dv.steps)} checks passed")
     ks = mech.kernels(dv)
-    ctx = pipeline._context(mech, ks)
-    t_py, t_h, t_c = pipeline._templates(nm, mech)
-    hdr = header_lines()
-    written = [_write(out / "python" / "_wristkin_runtime.py", render("python/_runtime.py.jinja", header=hdr)),
-               _write(out / "python" / f"{nm}.py", render(t_py, **ctx)),
-               _write(out / "c" / f"{nm}.h", render(t_h, **ctx)), _write(out / "c" / f"{nm}.c", render(t_c, **ctx)),
-               _write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja", header=hdr)),
-               _write(out / "c" / "wristkin_runtime.c", render("c/wristkin_runtime.c.jinja", header=hdr))]
+    written = [write_file(out / "python" / "_wristkin_runtime.py",
+                          render("python/_runtime.py.jinja", header=header_lines())),
+               *emit_solvers(nm, mech, ks, out / "python", out / "c"), *emit_c_runtime(out / "c")]
     stage("emitted Python and C")
     if native:
         written += _extension(out, progress)
         stage("compiled the C into the folder's Python extension (_wristkin_native)")
-    fns = mech.casadi_functions(dv, ks)
     solver = import_solver(out, nm, backend="numpy")
-    names = getattr(mech, "CASADI_DESIGN_NAMES", None) or solver.DESIGN_NAMES
-    written += casadi_export.write_casadi(fns, out / "casadi", name=nm, design_names=names,
-                                          docs=getattr(mech, "CASADI_DOCS", None))
+    written += emit_casadi(nm, mech, dv, ks, out / "casadi", solver)
     stage("wrote the CasADi functions")
     written += audit.write_report(mech, dv, out, solver=solver)
     stage("audited the generated solver")

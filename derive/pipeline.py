@@ -22,7 +22,7 @@ from .tolerances import TOLERANCES
 GENERATED = ROOT / "generated"
 
 
-def _write(path: Path, text: str | bytes) -> Path:
+def write_file(path: Path, text: str | bytes) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     data = text.encode() if isinstance(text, str) else text
     path.write_bytes(data)
@@ -63,26 +63,43 @@ def tasks(names=None, catalogue: Path = CATALOGUE) -> list[tuple[str, ...]]:
     return sorted(jobs, key=lambda g: (-sum(cost[n] for n in g), g))
 
 
+def emit_solvers(name: str, mod, ks, py_dir: Path, c_dir: Path) -> list[Path]:
+    """The mechanism's Python module (py_dir/name.py) and C header and source (c_dir) rendered from its kernels:
+    the catalogue's and a `wristkin derive` folder's alike."""
+    ctx = _context(mod, ks)
+    t_py, t_h, t_c = _templates(name, mod)
+    return [write_file(py_dir / f"{name}.py", render(t_py, **ctx)),
+            write_file(c_dir / f"{name}.h", render(t_h, **ctx)), write_file(c_dir / f"{name}.c", render(t_c, **ctx))]
+
+
+def emit_c_runtime(c_dir: Path) -> list[Path]:
+    """The C runtime every generated solver compiles with (wristkin_common.h, wristkin_runtime.c)."""
+    return [write_file(c_dir / "wristkin_common.h", render("c/wristkin_common.h.jinja", header=header_lines())),
+            write_file(c_dir / "wristkin_runtime.c", render("c/wristkin_runtime.c.jinja", header=header_lines()))]
+
+
+def emit_casadi(name: str, mod, dv, ks, casadi_dir: Path, solver) -> list[Path]:
+    """The mechanism's CasADi functions; their design input has the solver's DESIGN_NAMES unless the mechanism's
+    functions take fewer (the 3-RSR wrist's take only L)."""
+    from . import casadi_export
+
+    design_names = getattr(mod, "CASADI_DESIGN_NAMES", None) or solver.DESIGN_NAMES
+    return casadi_export.write_casadi(mod.casadi_functions(dv, ks), casadi_dir, name=name, design_names=design_names,
+                                      docs=getattr(mod, "CASADI_DOCS", None))
+
+
 def mechanism_products(name: str, out: Path, catalogue: Path = CATALOGUE) -> list[Path]:
     """Everything one mechanism contributes to `out`: its Python and C solvers, CasADi functions and audit
     report (the audit imports the freshly written solver)."""
+    from . import audit
+
     mod = registry(catalogue)[name]
     dv = mod.derive()
     ks = mod.kernels(dv)
-    ctx = _context(mod, ks)
-    t_py, t_h, t_c = _templates(name, mod)
-    written = [_write(out / "python" / "wristkin" / f"{name}.py", render(t_py, **ctx)),
-               _write(out / "c" / f"{name}.h", render(t_h, **ctx)),
-               _write(out / "c" / f"{name}.c", render(t_c, **ctx))]
-    from . import audit, casadi_export
-
-    fns = mod.casadi_functions(dv, ks)
-    # the entries of the functions' design input: the solver's DESIGN_NAMES unless the mechanism's CasADi
-    # functions take fewer (the 3-RSR wrist's take only L)
-    design_names = getattr(mod, "CASADI_DESIGN_NAMES", None) or audit.load_generated(out, name).DESIGN_NAMES
-    written += casadi_export.write_casadi(fns, out / "casadi", name=name, design_names=design_names,
-                                          docs=getattr(mod, "CASADI_DOCS", None))
-    written += audit.write_report(mod, dv, out)
+    written = emit_solvers(name, mod, ks, out / "python" / "wristkin", out / "c")
+    solver = audit.load_generated(out, name)
+    written += emit_casadi(name, mod, dv, ks, out / "casadi", solver)
+    written += audit.write_report(mod, dv, out, solver=solver)
     return written
 
 
@@ -94,13 +111,12 @@ def _job(args) -> list[Path]:
 def _shared_files(out: Path, catalogue: Path = CATALOGUE) -> list[Path]:
     """The runtime and package files every mechanism's products import (written before any mechanism)."""
     pkg = out / "python" / "wristkin"
-    files = [_write(pkg / f"{stem}.py", render(f"python/{stem}.py.jinja", header=header_lines()))
+    files = [write_file(pkg / f"{stem}.py", render(f"python/{stem}.py.jinja", header=header_lines()))
              for stem in ("_runtime", "cli", "__main__")]
-    files.append(_write(pkg / "__init__.py", render("python/__init__.py.jinja", header=header_lines(),
+    files.append(write_file(pkg / "__init__.py", render("python/__init__.py.jinja", header=header_lines(),
                                                      names=sorted(registry(catalogue)))))
-    files.append(_write(out / "c" / "wristkin_common.h", render("c/wristkin_common.h.jinja", header=header_lines())))
-    files.append(_write(out / "c" / "wristkin_runtime.c", render("c/wristkin_runtime.c.jinja", header=header_lines())))
-    files.append(_write(out / "c" / "CMakeLists.txt", render("c/CMakeLists.txt.jinja", header=header_lines(),
+    files += emit_c_runtime(out / "c")
+    files.append(write_file(out / "c" / "CMakeLists.txt", render("c/CMakeLists.txt.jinja", header=header_lines(),
                                                              names=sorted(registry(catalogue)))))
     return files
 
@@ -113,12 +129,12 @@ def _c_api(header: str, name: str) -> dict:
             "jacobian": has("jacobian"), "fk_matrix": has("fk_matrix"), "frames": has("design_set_frames")}
 
 
-def _native_binding(out: Path, module_path: str = "wristkin._native") -> Path:
+def native_binding(out: Path, module_path: str = "wristkin._native") -> Path:
     """The CPython extension source over every mechanism whose C is in out/c (setup.py compiles it); `module_path`:
     the extension's import name (a `wristkin derive` folder's is the top-level _wristkin_native)."""
     headers = sorted(p for p in (out / "c").glob("*.h") if p.stem not in ("wristkin_common",))
     mechs = [_c_api(p.read_text(), p.stem) for p in headers]
-    return _write(out / "native" / "_native.c", render("c/native.c.jinja", header_lines=header_lines(), mechs=mechs,
+    return write_file(out / "native" / "_native.c", render("c/native.c.jinja", header_lines=header_lines(), mechs=mechs,
                                                         inputs_hash=input_hash(), row_tol="WK_ROTATION_PROJECT_TOL",
                                                         module_path=module_path))
 
@@ -142,7 +158,7 @@ def generate(out: Path, names=None, jobs: int | None = None, catalogue: Path = C
         with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
             results = list(pool.map(_job, work))
     written = shared + [p for r in results for p in r]
-    return written + [_native_binding(out)]
+    return written + [native_binding(out)]
 
 
 BUILD_OUTPUTS = (".so", ".pyd", ".o")  # the compiled extension an editable install puts beside the modules
@@ -157,7 +173,7 @@ def generated_files(folder: Path) -> list[Path]:
 def _manifest(out: Path) -> Path:
     files = sorted(p for p in generated_files(out) if p.name != "MANIFEST.json")
     entries = {p.relative_to(out).as_posix(): hashlib.sha256(p.read_bytes()).hexdigest() for p in files}
-    return _write(out / "MANIFEST.json", json.dumps({"tools": tool_versions(), "files": entries},
+    return write_file(out / "MANIFEST.json", json.dumps({"tools": tool_versions(), "files": entries},
                                                     sort_keys=True, indent=2) + "\n")
 
 

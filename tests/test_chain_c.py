@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from cbuild import SANITIZE_FLAGS, compile_executable, compile_shared, compiler, load
+from chain_specs import SKEW3, poe_spec
 from seeding import case_rng
 
 from derive import own_robot, pipeline
@@ -79,37 +80,7 @@ name = "q6"
 d = 0.0996
 """,
     # a general 3R arm (no two of its first axes meet or are parallel: the polynomial op) + a ZYZ wrist
-    "skew3": """family = "chain"
-name = "skew3"
-title = "general 3R arm + spherical wrist"
-convention = "poe"
-[[joint]]
-name = "j1"
-axis = [0.0, 0.0, 1.0]
-point = [0.0, 0.0, 0.0]
-[[joint]]
-name = "j2"
-axis = [0.9759000729485331, 0.19518001458970663, 0.09759000729485331]
-point = [0.1, 0.0, 0.4]
-[[joint]]
-name = "j3"
-axis = [0.28221626051507914, 0.9407208683835973, 0.18814417367671946]
-point = [0.15, 0.05, 0.8]
-[[joint]]
-name = "j4"
-axis = [0.0, 0.0, 1.0]
-point = [0.6, 0.1, 0.9]
-[[joint]]
-name = "j5"
-axis = [0.0, 1.0, 0.0]
-point = [0.6, 0.1, 0.9]
-[[joint]]
-name = "j6"
-axis = [0.0, 0.0, 1.0]
-point = [0.6, 0.1, 0.9]
-[home]
-position = [0.6, 0.1, 1.0]
-""",
+    "skew3": poe_spec("skew3", "general 3R arm + spherical wrist", **SKEW3),
 }
 # a UR5e with its last two axes apart (a5 = 3 cm, in q5's row): joints 1 and 5 from subproblem 6
 SPECS["ur_off"] = (SPECS["ur_t"].replace('name = "ur_t"', 'name = "ur_off"')
@@ -129,26 +100,20 @@ D = ctypes.POINTER(ctypes.c_double)
 def rendered(tmp_path_factory):
     """name -> (Python module, folder of its C): both rendered from one derivation, as pipeline / own_robot do."""
     out = tmp_path_factory.mktemp("chain_c")
-    hdr = header_lines()
     (out / "python").mkdir()
-    (out / "c").mkdir()
-    (out / "python" / "_wristkin_runtime.py").write_text(render("python/_runtime.py.jinja", header=hdr))
-    (out / "c" / "wristkin_common.h").write_text(render("c/wristkin_common.h.jinja", header=hdr))
-    (out / "c" / "wristkin_runtime.c").write_text(render("c/wristkin_runtime.c.jinja", header=hdr))
+    (out / "python" / "_wristkin_runtime.py").write_text(render("python/_runtime.py.jinja", header=header_lines()))
+    pipeline.emit_c_runtime(out / "c")
     mods = {}
     for name, text in SPECS.items():
         spec = out / f"{name}.toml"
         spec.write_text(text)
         mech = load_spec(spec)
         mech.derive()
-        ctx = pipeline._context(mech, [])
-        t_py, t_h, t_c = pipeline._templates(name, mech)
-        assert (t_h, t_c) == ("c/chain.h.jinja", "c/chain.c.jinja")
-        (out / "python" / f"{name}.py").write_text(render(t_py, **ctx))
-        h, c = render(t_h, **ctx), render(t_c, **ctx)
-        assert (h, c) == (render(t_h, **ctx), render(t_c, **ctx))  # byte-stable
-        (out / "c" / f"{name}.h").write_text(h)
-        (out / "c" / f"{name}.c").write_text(c)
+        assert pipeline._templates(name, mech)[1:] == ("c/chain.h.jinja", "c/chain.c.jinja")
+        files = pipeline.emit_solvers(name, mech, [], out / "python", out / "c")
+        first = [f.read_bytes() for f in files]
+        pipeline.emit_solvers(name, mech, [], out / "python", out / "c")
+        assert [f.read_bytes() for f in files] == first  # byte-stable
         mods[name] = own_robot.import_solver(out, name)
     return {name: (mods[name], out / "c") for name in NAMES}
 

@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from chain_specs import SKEW3, poe_spec
 from reference import chain as ref
 from seeding import case_rng
 
@@ -438,14 +439,11 @@ def test_a_wrist_at_the_base_is_solved_from_the_tool(tmp_path):
 
     kr6 = own_robot.load(_file("kr6", "poe")).chain
     back = reverse(kr6)
-    text = 'family = "chain"\nname = "backwards"\ntitle = "KR6 reversed"\nconvention = "poe"\n'
-    for nm, a, p in zip(back.joint_names, back.axes, back.points, strict=True):
-        text += f'[[joint]]\nname = "{nm}"\naxis = {a.tolist()}\npoint = {p.tolist()}\n'
     r = back.home[:3, :3]
     rpy = [math.atan2(r[2, 1], r[2, 2]), -math.asin(r[2, 0]), math.atan2(r[1, 0], r[0, 0])]
-    text += f"[home]\nposition = {back.home[:3, 3].tolist()}\nrpy = {rpy}\n"
     spec = tmp_path / "backwards.toml"
-    spec.write_text(text)
+    spec.write_text(poe_spec("backwards", "KR6 reversed", back.axes, back.points, back.home[:3, 3], rpy,
+                             back.joint_names))
     own_robot.derive(spec, tmp_path / "out", progress=lambda _: None)
     m, ref_chain = own_robot.import_solver(tmp_path / "out", "backwards"), ref.load(spec)
     assert m.DECOMPOSITION.startswith("from the tool") and m.MAX_IK == 8
@@ -462,16 +460,8 @@ def test_a_wrist_at_the_base_is_solved_from_the_tool(tmp_path):
 def test_a_general_3r_arm_is_solved_by_its_polynomial(tmp_path):
     """No two of the first three axes meet or are parallel: no invariant separates them, so their joints come
     from every real root of a degree-8 polynomial (subproblem 5 in effect); the sets equal the reference's."""
-    def unit(v):
-        v = np.array(v, dtype=float)
-        return (v / np.linalg.norm(v)).tolist()
-    axes = [[0, 0, 1], unit([1.0, 0.2, 0.1]), unit([0.3, 1.0, 0.2]), [0, 0, 1], [0, 1, 0], [0, 0, 1]]
-    points = [[0, 0, 0], [0.1, 0, 0.4], [0.15, 0.05, 0.8]] + [[0.6, 0.1, 0.9]] * 3
-    text = 'family = "chain"\nname = "skew3"\ntitle = "general 3R arm + wrist"\nconvention = "poe"\n'
-    for i, (a, p) in enumerate(zip(axes, points, strict=True)):
-        text += f'[[joint]]\nname = "j{i + 1}"\naxis = {list(map(float, a))}\npoint = {list(map(float, p))}\n'
     spec = tmp_path / "skew3.toml"
-    spec.write_text(text + "[home]\nposition = [0.6, 0.1, 1.0]\n")
+    spec.write_text(poe_spec("skew3", "general 3R arm + wrist", **SKEW3))
     own_robot.derive(spec, tmp_path / "out", progress=lambda _: None, native=False)
     m, r = own_robot.import_solver(tmp_path / "out", "skew3"), ref.load(spec)
     assert "spatial3" in repr(m._PLAN) and m.MAX_IK == 8
