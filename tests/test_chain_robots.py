@@ -497,6 +497,25 @@ def test_a_ur_wrist_singularity_is_never_empty():
         assert min(_gap(v, q, m.JOINT_KINDS) for v in m.ik(T, previous=q)) < 1e-7
 
 
+@pytest.mark.parametrize("fmt", ("urdf", "dh"))  # the URDF solver runs the C (the folder's extension), DH numpy
+def test_a_ur_near_its_wrist_singularity_is_never_empty(fmt):
+    """|q5| from 1e-7 to 1e-5: near, not at, the family. Within the double-root tolerance (|sin q5| <= 1e-6) the
+    two wrist roots merge into one common vector on the group's axis, a family whose members need not reproduce a
+    pose that is not singular (12 of 200 poses at |q5| = 1e-6 came back empty); the two roots are then taken
+    instead, sets with every angle defined. Every returned set reproduces the pose through the independent
+    reference's FK (the solver's acceptance IK_VERIFY_TOL, plus 1e-12 for the two FKs' rounding)."""
+    m, r = solver("ur5e", fmt), reference("ur5e", fmt)
+    rng = case_rng(24)
+    for i in range(100):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        q[4] = (1.0 if i % 2 else -1.0) * (1e-7, 3e-7, 1e-6, 3e-6, 1e-5)[i % 5]
+        T = r(q)
+        sol = m.ik(T)
+        assert sol.count >= 1, (i, q[4], sol.reason)
+        for v in sol:
+            assert np.max(np.abs(r(v) - T)) <= m.IK_VERIFY_TOL + 1e-12, (i, q[4])
+
+
 # ------------------------------------------------------------------------------------------ offset wrist (subproblem 6)
 OFFSET = "ur5e_offset"  # the UR5e with a5 = 3 cm (tests/robots/ur5e_offset, DH only): axes 5 and 6 apart
 
