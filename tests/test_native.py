@@ -238,3 +238,24 @@ def test_the_extension_hands_back_the_same_solutions_object_python_would_make(na
         assert made.reason == spec[1][made.count] and made.status == plain[0] & 255, (name, verb)
         for field, value in zip(("values", "valid", "flags", "aux"), plain[1:], strict=True):
             np.testing.assert_array_equal(getattr(made, field), value, err_msg=f"{name} {verb} {field}")
+
+
+@pytest.mark.skipif(FORCED_NUMPY, reason="WRISTKIN_BACKEND=numpy: the fallback pass")
+def test_joints_with_no_assembly_come_back_from_c_as_numpy_words_them():
+    """The wrist's fk where no assembly mode is real: the extension finishes the Solutions with the fixed reason the
+    numpy path gives (it had taken the numpy path, ~100x slower), equal field by field."""
+    mod = module("underactuated_wrist")
+    c_design = mod.make_design()
+    fallback = mod.Design(c_design.params, c_design.constants, c_design.theta0)  # no C design: the numpy path
+    rng = case_rng(33)
+    seen = 0
+    while seen < 5:
+        q = rng.uniform(0.0, 2 * math.pi, 3)
+        c = mod.fk(q)
+        if c.status != mod.STATUS_NO_ASSEMBLY:
+            continue
+        seen += 1
+        n = mod.fk(q, fallback)
+        assert (c.status, c.reason, c.count) == (n.status, n.reason, 0)
+        assert np.array_equal(c.valid, n.valid) and np.array_equal(c.flags, n.flags)
+        assert np.all(np.isnan(c.values)) and np.all(np.isnan(c.aux))
