@@ -326,13 +326,14 @@ def test_singular_wrist_is_one_flagged_family(solvers, name):
         assert rc == WK_OK and fc.flags[0] & FLAG_SINGULAR_INVERSE and py.fk(q).flags[0] & FLAG_SINGULAR_INVERSE
 
 
-@pytest.mark.parametrize("name", ("puma_t", "ur_t"))
+@pytest.mark.parametrize("name", ("puma_t", "ur_t", "ur_off"))
 def test_near_the_wrist_singularity_c_equals_python(solvers, name):
     """|q5| from 1e-7 to 1e-5, near (not at) the family: where the merged double root verifies nothing the two
-    roots are taken (subproblem 2's split fallback). C equals Python set for set (values, order, flags); never
-    empty. Near the singularity q4 and q6 are each fixed only to about e / |sin q5| for a pose error e (their sum
-    or difference is well conditioned): the two languages' roundings (e ~ 100 eps for the intermediate lengths) and,
-    where a set was polished, the polish's stopping error (POLISH_TOL) may differ by that."""
+    roots are taken (subproblem 2's split fallback; subproblem 6's for the offset wrist). C equals Python set for
+    set (values, order, flags); never empty. Near the singularity q4 and q6 are each fixed only to about
+    e / |sin q5| for a pose error e (their sum or difference is well conditioned): the two languages' roundings
+    (e ~ 100 eps for the intermediate lengths) and, where a set was polished, the polish's stopping error
+    (POLISH_TOL) may differ by that."""
     py, c = solvers[name]
     rng = case_rng(9107)
     for i in range(100):
@@ -503,11 +504,7 @@ int main(void)
         checksum += FN(MECH, _ik)(fk.values[0], &d, &ik) + ik.count;
         /* a generic pose FK made has its solutions (a special or singular one may lose its family: see the
            Python module) */
-#ifdef NEAR_SINGULAR_GAP /* subproblem 6 near (not at) its singularity can still come back empty: an open defect */
-        if (ik.count > MAX_IK || (ik.count < 1 && i % 3 != 0 && i % 7 != 0 && i % 11 != 0)) return 4;
-#else
         if (ik.count > MAX_IK || (ik.count < 1 && i % 3 != 0 && i % 7 != 0)) return 4;
-#endif
         for (k = 0; k < MAX_IK; ++k) {
             if (!ik.valid[k]) continue;
             if (FN(MECH, _fk_matrix)(ik.values[k], &d, t) != WK_OK) return 5;
@@ -560,7 +557,7 @@ def test_clean_under_asan_ubsan(rendered, name):
     driver = cdir / "chain_sanitize.c"
     driver.write_text(SANITIZE_DRIVER)
     flags = [*SANITIZE_FLAGS, f"-DMECH={name}", f'-DMECH_H="{name}.h"', f"-DN={py.N_JOINTS}",
-             f"-DMAX_IK={py.MAX_IK}"] + (["-DNEAR_SINGULAR_GAP"] if "sp6" in repr(py._PLAN) else [])
+             f"-DMAX_IK={py.MAX_IK}"]
     exe = compile_executable([driver, cdir / f"{name}.c", cdir / "wristkin_runtime.c"], [cdir],
                              f"chain_{name}_sanitize", extra_flags=flags)
     run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300,

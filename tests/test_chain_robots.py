@@ -497,14 +497,19 @@ def test_a_ur_wrist_singularity_is_never_empty():
         assert min(_gap(v, q, m.JOINT_KINDS) for v in m.ik(T, previous=q)) < 1e-7
 
 
-@pytest.mark.parametrize("fmt", ("urdf", "dh"))  # the URDF solver runs the C (the folder's extension), DH numpy
-def test_a_ur_near_its_wrist_singularity_is_never_empty(fmt):
+# the URDF solver runs the C (the folder's extension), DH numpy; the offset wrist's (subproblem 6) has DH only, and
+# its C is compared with its numpy near the singularity in test_chain_c
+@pytest.mark.parametrize(("robot", "fmt"), (("ur5e", "urdf"), ("ur5e", "dh"), ("ur5e_offset", "dh")))
+def test_a_ur_near_its_wrist_singularity_is_never_empty(robot, fmt):
     """|q5| from 1e-7 to 1e-5: near, not at, the family. Within the double-root tolerance (|sin q5| <= 1e-6) the
     two wrist roots merge into one common vector on the group's axis, a family whose members need not reproduce a
     pose that is not singular (12 of 200 poses at |q5| = 1e-6 came back empty); the two roots are then taken
-    instead, sets with every angle defined. Every returned set reproduces the pose through the independent
-    reference's FK (the solver's acceptance IK_VERIFY_TOL, plus 1e-12 for the two FKs' rounding)."""
-    m, r = solver("ur5e", fmt), reference("ur5e", fmt)
+    instead, sets with every angle defined. The offset wrist's quartic merges its two nearby roots the same way
+    (or resolves them only to sqrt(eps)): its roots are refined by Newton on subproblem 6's two equations, and a
+    merged one that verifies nothing is split along them (9 of 200 poses at |q5| = 1e-6 had come back empty).
+    Every returned set reproduces the pose through the independent reference's FK (the solver's acceptance
+    IK_VERIFY_TOL, plus 1e-12 for the two FKs' rounding)."""
+    m, r = solver(robot, fmt), reference(robot, fmt)
     rng = case_rng(24)
     for i in range(100):
         q = rng.uniform(-math.pi, math.pi, 6)
