@@ -12,7 +12,7 @@ import math
 import numpy as np
 import sympy as sp
 
-from ...checks import identity, numeric_identity, numeric_predicate, symbolic_identity
+from ...checks import identity, numeric_identity, numeric_predicate, sampler, symbolic_identity
 from ...identities.frames import E_Z, rot_x, rot_z, rot_zxz, zxz_rate_matrix
 from ...identities.polynomial import (
     affine_cs_coefficients,
@@ -397,11 +397,12 @@ def _forward_kinematics(dv: Derivation) -> None:
     nc, ns, den = cramer_cs(d1, e1, f1, d2, e2, f2)
     ident = elimination_identity(d1, e1, f1, d2, e2, f2)
     # numeric check of the identity at genuine assemblies: build R from (theta1, zeta, eta), get theta2/theta3
-    f_def = sp.lambdify((th[0], th[1], th[2], zeta, eta, a1, a2, b1, b2),
-                        [v.subs(on_design) for v in (D[1], E[1], F[1], D[2], E[2], F[2])], "numpy")
-    f_abc = sp.lambdify((psi, nu, phi, a1, a2, b1, b2), [dv.exports["ik_abc"][k] for k in
-                        ("A2", "B2", "C2", "A3", "B3", "C3")], "numpy")
-    f_R = sp.lambdify((th[0], zeta, eta, a1, a2, b1, b2), Rfk, "numpy")
+    f_def = sampler((th[0], th[1], th[2], zeta, eta, a1, a2, b1, b2),
+                    [v.subs(on_design) for v in (D[1], E[1], F[1], D[2], E[2], F[2])])
+    f_abc = sampler((psi, nu, phi, a1, a2, b1, b2),
+                    [dv.exports["ik_abc"][k] for k in ("A2", "B2", "C2", "A3", "B3", "C3")])
+    f_R = sampler((th[0], zeta, eta, a1, a2, b1, b2), Rfk)
+    f_ident = sampler((d1, e1, f1, d2, e2, f2), ident)
 
     def assembly(rng):
         while True:
@@ -422,7 +423,7 @@ def _forward_kinematics(dv: Derivation) -> None:
         des, (t1, t2, t3), ze, et = assembly(rng)
         vals = [float(v) for v in f_def(t1, t2, t3, ze, et, *des)]
         scale = sum(abs(v) for v in vals) ** 4
-        return abs(float(ident.subs(dict(zip((d1, e1, f1, d2, e2, f2), vals, strict=True))))) / scale
+        return abs(float(f_ident(*vals))) / scale
     dv.add(Step(
         "fk_elimination", "Elimination of zeta",
         "Cramer's rule on the two equations linear in (cos zeta, sin zeta), then cos^2 + sin^2 = 1 times "
@@ -451,7 +452,7 @@ def _forward_kinematics(dv: Derivation) -> None:
     deg = sp.Poly(Kx, x).degree()
     # evaluated in 30-digit mpmath: the check measures the algebra (the identity), not float rounding, and its
     # number is the same on every CPU (numpy's trig and BLAS kernels differ in the last bits)
-    coef_mp = {k: sp.lambdify((th[0], th[1], th[2], a1, a2, b1, b2), [c.subs(on_design) for c in v], "mpmath", cse=True)
+    coef_mp = {k: sampler((th[0], th[1], th[2], a1, a2, b1, b2), [c.subs(on_design) for c in v], "mpmath")
                for k, v in coef.items()}
 
     def k_poly_err(rng):
@@ -553,8 +554,8 @@ def _rates(dv: Derivation) -> None:
     jx = sp.Matrix.vstack(*[z2[i].cross(z3[i]).T for i in range(3)])
     checks = [symbolic_identity(sp.diff(z2[i], th[i]), z1[i].cross(z2[i]), f"dZ{i + 1}2/dtheta{i + 1} = "
                                 f"Z{i + 1}1 x Z{i + 1}2") for i in range(3)]
-    f_loop = sp.lambdify((*th, a1, a2, b1, b2, *Rm), sp.Matrix([z2[i].dot(z3[i]) for i in range(3)]), "numpy")
-    f_j = sp.lambdify((*th, a1, a2, b1, b2, *Rm), (sp.Matrix(jq), jx), "numpy")
+    f_loop = sampler((*th, a1, a2, b1, b2, *Rm), sp.Matrix([z2[i].dot(z3[i]) for i in range(3)]))
+    f_j = sampler((*th, a1, a2, b1, b2, *Rm), (sp.Matrix(jq), jx))
 
     rot_num = sp.lambdify((psi, nu, phi), rot_zxz(psi, nu, phi), "numpy")
 
@@ -606,7 +607,7 @@ def _rates(dv: Derivation) -> None:
     jx_dot = sp.Matrix.vstack(*[(z1[i].cross(z2[i]) * qd[i]).cross(z3[i]).T + z2[i].cross(wvec.cross(z3[i])).T
                                 for i in range(3)])
 
-    f_jd = sp.lambdify((*th, a1, a2, b1, b2, *Rm, *qd, *wvec), (sp.Matrix(jq_dot), jx_dot), "numpy")
+    f_jd = sampler((*th, a1, a2, b1, b2, *Rm, *qd, *wvec), (sp.Matrix(jq_dot), jx_dot))
 
     def acc_err(rng):
         des = _rand_design(rng)
