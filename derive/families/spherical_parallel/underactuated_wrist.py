@@ -445,11 +445,12 @@ def _forward_kinematics(dv: Derivation) -> None:
     phi_ = sp.Symbol("varphi", real=True)
     orig = ks[0] + ks[1] * sp.cos(etac + phi_) + ks[2] * sp.sin(etac + phi_)
     shifted = rotated[0] + rotated[1] * sp.cos(phi_) + rotated[2] * sp.sin(phi_)
-    # K(x) for symbolic quadratics: degree check of the product structure.
+    # K(x) for symbolic quadratics: degree check of the product structure (a polynomial in x and the 18
+    # coefficients: expanding it as an expression first and taking the coefficients as a domain cost 4x)
     qd_sym = {nm: sp.symbols(f"{nm}_q0:3", real=True) for nm in ("D1", "E1", "F1", "D2", "E2", "F2")}
     qpoly = {nm: c[0] + c[1] * x + c[2] * x**2 for nm, c in qd_sym.items()}
-    Kx = sp.expand(elimination_identity(*(qpoly[n] for n in ("D1", "E1", "F1", "D2", "E2", "F2"))))
-    deg = sp.Poly(Kx, x).degree()
+    deg = sp.Poly(elimination_identity(*(qpoly[n] for n in ("D1", "E1", "F1", "D2", "E2", "F2"))), x,
+                  *(s for c in qd_sym.values() for s in c)).degree(x)
     # evaluated in 30-digit mpmath: the check measures the algebra (the identity), not float rounding, and its
     # number is the same on every CPU (numpy's trig and BLAS kernels differ in the last bits)
     coef_mp = {k: sampler((th[0], th[1], th[2], a1, a2, b1, b2), [c.subs(on_design) for c in v], "mpmath")
@@ -588,13 +589,13 @@ def _rates(dv: Derivation) -> None:
     # R' by the chain rule along (psidot, thetadot, phidot); the check proves vee(R' R^T) = E rates
     Wt = (Rz.diff(psi) * ed[0] + Rz.diff(nu) * ed[1] + Rz.diff(phi) * ed[2]) * Rz.T
     w_expr = sp.Matrix([Wt[2, 1], Wt[0, 2], Wt[1, 0]])
+    det_e = sp.simplify(Em.det())
     dv.add(Step(
         "euler_rates", "Angular velocity from Euler-angle rates",
         "w = E(psi, theta) (psidot, thetadot, phidot), columns: Z, Rz(psi) X, Rz(psi) Rx(theta) Z",
-        ("euler_rotation",), {"E": Em, "det_E": sp.simplify(Em.det())},
+        ("euler_rotation",), {"E": Em, "det_E": det_e},
         (symbolic_identity(w_expr, Em * ed, "skew(w) = R' R^T"),
-         symbolic_identity(sp.simplify(Em.det()), -sp.sin(nu), "det E = -sin theta (Euler rates undefined at "
-                                                              "theta = 0, pi)")),
+         symbolic_identity(det_e, -sp.sin(nu), "det E = -sin theta (Euler rates undefined at theta = 0, pi)")),
         note="The generated rate functions work with w; Euler-angle rates are offered where sin theta != 0."))
     dv.exports["euler_rate_matrix"] = Em
     # Accelerations: d/dt (Jq qdot - Jx w) = 0.
