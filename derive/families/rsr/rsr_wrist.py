@@ -23,7 +23,7 @@ from .rsr_geometry import ALPHA, BETA, LBW, PHI, L, max_gamma_difference, seed_f
 # name, title, source and the default design come from the spec (catalogue/rsr_wrist.toml)
 FAMILY = "rsr"
 VECTORISED_KERNELS = ()
-DERIVE_SECONDS = 7  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
+DERIVE_SECONDS = 5  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
 DERIVE_GROUP = "rsr"  # the hybrid builds on this derivation (cached per process): one process for both
 TEMPLATES = ("python/rsr_wrist.py.jinja", "c/rsr_wrist.h.jinja", "c/rsr_wrist.c.jinja")
 # Design: link length and the workspace limits the middle curve is taken between (explicit, not published).

@@ -35,7 +35,7 @@ FAMILY = "spherical_parallel"
 
 DESIGN_NAMES = ("alpha1", "alpha2", "beta1", "beta2")
 CASADI_DOCS = wrist_casadi.FUNCTION_DOCS  # the CasADi index's function descriptions
-DERIVE_SECONDS = 16  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
+DERIVE_SECONDS = 10  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
 VECTORISED_KERNELS = ("ik_abc", "middle_axes", "platform_axes", "base_axes", "fk_def", "fk_rotation")
 # the paper's design (alpha1 = alpha2 = 60 deg, beta1 = 30 deg, beta2 = 43.89 deg): its printed numbers hold there
 DESIGN_DEFAULT_DEG = (60.0, 60.0, 30.0, 43.89)
