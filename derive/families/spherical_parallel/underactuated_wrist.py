@@ -152,9 +152,11 @@ def _design_relations(dv: Derivation) -> None:
     a3s = sp.Symbol("alpha3", positive=True)
     cos_k = equilateral_interior_angle_cos(a3s)
 
+    home_axes = sampler((b2,), [platform_axis_home(i) for i in range(3)])  # subs per sample took 10x longer
+
     def kappa_err(rng):
         bb2 = rng.uniform(0.1, 1.5)
-        pp = [np.array(platform_axis_home(i).subs(b2, bb2), dtype=float).ravel() for i in range(3)]
+        pp = [np.asarray(v, dtype=float).ravel() for v in home_axes(bb2)]
         ta = pp[1] - pp[0] * pp[0].dot(pp[1])
         tb = pp[2] - pp[0] * pp[0].dot(pp[2])
         ang = math.atan2(pp[0].dot(np.cross(ta, tb)), ta.dot(tb))
@@ -610,11 +612,12 @@ def _rates(dv: Derivation) -> None:
 
     f_jd = sampler((*th, a1, a2, b1, b2, *Rm, *qd, *wvec), (sp.Matrix(jq_dot), jx_dot))
 
+    R0 = np.array(rot_zxz(psi, nu, phi).subs({psi: 0.3, nu: 1.1, phi: -0.7}), dtype=float)  # the same every sample
+
     def acc_err(rng):
         des = _rand_design(rng)
         q0 = rng.uniform(-math.pi, math.pi, 3)
         qdot, w = rng.normal(size=3), rng.normal(size=3)
-        R0 = np.array(rot_zxz(psi, nu, phi).subs({psi: 0.3, nu: 1.1, phi: -0.7}), dtype=float)
 
         def at(tt):
             ang = w * tt
