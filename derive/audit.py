@@ -19,8 +19,9 @@ MAX_PRINT_OPS = 160  # larger expressions are summarised by their size instead o
 
 def _fmt(value) -> str:
     if isinstance(value, sp.MatrixBase | sp.Basic):
-        if sp.count_ops(value) > MAX_PRINT_OPS:
-            return f"({int(sp.count_ops(value))} operations; emitted as a kernel, not printed)"
+        ops = sp.count_ops(value)
+        if ops > MAX_PRINT_OPS:
+            return f"({int(ops)} operations; emitted as a kernel, not printed)"
         return sp.sstr(value)
     return str(value)
 

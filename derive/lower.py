@@ -8,6 +8,7 @@ templates loop over.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import sympy as sp
@@ -58,14 +59,30 @@ def cse_kernel(kernel: Kernel):
     return kept[::-1], reduced
 
 
-def lower(kernel: Kernel, target: str) -> Lowered:
-    printer = {"c": CPrinter(), "python": PyMathPrinter(), "numpy": NumpyPrinter()}[target]
+@dataclass(frozen=True)
+class _Reduced:
+    temps: tuple
+    reduced: tuple
+    unpack: tuple[tuple[str, str, int], ...]
+    ops: int
+
+
+@functools.lru_cache(maxsize=64)  # a mechanism has about a dozen kernels
+def _reduce(kernel: Kernel) -> _Reduced:
+    """The target-independent part of lowering, done once per kernel (it is immutable): each kernel is printed
+    for up to three targets and measured by the audit, and CSE is most of the cost."""
     temps, reduced = cse_kernel(kernel)
     used = set().union(*(sp.sympify(e).free_symbols for _, e in temps), *(e.free_symbols for e in reduced))
     unpack = tuple((s.name, g, i) for g, syms in kernel.inputs for i, s in enumerate(syms) if s in used)
     ops = sum(sp.count_ops(e) for _, e in temps) + sum(sp.count_ops(e) for e in reduced)
+    return _Reduced(tuple(temps), tuple(reduced), unpack, int(ops))
+
+
+def lower(kernel: Kernel, target: str) -> Lowered:
+    printer = {"c": CPrinter(), "python": PyMathPrinter(), "numpy": NumpyPrinter()}[target]
+    r = _reduce(kernel)
     return Lowered(
-        kernel.name, kernel.doc, unpack,
-        tuple((str(t), printer.doprint(e)) for t, e in temps),
-        tuple((n, printer.doprint(e)) for (n, _), e in zip(kernel.outputs, reduced, strict=True)),
-        tuple(g for g, _ in kernel.inputs), kernel.n_out, int(ops))
+        kernel.name, kernel.doc, r.unpack,
+        tuple((str(t), printer.doprint(e)) for t, e in r.temps),
+        tuple((n, printer.doprint(e)) for (n, _), e in zip(kernel.outputs, r.reduced, strict=True)),
+        tuple(g for g, _ in kernel.inputs), kernel.n_out, r.ops)

@@ -30,7 +30,9 @@ def wrap_python(code: str, indent: int, width: int = 108) -> str:
     return "(" + ("\n" + " " * (indent + 1)).join(lines) + ")"
 
 
+@functools.lru_cache(maxsize=1)
 def environment() -> jinja2.Environment:
+    """One per process, so each template is compiled once (jinja2 still reloads a template whose file changed)."""
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(str(TEMPLATES)),
         undefined=jinja2.StrictUndefined,
@@ -58,7 +60,9 @@ def input_hash() -> str:
     return h.hexdigest()[:16]
 
 
+@functools.lru_cache(maxsize=1)
 def tool_versions() -> str:
+    """Read once per process (every generated file's header names them; installs do not change during a run)."""
     return ", ".join(f"{n} {metadata.version(n)}" for n in PINNED)
 
 

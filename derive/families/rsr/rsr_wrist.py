@@ -8,12 +8,13 @@ up to sign: l_bw = 2 h along the mirror plane's normal n with n_z >= 0)
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 import sympy as sp
 
-from ...checks import numeric_identity, numeric_predicate, symbolic_identity
+from ...checks import numeric_identity, numeric_predicate, sampler, symbolic_identity
 from ...model import Derivation, Finding, Step
 from ...report_numbers import measured
 from . import rsr_geometry as g
@@ -22,7 +23,7 @@ from .rsr_geometry import ALPHA, BETA, LBW, PHI, L, max_gamma_difference, seed_f
 # name, title, source and the default design come from the spec (catalogue/rsr_wrist.toml)
 FAMILY = "rsr"
 VECTORISED_KERNELS = ()
-DERIVE_SECONDS = 7  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
+DERIVE_SECONDS = 5  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
 DERIVE_GROUP = "rsr"  # the hybrid builds on this derivation (cached per process): one process for both
 TEMPLATES = ("python/rsr_wrist.py.jinja", "c/rsr_wrist.h.jinja", "c/rsr_wrist.c.jinja")
 # Design: link length and the workspace limits the middle curve is taken between (explicit, not published).
@@ -37,11 +38,23 @@ _PHI_RANGE = (-0.6, 2.2)
 _POSE_RANGES = {ALPHA: (-math.pi, math.pi), BETA: (0.05, 2.0), L: (0.03, 0.2)}
 
 
+@functools.cache
+def _leg_points():
+    """S_1, S_2, S_3 as one numeric function of (phi, L) for the sampled checks (evalf of the symbolic S_i at
+    every sample took most of their time)."""
+    return sampler((PHI, L), [g.leg_point(i) for i in range(3)])
+
+
+@functools.cache
+def _base_axes() -> tuple:
+    return tuple(np.array(g.base_axis(i).evalf(), dtype=float).ravel() for i in range(3))
+
+
 def _sample_pose(rng, length=0.06):
     """A reachable pose: random phi, then the plane through the S_i (so every leg closes)."""
     while True:
         phis = rng.uniform(*_PHI_RANGE, 3)
-        pts = [np.array(g.leg_point(i, phis[i], length).evalf(), dtype=float).ravel() for i in range(3)]
+        pts = [np.asarray(s, dtype=float).ravel() for s in _leg_points()(phis, length)]
         nvec = np.cross(pts[1] - pts[0], pts[2] - pts[0])
         if np.linalg.norm(nvec) > 1e-3 * length**2:
             n = nvec / np.linalg.norm(nvec)
@@ -136,7 +149,7 @@ def _mirror_proofs(dv: Derivation) -> None:
         phis, pts, nn, h = _sample_pose(rng)
         frames = []
         for radius in (0.02, 0.11):
-            r_pts = [np.array(g.base_axis(i).evalf(), dtype=float).ravel() * radius for i in range(3)]
+            r_pts = [u * radius for u in _base_axes()]
             ow = 2 * h * nn
             r_m = [r_pts[i] + 2 * float(nn @ (pts[i] - r_pts[i])) * nn for i in range(2)]
             wx = (r_m[0] - ow) / np.linalg.norm(r_m[0] - ow)
@@ -194,7 +207,7 @@ def _leg_closure_error(rng) -> float:
     ow = 2 * h * n
     worst = 0.0
     for i in range(3):
-        w = rw @ np.array(g.base_axis(i).evalf(), dtype=float).ravel()
+        w = rw @ _base_axes()[i]
         d = pts[i] - ow
         worst = max(worst, abs(float(d @ w)), abs(float(np.linalg.norm(d)) - 0.06))
     return worst

@@ -151,7 +151,7 @@ STRUCTURES = {"P1P2P3RaRb": ("PPPRR", (), p1p2p3rarb), "RaRaRaRbRb": ("RRRRR", (
 class ScrewMechanism(SerialMechanism):
     """A ScrewSpec rendered through the serial-chain templates (same API as the DH chains)."""
 
-    DERIVE_SECONDS = 8
+    DERIVE_SECONDS = 6
     DERIVE_GROUP = "screw"  # one process for every screw chain: the screw algebra they share is derived once
 
     def derive(self):

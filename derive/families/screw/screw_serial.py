@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from ...checks import numeric_predicate
+from ...checks import numeric_predicate, sampler
 from ...identities import screws
 from ...identities.frames import skew
 from ...lower import Kernel
@@ -169,7 +169,7 @@ def derive_spec(spec: ScrewSpec) -> Derivation:
 
     # joint screws and their transforms
     Sj = [screws.joint_screw(a, q) for a, q in zip(spec.axes, spec.joints, strict=True)]
-    f_sj = sp.lambdify(args, Sj, "numpy")
+    f_sj = sampler(args, Sj)
 
     def joint_err(rng):
         dsn, q = sample_design(spec, rng), sample_joints(spec, rng, 3.0)
@@ -186,10 +186,10 @@ def derive_spec(spec: ScrewSpec) -> Derivation:
 
     # the displacement model S = S_1 triangle ... triangle S_n
     S = screws.triangle_all(Sj)
-    f_s = sp.lambdify(args, S, "numpy", cse=True)
+    f_s = sampler(args, S)
     rot_idx = [k for k, a in enumerate(spec.axes) if a.kind == "R"]
     g_rot = screws.triangle_all([Sj[k] for k in rot_idx])[:3, 0] if rot_idx else sp.zeros(3, 1)
-    f_g = sp.lambdify(args, g_rot, "numpy", cse=True)
+    f_g = sampler(args, g_rot)
 
     def chain_err(rng):
         dsn = sample_design(spec, rng)
@@ -228,7 +228,7 @@ def derive_spec(spec: ScrewSpec) -> Derivation:
     # FK: the product of exponentials (= T(S) where S exists)
     frames = poe_frames(spec)
     T = frames[-1]
-    f_t = sp.lambdify(args, T, "numpy", cse=True)
+    f_t = sampler(args, T)
 
     def fk_err(rng):
         dsn = sample_design(spec, rng)
@@ -262,7 +262,7 @@ def derive_spec(spec: ScrewSpec) -> Derivation:
                      "of a pose is never needed by the generated FK or IK."))
 
     J = geometric_jacobian(spec, frames)
-    f_j = sp.lambdify(args, J, "numpy", cse=True)
+    f_j = sampler(args, J)
 
     def jac_err(rng):
         dsn, q = sample_design(spec, rng), np.array(list(sample_joints(spec, rng).values()))
@@ -337,7 +337,7 @@ def _ik_steps(dv: Derivation, spec: ScrewSpec, f_t) -> None:
     args = (*POSE_SYMBOLS, *spec.joints, *spec.design)
     solved: list[int] = []
     for k, st in enumerate(spec.stages, start=1):
-        fn = sp.lambdify(args, [sp.sympify(e) for e in st.exprs], "numpy")
+        fn = sampler(args, [sp.sympify(e) for e in st.exprs])
 
         def err(rng, st=st, fn=fn):
             q, dsn = sample_joints(spec, rng), sample_design(spec, rng)

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from ...checks import numeric_predicate, symbolic_identity
+from ...checks import numeric_predicate, sampler, symbolic_identity
 from ...identities.dh import DHRow, chain, explicit
 from ...model import Check, Derivation, Finding, Step
 
@@ -101,7 +101,7 @@ def derive_spec(spec: SerialSpec) -> Derivation:
         dv.add(Step(f"A{i}", f"Link transform A{i}", rule, (), {f"A{i}": A},
                     (symbolic_identity(A, explicit(row, spec.convention), "product form = textbook closed form"),)))
     T = sp.simplify(ts[-1])
-    fT = sp.lambdify((*spec.joints, *spec.design), T, "numpy")
+    fT = sampler((*spec.joints, *spec.design), T)
 
     def orth_err(rng):
         vals = [*_sample_joints(spec, rng).values(), *_sample_design(spec, rng).values()]
@@ -143,8 +143,8 @@ def _jacobian_step(dv: Derivation, spec: SerialSpec, ts, t_end) -> None:
         z, o = prev[:3, 2], prev[:3, 3]
         cols.append(sp.Matrix.vstack(z.cross(p_end - o), z) if kind == "R" else sp.Matrix.vstack(z, sp.zeros(3, 1)))
     J = sp.Matrix.hstack(*cols)
-    fT = sp.lambdify((*spec.joints, *spec.design), t_end, "numpy")
-    fJ = sp.lambdify((*spec.joints, *spec.design), J, "numpy")
+    fT = sampler((*spec.joints, *spec.design), t_end)
+    fJ = sampler((*spec.joints, *spec.design), J)
 
     def jac_err(rng):
         q = np.array(list(_sample_joints(spec, rng).values()))

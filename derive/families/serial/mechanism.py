@@ -13,7 +13,7 @@ class SerialMechanism:
 
     TEMPLATES = ("python/serial.py.jinja", "c/serial.h.jinja", "c/serial.c.jinja")
     VECTORISED_KERNELS = ("fk",)
-    DERIVE_SECONDS = 5  # a scheduling hint for parallel regeneration
+    DERIVE_SECONDS = 5  # a scheduling hint for parallel regeneration (from_spec sets a DH chain's own)
 
     def __init__(self, name: str, build):
         self.NAME = name

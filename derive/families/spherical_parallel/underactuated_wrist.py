@@ -12,7 +12,7 @@ import math
 import numpy as np
 import sympy as sp
 
-from ...checks import identity, numeric_identity, numeric_predicate, symbolic_identity
+from ...checks import identity, numeric_identity, numeric_predicate, sampler, symbolic_identity
 from ...identities.frames import E_Z, rot_x, rot_z, rot_zxz, zxz_rate_matrix
 from ...identities.polynomial import (
     affine_cs_coefficients,
@@ -35,7 +35,7 @@ FAMILY = "spherical_parallel"
 
 DESIGN_NAMES = ("alpha1", "alpha2", "beta1", "beta2")
 CASADI_DOCS = wrist_casadi.FUNCTION_DOCS  # the CasADi index's function descriptions
-DERIVE_SECONDS = 16  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
+DERIVE_SECONDS = 10  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
 VECTORISED_KERNELS = ("ik_abc", "middle_axes", "platform_axes", "base_axes", "fk_def", "fk_rotation")
 # the paper's design (alpha1 = alpha2 = 60 deg, beta1 = 30 deg, beta2 = 43.89 deg): its printed numbers hold there
 DESIGN_DEFAULT_DEG = (60.0, 60.0, 30.0, 43.89)
@@ -152,9 +152,11 @@ def _design_relations(dv: Derivation) -> None:
     a3s = sp.Symbol("alpha3", positive=True)
     cos_k = equilateral_interior_angle_cos(a3s)
 
+    home_axes = sampler((b2,), [platform_axis_home(i) for i in range(3)])  # subs per sample took 10x longer
+
     def kappa_err(rng):
         bb2 = rng.uniform(0.1, 1.5)
-        pp = [np.array(platform_axis_home(i).subs(b2, bb2), dtype=float).ravel() for i in range(3)]
+        pp = [np.asarray(v, dtype=float).ravel() for v in home_axes(bb2)]
         ta = pp[1] - pp[0] * pp[0].dot(pp[1])
         tb = pp[2] - pp[0] * pp[0].dot(pp[2])
         ang = math.atan2(pp[0].dot(np.cross(ta, tb)), ta.dot(tb))
@@ -397,11 +399,12 @@ def _forward_kinematics(dv: Derivation) -> None:
     nc, ns, den = cramer_cs(d1, e1, f1, d2, e2, f2)
     ident = elimination_identity(d1, e1, f1, d2, e2, f2)
     # numeric check of the identity at genuine assemblies: build R from (theta1, zeta, eta), get theta2/theta3
-    f_def = sp.lambdify((th[0], th[1], th[2], zeta, eta, a1, a2, b1, b2),
-                        [v.subs(on_design) for v in (D[1], E[1], F[1], D[2], E[2], F[2])], "numpy")
-    f_abc = sp.lambdify((psi, nu, phi, a1, a2, b1, b2), [dv.exports["ik_abc"][k] for k in
-                        ("A2", "B2", "C2", "A3", "B3", "C3")], "numpy")
-    f_R = sp.lambdify((th[0], zeta, eta, a1, a2, b1, b2), Rfk, "numpy")
+    f_def = sampler((th[0], th[1], th[2], zeta, eta, a1, a2, b1, b2),
+                    [v.subs(on_design) for v in (D[1], E[1], F[1], D[2], E[2], F[2])])
+    f_abc = sampler((psi, nu, phi, a1, a2, b1, b2),
+                    [dv.exports["ik_abc"][k] for k in ("A2", "B2", "C2", "A3", "B3", "C3")])
+    f_R = sampler((th[0], zeta, eta, a1, a2, b1, b2), Rfk)
+    f_ident = sampler((d1, e1, f1, d2, e2, f2), ident)
 
     def assembly(rng):
         while True:
@@ -422,7 +425,7 @@ def _forward_kinematics(dv: Derivation) -> None:
         des, (t1, t2, t3), ze, et = assembly(rng)
         vals = [float(v) for v in f_def(t1, t2, t3, ze, et, *des)]
         scale = sum(abs(v) for v in vals) ** 4
-        return abs(float(ident.subs(dict(zip((d1, e1, f1, d2, e2, f2), vals, strict=True))))) / scale
+        return abs(float(f_ident(*vals))) / scale
     dv.add(Step(
         "fk_elimination", "Elimination of zeta",
         "Cramer's rule on the two equations linear in (cos zeta, sin zeta), then cos^2 + sin^2 = 1 times "
@@ -444,14 +447,15 @@ def _forward_kinematics(dv: Derivation) -> None:
     phi_ = sp.Symbol("varphi", real=True)
     orig = ks[0] + ks[1] * sp.cos(etac + phi_) + ks[2] * sp.sin(etac + phi_)
     shifted = rotated[0] + rotated[1] * sp.cos(phi_) + rotated[2] * sp.sin(phi_)
-    # K(x) for symbolic quadratics: degree check of the product structure.
+    # K(x) for symbolic quadratics: degree check of the product structure (a polynomial in x and the 18
+    # coefficients: expanding it as an expression first and taking the coefficients as a domain cost 4x)
     qd_sym = {nm: sp.symbols(f"{nm}_q0:3", real=True) for nm in ("D1", "E1", "F1", "D2", "E2", "F2")}
     qpoly = {nm: c[0] + c[1] * x + c[2] * x**2 for nm, c in qd_sym.items()}
-    Kx = sp.expand(elimination_identity(*(qpoly[n] for n in ("D1", "E1", "F1", "D2", "E2", "F2"))))
-    deg = sp.Poly(Kx, x).degree()
+    deg = sp.Poly(elimination_identity(*(qpoly[n] for n in ("D1", "E1", "F1", "D2", "E2", "F2"))), x,
+                  *(s for c in qd_sym.values() for s in c)).degree(x)
     # evaluated in 30-digit mpmath: the check measures the algebra (the identity), not float rounding, and its
     # number is the same on every CPU (numpy's trig and BLAS kernels differ in the last bits)
-    coef_mp = {k: sp.lambdify((th[0], th[1], th[2], a1, a2, b1, b2), [c.subs(on_design) for c in v], "mpmath", cse=True)
+    coef_mp = {k: sampler((th[0], th[1], th[2], a1, a2, b1, b2), [c.subs(on_design) for c in v], "mpmath")
                for k, v in coef.items()}
 
     def k_poly_err(rng):
@@ -553,8 +557,8 @@ def _rates(dv: Derivation) -> None:
     jx = sp.Matrix.vstack(*[z2[i].cross(z3[i]).T for i in range(3)])
     checks = [symbolic_identity(sp.diff(z2[i], th[i]), z1[i].cross(z2[i]), f"dZ{i + 1}2/dtheta{i + 1} = "
                                 f"Z{i + 1}1 x Z{i + 1}2") for i in range(3)]
-    f_loop = sp.lambdify((*th, a1, a2, b1, b2, *Rm), sp.Matrix([z2[i].dot(z3[i]) for i in range(3)]), "numpy")
-    f_j = sp.lambdify((*th, a1, a2, b1, b2, *Rm), (sp.Matrix(jq), jx), "numpy")
+    f_loop = sampler((*th, a1, a2, b1, b2, *Rm), sp.Matrix([z2[i].dot(z3[i]) for i in range(3)]))
+    f_j = sampler((*th, a1, a2, b1, b2, *Rm), (sp.Matrix(jq), jx))
 
     rot_num = sp.lambdify((psi, nu, phi), rot_zxz(psi, nu, phi), "numpy")
 
@@ -587,13 +591,13 @@ def _rates(dv: Derivation) -> None:
     # R' by the chain rule along (psidot, thetadot, phidot); the check proves vee(R' R^T) = E rates
     Wt = (Rz.diff(psi) * ed[0] + Rz.diff(nu) * ed[1] + Rz.diff(phi) * ed[2]) * Rz.T
     w_expr = sp.Matrix([Wt[2, 1], Wt[0, 2], Wt[1, 0]])
+    det_e = sp.simplify(Em.det())
     dv.add(Step(
         "euler_rates", "Angular velocity from Euler-angle rates",
         "w = E(psi, theta) (psidot, thetadot, phidot), columns: Z, Rz(psi) X, Rz(psi) Rx(theta) Z",
-        ("euler_rotation",), {"E": Em, "det_E": sp.simplify(Em.det())},
+        ("euler_rotation",), {"E": Em, "det_E": det_e},
         (symbolic_identity(w_expr, Em * ed, "skew(w) = R' R^T"),
-         symbolic_identity(sp.simplify(Em.det()), -sp.sin(nu), "det E = -sin theta (Euler rates undefined at "
-                                                              "theta = 0, pi)")),
+         symbolic_identity(det_e, -sp.sin(nu), "det E = -sin theta (Euler rates undefined at theta = 0, pi)")),
         note="The generated rate functions work with w; Euler-angle rates are offered where sin theta != 0."))
     dv.exports["euler_rate_matrix"] = Em
     # Accelerations: d/dt (Jq qdot - Jx w) = 0.
@@ -606,13 +610,14 @@ def _rates(dv: Derivation) -> None:
     jx_dot = sp.Matrix.vstack(*[(z1[i].cross(z2[i]) * qd[i]).cross(z3[i]).T + z2[i].cross(wvec.cross(z3[i])).T
                                 for i in range(3)])
 
-    f_jd = sp.lambdify((*th, a1, a2, b1, b2, *Rm, *qd, *wvec), (sp.Matrix(jq_dot), jx_dot), "numpy")
+    f_jd = sampler((*th, a1, a2, b1, b2, *Rm, *qd, *wvec), (sp.Matrix(jq_dot), jx_dot))
+
+    R0 = np.array(rot_zxz(psi, nu, phi).subs({psi: 0.3, nu: 1.1, phi: -0.7}), dtype=float)  # the same every sample
 
     def acc_err(rng):
         des = _rand_design(rng)
         q0 = rng.uniform(-math.pi, math.pi, 3)
         qdot, w = rng.normal(size=3), rng.normal(size=3)
-        R0 = np.array(rot_zxz(psi, nu, phi).subs({psi: 0.3, nu: 1.1, phi: -0.7}), dtype=float)
 
         def at(tt):
             ang = w * tt

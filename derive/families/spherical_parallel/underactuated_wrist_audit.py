@@ -90,7 +90,7 @@ def audit_numbers(dv, solver, audit_dir: Path, kernels, default_constants, desig
     # solution-count census over the joint space (seeded), and the count map plot
     rng = np.random.default_rng(2024)
     qs = rng.uniform(0.0, 2 * math.pi, (3000, 3))
-    counts = np.array([solver.fk(q).count for q in qs])
+    counts = solver.fk_batch(qs).count  # the batch verb: the same modes as fk row by row, a tenth of the time
     census = {c: int(np.sum(counts == c)) for c in range(0, 9)}
     q8 = qs[int(np.flatnonzero(counts == 8)[0])] if np.any(counts == 8) else None
     table_body, reproduced = _table2(solver)
@@ -191,7 +191,8 @@ def _count_map(solver, audit_dir: Path) -> Path:
     n = 48
     grid = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
     q1 = math.radians(137.92)
-    counts = np.array([[solver.fk((q1, a, b)).count for a in grid] for b in grid])
+    theta2, theta3 = np.meshgrid(grid, grid)  # row b = theta3, column a = theta2
+    counts = solver.fk_batch(np.column_stack([np.full(n * n, q1), theta2.ravel(), theta3.ravel()])).count.reshape(n, n)
     fig, ax = plt.subplots(figsize=(5, 4))
     im = ax.imshow(counts, origin="lower", extent=(0, 360, 0, 360), cmap="viridis", vmin=0, vmax=8)
     ax.set_xlabel("θ2 (°)")
