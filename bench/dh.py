@@ -15,7 +15,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from timing import per_call
+from timing import fastest_of_rounds, per_call
 
 ROOT = Path(__file__).resolve().parent.parent
 BUILD = ROOT / "build" / "bench"
@@ -182,6 +182,9 @@ def peer_versions() -> str:
     return ", ".join(out)
 
 
+TIMED = ("ik_us", "fk_us", "jac_us", "fkjac_us")  # the per-call timings of a PUMA-560 row
+
+
 def measure(quick: bool = False) -> tuple[dict, list[dict]]:
     """(C-loop results per chain, PUMA-560 rows side by side): everything tables() prints, as numbers."""
     for sub in ("tests", "generated/python"):
@@ -195,12 +198,12 @@ def measure(quick: bool = False) -> tuple[dict, list[dict]]:
              "jac_us": (base["fk_jac_ns"] - base["fk_ns"]) / 1e3,
              "note": "gcc -O2, best of 5; FK = wk_puma560_fk_matrix (bare pose; wk_puma560_fk adds the "
                      "manipulability aux)"}]
-    rows += generated_python_and_ctypes(n_py)
+    rows += fastest_of_rounds(lambda: generated_python_and_ctypes(n_py), TIMED)
     try:
         rows.append(casadi_c())
     except Exception as exc:  # noqa: BLE001 - a missing compiler/casadi only skips the row
         rows.append({"name": "CasADi-generated C", "ik_us": None, "fk_us": None, "note": f"skipped: {exc!r}"})
-    rows += peers(n_py)
+    rows += fastest_of_rounds(lambda: peers(n_py), TIMED)
     return loops, rows
 
 

@@ -36,7 +36,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
-from timing import per_call
+from timing import fastest_of_rounds, per_call
 
 ROOT = Path(__file__).resolve().parent.parent
 BENCH_DIR = ROOT / "bench"
@@ -335,9 +335,9 @@ def main(argv=None) -> int:
 
     base, c_raw = c_loop(n["c_ik"], n["c_fk"])
     rows = [base]
-    rows += ctypes_rows(ik_poses(n["py_ik"]), fk_joints(n["py_fk"]))
-    rows += python_rows(ik_poses(n["py_ik"]), fk_joints(n["py_fk"]), ik_poses(n["b_ik"]),
-                        fk_joints(n["b_fk"]))
+    rows += fastest_of_rounds(lambda: ctypes_rows(ik_poses(n["py_ik"]), fk_joints(n["py_fk"]))
+                              + python_rows(ik_poses(n["py_ik"]), fk_joints(n["py_fk"]), ik_poses(n["b_ik"]),
+                                            fk_joints(n["b_fk"])), ("ik", "fk"))
     rows.append(reference_row(ik_poses(n["ref_ik"]), fk_joints(n["ref_fk"])))
     rows.append(casadi_row(args.casadi, ik_poses(n["py_ik"])))
     regen = regenerate_row() if args.regenerate else None
