@@ -193,17 +193,29 @@ def measure(quick: bool = False) -> tuple[dict, list[dict]]:
     n_c = 20_000 if quick else 100_000
     n_py = 100 if quick else 1000
     loops = c_loops(n_c)
+    for name, again in c_loops(n_c).items():  # a second round, the faster of the two (see fastest_of_rounds)
+        for k in ("ik_ns", "fk_ns", "fk_jac_ns"):
+            loops[name][k] = min(loops[name][k], again[k])
     base = loops["puma560"]
     rows = [{"name": "wristkin generated C, C loop", "ik_us": base["ik_ns"] / 1e3, "fk_us": base["fk_ns"] / 1e3,
              "jac_us": (base["fk_jac_ns"] - base["fk_ns"]) / 1e3,
              "note": "gcc -O2, best of 5; FK = wk_puma560_fk_matrix (bare pose; wk_puma560_fk adds the "
                      "manipulability aux)"}]
-    rows += fastest_of_rounds(lambda: generated_python_and_ctypes(n_py), TIMED)
+    # wristkin's Python rows and the peers' in the same rounds, so a slow phase of the VM meets both alike
+    n_ours = []
+
+    def ours_then_peers() -> list[dict]:
+        ours = generated_python_and_ctypes(n_py)
+        n_ours[:] = [len(ours)]
+        return ours + peers(n_py)
+
+    both = fastest_of_rounds(ours_then_peers, TIMED, rounds=3)
+    rows += both[:n_ours[0]]
     try:
         rows.append(casadi_c())
     except Exception as exc:  # noqa: BLE001 - a missing compiler/casadi only skips the row
         rows.append({"name": "CasADi-generated C", "ik_us": None, "fk_us": None, "note": f"skipped: {exc!r}"})
-    rows += fastest_of_rounds(lambda: peers(n_py), TIMED)
+    rows += both[n_ours[0]:]
     return loops, rows
 
 
