@@ -11,6 +11,7 @@ import importlib
 import inspect
 import math
 import os
+import pickle
 import subprocess
 import sys
 from pathlib import Path
@@ -114,8 +115,8 @@ def test_serial_c_and_numpy_give_the_same_solution_sets(name):
         _same(mod.ik(T, c_design, previous=prev), mod.ik(T, py_design, previous=prev), tol,
               f"{name} ik near {prev.tolist()}", rev)
         poses.append(T)
-    # poses the chain cannot reach, and rotations a little off SO(3) (projected, reported): the C path hands
-    # these to the numpy path for the reason, so the result is the same object either way
+    # poses the chain cannot reach, and rotations a little off SO(3) (projected, reported): C answers, the numpy
+    # path words the reason when it is read, so the result is the same either way
     off = poses[0].copy()
     off[:3, :3] *= 1.0 + 1e-8
     far = poses[1].copy()
@@ -213,7 +214,7 @@ def test_rsr_c_and_numpy_give_the_same_solution_sets(name):
 @pytest.mark.parametrize("name", [n for n in NATIVE if hasattr(module(n), "_IK_RESULT")])
 def test_the_extension_hands_back_the_same_solutions_object_python_would_make(name):
     """The Solutions the extension makes (ik, fk) is the frozen dataclass, with the fields and reason the Python
-    conversion of the same call gives; a projected pose still comes back through Python (it needs a word)."""
+    conversion of the same call gives (an outcome that needs the numpy path's words: see the test below)."""
     import dataclasses
 
     from wristkin import _runtime
@@ -238,6 +239,65 @@ def test_the_extension_hands_back_the_same_solutions_object_python_would_make(na
         assert made.reason == spec[1][made.count] and made.status == plain[0] & 255, (name, verb)
         for field, value in zip(("values", "valid", "flags", "aux"), plain[1:], strict=True):
             np.testing.assert_array_equal(getattr(made, field), value, err_msg=f"{name} {verb} {field}")
+
+
+def _numpy_design(mod, name):
+    """The default design without its C counterpart: its verbs take the numpy path."""
+    c = mod.make_design()
+    return mod.Design(c.params, c.constants, c.theta0) if name == "underactuated_wrist" else mod.Design(c.params)
+
+
+def _unworded_inputs(mod, name, rng):
+    """IK inputs whose outcome C finds but cannot word: unreachable poses, and rotations a little off SO(3)
+    (projected: the reason reports the deviation)."""
+    if name == "underactuated_wrist":  # Euler angles where a branch has |C| > sqrt(A^2 + B^2)
+        poses = (rng.uniform(-math.pi, math.pi, 3) for _ in range(400))
+        return [p for p in poses if mod.ik(p, _numpy_design(mod, name)).status == mod.STATUS_UNREACHABLE][:3]
+    if name == "rsr_wrist":  # (alpha, beta, l_bw): the legs cannot span a bottom-to-wrist length 10x theirs
+        pose = mod.fk(np.full(3, 0.3)).values[0]
+        return [pose + np.array([0.0, 0.0, 10.0 * abs(pose[2]) + 1.0])]
+    q = _joints(mod, rng, False)
+    if name == "scara_rsr":  # [R | p] and l_bw
+        off = mod.fk(q).values[0].copy()
+        off[[0, 1, 2, 4, 5, 6, 8, 9, 10]] *= 1.0 + 1e-8
+        return [off]
+    T = mod.fk_matrix(q)
+    off, far = T.copy(), T.copy()
+    off[:3, :3] *= 1.0 + 1e-8
+    far[:3, 3] += 50.0
+    return [off, far]
+
+
+@pytest.mark.skipif(FORCED_NUMPY, reason="WRISTKIN_BACKEND=numpy: the fallback pass")
+@pytest.mark.parametrize("name", NATIVE)
+def test_an_outcome_c_cannot_word_comes_from_c_and_is_worded_only_when_read(name, monkeypatch):
+    """An unreachable pose, a projected one, the wrist's unreachable branch: ik answers from C and runs the numpy
+    path once, when the reason is first read (it ran it on every such call, 30-700x the C call's time). The result
+    equals the numpy path's, reason included, also after the caller changed the input array in place, and a
+    pickled result carries the worded reason."""
+    mod = module(name)
+    c_design, py_design = mod.make_design(), _numpy_design(mod, name)
+    rev = np.array(getattr(mod, "JOINT_KINDS", "RRR")) == "R"
+    expected = [(x, mod.ik(x, py_design)) for x in _unworded_inputs(mod, name, case_rng(37))]
+    # (a prismatic chain reaches the far pose: its count is the whole reason)
+    expected = [(x, b) for x, b in expected if b.status != mod.STATUS_OK or np.any(b.flags & mod.FLAG_PROJECTED)]
+    calls = []
+    numpy_ik = mod._ik_numpy
+    monkeypatch.setattr(mod, "_ik_numpy", lambda *args: calls.append(args) or numpy_ik(*args))
+    worded_later = 0
+    for x, b in expected:
+        calls.clear()
+        arg = np.array(x, dtype=float)
+        a = mod.ik(arg, c_design)
+        assert calls == [], f"{name}: the numpy path ran before the reason was read"
+        worded_later += "reason" not in a.__dict__
+        arg += 1.0  # the reason describes the call, not the array's later contents
+        _same(a, b, SPECIAL_TOL, f"{name} ik of {x.tolist()}", rev)
+        assert a.reason == b.reason and len(calls) == 1, name
+        assert a.reason == b.reason and len(calls) == 1, "the reason is worded once"
+        again = pickle.loads(pickle.dumps(mod.ik(x, c_design)))
+        assert type(again) is type(a) and again.reason == b.reason and "_explain" not in again.__dict__
+    assert worded_later == len(expected) and worded_later >= 1, name
 
 
 @pytest.mark.skipif(FORCED_NUMPY, reason="WRISTKIN_BACKEND=numpy: the fallback pass")
