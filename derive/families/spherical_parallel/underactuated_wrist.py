@@ -659,6 +659,14 @@ def _to_constants(e):
     return out
 
 
+def _trig_free(e):
+    """A kernel output written in the cos / sin symbols of its angles: no trigonometric function may remain."""
+    left = e.atoms(sp.sin, sp.cos, sp.tan)
+    if left:
+        raise ValueError(f"trigonometry left in a kernel that takes cos and sin: {left}")
+    return e
+
+
 def kernels(dv: Derivation):
     """Straight-line kernels the solvers are assembled from (all expressions come from checked steps)."""
     from ...lower import Kernel
@@ -684,6 +692,10 @@ def kernels(dv: Derivation):
     cq = sp.symbols("c1:4", real=True)
     sq = sp.symbols("s1:4", real=True)
     cs_sub = {**{sp.cos(th[i]): cq[i] for i in range(3)}, **{sp.sin(th[i]): sq[i] for i in range(3)}}
+    # the FK kernels take cos and sin (callers have them: no trigonometry repeated per mode)
+    cr, sr = sp.symbols("ct1 cz ce", real=True), sp.symbols("st1 sz se", real=True)
+    rot_sub = {sp.cos(a): c for a, c in zip((th[0], zeta, eta), cr, strict=True)}
+    rot_sub.update({sp.sin(a): s for a, s in zip((th[0], zeta, eta), sr, strict=True)})
     return [
         Kernel("design_constants", "Per-design constants: trig of the design angles, alpha3, kappa, the constant "
                "platform rotation G and cos(theta0).", (params,),
@@ -694,13 +706,15 @@ def kernels(dv: Derivation):
                (("rot", tuple(Rm)), dc),
                tuple((f"{n}{i}", _to_constants(dv.exports["ik_abc_rot"][f"{n}{i}"])) for i in (1, 2, 3)
                      for n in "ABC")),
-        Kernel("fk_def", "FK loop coefficients: D_k, E_k, F_k (k = 1, 2) each as (const, cos eta, sin eta).",
-               (("q", th), dc),
-               tuple((f"{n}{k}_{part}", _to_constants(coef[f"{n}{k}"][j])) for k in (1, 2) for n in "DEF"
-                     for j, part in enumerate(("0", "c", "s")))),
+        Kernel("fk_def", "FK loop coefficients: D_k, E_k, F_k (k = 1, 2) each as (const, cos eta, sin eta), from "
+               "(cos theta_i, sin theta_i).",
+               (("c", cq), ("s", sq), dc),
+               tuple((f"{n}{k}_{part}", _trig_free(_to_constants(coef[f"{n}{k}"][j]).xreplace(cs_sub)))
+                     for k in (1, 2) for n in "DEF" for j, part in enumerate(("0", "c", "s")))),
         Kernel("fk_rotation", "Platform rotation R = Rx(pi - beta1) Rz(theta1) Rx(alpha1) Rz(zeta) Rx(alpha2) "
-               "Rz(eta) G.", (("tze", (th[0], zeta, eta)), dc),
-               tuple((f"r{i}{j}", _to_constants((chain * rot_z(eta) * G)[i, j])) for i, j in ij)),
+               "Rz(eta) G, from the cos and sin of (theta1, zeta, eta).", (("c", cr), ("s", sr), dc),
+               tuple((f"r{i}{j}", _trig_free(_to_constants((chain * rot_z(eta) * G)[i, j]).xreplace(rot_sub)))
+                     for i, j in ij)),
         Kernel("jacobians", "Loop Jacobians: jq_i = det[Zi1, Zi2, Zi3], jx row i = Zi2 x Zi3 (jq qdot = jx w).",
                (("q", th), ("rot", tuple(Rm)), dc),
                tuple((f"jq{i + 1}", _to_constants(jq[i])) for i in range(3))

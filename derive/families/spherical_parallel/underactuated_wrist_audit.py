@@ -166,7 +166,12 @@ def _expansion_measure(kernels, default_constants, design_constants):
 
     ks = {k.name: k for k in kernels}
     dc = dict(zip(design_constants, [float(v) for v in default_constants], strict=True))
-    coef = [sp.sympify(e).xreplace(dc) for _, e in ks["fk_def"].outputs]
+    # the kernel takes (cos theta_i, sin theta_i): the expansion is measured in theta, as a derivation would write it
+    (_, cq), (_, sq) = ks["fk_def"].inputs[:2]
+    th = sp.symbols("theta1:4", real=True)
+    trig = {**{c: sp.cos(t) for c, t in zip(cq, th, strict=True)},
+            **{s: sp.sin(t) for s, t in zip(sq, th, strict=True)}}
+    coef = [sp.sympify(e).xreplace(dc).xreplace(trig) for _, e in ks["fk_def"].outputs]
     quad = [(coef[3 * j] + coef[3 * j + 1], 2 * coef[3 * j + 2], coef[3 * j] - coef[3 * j + 1]) for j in range(6)]
     _, e1, f1, _, e2, f2 = quad
     lead = e1[2] * f2[2] - e2[2] * f1[2]  # x^2 coefficient of E1 F2 - E2 F1

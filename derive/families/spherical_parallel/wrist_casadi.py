@@ -92,7 +92,8 @@ def casadi_functions(dv=None, kernels=None) -> dict[str, ca.Function]:
     q_ik = ca.vertcat(*[ca.atan2(B[i], A[i]) + sigma[i] * ca.acos(-C[i] / ca.sqrt(A[i] ** 2 + B[i] ** 2))
                         for i in range(3)])
 
-    R_fk = _mat3(_kernel_sx(K["fk_rotation"], {"tze": _elems(tze), "dc": dc}), "r")
+    R_fk = _mat3(_kernel_sx(K["fk_rotation"], {"c": [ca.cos(t) for t in _elems(tze)],
+                                               "s": [ca.sin(t) for t in _elems(tze)], "dc": dc}), "r")
 
     R = rotation_zxz(e)
     jac = _kernel_sx(K["jacobians"], {"q": _elems(q), "rot": _elems(R), "dc": dc})
