@@ -30,6 +30,7 @@ import time
 from collections.abc import Sequence
 from pathlib import Path
 
+from .cli_commands import add_commands
 from .spec import SpecError  # standard library only: imports without the derivation stack
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -164,40 +165,10 @@ def run(args) -> int:
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="python -m derive.cli", description="Derive and write wristkin's generated files.")
     sub = p.add_subparsers(dest="verb", metavar="VERB", required=True)
-    jobs_help = "derivation processes (default: WRISTKIN_JOBS, else one per core); the bytes do not depend on it"
-    for verb, helptext in (("regenerate", "derive and write every generated file"),
-                           ("check", "regenerate into a temporary directory and diff against generated/"),
-                           ("audit", "derive mechanism M alone (all without M) and print its report path"),
-                           ("native", "compile DIR's generated C into the extension its Python modules call")):
-        s = sub.add_parser(verb, help=helptext)
-        if verb == "audit":
-            s.add_argument("mechanism", nargs="?", metavar="M")
-        if verb != "check":
-            s.add_argument("--out", metavar="DIR", help="output directory (default: the checkout's generated/)")
-        if verb in ("regenerate", "audit"):
-            s.add_argument("--catalogue", metavar="DIR", help="derive the *.toml spec files in DIR (default: the "
-                                                              "catalogue)")
-        if verb != "native":
-            s.add_argument("--jobs", type=int, metavar="N", help=jobs_help)
-    add_derive_parser(sub)
+    add_commands(sub)  # regenerate, check, audit, derive: the table the wristkin command is generated with
+    s = sub.add_parser("native", help="compile DIR's generated C into the extension its Python modules call")
+    s.add_argument("--out", metavar="DIR", help="output directory (default: the checkout's generated/)")
     return p
-
-
-def add_derive_parser(sub) -> None:
-    """`derive SOURCE --out DIR`: shared by `python -m derive.cli` and the `wristkin` command."""
-    s = sub.add_parser("derive", help="derive your own robot (a URDF or a spec file) into DIR: Python, C, CasADi "
-                                      "and an audit report")
-    s.add_argument("source", metavar="SOURCE", help="ROBOT.urdf, or a spec file (docs/specs.md)")
-    s.add_argument("--out", metavar="DIR", required=True, help="output directory")
-    s.add_argument("--name", help="the solver's name (default: the spec's name / the URDF file's stem)")
-    s.add_argument("--base", metavar="LINK", help="URDF: the base link (default: the root)")
-    s.add_argument("--tip", metavar="LINK", help="URDF: the tip link (default: the only leaf)")
-    s.add_argument("--free", metavar="JOINT", help="a redundant arm's joint held as a run-time parameter")
-    s.add_argument("--geometry-tol", type=float, metavar="TOL", help="axes within TOL count as parallel / meeting "
-                                                                    "(default 1e-6: metres and sin of angles)")
-    s.add_argument("--no-native", action="store_true", help="do not compile the C into the folder's Python "
-                                                            "extension (the Python solvers then run on numpy)")
-    s.set_defaults(verb="derive")
 
 
 def main(argv: Sequence[str] | None = None) -> int:

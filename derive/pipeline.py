@@ -14,6 +14,7 @@ import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
+from . import cli_commands
 from .catalogue import CATALOGUE, registry
 from .lower import lower
 from .render import ROOT, header_lines, input_hash, render, tool_versions
@@ -111,7 +112,8 @@ def _job(args) -> list[Path]:
 def _shared_files(out: Path, catalogue: Path = CATALOGUE) -> list[Path]:
     """The runtime and package files every mechanism's products import (written before any mechanism)."""
     pkg = out / "python" / "wristkin"
-    files = [write_file(pkg / f"{stem}.py", render(f"python/{stem}.py.jinja", header=header_lines()))
+    files = [write_file(pkg / f"{stem}.py", render(f"python/{stem}.py.jinja", header=header_lines(),
+                                                  derivation_commands=cli_commands.literal()))
              for stem in ("_runtime", "cli", "__main__")]
     files.append(write_file(pkg / "__init__.py", render("python/__init__.py.jinja", header=header_lines(),
                                                      names=sorted(registry(catalogue)))))

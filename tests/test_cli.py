@@ -719,3 +719,25 @@ def test_printed_fk_pose_pastes_back_into_ik_and_huge_joints_are_wrapped():
     assert any(max(abs(float(a) - float(b)) for a, b in zip(f, q, strict=True)) < 1e-9 for f in found), back.stdout
     huge = run_cli("fk", "puma560", "--rad", "--joints", "1e308", "1e308", "1e308", "0", "0", "0")
     assert huge.returncode == 0 and "Traceback" not in huge.stderr and "nan" not in huge.stdout.lower()
+
+
+def _derivation_arguments(parser) -> dict:
+    """verb -> its arguments as (option strings or dest, nargs, type, required, help, metavar), from a parser."""
+    import argparse
+
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return {verb: [(tuple(a.option_strings) or a.dest, a.nargs, a.type, a.required, a.help, a.metavar)
+                   for a in p._actions if not isinstance(a, argparse._HelpAction)]
+            for verb, p in sub.choices.items() if verb in ("regenerate", "check", "audit", "derive")}
+
+
+def test_the_wristkin_command_and_derive_cli_take_the_same_derivation_arguments():
+    """The runtime's parser is generated from derive/cli_commands.py's table and builds it with a copy of its loop
+    (the runtime cannot import derive): both parsers take the same arguments, with the same help."""
+    from derive import cli as derive_cli
+    from derive import cli_commands
+
+    ours, theirs = _derivation_arguments(cli.build_parser()), _derivation_arguments(derive_cli.build_parser())
+    assert sorted(ours) == sorted(theirs) == sorted(verb for verb, _, _ in cli_commands.COMMANDS)
+    assert ours == theirs
+    assert cli._DERIVATION_COMMANDS == cli_commands.COMMANDS, "generated/ is stale: make regenerate"
