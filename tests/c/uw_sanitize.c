@@ -3,13 +3,7 @@
 #include <math.h>
 #include <stdio.h>
 #include "underactuated_wrist.h"
-
-static unsigned long long state = 88172645463325252ULL;
-static double uniform(double lo, double hi)
-{
-    state ^= state << 13; state ^= state >> 7; state ^= state << 17;
-    return lo + (hi - lo) * (double)(state >> 11) / 9007199254740992.0;
-}
+#include "sanitize.h"
 
 int main(void)
 {
