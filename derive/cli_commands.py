@@ -25,9 +25,9 @@ COMMANDS = (
      ((("source",), {"metavar": "SOURCE", "help": "ROBOT.urdf, or a spec file (docs/specs.md)"}),
       (("--out",), {"metavar": "DIR", "required": True, "help": "output directory"}),
       (("--name",), {"help": "the solver's name (default: the spec's name / the URDF file's stem)"}),
-      (("--base",), {"metavar": "LINK", "help": "URDF: the chain's base link (default: the root)"}),
-      (("--tip",), {"metavar": "LINK", "help": "URDF: the chain's tip link (default: the only leaf)"}),
-      (("--free",), {"metavar": "JOINT", "help": "a redundant chain's joint held as a run-time parameter"}),
+      (("--base",), {"metavar": "LINK", "help": "URDF: the base link (default: the root)"}),
+      (("--tip",), {"metavar": "LINK", "help": "URDF: the tip link (default: the only leaf)"}),
+      (("--free",), {"metavar": "JOINT", "help": "a redundant arm's joint held as a run-time parameter"}),
       (("--geometry-tol",), {"type": "float", "metavar": "TOL",
                              "help": "axes within TOL count as parallel / meeting (default 1e-6: metres and sin "
                                      "of angles)"}),
