@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import argparse
 import ctypes
+import functools
 import json
 import math
 import os
@@ -126,12 +127,19 @@ def per_row_batch(fn: Callable[[np.ndarray], object], rows: np.ndarray, repeats:
 
 
 # ---------------------------------------------------------------------------------------- rows
-def c_loop(n_ik: int, n_fk: int) -> tuple[dict, dict]:
+@functools.cache
+def _c_loop_binary() -> tuple[Path, list[str]]:
+    """bench/bench_underactuated_wrist.c built once per run (the C loop runs three times)."""
     BUILD_DIR.mkdir(parents=True, exist_ok=True)
     exe = BUILD_DIR / "bench_underactuated_wrist"
     cmd = ["gcc", *C_FLAGS, f"-I{C_DIR}", "-o", str(exe), str(BENCH_DIR / "bench_underactuated_wrist.c"),
            str(C_DIR / "underactuated_wrist.c"), str(C_DIR / "wristkin_runtime.c"), "-lm"]
     subprocess.run(cmd, check=True)
+    return exe, cmd
+
+
+def c_loop(n_ik: int, n_fk: int) -> tuple[dict, dict]:
+    exe, cmd = _c_loop_binary()
     out = subprocess.run([str(exe), str(n_ik), str(n_fk), str(C_REPEATS)], check=True, capture_output=True,
                          text=True)
     res = json.loads(out.stdout)

@@ -39,14 +39,14 @@ COMMANDS = (
 _TYPES = {"int": int, "float": float}
 
 
-def add_commands(sub, commands=COMMANDS, note: str = "", **defaults) -> None:
-    """Add each command to the subparsers `sub`: its help (+ `note`), its arguments, `defaults` and verb=name.
-    (wristkin/cli.py carries a copy of this loop: the runtime cannot import derive; a test holds them equal.)"""
-    for verb, helptext, arguments in commands:
-        s = sub.add_parser(verb, help=helptext + note)
+def add_commands(sub) -> None:
+    """Add each command to the subparsers `sub`: its help, its arguments and verb=name. (wristkin/cli.py carries a
+    copy of this loop, adding its note and handler: the runtime cannot import derive; a test holds them equal.)"""
+    for verb, helptext, arguments in COMMANDS:
+        s = sub.add_parser(verb, help=helptext)
         for flags, options in arguments:
             s.add_argument(*flags, **{k: _TYPES.get(v, v) if k == "type" else v for k, v in options.items()})
-        s.set_defaults(verb=verb, **defaults)
+        s.set_defaults(verb=verb)
 
 
 def literal() -> str:

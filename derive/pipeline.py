@@ -112,8 +112,9 @@ def _job(args) -> list[Path]:
 def _shared_files(out: Path, catalogue: Path = CATALOGUE) -> list[Path]:
     """The runtime and package files every mechanism's products import (written before any mechanism)."""
     pkg = out / "python" / "wristkin"
+    extra = {"cli": {"derivation_commands": cli_commands.literal()}}  # the table wristkin/cli.py carries
     files = [write_file(pkg / f"{stem}.py", render(f"python/{stem}.py.jinja", header=header_lines(),
-                                                  derivation_commands=cli_commands.literal()))
+                                                  **extra.get(stem, {})))
              for stem in ("_runtime", "cli", "__main__")]
     files.append(write_file(pkg / "__init__.py", render("python/__init__.py.jinja", header=header_lines(),
                                                      names=sorted(registry(catalogue)))))

@@ -251,8 +251,9 @@ def _unworded_inputs(mod, name, rng):
     """IK inputs whose outcome C finds but cannot word: unreachable poses, and rotations a little off SO(3)
     (projected: the reason reports the deviation)."""
     if name == "underactuated_wrist":  # Euler angles where a branch has |C| > sqrt(A^2 + B^2)
+        design = _numpy_design(mod, name)
         poses = (rng.uniform(-math.pi, math.pi, 3) for _ in range(400))
-        return [p for p in poses if mod.ik(p, _numpy_design(mod, name)).status == mod.STATUS_UNREACHABLE][:3]
+        return [p for p in poses if mod.ik(p, design).status == mod.STATUS_UNREACHABLE][:3]
     if name == "rsr_wrist":  # (alpha, beta, l_bw): the legs cannot span a bottom-to-wrist length 10x theirs
         pose = mod.fk(np.full(3, 0.3)).values[0]
         return [pose + np.array([0.0, 0.0, 10.0 * abs(pose[2]) + 1.0])]
@@ -294,7 +295,8 @@ def test_an_outcome_c_cannot_word_comes_from_c_and_is_worded_only_when_read(name
         arg += 1.0  # the reason describes the call, not the array's later contents
         _same(a, b, SPECIAL_TOL, f"{name} ik of {x.tolist()}", rev)
         assert a.reason == b.reason and len(calls) == 1, name
-        assert a.reason == b.reason and len(calls) == 1, "the reason is worded once"
+        second_read = a.reason
+        assert second_read == b.reason and len(calls) == 1, "the reason is worded once"
         again = pickle.loads(pickle.dumps(mod.ik(x, c_design)))
         assert type(again) is type(a) and again.reason == b.reason and "_explain" not in again.__dict__
     assert worded_later == len(expected) and worded_later >= 1, name

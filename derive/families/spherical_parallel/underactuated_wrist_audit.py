@@ -167,8 +167,9 @@ def _expansion_measure(kernels, default_constants, design_constants):
     ks = {k.name: k for k in kernels}
     dc = dict(zip(design_constants, [float(v) for v in default_constants], strict=True))
     # the kernel takes (cos theta_i, sin theta_i): the expansion is measured in theta, as a derivation would write it
-    (_, cq), (_, sq) = ks["fk_def"].inputs[:2]
+    # (any three angle symbols count alike; importing the derivation's would close an import cycle)
     th = sp.symbols("theta1:4", real=True)
+    (_, cq), (_, sq) = ks["fk_def"].inputs[:2]
     trig = {**{c: sp.cos(t) for c, t in zip(cq, th, strict=True)},
             **{s: sp.sin(t) for s, t in zip(sq, th, strict=True)}}
     coef = [sp.sympify(e).xreplace(dc).xreplace(trig) for _, e in ks["fk_def"].outputs]
