@@ -199,3 +199,35 @@ def test_fk_flags_exact_singularities_in_python_and_c():
         assert bool(mod.fk_batch(q[None, :]).flags[0, 0] & mod.FLAG_SINGULAR_INVERSE) == singular
         # manipulability: equal where regular; at the singularity both are rounding noise of sqrt(eps * |J|^2)
         assert abs(c.fk(q).aux[0, 0] - mod.fk(q).aux[0, 0]) < (1e-8 if singular else 1e-12)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_ik_stays_complete_when_a_design_length_is_zero_or_one(name):
+    """A stage must not lean on a design value being what the catalogue says: the PUMA's theta2 stage measured the
+    distance to the base origin, which lies on axis 2 when d1 = 0, and 60 % of reachable poses were then reported
+    unreachable. Each length at 0, 1 and -0.5 (where the design is valid): FK by the independent reference, the
+    generating joints among the IK sets of Python and C (or, where the design makes two axes coincide, say the
+    SCARA's a1 = 0, the family flagged indeterminate), every set a pose within IK_VERIFY_TOL."""
+    mod = importlib.import_module(f"wristkin.{name}")
+    c = SerialC(name, mod.N_JOINTS, mod.MAX_IK, len(mod.DESIGN_NAMES))
+    rng = case_rng(11)
+    for pname in mod.DESIGN_NAMES:
+        for value in (0.0, 1.0, -0.5):
+            params = dict(zip(mod.DESIGN_NAMES, mod.DESIGN_DEFAULT, strict=True))
+            params[pname] = value
+            try:
+                mod.make_design(params)
+            except mod.InvalidDesign:
+                continue
+            rc, d = c.design([params[n] for n in mod.DESIGN_NAMES])
+            assert rc == 0, (name, pname, value)
+            for _ in range(3):
+                q = _joints(mod, rng)
+                T = ref.fk(name, q, params)
+                py, cc = mod.ik(T, params), c.ik(T, d)
+                assert py.count >= 1, (name, pname, value, q)
+                if py.status != mod.STATUS_INDETERMINATE:
+                    assert min(_dist(mod, q, v) for v in py) < 1e-6, (name, pname, value, q)
+                for v in py:
+                    assert ref.pose_error(name, v, T, params) < 1e-9
+                assert cc.count == py.count and np.array_equal(cc.valid, py.valid), (name, pname, value)

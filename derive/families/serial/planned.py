@@ -107,6 +107,21 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         c = axes[spec[1]].cross(axes[spec[2]])
         return sp.simplify(c / sp.sqrt(c.dot(c)))
 
+    def distance_point(spec, j):
+        """The fixed point of a distance op. On a lone axis i any point will do, and the planner's (the axis's DH
+        origin) may fall on the solved axis j at some designs (the PUMA's base origin with d1 = 0): then the distance
+        no longer depends on q_j and the stage degenerates. One unit along axis i from its point nearest axis j is on
+        axis j at no design (the two axes meet at most at that nearest point), and |s - r| stays O(1)."""
+        if spec[0] != "on":
+            return point(spec)
+        i = spec[1]
+        u, v, w = axes[i], axes[j], points[j] - points[i]
+        uv = sp.simplify(u.dot(v))
+        if sp.simplify(1 - uv ** 2) == 0:  # parallel axes: no point of axis i is on axis j unless they coincide
+            return points[i]
+        t = sp.simplify((w.dot(u) - uv * w.dot(v)) / (1 - uv ** 2))
+        return (points[i] + u * (t + 1)).applyfunc(sp.simplify)
+
     def prefix(js):
         m = _Motion(sp.eye(3), sp.zeros(3, 1))
         for j in js:
@@ -119,7 +134,9 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         j = op.get("j")
         if k == "begin":
             x = point(op["x"])
-            y = (prefix(range(op["lo"])).inv() * target * prefix(range(op["hi"] + 1, n)).inv()).apply(x)
+            # expanded: the home offset and its undoing cancel symbolically, not in floating point at run time
+            y = (prefix(range(op["lo"])).inv() * target * prefix(range(op["hi"] + 1, n)).inv()).apply(x).applyfunc(
+                sp.expand)
             continue
         if k == "linear":
             js = op["js"]
@@ -158,7 +175,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                 val = nv.dot(y - x) / nv.dot(h)
             out.append(Stage("value", (j,), (val,), f"slide {q}", f"{k}: the slide's component"))
             if k != "single":
-                y, x = (y - h * q, x) if first else (y, x + h * q)
+                y, x = ((y - h * q).applyfunc(sp.expand), x) if first else (y, (x + h * q).applyfunc(sp.expand))
             continue
         if k == "single":
             e1 = _perp(h)
@@ -176,7 +193,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             c = nv.dot(fixed - r) - hp * nv.dot(h)
             rule = "subproblem 4: n . rot(h, q) p = d (the other joints keep the component along n)"
         else:
-            s = point(op["s"])
+            s = distance_point(op["s"], j)
             p2 = s - r
             a, b = p2.dot(p - h * hp), p2.dot(h.cross(p))
             c = (p.dot(p) + p2.dot(p2) - (fixed - s).dot(fixed - s)) / 2 - hp * h.dot(p2)
@@ -185,9 +202,9 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         out.append(Stage("trig_linear", (j,), (a, -b if first else b, -c), f"angle {q} ({'two roots'})", rule))
         e = _screw("R", h, r, q)
         if first:
-            y = e.inv().apply(y)
+            y = e.inv().apply(y).applyfunc(sp.expand)
         else:
-            x = e.apply(x)
+            x = e.apply(x).applyfunc(sp.expand)
     return out, plan.strategy
 
 
