@@ -56,3 +56,42 @@ def test_modified_dh_chain_equals_standard_chain():
                                    atol=1e-12)
         np.testing.assert_allclose(np.array(f[1](*vals), dtype=float), np.array(f[3](*vals), dtype=float),
                                    atol=1e-12)
+
+
+def test_mirrored_wrist_set_has_its_base_sets_fk_bit_for_bit():
+    """The C solver reuses an even IK set's FK check for the odd set that mirrors its wrist (q4 + pi, -q5, q6 + pi),
+    on the strength of dh_serial.mirror_keeps_fk: every temporary of fk_cs unchanged or exactly negated by the flip.
+    The proof holds for the spherical wrist and fails for a flip that is no symmetry (q5 left alone); and the
+    generated fk_cs kernels of the three wrist-stage chains give bit-identical poses for mirrored random sets."""
+    import importlib
+
+    mech = registry()["spherical_wrist"]
+    spec = mech.spec
+    fk_cs = next(k for k in mech.kernels(mech.derive()) if k.name == "fk_cs")
+    assert dh_serial.mirror_keeps_fk(spec, fk_cs)
+    wrist = next(st for st in spec.stages if st.kind == "wrist")
+    cs, ss = dh_serial._cs_symbols(spec)
+    j4, j5, j6 = wrist.joints
+    from derive.lower import cse_kernel
+
+    temps, reduced = cse_kernel(fk_cs)
+    known, wrong = {}, {cs[j4], ss[j4], cs[j6], ss[j6]}
+    for sym, e in temps:
+        known[sym] = dh_serial._flip_parity(sp.sympify(e), wrong, known)
+    assert any(dh_serial._flip_parity(e, wrong, known) != 0 for e in reduced)
+
+    rng = case_rng(5)
+    for name in ("spherical_wrist", "rpp_wrist", "puma560"):
+        mod = importlib.import_module(f"wristkin.{name}")
+        j4, j6 = mod._WRIST_JOINTS
+        j5 = j4 + 1
+        dp = np.array(mod.DESIGN_DEFAULT)
+        for _ in range(200):
+            q = rng.uniform(-math.pi, math.pi, mod.N_JOINTS)
+            c, s = np.cos(q), np.sin(q)
+            cm, sm = c.copy(), s.copy()
+            cm[[j4, j6]] *= -1.0
+            sm[[j4, j5, j6]] *= -1.0
+            a = np.array(mod._k_fk_cs(q, c, s, dp), dtype=float)
+            b = np.array(mod._k_fk_cs(q, cm, sm, dp), dtype=float)
+            assert np.array_equal(a, b), (name, q)

@@ -302,3 +302,49 @@ def stage_view(spec: SerialSpec) -> list[dict]:
             view["joint_kind"] = spec.kinds[st.joints[0]]
         out.append(view)
     return out
+
+
+def _flip_parity(e, flipped: set, known: dict):
+    """0 when e is unchanged, 1 when it is exactly negated, once the symbols in `flipped` are negated; None when
+    neither holds. Exact in IEEE arithmetic term by term: a product with a negated factor, a sum of negated terms and
+    an integer power of a negated base are the negated (or the same) rounded values, so parity holds for every
+    sub-expression the printed code evaluates (and for a fused multiply-add of them)."""
+    if e.is_Symbol:
+        return known.get(e, 1 if e in flipped else 0)
+    if e.is_Number:
+        return 0
+    if e.is_Mul or e.is_Pow:
+        parts = e.args if e.is_Mul else (e.base,)
+        ps = [_flip_parity(a, flipped, known) for a in parts]
+        if None in ps:
+            return None
+        if e.is_Pow:
+            return (ps[0] * int(e.exp)) % 2 if e.exp.is_Integer else (None if ps[0] else 0)
+        return sum(ps) % 2
+    if e.is_Add:
+        ps = {_flip_parity(a, flipped, known) for a in e.args}
+        return ps.pop() if len(ps) == 1 and None not in ps else None
+    return 0 if all(_flip_parity(a, flipped, known) == 0 for a in e.args) else None
+
+
+def mirror_keeps_fk(spec: SerialSpec, fk_cs_kernel) -> bool:
+    """Whether the wrist's mirrored set (q4 + pi, -q5, q6 + pi: cos and sin of q4, q6 and sin q5 negated) gives
+    bit for bit the FK of its base set in the generated fk_cs kernel: every CSE temporary of the kernel, as printed,
+    is unchanged or exactly negated under the flip and every output unchanged. Then the base set's verification is
+    the mirror's, and the C solver reuses it."""
+    from ...lower import cse_kernel
+
+    wrist = [st for st in spec.stages if st.kind == "wrist"]
+    if not wrist:
+        return False
+    cs, ss = _cs_symbols(spec)
+    j4, j5, j6 = wrist[0].joints
+    flipped = {cs[j4], ss[j4], ss[j5], cs[j6], ss[j6]}
+    temps, reduced = cse_kernel(fk_cs_kernel)
+    known: dict = {}
+    for sym, e in temps:
+        p = _flip_parity(sp.sympify(e), flipped, known)
+        if p is None:
+            return False
+        known[sym] = p
+    return all(_flip_parity(e, flipped, known) == 0 for e in reduced)
