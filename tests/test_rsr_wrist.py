@@ -89,6 +89,18 @@ def test_tangent_leg_gives_one_double_root_flagged():
     assert all(sol.flags[k] & w.FLAG_DOUBLE_ROOT for k in np.flatnonzero(sol.valid))
 
 
+def test_near_free_leg_flags_every_set_singular(wc):
+    """beta = pi with leg 1 in the swing plane, 1e-10 rad off: the leg's coefficient norm rho is ~1e-11, so its
+    conditioning rho sin(acos u) is far below SINGULAR_EPS. FK flagged it; IK returned the sets unflagged (select()
+    then preferred them as regular). Every IK set now carries singular_inverse, in Python and C."""
+    q = [0.3, math.pi / 2 + 1e-10, -math.pi / 2 + 2e-10]
+    f = w.fk(q)
+    assert f.flags[0] & w.FLAG_SINGULAR_INVERSE
+    for sol in (w.ik(f.values[0]), wc.ik(f.values[0])):
+        assert sol.count >= 1
+        assert all(sol.flags[k] & w.FLAG_SINGULAR_INVERSE for k in np.flatnonzero(sol.valid))
+
+
 def test_unreachable_collinear_and_gimbal():
     s = w.ik((0.0, 0.3, 2.5 * L))
     assert s.count == 0 and s.status == w.STATUS_UNREACHABLE and "leg" in s.reason

@@ -92,6 +92,34 @@ def test_elbow_stretched_double_root_and_gimbal():
     assert sol.count == 16 and any(_close(qz, g, 1e-7) for g in sol)
 
 
+@pytest.mark.parametrize("t2", [math.pi - 1e-8, -(math.pi - 1e-7), -(math.pi - 1e-9), math.pi - 1e-4])
+def test_folded_elbow_with_equal_links_keeps_both_elbows(t2, hc):
+    """L1 = L2 (the default) folded to within 1e-9 .. 1e-4 rad of theta2 = pi, the flange nanometres from axis 1.
+    The plain law of cosines rounded cos theta2 to -1 and L1 + L2 cos theta2 to 0 there: a reachable pose came out
+    unreachable, or one elbow was dropped as a 'double root' although the two differ by ~pi in theta1 and theta4.
+    Both elbows x 8 leg words, the generating set among them (to the conditioning eps / (pi - |theta2|) of the fold,
+    at most ~1e-7 here), flagged singular_inverse, not double; Python and C alike."""
+    q = np.array([0.3, t2, 0.05, 0.2, 0.5, 0.6, 0.7])
+    pose = h.fk(q).values[0]
+    tol = max(1e-9, 1e-16 / (math.pi - abs(t2)))
+    for sol in (h.ik(pose), hc.ik(pose)):
+        assert sol.count == 16 and any(_close(q, g, tol) for g in sol.values[sol.valid]), (t2, sol.count)
+        folded = abs(t2) > math.pi - 1e-5
+        assert all(sol.flags[k] & h.FLAG_SINGULAR_INVERSE or not folded for k in np.flatnonzero(sol.valid))
+        assert not np.any(sol.flags[sol.valid] & h.FLAG_DOUBLE_ROOT)
+
+
+def test_set_next_to_a_direct_singularity_is_kept_flagged(hc):
+    """S1, S2, S3 nearly collinear (cond_direct 3e-8): the plane built from the legs carries a rounding error of
+    eps / cond_direct, more than the FK check allows, and the generating set was dropped. The target's plane is used
+    there (as at exact collinearity), and the set comes back flagged singular_direct, as rsr_wrist keeps it."""
+    q = np.array([0.3, 1.0, 0.05, 0.2, 1.5707963124910032, 1.5707964095437614, 0.200000038419825])
+    pose = h.fk(q).values[0]
+    for sol in (h.ik(pose), hc.ik(pose)):
+        hits = [k for k in np.flatnonzero(sol.valid) if _close(q, sol.values[k], 1e-9)]
+        assert hits and all(sol.flags[k] & h.FLAG_SINGULAR_DIRECT for k in hits)
+
+
 def test_unreachable_and_bad_input():
     t = h.fk_matrix(np.array([0.3, 1.0, 0.1, 0.2, 0.8, 0.9, 1.0]))
     far = t.copy()

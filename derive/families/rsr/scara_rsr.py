@@ -126,11 +126,14 @@ def derive() -> Derivation:
         source="seed 002, Fig. 8 and eq. (9)"))
     dv.add(Step(
         "scara_ik", "Planar two-link IK, both elbows; stroke and fourth joint",
-        "law of cosines: cos theta2 = (x^2 + y^2 - L1^2 - L2^2) / (2 L1 L2), theta2 = +/- acos(.), "
-        "theta1 = atan2(y, x) - atan2(L2 sin theta2, L1 + L2 cos theta2); d3 = d - z_4; theta4 = theta - theta1 - "
-        "theta2 (wrapped)",
+        "law of cosines, factored so neither fold cancels: "
+        "1 + cos theta2 = (r - |L1 - L2|)(r + |L1 - L2|) / (2 L1 L2), "
+        "1 - cos theta2 = (L1 + L2 - r)(L1 + L2 + r) / (2 L1 L2), sin theta2 = +/- sqrt of their product; "
+        "theta1 = atan2(y, x) - atan2(L2 sin theta2, (L1 - L2) + L2 (1 + cos theta2)); d3 = d - z_4; "
+        "theta4 = theta - theta1 - theta2 (wrapped)",
         ("position_split", "scara_fk"), {},
-        (numeric_predicate(_scara_ik_error, "both elbow solutions reproduce p_4, random L1, L2 and joints",
+        (numeric_predicate(_scara_ik_error, "both elbow solutions reproduce p_4, random L1, L2 and joints, a third "
+                           "folded with L1 = L2",
                            samples=300, tol=1e-12),)))
     from .rsr_jacobian import LEG_RANGE, jacobian_step, wrist_transform_of_joints
 
@@ -171,16 +174,29 @@ def _ry(a):
     return np.array([[math.cos(a), 0.0, math.sin(a)], [0.0, 1.0, 0.0], [-math.sin(a), 0.0, math.cos(a)]])
 
 
+def scara_elbows(x: float, y: float, l1: float, l2: float):
+    """Both elbows (theta1, theta2) of the planar two-link at (x, y), as the generated solvers compute them: 1 +/- cos
+    theta2 from factored differences of squares, so neither fold cancels."""
+    r, dl = math.hypot(x, y), abs(l1 - l2)
+    opc = max(0.0, (r - dl) * (r + dl) / (2 * l1 * l2))
+    omc = max(0.0, (l1 + l2 - r) * (l1 + l2 + r) / (2 * l1 * l2))
+    c2 = opc - 1.0 if opc <= omc else 1.0 - omc
+    sg = math.sqrt(opc * omc)
+    k = (l1 - l2) + l2 * opc  # L1 + L2 cos theta2
+    return [(math.atan2(y, x) - math.atan2(l2 * s2, k), math.atan2(s2, c2)) for s2 in (sg, -sg)]
+
+
 def _scara_ik_error(rng) -> float:
+    """Both elbows reproduce p_4: random links and joints, a third of the samples folded to within 1e-3 .. 1e-9 rad of
+    theta2 = pi with L1 = L2 (the flange nanometres from axis 1, where the plain law of cosines lost theta1)."""
     l1, l2 = rng.uniform(0.1, 0.4, 2)
     t1, t2 = rng.uniform(-math.pi, math.pi, 2)
+    if rng.uniform() < 1 / 3:
+        l2 = l1
+        t2 = math.copysign(math.pi - 10.0 ** rng.uniform(-9, -3), t2)
     x, y = l1 * math.cos(t1) + l2 * math.cos(t1 + t2), l1 * math.sin(t1) + l2 * math.sin(t1 + t2)
-    c2 = max(-1.0, min(1.0, (x * x + y * y - l1 * l1 - l2 * l2) / (2 * l1 * l2)))
     worst = 0.0
-    for sgn in (1, -1):
-        s2 = sgn * math.sqrt(1 - c2 * c2)
-        th1 = math.atan2(y, x) - math.atan2(l2 * s2, l1 + l2 * c2)
-        th2 = math.atan2(s2, c2)
+    for th1, th2 in scara_elbows(x, y, l1, l2):
         worst = max(worst, abs(l1 * math.cos(th1) + l2 * math.cos(th1 + th2) - x),
                     abs(l1 * math.sin(th1) + l2 * math.sin(th1 + th2) - y))
     return worst
