@@ -217,6 +217,7 @@ def test_wrong_shape(uw, shape):
     (0.0, 1.0, 0.5, 0.5), (1.0, math.pi, 0.5, 0.5), (1.0, 1.0, -0.1, 0.5), (1.0, 1.0, 0.5, 0.0),
     (1.0, 1.0, 0.5, 2.0), (math.nan, 1, 1, 1),
     (0.2, 0.2, 1.5, 0.1),  # no spherical closure: |cos theta0| > 1
+    (1.0, 1.0, math.pi / 2, math.pi / 2),  # beta1 + beta2 = pi: the home loop fixes no theta0 (every one closes it)
 ])
 def test_bad_design(uw, uw_c, params):
     with pytest.raises(uw.InvalidDesign):
