@@ -93,6 +93,8 @@ BROKEN = [
                                 "direction = [0.0, 1.0, 0.0]\npoint = [0.8, 0.2, 0.1]"), "joint", "one direction"),
     (SCREW, lambda t: t.replace('structure = "RaRaRaRbRb"', 'structure = "P1P2P3RaRb"'), "joint", "types P P P R R"),
     (WRIST, lambda t: t.replace("beta2 = 43.89", "beta2 = 123.0"), "design.beta2", "[0.0, 90.0]"),
+    (WRIST, lambda t: t.replace("beta2 = 43.89", "beta2 = 90.0").replace("beta1 = 30.0", "beta1 = 90.0"),
+     "design.beta2", "below 180"),
     (WRIST, lambda t: t.replace('seed = "000"', 'seed = "999"'), "seed", "'000'"),
 ]
 

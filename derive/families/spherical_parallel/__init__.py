@@ -53,5 +53,8 @@ def from_spec(spec: Spec) -> SphericalParallelWrist:
     # the generated make_design's ranges (with its margin of a few 1e-x rad checked again at run time)
     ranges = {"alpha1": (0.0, 180.0), "alpha2": (0.0, 180.0), "beta1": (0.0, 90.0), "beta2": (0.0, 90.0)}
     degrees = tuple(design.number(n, lo=ranges[n][0], hi=ranges[n][1], unit="degrees") for n in uw.DESIGN_NAMES)
+    if degrees[2] + degrees[3] >= 180.0:  # the home loop's theta coefficient is sin(beta1 + beta2)
+        raise design.error("beta2", "beta1 + beta2 below 180 degrees (at 180 the home loop fixes no theta0)",
+                           degrees[2] + degrees[3])
     seed = spec.choice("seed", SEEDS, None) if spec.has("seed") else None
     return SphericalParallelWrist(head["name"], head["title"], head["source"], degrees, seed)
