@@ -231,3 +231,24 @@ def test_ik_stays_complete_when_a_design_length_is_zero_or_one(name):
                 for v in py:
                     assert ref.pose_error(name, v, T, params) < 1e-9
                 assert cc.count == py.count and np.array_equal(cc.valid, py.valid), (name, pname, value)
+
+
+def test_a_stage_left_degenerate_by_an_upstream_double_root_returns_the_family():
+    """PUMA with a3 = 0 and a2 = d4, theta3 = pi/2 + 1e-10: the arm folds the wrist centre onto the shoulder. theta3 is
+    a double root, resolved to sqrt(eps), so theta3 lands on pi/2 and the theta2 stage's coefficients vanish to 3e-17,
+    leaving |C| ~ 4e-11 where the family's is 0. That residue made the stage report no solution and the reachable pose
+    unreachable, in Python and C. The stage now keeps its representative for |C| within sqrt(DOUBLE_ROOT_TOL), and the
+    FK check (against the independent reference) confirms the sets, flagged indeterminate."""
+    mod = importlib.import_module("wristkin.puma560")
+    c = SerialC("puma560", mod.N_JOINTS, mod.MAX_IK, len(mod.DESIGN_NAMES))
+    params = dict(zip(mod.DESIGN_NAMES, (0.6718, 0.4318, 0.15005, 0.0, 0.4318, 0.0), strict=True))
+    rc, d = c.design([params[n] for n in mod.DESIGN_NAMES])
+    assert rc == 0
+    q = np.array([-2.801939007035828, 0.36585736624743825, math.pi / 2 + 1e-10, -3.048479771584668,
+                  0.10281493379620077, -2.078294999943294])
+    T = ref.fk("puma560", q, params)
+    for sol in (mod.ik(T, params), c.ik(T, d)):
+        assert sol.count >= 1 and sol.status == mod.STATUS_INDETERMINATE
+        assert all(sol.flags[k] & mod.FLAG_INDETERMINATE for k in np.flatnonzero(sol.valid))
+        for v in sol.values[sol.valid]:
+            assert ref.pose_error("puma560", v, T, params) < 1e-9
