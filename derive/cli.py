@@ -58,12 +58,22 @@ def _out(args) -> Path:
     return default
 
 
+def _stack_missing(exc: ImportError) -> _Error:
+    """The error for an import that failed: a third-party module of the derive extra missing is the user's to
+    install; a module of wristkin's own missing is a broken installation, said as such."""
+    name = getattr(exc, "name", None) or ""
+    if name == "derive" or name.startswith("derive."):
+        return _Error(f"this installation of wristkin lacks its own module {name!r} ({exc}): reinstall it; if it "
+                      "persists, the package is built without it (a defect: please report it)", EXIT_FAILED)
+    return _Error(f"the derivation stack is not installed ({exc}): pip install 'wristkin[derive]' "
+                  "(in a checkout: make venv)", EXIT_FAILED)
+
+
 def _pipeline():
     try:
         return importlib.import_module("derive.pipeline")
     except ImportError as exc:
-        raise _Error(f"the derivation stack is not installed ({exc}): pip install 'wristkin[derive]' "
-                     "(in a checkout: make venv)", EXIT_FAILED) from exc
+        raise _stack_missing(exc) from exc
 
 
 def _known_mechanisms() -> tuple[str, ...] | None:
@@ -118,21 +128,34 @@ def cmd_audit(args) -> int:
     return EXIT_OK
 
 
+def _pairs(values, option: str, what: str) -> dict[str, str]:
+    """NAME=VALUE options (repeated) as a dict."""
+    out = {}
+    for item in values or ():
+        name, sep, value = item.partition("=")
+        if not sep or not name.strip():
+            raise _Error(f"{option} {item!r}: expected NAME={what}", EXIT_USAGE)
+        out[name.strip()] = value
+    return out
+
+
 def cmd_derive(args) -> int:
     try:
         from . import own_robot
     except ImportError as exc:
-        raise _Error(f"the derivation stack is not installed ({exc}): pip install 'wristkin[derive]' "
-                     "(in a checkout: make venv)", EXIT_FAILED) from exc
-    from .model import NoDecomposition
+        raise _stack_missing(exc) from exc
+    from .model import DescriptionError, NoDecomposition
 
     if not Path(args.source).is_file():
-        raise _Error(f"{args.source}: no such file (a URDF or a spec file)", EXIT_USAGE)
+        raise _Error(f"{args.source}: no such file (a URDF, a xacro file or a spec file)", EXIT_USAGE)
     try:
         own_robot.derive(args.source, Path(args.out), args.name, args.base, args.tip, args.free, args.geometry_tol,
-                         native=not args.no_native)
+                         native=not args.no_native, xacro_args=_pairs(args.xacro_args, "--xacro-arg", "VALUE"),
+                         packages=_pairs(args.packages, "--package", "DIR"))
     except NoDecomposition as exc:
         raise _Error(str(exc), EXIT_FAILED) from None
+    except DescriptionError as exc:
+        raise _Error(str(exc), EXIT_USAGE) from None
     return EXIT_OK
 
 

@@ -22,12 +22,18 @@ COMMANDS = (
               "the report paths",
      ((("mechanism",), {"nargs": "?", "metavar": "M"}), _OUT, _JOBS, _CATALOGUE)),
     ("derive", "derive your own robot (a URDF or a spec file) into DIR: Python, C, CasADi and an audit report",
-     ((("source",), {"metavar": "SOURCE", "help": "ROBOT.urdf, or a spec file (docs/specs.md)"}),
+     ((("source",), {"metavar": "SOURCE", "help": "ROBOT.urdf, ROBOT.urdf.xacro or a spec file (docs/specs.md)"}),
       (("--out",), {"metavar": "DIR", "required": True, "help": "output directory"}),
       (("--name",), {"help": "the solver's name (default: the spec's name / the URDF file's stem)"}),
       (("--base",), {"metavar": "LINK", "help": "URDF: the base link (default: the root)"}),
       (("--tip",), {"metavar": "LINK", "help": "URDF: the tip link (default: the only leaf)"}),
-      (("--free",), {"metavar": "JOINT", "help": "a redundant arm's joint held as a run-time parameter"}),
+      (("--free",), {"metavar": "JOINT", "help": "a redundant arm's joint held as a run-time parameter (without it, "
+                                                 "a 7-joint arm's error lists the joints that work)"}),
+      (("--xacro-arg",), {"action": "append", "metavar": "NAME=VALUE", "dest": "xacro_args",
+                          "help": "a .xacro file's $(arg NAME) (repeat for more)"}),
+      (("--package",), {"action": "append", "metavar": "NAME=DIR", "dest": "packages",
+                        "help": "where a .xacro file's $(find NAME) is (default: package.xml files and folders "
+                                "near the file, then ROS_PACKAGE_PATH / AMENT_PREFIX_PATH)"}),
       (("--geometry-tol",), {"type": "float", "metavar": "TOL",
                              "help": "axes within TOL count as parallel / meeting (default 1e-6: metres and sin "
                                      "of angles)"}),

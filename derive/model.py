@@ -14,6 +14,11 @@ import sympy as sp
 from .report_numbers import ROUNDING_FLOOR, error_bucket  # machine-independent bytes in the audit report
 
 
+class DescriptionError(ValueError):
+    """A description file (a URDF, a xacro file, ...) a family cannot read; the message names the file, the element
+    and its line."""
+
+
 class NoDecomposition(ValueError):
     """No closed form fits the mechanism (a family's planner refuses it); the message names what prevents it."""
 

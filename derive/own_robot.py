@@ -22,22 +22,29 @@ from .render import header_lines, render
 from .spec import Spec, SpecError
 
 
-def load(source: str | Path, name=None, base=None, tip=None, free=None, geometry_tol=None):
-    """The mechanism of a URDF or a spec file (command-line options override the spec's own fields)."""
+def load(source: str | Path, name=None, base=None, tip=None, free=None, geometry_tol=None, xacro_args=None,
+         packages=None):
+    """The mechanism of a URDF / xacro or a spec file (command-line options override the spec's own fields)."""
     path = Path(source)
     readers = [f for f in FAMILIES.values() if path.suffix.lower() in getattr(f, "SOURCE_SUFFIXES", ())]
-    if readers:  # a description file a family reads itself (a URDF)
-        spec = readers[0].spec_for_file(path, name=name, base=base, tip=tip, free=free, geometry_tol=geometry_tol)
+    if readers:  # a description file a family reads itself (a URDF, a xacro file)
+        spec = readers[0].spec_for_file(path, name=name, base=base, tip=tip, free=free, geometry_tol=geometry_tol,
+                                        xacro_args=xacro_args, packages=packages)
     else:
         spec = Spec.load(path)
-        for key, value in (("name", name), ("free", free), ("geometry_tol", geometry_tol)):
+        for key, option, value in (("name", "--name", name), ("free", "--free", free),
+                                   ("geometry_tol", "--geometry-tol", geometry_tol)):
             if value is not None:
-                spec.data[key] = value
-        for key, value in (("base_link", base), ("tip_link", tip)):
+                spec.given(key, value, option)
+        links = "base_link" in spec.data or "tip_link" in spec.data or "urdf" in spec.data
+        for key, option, value in (("base_link", "--base", base), ("tip_link", "--tip", tip),
+                                   ("xacro_args", "--xacro-arg", xacro_args or None),
+                                   ("packages", "--package", packages or None)):
             if value is not None:
-                if "base_link" not in spec.data and "tip_link" not in spec.data and "urdf" not in spec.data:
-                    raise SpecError(path, key, "--base / --tip only for a description with links (a URDF)")
-                spec.data[key] = value
+                if not links:
+                    raise SpecError(path, key, f"{option} only for a description with links (a URDF or xacro "
+                                               "file)", option=option)
+                spec.given(key, {**spec.data.get(key, {}), **value} if isinstance(value, dict) else value, option)
     family = FAMILIES.get(spec.data.get("family"))
     if family is None:
         raise spec.error("family", f"one of the families {', '.join(sorted(FAMILIES))}", spec.data.get("family"))
@@ -87,7 +94,7 @@ def _extension(out: Path, progress) -> list[Path]:
 
 
 def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=None, progress=print,
-           native: bool = True) -> list[Path]:
+           native: bool = True, xacro_args=None, packages=None) -> list[Path]:
     """Derive, emit and audit one description into `out`; returns the files written. `native`: also compile the
     folder's C into the Python extension the solvers call (skipped with native=False: they run on numpy)."""
     from . import audit
@@ -101,7 +108,7 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
         progress(f"  {text} ({now - last[0]:.1f} s)")
         last[0] = now
 
-    mech = load(source, name, base, tip, free, geometry_tol)
+    mech = load(source, name, base, tip, free, geometry_tol, xacro_args, packages)
     out = Path(out)
     nm = mech.NAME
     progress(f"wristkin derive: {nm} from {source}")

@@ -20,9 +20,10 @@ _MISSING = object()
 class SpecError(ValueError):
     """A spec file that cannot describe a mechanism: names the file, the field and what was expected."""
 
-    def __init__(self, file: str | Path, field: str, expected: str, got: object = _MISSING):
+    def __init__(self, file: str | Path, field: str, expected: str, got: object = _MISSING, option: str = ""):
         self.file, self.field, self.expected = str(file), field, expected
-        where = f"{self.file}: field '{field}'" if field else self.file
+        # a value given on the command line is named as the option the user typed, not as a spec field
+        where = f"{self.file}: {option}" if option else f"{self.file}: field '{field}'" if field else self.file
         text = f"{where}: expected {expected}"
         if got is not _MISSING:
             shown = repr(got)
@@ -38,8 +39,14 @@ def _kind(value) -> str:
 class Spec:
     """One table of a spec file (the whole file, or a sub-table), with the path of its fields for errors."""
 
-    def __init__(self, data: dict, file: str | Path, prefix: str = ""):
+    def __init__(self, data: dict, file: str | Path, prefix: str = "", options: dict[str, str] | None = None):
         self.data, self.file, self.prefix = data, str(file), prefix
+        self.options = dict(options or {})  # field -> the command-line option that gave it (e.g. "free": "--free")
+
+    def given(self, field: str, value, option: str) -> None:
+        """Set `field` from the command-line `option` (its errors then name the option)."""
+        self.data[field] = value
+        self.options[field] = option
 
     # ---------------------------------------------------------------------------------------------- loading
     @classmethod
@@ -62,7 +69,8 @@ class Spec:
         return f"{self.prefix}.{field}" if self.prefix else field
 
     def error(self, field: str, expected: str, got: object = _MISSING) -> SpecError:
-        return SpecError(self.file, self.path(field) if field else self.prefix, expected, got)
+        option = self.options.get(field, "") if not self.prefix else ""
+        return SpecError(self.file, self.path(field) if field else self.prefix, expected, got, option)
 
     def has(self, field: str) -> bool:
         return field in self.data

@@ -6,32 +6,82 @@ Spec fields (docs/specs.md, "chain"): `convention` (standard | modified | poe | 
 name, type, a, alpha, d, theta, direction, lower, upper; POE: name, type, axis, point, lower, upper), `[home]`
 (POE), `urdf`, `base_link`, `tip_link` (URDF), `[base]`, `[tool]`, `free`, `geometry_tol`."""
 
+from dataclasses import replace
 from pathlib import Path
 
+from ...model import NoDecomposition
 from ...spec import Spec, common
 from .description import SPEC_FIELDS, read
 from .mechanism import ChainMechanism
 
 __all__ = ["SOURCE_SUFFIXES", "SPEC_FIELDS", "from_spec", "spec_for_file"]
 
-SOURCE_SUFFIXES = (".urdf",)  # description files `wristkin derive` hands to this family as they are
+SOURCE_SUFFIXES = (".urdf", ".xacro")  # description files `wristkin derive` hands to this family as they are
 
 
-def spec_for_file(path: Path, name=None, base=None, tip=None, free=None, geometry_tol=None) -> Spec:
-    """The spec of a URDF given on the command line (its links and options as the spec's fields)."""
+def solver_name(path: Path) -> str:
+    """A solver name from a description file's name: ur5e.urdf, panda_arm.urdf.xacro -> ur5e, panda_arm."""
+    stem = path.name
+    for suffix in (".xacro", ".urdf"):
+        if stem.lower().endswith(suffix):
+            stem = stem[: -len(suffix)]
+    stem = "".join(c if c.isalnum() else "_" for c in stem.lower()).strip("_") or "robot"
+    return stem if stem[0].isalpha() else "robot_" + stem
+
+
+def spec_for_file(path: Path, name=None, base=None, tip=None, free=None, geometry_tol=None, xacro_args=None,
+                  packages=None) -> Spec:
+    """The spec of a URDF (or xacro) file given on the command line (its links and options as the spec's fields)."""
     path = Path(path)
-    stem = name or path.stem.lower().replace("-", "_").replace(".", "_")
-    if stem and not stem[0].isalpha():
-        stem = "robot_" + stem
-    data = {"family": "chain", "name": stem, "title": f"{path.name} from {base or 'its root'} to {tip or 'its tip'}",
-            "source": f"URDF {path.name}", "convention": "urdf", "urdf": str(path.resolve())}
-    for key, value in (("base_link", base), ("tip_link", tip), ("free", free), ("geometry_tol", geometry_tol)):
+    kind = "xacro" if path.suffix.lower() == ".xacro" else "URDF"
+    data = {"family": "chain", "name": name or solver_name(path),
+            "title": f"{path.name} from {base or 'its root'} to {tip or 'its tip'}",
+            "source": f"{kind} {path.name}", "convention": "urdf", "urdf": str(path.resolve())}
+    # every field of this spec stands for a command-line option: its errors name the option
+    spec = Spec(data, path, options={"base_link": "--base", "tip_link": "--tip", "free": "--free",
+                                     "geometry_tol": "--geometry-tol", "name": "--name"})
+    for key, option, value in (("base_link", "--base", base), ("tip_link", "--tip", tip), ("free", "--free", free),
+                               ("geometry_tol", "--geometry-tol", geometry_tol),
+                               ("xacro_args", "--xacro-arg", xacro_args or None),
+                               ("packages", "--package", packages or None)):
         if value is not None:
-            data[key] = value
-    return Spec(data, path)
+            spec.given(key, value, option)
+    return spec
+
+
+def workable_free_joints(name: str, title: str, desc) -> list[str]:
+    """The joints that, held as the run-time parameter, leave a chain the planner decomposes."""
+    out = []
+    for k, jname in enumerate(desc.chain.joint_names):
+        try:
+            ChainMechanism(name, title, replace(desc, free=k)).plan()
+        except NoDecomposition:
+            continue
+        out.append(jname)
+    return out
 
 
 def from_spec(spec: Spec) -> ChainMechanism:
     desc = read(spec)
     head = common(spec)
-    return ChainMechanism(head["name"], head["title"], desc)
+    mech = ChainMechanism(head["name"], head["title"], desc)
+    if desc.chain.n <= 6 and desc.free < 0:
+        return mech
+    choices = None
+    if desc.free < 0:
+        choices = workable_free_joints(head["name"], head["title"], desc)
+        raise spec.error("free", f"the joint held as a run-time parameter (the chain has {desc.chain.n} joints; a "
+                                 f"closed form solves at most 6): {_choice_text(choices)}")
+    try:
+        mech.plan()
+    except NoDecomposition as exc:
+        choices = workable_free_joints(head["name"], head["title"], desc)
+        raise NoDecomposition(f"{exc} (with {desc.chain.joint_names[desc.free]} held: "
+                              f"{_choice_text(choices)})") from None
+    return mech
+
+
+def _choice_text(choices: list[str]) -> str:
+    if not choices:
+        return "no choice of the free joint gives a closed-form decomposition"
+    return f"joints that give a closed form: {', '.join(choices)} (e.g. --free {choices[0]})"

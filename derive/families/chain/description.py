@@ -17,7 +17,7 @@ from .planner import DEFAULT_GEOMETRY_TOL
 from .robot import Chain, dh_link, from_dh, from_frames, rot, rpy_matrix, transform
 
 SPEC_FIELDS = ("convention", "joint", "home", "base", "tool", "free", "geometry_tol", "urdf", "base_link",
-               "tip_link")
+               "tip_link", "xacro_args", "packages")
 DH_FIELDS = ("name", "type", "a", "alpha", "d", "theta", "direction", "lower", "upper")
 POE_FIELDS = ("name", "type", "axis", "point", "lower", "upper")
 _ALLOWED = set("0123456789.+-*/() epi")
@@ -88,13 +88,16 @@ def read(spec: Spec, path_hint: Path | None = None) -> Description:
         file = file if file.is_absolute() else Path(spec.file).parent / file
         try:
             chain, info = urdf.read(file, spec.text("base_link", None) if spec.has("base_link") else None,
-                                    spec.text("tip_link", None) if spec.has("tip_link") else None, head["name"])
+                                    spec.text("tip_link", None) if spec.has("tip_link") else None, head["name"],
+                                    xacro_args=_strings(spec, "xacro_args"), packages=_strings(spec, "packages"))
         except urdf.URDFError as exc:
+            if Path(spec.file).resolve() == file.resolve():
+                raise  # the description file itself was given (wristkin derive ROBOT.urdf): its error as it is
             raise spec.error("urdf", f"a URDF with a serial chain ({exc})") from None
         rule = (f"URDF joint origins composed from {info['base_link']} to {info['tip_link']} (fixed joints "
                 f"{', '.join(info['folded_fixed_joints']) or 'none'} folded), each movable joint's axis taken "
                 "in its joint frame at zero")
-        fk_desc = urdf_fk(file, info["base_link"], info["tip_link"])
+        fk_desc = urdf.composed_fk(info["model"], info["path"])
     else:
         joints = spec.tables("joint")
         if not joints:
@@ -144,9 +147,7 @@ def read(spec: Spec, path_hint: Path | None = None) -> Description:
         if fname not in chain.joint_names:
             raise spec.error("free", f"one of the joints ({', '.join(chain.joint_names)})", fname)
         free = chain.joint_names.index(fname)
-    elif chain.n > 6:
-        raise spec.error("free", f"the name of the joint held as a parameter (the chain has {chain.n} joints; a "
-                                 "closed form needs at most 6 solved)")
+    # more than 6 joints and no free joint: the family names the joints that would work (it needs the planner)
     return Description(chain, lambda q: base @ fk_desc(q) @ tool, rule, free, tol, head["source"])
 
 
@@ -175,34 +176,12 @@ def _dh_fk(convention, rows):
     return fk
 
 
-def urdf_fk(file, base_link, tip_link):
-    """The URDF's own composition: origin_i . motion_i(q_i) along the joint path (independent of the POE form)."""
-    import xml.etree.ElementTree as ET
-
-    root = ET.parse(file).getroot()
-    by_child = {j.find("child").get("link"): j for j in root.iter("joint")}
-    path, lk = [], tip_link
-    while lk != base_link:
-        j = by_child[lk]
-        path.append(j)
-        lk = j.find("parent").get("link")
-    path.reverse()
-    steps = []
-    for j in path:
-        o = j.find("origin")
-        xyz = [float(v) for v in (o.get("xyz", "0 0 0") if o is not None else "0 0 0").split()]
-        rpy = [float(v) for v in (o.get("rpy", "0 0 0") if o is not None else "0 0 0").split()]
-        ax = j.find("axis")
-        axis = np.array([float(v) for v in (ax.get("xyz") if ax is not None else "1 0 0").split()])
-        steps.append((transform(rpy_matrix(rpy), xyz), j.get("type"), axis / np.linalg.norm(axis)))
-
-    def fk(q):
-        t, i = np.eye(4), 0
-        for origin, kind, axis in steps:
-            t = t @ origin
-            if kind == "fixed":
-                continue
-            t = t @ (transform(None, axis * q[i]) if kind == "prismatic" else transform(rot(axis, q[i])))
-            i += 1
-        return t
-    return fk
+def _strings(spec: Spec, field: str) -> dict[str, str]:
+    """A table of NAME = "text" (xacro arguments, package folders)."""
+    if not spec.has(field):
+        return {}
+    raw = spec.raw(field)
+    if not isinstance(raw, dict) or not all(isinstance(k, str) and isinstance(v, str | int | float)
+                                            and not isinstance(v, bool) for k, v in raw.items()):
+        raise spec.error(field, "a table of NAME = \"value\"", raw)
+    return {k: str(v) for k, v in raw.items()}
