@@ -16,7 +16,7 @@ from .description_names import JOINT_NAME
 from .planner import DEFAULT_GEOMETRY_TOL
 from .robot import Chain, dh_link, from_dh, from_frames, rot, rpy_matrix, transform
 
-SPEC_FIELDS = ("convention", "joint", "home", "base", "tool", "free", "geometry_tol", "urdf", "base_link",
+SPEC_FIELDS = ("convention", "unit", "joint", "home", "base", "tool", "free", "geometry_tol", "urdf", "base_link",
                "tip_link", "xacro_args", "packages")
 DH_FIELDS = ("name", "type", "a", "alpha", "d", "theta", "direction", "lower", "upper")
 POE_FIELDS = ("name", "type", "axis", "point", "lower", "upper")
@@ -33,7 +33,7 @@ class Description:
     source: str
 
 
-def angle(spec: Spec, field: str, default=0.0) -> float:
+def number(spec: Spec, field: str, default=0.0) -> float:
     """A number, or a string of numbers, pi and + - * / ( ) (e.g. "pi/2", "-pi/2")."""
     v = spec.raw(field, default)
     if isinstance(v, bool):
@@ -51,18 +51,46 @@ def angle(spec: Spec, field: str, default=0.0) -> float:
     return x
 
 
-def _frame(spec: Spec, field: str) -> np.ndarray:
+# An angle of a radian spec beyond this is taken for degrees written without `unit = "deg"` (refused, not guessed):
+# a geometric angle (DH alpha / theta, rpy) needs at most one turn, a joint limit at most two.
+TURNS = {"angle": 1, "limit": 2}
+
+
+def to_radians(spec: Spec, field: str, x: float, unit: str, kind: str = "angle") -> float:
+    """An angle of the spec in radians: converted from degrees (unit = "deg"), or checked to be a plausible radian
+    value (unit = "rad")."""
+    if unit == "deg":
+        return math.radians(x)
+    turns = TURNS[kind]
+    if abs(x) > turns * 2 * math.pi * (1 + 1e-9):
+        raise spec.error(field, f"an angle in radians within {turns} turn(s) ({turns * 360} degrees): {x:g} rad "
+                                "looks like degrees; write unit = \"deg\" at the top of the spec for angles in "
+                                "degrees", x)
+    return x
+
+
+def angle(spec: Spec, field: str, unit: str, default=0.0, kind: str = "angle") -> float:
+    """An angle field (a number or an expression of pi) in radians, by the spec's `unit`."""
+    return to_radians(spec, field, number(spec, field, default), unit, kind)
+
+
+def _frame(spec: Spec, field: str, unit: str) -> np.ndarray:
     if not spec.has(field):
         return np.eye(4)
     t = spec.table(field)
     t.only(("xyz", "rpy"))
-    return transform(rpy_matrix(t.vector("rpy", 3, [0.0, 0.0, 0.0], unit="rad")), t.vector("xyz", 3, [0.0, 0.0, 0.0],
-                                                                                             unit="m"))
+    rpy = [to_radians(t, "rpy", v, unit) for v in t.vector("rpy", 3, [0.0, 0.0, 0.0], unit=unit)]
+    return transform(rpy_matrix(rpy), t.vector("xyz", 3, [0.0, 0.0, 0.0], unit="m"))
 
 
-def _limits(js: Spec) -> tuple[float, float]:
-    lo = js.number("lower", -math.inf if not js.has("lower") else None) if js.has("lower") else -math.inf
-    hi = js.number("upper") if js.has("upper") else math.inf
+def _limits(js: Spec, kind: str, unit: str) -> tuple[float, float]:
+    """A joint's limits: revolute in the spec's angle unit (numbers or expressions of pi), prismatic in metres."""
+    def one(field, default):
+        if not js.has(field):
+            return default
+        x = number(js, field)
+        return angle(js, field, unit, kind="limit") if kind == "R" else x
+    lo, hi = one("lower", -math.inf), one("upper", math.inf)
     if lo > hi:
         raise js.error("upper", f"an upper limit >= lower ({lo})", hi)
     return lo, hi
@@ -79,7 +107,8 @@ def read(spec: Spec, path_hint: Path | None = None) -> Description:
     spec.only((*COMMON_FIELDS, *SPEC_FIELDS))
     head = common(spec)
     convention = spec.choice("convention", ("standard", "modified", "poe", "urdf"))
-    base, tool = _frame(spec, "base"), _frame(spec, "tool")
+    unit = spec.choice("unit", ("rad", "deg"), "rad")  # the spec's angles (lengths are metres)
+    base, tool = _frame(spec, "base", unit), _frame(spec, "tool", unit)
     tol = spec.number("geometry_tol", DEFAULT_GEOMETRY_TOL, lo=1e-14, hi=1e-2)
     if convention == "urdf":
         if spec.has("joint") or spec.has("home"):
@@ -112,14 +141,15 @@ def read(spec: Spec, path_hint: Path | None = None) -> Description:
                 raise js.error("name", "a joint name not used before", nm)
             names.append(nm)
             kinds.append({"revolute": "R", "prismatic": "P"}[js.choice("type", ("revolute", "prismatic"), "revolute")])
-            lo, hi = _limits(js)
+            lo, hi = _limits(js, kinds[-1], unit)
             lower.append(lo)
             upper.append(hi)
         if convention == "poe":
             pairs = [(_unit(js, "axis"), np.array(js.vector("point", 3, [0.0, 0.0, 0.0], unit="m"))) for js in joints]
             home_t = spec.table("home")
             home_t.only(("position", "rpy"))
-            home = transform(rpy_matrix(home_t.vector("rpy", 3, [0.0, 0.0, 0.0])), home_t.vector("position", 3))
+            home_rpy = [to_radians(home_t, "rpy", v, unit) for v in home_t.vector("rpy", 3, [0.0, 0.0, 0.0], unit=unit)]
+            home = transform(rpy_matrix(home_rpy), home_t.vector("position", 3, unit="m"))
             chain = from_frames(head["name"], names, kinds, pairs, home, lower=np.array(lower),
                                 upper=np.array(upper), source_format="poe")
             fk_desc = _poe_fk(kinds, pairs, home)
@@ -132,8 +162,8 @@ def read(spec: Spec, path_hint: Path | None = None) -> Description:
                 direction = js.number("direction", 1.0)
                 if direction not in (1.0, -1.0):
                     raise js.error("direction", "1 or -1", direction)
-                rows.append((nm, kd, angle(js, "a"), angle(js, "alpha"), angle(js, "d"), angle(js, "theta"),
-                             direction))
+                rows.append((nm, kd, number(js, "a"), angle(js, "alpha", unit), number(js, "d"),
+                             angle(js, "theta", unit), direction))
             chain = from_dh(head["name"], convention, rows, lower=np.array(lower), upper=np.array(upper))
             fk_desc = _dh_fk(convention, rows)
             rule = ("standard DH: A_i = Rz(theta_i + q_i) Tz(d_i) Tx(a_i) Rx(alpha_i)" if convention == "standard" else
