@@ -395,6 +395,11 @@ def main(argv=None) -> int:
     print()
     own_text = own_robots.report(50 if args.quick else 200)
     print(own_text)
+    import real_descriptions  # bench/real_descriptions.py: nine robots as shipped vs the URDF product and EAIK
+
+    print()
+    real_text = real_descriptions.report(30 if args.quick else 100)
+    print(real_text)
     goal_rows = goals(rows, dh_measured, regen)
     machine_line = (f"Machine: {machine['cpu']} ({machine['cpus']} CPUs), Python {machine['python']}, "
                     f"{machine['gcc']}, numpy {machine['numpy']} (BLAS threads: "
@@ -403,7 +408,7 @@ def main(argv=None) -> int:
     summary = "\n\n".join([machine_line, "Goals (issue 13), measured in this run:", goals_table(goal_rows),
                             "Underactuated wrist (paper design), per call; ratio = time / generated C loop:",
                             table(rows, base), "\n".join(f"- {r['name']}: {r['note']}" for r in rows if r.get("note")),
-                            dh_text, rsr_text, screws_text, own_text])
+                            dh_text, rsr_text, screws_text, own_text, real_text])
     print("\n" + goals_table(goal_rows))
     if args.readme:
         write_readme(summary)
