@@ -143,3 +143,17 @@ def test_every_cli_states_its_angle_unit(iiwa):
     wk = Path(sys.executable).parent / "wristkin"
     text = subprocess.run([str(wk), "ik", "--help"], capture_output=True, text=True).stdout
     assert "degrees (the default)" in text and "--rad" in text
+
+
+def test_a_catalogue_dh_spec_with_alpha_in_degrees_is_refused():
+    """The serial family's DH angles are radians (expressions of pi): alpha = 90 is refused, naming the field."""
+    import copy
+
+    from derive.families.serial import dh_spec
+
+    root = Path(__file__).resolve().parent.parent
+    data = tomllib.loads((root / "catalogue" / "puma560.toml").read_text())
+    dh_spec.load(Spec(copy.deepcopy(data), "puma560.toml"))
+    data["joint"][0]["alpha"] = 90
+    with pytest.raises(SpecError, match=r"joint\[0\]\.alpha.*90 looks like degrees"):
+        dh_spec.load(Spec(data, "puma560.toml"))

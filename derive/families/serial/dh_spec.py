@@ -44,6 +44,16 @@ def expression(spec: Spec, field: str, symbols: dict, default=None) -> sp.Expr:
     return e
 
 
+def _radians(spec: Spec, field: str, e: sp.Expr) -> sp.Expr:
+    """A DH angle (radians; the joint variable aside): a constant part beyond one turn is degrees written by
+    mistake, refused rather than taken as that many radians."""
+    const = e.as_independent(*e.free_symbols, as_Add=True)[0] if e.free_symbols else e
+    if const.is_number and abs(float(const)) > 2 * float(sp.pi) * (1 + 1e-9):
+        raise spec.error(field, f"an angle in radians within one turn (e.g. \"pi/2\"): {float(const):g} looks "
+                                "like degrees", str(e))
+    return e
+
+
 def _symbol(spec: Spec, field: str, taken: set, **assumptions) -> sp.Symbol:
     name = spec.identifier(field) if field == "name" else field  # a joint's `name`, or a design table's key
     if name in taken or name in _FUNCTIONS:
@@ -77,9 +87,10 @@ def load(spec: Spec) -> tuple[SerialSpec, Callable[[], list]]:
         q = _symbol(js, "name", taken, real=True)
         own = {**names, str(q): q}
         a = expression(js, "a", names, 0)
-        alpha = expression(js, "alpha", names, 0)
+        alpha = _radians(js, "alpha", expression(js, "alpha", names, 0))
         d = expression(js, "d", own if kind == "P" else names, str(q) if kind == "P" else 0)
-        theta = expression(js, "theta", own if kind == "R" else names, str(q) if kind == "R" else 0)
+        theta = _radians(js, "theta", expression(js, "theta", own if kind == "R" else names,
+                                                 str(q) if kind == "R" else 0))
         if q not in (theta if kind == "R" else d).free_symbols:
             raise js.error("theta" if kind == "R" else "d", f"an expression of the joint variable {q}")
         rows.append(DHRow(a, alpha, d, theta, q, kind))
