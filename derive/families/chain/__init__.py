@@ -67,13 +67,12 @@ def from_spec(spec: Spec) -> ChainMechanism:
     mech = ChainMechanism(head["name"], head["title"], desc)
     if desc.chain.n <= 6 and desc.free < 0:
         return mech
-    choices = None
     if desc.free < 0:
         choices = workable_free_joints(head["name"], head["title"], desc)
         raise spec.error("free", f"the joint held as a run-time parameter (the chain has {desc.chain.n} joints; a "
                                  f"closed form solves at most 6): {_choice_text(choices)}")
     try:
-        mech.plan()
+        mech.plan()  # a free joint that leaves no decomposition: said here with the choices that work
     except NoDecomposition as exc:
         choices = workable_free_joints(head["name"], head["title"], desc)
         raise NoDecomposition(f"{exc} (with {desc.chain.joint_names[desc.free]} held: "

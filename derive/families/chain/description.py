@@ -88,8 +88,7 @@ def _limits(js: Spec, kind: str, unit: str) -> tuple[float, float]:
     def one(field, default):
         if not js.has(field):
             return default
-        x = number(js, field)
-        return angle(js, field, unit, kind="limit") if kind == "R" else x
+        return angle(js, field, unit, kind="limit") if kind == "R" else number(js, field)
     lo, hi = one("lower", -math.inf), one("upper", math.inf)
     if lo > hi:
         raise js.error("upper", f"an upper limit >= lower ({lo})", hi)
