@@ -27,8 +27,10 @@ def runtime_context() -> dict:
         lo = float(two_pi - mpmath.mpf(hi))
         inv = int(mpmath.floor(mpmath.ldexp(1 / two_pi, 32 * INV_TWO_PI_WORDS)))
         fix = int(mpmath.floor(mpmath.ldexp(two_pi, TWO_PI_FIX_BITS)))
+    hx = f"{fix:x}"
     words = [(inv >> (32 * (INV_TWO_PI_WORDS - 1 - i))) & 0xFFFFFFFF for i in range(INV_TWO_PI_WORDS)]
     return {"angle_reduction": {
         "two_pi_hi": hi.hex(), "two_pi_lo": lo.hex(), "two_pi_hi_repr": repr(hi), "two_pi_lo_repr": repr(lo),
         "inv_two_pi_words": [f"0x{w:08x}u" for w in words], "window_words": INV_TWO_PI_WINDOW_WORDS,
-        "two_pi_fix": f"0x{fix:x}", "two_pi_fix_bits": TWO_PI_FIX_BITS, "one_turn_max": repr(ONE_TURN_MAX)}}
+        "two_pi_fix_hex": [hx[i:i + 96] for i in range(0, len(hx), 96)],
+        "two_pi_fix_bits": TWO_PI_FIX_BITS, "one_turn_max": repr(ONE_TURN_MAX)}}
