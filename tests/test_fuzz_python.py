@@ -27,7 +27,7 @@ NAMES = sorted(wristkin.MECHANISMS)
 EXAMPLES = int(os.environ.get("WRISTKIN_FUZZ_EXAMPLES", "150"))  # per test and mechanism; `make fuzz` 3000
 
 HOSTILE = [math.nan, math.inf, -math.inf, 0.0, -0.0, 5e-324, -5e-324, 2.2250738585072014e-308, 1e308, -1e308,
-           1.7976931348623157e308, 1e300, -1e300, 1e16, 1e-7, math.pi]
+           1.7976931348623157e308, 1e300, -1e300, 1e16, 1e-7, math.pi, 1e6, 999999.9]  # 1e6: LENGTH_MAX
 SPECIAL_ANGLES = [0.0, math.pi / 2, -math.pi / 2, math.pi, -math.pi, 1e-7, -1e-9, 1e-12]
 FLAGGED = 1 | 2 | 4 | 8 | 16  # singular_inverse, singular_direct, gimbal, double_root, indeterminate
 # An unflagged set has sigma_min/sigma_max above the singular threshold 1e-6, so its joints are accurate to
@@ -71,6 +71,12 @@ def check_result(mod, res, inputs):
     assert res.count == int(valid.sum())
     assert np.all(np.isfinite(res.values[valid])), "valid row with non-finite values"
     assert np.all(np.isfinite(res.aux[valid])), "valid row with non-finite aux"
+
+
+def check_fk_accepts(mod, res, design=None):
+    """IK returns only what FK accepts (docs/API.md, "Ranges"): fk of every valid row raises nothing."""
+    for row in res.values[np.asarray(res.valid, dtype=bool)]:
+        assert call(mod, mod.fk, row, design) is not None, f"fk rejects the IK row {row.tolist()}"
 
 
 def call(mod, fn, *args):
@@ -148,6 +154,7 @@ def test_hostile_joints_poses_and_designs(name):
         res = call(mod, mod.ik, pose)
         if res is not None:
             check_result(mod, res, pose)
+            check_fk_accepts(mod, res)
         for fn in ("jacobian",):
             if hasattr(mod, fn):
                 out = call(mod, getattr(mod, fn), q)
@@ -204,7 +211,43 @@ CORPUS = [
     ("scara_wrist", "fk", [1e308, 1e308, 0.1, 1e308]),
     ("p1p2p3rarb", "fk", [1e308] * 5),
     ("scara_rsr", "fk", [1e308] * 7),
+    # issue 21: long revolute angles (reduced against 2 pi itself), the folded scara_rsr family, a long stroke
+    ("wrist_1dof", "fk", [1e16]),
+    ("scara_rsr", "fk", [1e16, 0.5, 0.05, 1e9, 0.4, 0.5, 0.6]),
+    ("scara_rsr", "fk", [0.3, math.pi, 0.05, 0.2, 0.4, 0.5, 0.6]),
+    ("scara_wrist", "fk", [0.3, -1.78, 6.5e5, 0.2]),
 ]
+
+
+def _rpp_pose_at_length_max():
+    t = np.eye(4)
+    t[:3, :3] = [[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]]
+    t[:3, 3] = [1e6, 0.0, 0.0]
+    return t
+
+
+def _scara_rsr_pose_at(pz):
+    pose = module("scara_rsr").fk([0.3, 1.0, 0.05, 0.2, 0.4, 0.5, 0.6]).values[0].copy()
+    pose[11] = pz
+    return pose
+
+
+# issue 21's IK reproducers: every set IK returns is one FK accepts (and reproduces the pose)
+IK_CORPUS = [
+    ("rsr_wrist", lambda: [1e16, 0.9, 0.05]),
+    ("rpp_wrist", _rpp_pose_at_length_max),
+    ("scara_rsr", lambda: _scara_rsr_pose_at(1e308)),
+    ("scara_rsr", lambda: _scara_rsr_pose_at(2e6)),
+]
+
+
+@pytest.mark.parametrize("name,pose", IK_CORPUS, ids=[f"{n}-ik-{i}" for i, (n, _) in enumerate(IK_CORPUS)])
+def test_seed_corpus_ik(name, pose):
+    mod = module(name)
+    p = pose()
+    res = mod.ik(p)
+    check_result(mod, res, p)
+    check_fk_accepts(mod, res)
 
 
 @pytest.mark.parametrize("name,verb,args", CORPUS, ids=[f"{n}-{v}-{i}" for i, (n, v, _) in enumerate(CORPUS)])

@@ -7,14 +7,17 @@ from __future__ import annotations
 import importlib
 import math
 import random
+import re
+from pathlib import Path
 
 import mpmath
 import numpy as np
 import pytest
+import wristkin
 from c_solvers import RsrC, RuntimeC, SerialC
-
 from wristkin import _runtime
 
+ROOT = Path(__file__).resolve().parent.parent
 WK_ERR_RANGE = -4
 STATUS_UNREACHABLE = 1
 
@@ -158,3 +161,40 @@ def test_scara_rsr_folded_on_axis_1_returns_the_family_once_python_and_c():
     assert np.all(py.flags[py.valid] & hy.FLAG_INDETERMINATE) and np.array_equal(py.flags, cc.flags)
     sums = {round(_runtime._wrap(v[0] + v[3]), 9) for v in py}
     assert sums == {round(_runtime._wrap(q[0] + q[3]), 9)}
+
+
+LIMIT = re.compile(r"[A-Z][A-Z0-9_]*(_MAX|_MIN|_MARGIN)|ROTATION_TOL")
+
+
+def _spellings(v) -> set[str]:
+    """How a limit's value may be written: 1e6, 1e-3, 1e+06, 0.001, 1000000.0."""
+    short = f"{v:.0e}".replace("e+0", "e").replace("e-0", "e-").replace("e+", "e")
+    return {short, f"{v:g}", repr(float(v))}
+
+
+def _api_sections() -> dict[str, str]:
+    """docs/API.md's '###' sections by the mechanisms their heading names."""
+    text = (ROOT / "docs" / "API.md").read_text()
+    out = {}
+    for part in text.split("\n### ")[1:]:
+        heading = part.splitlines()[0]
+        for name in wristkin.MECHANISMS:
+            if name in heading:
+                out[name] = part
+    return out
+
+
+@pytest.mark.parametrize("name", sorted(wristkin.MECHANISMS))
+def test_every_limit_a_module_exports_is_in_api_md_and_its_c_header(name):
+    """Issue 21 found limits enforced but written nowhere (scara_rsr's stroke, the wrist's RATE_MAX, the 3-RSR
+    design rules): every limit constant of every catalogue module is in its docs/API.md section as `NAME` = value
+    and in its C header's comment as NAME = value, with the module's value."""
+    mod = importlib.import_module(f"wristkin.{name}")
+    section = _api_sections()[name]
+    header = (ROOT / "generated" / "c" / f"{name}.h").read_text()
+    limits = [n for n in dir(mod) if LIMIT.fullmatch(n) and isinstance(getattr(mod, n), float)]
+    assert limits, "a module without limit constants"
+    for n in limits:
+        spelled = _spellings(getattr(mod, n))
+        assert any(f"`{n}` = {s}" in section for s in spelled), f"docs/API.md ({name}) does not state {n}"
+        assert any(f"{n} = {s}" in header for s in spelled), f"{name}.h does not state {n}"

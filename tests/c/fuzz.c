@@ -19,8 +19,10 @@
  *     to 1e-9 * scale; 1e-8 leaves a decade for the comparison's own rounding), except a row flagged
  *     singular_direct: there FK amplifies rounding by 1 / cond_direct or finds no mode (the IK verified the
  *     row by its own equations).
- *  5. Hostile values (NaN, +-inf, +-0, denormals, +-1e308, +-DBL_MAX, ...) anywhere in joints, poses,
- *     designs and rates: never a crash or a sanitizer report, and (1) and (2) hold.
+ *  5. Hostile values (NaN, +-inf, +-0, denormals, +-1e308, +-DBL_MAX, 1e6 = LENGTH_MAX, ...) anywhere in joints,
+ *     poses, designs and rates: never a crash or a sanitizer report, and (1) and (2) hold.
+ *  6. IK returns only what FK accepts: FK of every valid IK row, of any pose (hostile ones too), returns WK_OK
+ *     (a pose whose sets would need a joint outside FK's ranges is unreachable, docs/API.md "Ranges").
  */
 #include <float.h>
 #include <math.h>
@@ -75,7 +77,8 @@ static double uniform(double lo, double hi)
 }
 
 static const double hostile[] = {NAN, INFINITY, -INFINITY, 0.0, -0.0, 5e-324, -5e-324, 2.2250738585072014e-308,
-                                 1e308, -1e308, DBL_MAX, -DBL_MAX, 1e-300, 1e300, 1e16, -1e16, 1e-7, 3.141592653589793};
+                                 1e308, -1e308, DBL_MAX, -DBL_MAX, 1e-300, 1e300, 1e16, -1e16, 1e-7, 3.141592653589793,
+                                 1e6, 999999.9}; /* LENGTH_MAX and just inside: IK sets past FK's range (invariant 6) */
 #define N_HOSTILE ((int)(sizeof hostile / sizeof hostile[0]))
 
 static void fail(const char *what, const double *x, int n)
@@ -211,6 +214,15 @@ static void hostile_fill(double *x, int n, int *nonfinite)
         if (!isfinite(x[i])) *nonfinite = 1;
 }
 
+/* Invariant 6: FK accepts every valid IK row. */
+static void ik_rows_accepted_by_fk(const TYPE(_ik_solutions) * ik, const TYPE(_design) * d)
+{
+    TYPE(_fk_solutions) fk;
+    int k;
+    for (k = 0; k < MAXIK; ++k)
+        if (ik->valid[k] && FN(_fk)(ik->values[k], d, &fk) < 0) fail("FK rejects an IK row", ik->values[k], NJ);
+}
+
 /* Random joints -> FK -> IK of every mode and back (invariants 3 and 4), then hostile variants. */
 static void round_trip_case(const TYPE(_design) * d, int special)
 {
@@ -261,6 +273,7 @@ static void round_trip_case(const TYPE(_design) * d, int special)
         hostile_fill(pose, NP, &nonfinite);
         rc = FN(_ik)(pose, d, &ik);
         CHECK_RESULT(rc, ik, MAXIK, NJ, NIKAUX, pose, NP, nonfinite);
+        if (rc >= 0) ik_rows_accepted_by_fk(&ik, d);
     }
     /* hostile joints */
     hostile_fill(q, NJ, &nonfinite);
