@@ -198,3 +198,15 @@ def test_every_limit_a_module_exports_is_in_api_md_and_its_c_header(name):
         spelled = _spellings(getattr(mod, n))
         assert any(f"`{n}` = {s}" in section for s in spelled), f"docs/API.md ({name}) does not state {n}"
         assert any(f"{n} = {s}" in header for s in spelled), f"{name}.h does not state {n}"
+
+
+def test_scara_wrist_distance_stage_is_free_of_the_stroke():
+    """The derivation's side of the elbow fix: the theta2 stage's coefficients no longer hold d3 (its square
+    cancelled against the target's height in floating point); the stroke was substituted and cancelled in the
+    algebra."""
+    from derive.catalogue import registry
+
+    spec = registry()["scara_wrist"].spec
+    d3 = spec.joints[2]
+    (stage,) = [st for st in spec.stages if st.kind == "trig_linear"]
+    assert all(d3 not in sp_expr.free_symbols for sp_expr in stage.exprs)
