@@ -17,6 +17,7 @@ import sysconfig
 import time
 from pathlib import Path
 
+from . import angle_reduction
 from .families import FAMILIES
 from .render import header_lines, render
 from .spec import Spec, SpecError
@@ -117,7 +118,8 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
     stage(f"derived {len(dv.steps)} steps, {sum(len(s.checks) for s in dv.steps)} checks passed")
     ks = mech.kernels(dv)
     written = [write_file(out / "python" / "_wristkin_runtime.py",
-                          render("python/_runtime.py.jinja", header=header_lines())),
+                          render("python/_runtime.py.jinja", header=header_lines(),
+                                 **angle_reduction.runtime_context())),
                *emit_solvers(nm, mech, ks, out / "python", out / "c"), *emit_c_runtime(out / "c")]
     stage("emitted Python and C")
     if native:

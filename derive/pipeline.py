@@ -14,7 +14,7 @@ import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from . import cli_commands
+from . import angle_reduction, cli_commands
 from .catalogue import CATALOGUE, registry
 from .lower import lower
 from .render import ROOT, header_lines, input_hash, render, tool_versions
@@ -75,8 +75,9 @@ def emit_solvers(name: str, mod, ks, py_dir: Path, c_dir: Path) -> list[Path]:
 
 def emit_c_runtime(c_dir: Path) -> list[Path]:
     """The C runtime every generated solver compiles with (wristkin_common.h, wristkin_runtime.c)."""
-    return [write_file(c_dir / "wristkin_common.h", render("c/wristkin_common.h.jinja", header=header_lines())),
-            write_file(c_dir / "wristkin_runtime.c", render("c/wristkin_runtime.c.jinja", header=header_lines()))]
+    ctx = {"header": header_lines(), **angle_reduction.runtime_context()}
+    return [write_file(c_dir / "wristkin_common.h", render("c/wristkin_common.h.jinja", **ctx)),
+            write_file(c_dir / "wristkin_runtime.c", render("c/wristkin_runtime.c.jinja", **ctx))]
 
 
 def emit_casadi(name: str, mod, dv, ks, casadi_dir: Path, solver) -> list[Path]:
@@ -112,7 +113,8 @@ def _job(args) -> list[Path]:
 def _shared_files(out: Path, catalogue: Path = CATALOGUE) -> list[Path]:
     """The runtime and package files every mechanism's products import (written before any mechanism)."""
     pkg = out / "python" / "wristkin"
-    extra = {"cli": {"derivation_commands": cli_commands.literal()}}  # the table wristkin/cli.py carries
+    extra = {"cli": {"derivation_commands": cli_commands.literal()},  # the table wristkin/cli.py carries
+             "_runtime": angle_reduction.runtime_context()}
     files = [write_file(pkg / f"{stem}.py", render(f"python/{stem}.py.jinja", header=header_lines(),
                                                   **extra.get(stem, {})))
              for stem in ("_runtime", "cli", "__main__")]

@@ -229,3 +229,15 @@ class RsrC:
         if self.name == "scara_rsr":
             args.append(self._ptr(None if weights is None else np.ascontiguousarray(weights, dtype=float)))
         return self._fn("select_ik")(ctypes.byref(out), *args)
+
+
+class RuntimeC:
+    """The shared C runtime alone (wristkin_runtime.c): its exact angle reduction."""
+
+    def __init__(self, extra_flags=()):
+        self.lib = load(compile_shared([RUNTIME_C], [C_DIR], "wristkin_runtime", extra_flags=list(extra_flags)))
+        self.lib.wk_wrap.argtypes = [ctypes.c_double]
+        self.lib.wk_wrap.restype = ctypes.c_double
+
+    def wrap(self, a: float) -> float:
+        return self.lib.wk_wrap(a)

@@ -22,6 +22,7 @@ from chain_specs import SKEW3, poe_spec
 from seeding import case_rng
 
 from derive import own_robot, pipeline
+from derive.angle_reduction import runtime_context
 from derive.catalogue import load as load_spec
 from derive.render import header_lines, render
 
@@ -101,7 +102,8 @@ def rendered(tmp_path_factory):
     """name -> (Python module, folder of its C): both rendered from one derivation, as pipeline / own_robot do."""
     out = tmp_path_factory.mktemp("chain_c")
     (out / "python").mkdir()
-    (out / "python" / "_wristkin_runtime.py").write_text(render("python/_runtime.py.jinja", header=header_lines()))
+    (out / "python" / "_wristkin_runtime.py").write_text(render("python/_runtime.py.jinja", header=header_lines(),
+                                                                    **runtime_context()))
     pipeline.emit_c_runtime(out / "c")
     mods = {}
     for name, text in SPECS.items():

@@ -15,6 +15,7 @@ import math
 import os
 from pathlib import Path
 
+import mpmath
 import numpy as np
 import pytest
 import wristkin
@@ -27,7 +28,7 @@ NAMES = sorted(wristkin.MECHANISMS)
 EXAMPLES = int(os.environ.get("WRISTKIN_FUZZ_EXAMPLES", "150"))  # per test and mechanism; `make fuzz` 3000
 
 HOSTILE = [math.nan, math.inf, -math.inf, 0.0, -0.0, 5e-324, -5e-324, 2.2250738585072014e-308, 1e308, -1e308,
-           1.7976931348623157e308, 1e300, -1e300, 1e16, 1e-7, math.pi]
+           1.7976931348623157e308, 1e300, -1e300, 1e16, 1e-7, math.pi, 1e6, 999999.9]  # 1e6: LENGTH_MAX
 SPECIAL_ANGLES = [0.0, math.pi / 2, -math.pi / 2, math.pi, -math.pi, 1e-7, -1e-9, 1e-12]
 FLAGGED = 1 | 2 | 4 | 8 | 16  # singular_inverse, singular_direct, gimbal, double_root, indeterminate
 # An unflagged set has sigma_min/sigma_max above the singular threshold 1e-6, so its joints are accurate to
@@ -73,6 +74,12 @@ def check_result(mod, res, inputs):
     assert np.all(np.isfinite(res.aux[valid])), "valid row with non-finite aux"
 
 
+def check_fk_accepts(mod, res, design=None):
+    """IK returns only what FK accepts (docs/API.md, "Ranges"): fk of every valid row raises nothing."""
+    for row in res.values[np.asarray(res.valid, dtype=bool)]:
+        assert call(mod, mod.fk, row, design) is not None, f"fk rejects the IK row {row.tolist()}"
+
+
 def call(mod, fn, *args):
     """fn(*args) -> result, or None when it raised the module's typed error."""
     try:
@@ -81,12 +88,21 @@ def call(mod, fn, *args):
         return None
 
 
+def reduced(x):
+    """x - 2 pi k in [-pi, pi]: math.remainder(x, fl(2 pi)) is |x| x 3.9e-17 off (4e-11 rad at 1e6); longer angles
+    against 2 pi itself, to 2400 bits (mpmath: independent of the runtimes' reduction)."""
+    if abs(x) <= 1e6:
+        return math.remainder(x, 2 * math.pi)
+    with mpmath.workprec(2400):
+        v, two_pi = mpmath.mpf(x), 2 * mpmath.pi
+        return float(v - mpmath.nint(v / two_pi) * two_pi)
+
+
 def distance(kinds, a, b):
-    """Max joint difference, angles wrapped (each side first: math.remainder is exact for any finite value)."""
+    """Max joint difference, angles wrapped (each side reduced first)."""
     out = 0.0
     for k, x, y in zip(kinds, a, b, strict=True):
-        d = math.remainder(math.remainder(x, 2 * math.pi) - math.remainder(y, 2 * math.pi), 2 * math.pi) \
-            if k == "R" else x - y
+        d = math.remainder(reduced(x) - reduced(y), 2 * math.pi) if k == "R" else x - y
         out = max(out, abs(d))
     return out
 
@@ -148,6 +164,7 @@ def test_hostile_joints_poses_and_designs(name):
         res = call(mod, mod.ik, pose)
         if res is not None:
             check_result(mod, res, pose)
+            check_fk_accepts(mod, res)
         for fn in ("jacobian",):
             if hasattr(mod, fn):
                 out = call(mod, getattr(mod, fn), q)
@@ -204,7 +221,43 @@ CORPUS = [
     ("scara_wrist", "fk", [1e308, 1e308, 0.1, 1e308]),
     ("p1p2p3rarb", "fk", [1e308] * 5),
     ("scara_rsr", "fk", [1e308] * 7),
+    # issue 21: long revolute angles (reduced against 2 pi itself), the folded scara_rsr family, a long stroke
+    ("wrist_1dof", "fk", [1e16]),
+    ("scara_rsr", "fk", [1e16, 0.5, 0.05, 1e9, 0.4, 0.5, 0.6]),
+    ("scara_rsr", "fk", [0.3, math.pi, 0.05, 0.2, 0.4, 0.5, 0.6]),
+    ("scara_wrist", "fk", [0.3, -1.78, 6.5e5, 0.2]),
 ]
+
+
+def _rpp_pose_at_length_max():
+    t = np.eye(4)
+    t[:3, :3] = [[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]]
+    t[:3, 3] = [1e6, 0.0, 0.0]
+    return t
+
+
+def _scara_rsr_pose_at(pz):
+    pose = module("scara_rsr").fk([0.3, 1.0, 0.05, 0.2, 0.4, 0.5, 0.6]).values[0].copy()
+    pose[11] = pz
+    return pose
+
+
+# issue 21's IK reproducers: every set IK returns is one FK accepts (and reproduces the pose)
+IK_CORPUS = [
+    ("rsr_wrist", lambda: [1e16, 0.9, 0.05]),
+    ("rpp_wrist", _rpp_pose_at_length_max),
+    ("scara_rsr", lambda: _scara_rsr_pose_at(1e308)),
+    ("scara_rsr", lambda: _scara_rsr_pose_at(2e6)),
+]
+
+
+@pytest.mark.parametrize("name,pose", IK_CORPUS, ids=[f"{n}-ik-{i}" for i, (n, _) in enumerate(IK_CORPUS)])
+def test_seed_corpus_ik(name, pose):
+    mod = module(name)
+    p = pose()
+    res = mod.ik(p)
+    check_result(mod, res, p)
+    check_fk_accepts(mod, res)
 
 
 @pytest.mark.parametrize("name,verb,args", CORPUS, ids=[f"{n}-{v}-{i}" for i, (n, v, _) in enumerate(CORPUS)])

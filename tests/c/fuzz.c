@@ -19,8 +19,11 @@
  *     to 1e-9 * scale; 1e-8 leaves a decade for the comparison's own rounding), except a row flagged
  *     singular_direct: there FK amplifies rounding by 1 / cond_direct or finds no mode (the IK verified the
  *     row by its own equations).
- *  5. Hostile values (NaN, +-inf, +-0, denormals, +-1e308, +-DBL_MAX, ...) anywhere in joints, poses,
- *     designs and rates: never a crash or a sanitizer report, and (1) and (2) hold.
+ *  5. Hostile values (NaN, +-inf, +-0, denormals, +-1e308, +-DBL_MAX, ...) anywhere in joints, poses, designs
+ *     and rates, and in poses also LENGTH_MAX = 1e6 and just inside it: never a crash or a sanitizer report, and
+ *     (1) and (2) hold.
+ *  6. IK returns only what FK accepts: FK of every valid IK row, of any pose (hostile ones too), returns WK_OK
+ *     (a pose whose sets would need a joint outside FK's ranges is unreachable, docs/API.md "Ranges").
  */
 #include <float.h>
 #include <math.h>
@@ -77,6 +80,9 @@ static double uniform(double lo, double hi)
 static const double hostile[] = {NAN, INFINITY, -INFINITY, 0.0, -0.0, 5e-324, -5e-324, 2.2250738585072014e-308,
                                  1e308, -1e308, DBL_MAX, -DBL_MAX, 1e-300, 1e300, 1e16, -1e16, 1e-7, 3.141592653589793};
 #define N_HOSTILE ((int)(sizeof hostile / sizeof hostile[0]))
+/* Poses also get LENGTH_MAX and just inside it: a translation there can need a joint past FK's range (invariant 6).
+   (Not designs: FK of a design near LENGTH_MAX can place the flange beyond LENGTH_MAX, where IK takes no pose.) */
+#define N_HOSTILE_POSE (N_HOSTILE + 2)
 
 static void fail(const char *what, const double *x, int n)
 {
@@ -199,16 +205,31 @@ static void random_joints(double *q, int special)
     }
 }
 
-static void hostile_fill(double *x, int n, int *nonfinite)
+static void hostile_fill_from(double *x, int n, int *nonfinite, int n_values)
 {
     int k = (int)(next_u64() % (unsigned)n), m = 1 + (int)(next_u64() % 3u), i;
     *nonfinite = 0;
     for (i = 0; i < m; ++i) {
-        double h = hostile[next_u64() % N_HOSTILE];
+        const int pick = (int)(next_u64() % (unsigned)n_values);
+        double h = pick < N_HOSTILE ? hostile[pick] : (pick == N_HOSTILE ? 1e6 : 999999.9);
         x[(k + 5 * i) % n] = (next_u64() & 1u) ? h : -h;
     }
     for (i = 0; i < n; ++i)
         if (!isfinite(x[i])) *nonfinite = 1;
+}
+
+static void hostile_fill(double *x, int n, int *nonfinite)
+{
+    hostile_fill_from(x, n, nonfinite, N_HOSTILE);
+}
+
+/* Invariant 6: FK accepts every valid IK row. */
+static void ik_rows_accepted_by_fk(const TYPE(_ik_solutions) * ik, const TYPE(_design) * d)
+{
+    TYPE(_fk_solutions) fk;
+    int k;
+    for (k = 0; k < MAXIK; ++k)
+        if (ik->valid[k] && FN(_fk)(ik->values[k], d, &fk) < 0) fail("FK rejects an IK row", ik->values[k], NJ);
 }
 
 /* Random joints -> FK -> IK of every mode and back (invariants 3 and 4), then hostile variants. */
@@ -258,9 +279,10 @@ static void round_trip_case(const TYPE(_design) * d, int special)
             ++n_flagged_trips;
         }
         /* hostile variant of this pose */
-        hostile_fill(pose, NP, &nonfinite);
+        hostile_fill_from(pose, NP, &nonfinite, N_HOSTILE_POSE);
         rc = FN(_ik)(pose, d, &ik);
         CHECK_RESULT(rc, ik, MAXIK, NJ, NIKAUX, pose, NP, nonfinite);
+        if (rc >= 0) ik_rows_accepted_by_fk(&ik, d);
     }
     /* hostile joints */
     hostile_fill(q, NJ, &nonfinite);

@@ -129,6 +129,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         return m
     out = []
     x = y = None
+    slides = {}  # a solved slide -> its value: later stages take the value, not the symbol (see _without_slides)
     for op in plan.ops:
         k = op["op"]
         j = op.get("j")
@@ -144,6 +145,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             sol = (a.T * a).inv() * a.T * (y - x)
             out += [Stage("value", (i,), (sol[m],), f"slide {joints[i]}", "the slides add: x + sum q_i h_i = y")
                     for m, i in enumerate(js)]
+            slides.update({joints[i]: sol[m] for m, i in enumerate(js)})
             continue
         if k == "orient":
             units = [u[0] for u in op["units"]]
@@ -174,6 +176,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                     raise PlanError("a prismatic distance op has no serial stage")
                 val = nv.dot(y - x) / nv.dot(h)
             out.append(Stage("value", (j,), (val,), f"slide {q}", f"{k}: the slide's component"))
+            slides[q] = val
             if k != "single":
                 y, x = ((y - h * q).applyfunc(sp.expand), x) if first else (y, (x + h * q).applyfunc(sp.expand))
             continue
@@ -199,6 +202,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             c = (p.dot(p) + p2.dot(p2) - (fixed - s).dot(fixed - s)) / 2 - hp * h.dot(p2)
             rule = "subproblem 3: |rot(h, q) p1 - p2| = d (the other joints keep the distance to s)"
         # A cos t + B sin t = C with t = -q (first: the joint is undone from y) or t = q
+        a, b, c = (_without_slides(v, slides) for v in (a, b, c))
         out.append(Stage("trig_linear", (j,), (a, -b if first else b, -c), f"angle {q} ({'two roots'})", rule))
         e = _screw("R", h, r, q)
         if first:
@@ -206,6 +210,17 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         else:
             x = e.apply(x).applyfunc(sp.expand)
     return out, plan.strategy
+
+
+def _without_slides(expr, slides):
+    """expr with each solved slide replaced by its value, the terms that then cancel cancelled symbolically.
+
+    A slide along the axis of a later distance stage enters |p|^2 as q^2 and the target's distance as the same
+    length squared: as two numbers they cancel in floating point, and at a stroke of 6.5e5 m their rounding (1e-4 m^2)
+    swallows the planar a1 a2 (the SCARA elbow lost). Substituted and expanded, they cancel in the algebra."""
+    if not slides or not (expr.free_symbols & set(slides)):
+        return expr
+    return sp.expand(expr.subs(slides))
 
 
 def numeric_point(c: Chain, js) -> np.ndarray:
