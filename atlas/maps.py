@@ -18,7 +18,7 @@ def underactuated_maps(mech, design, options, n: int = 181) -> dict:
     a, t = np.meshgrid(np.radians(az), np.radians(tilt), indexing="xy")
     poses = np.column_stack([a.ravel(), t.ravel(), -a.ravel()])
     ik = m.ik_batch(poses, design)
-    li = np.where(ik.valid, mech.local_index(design, poses, ik.values), 0.0)
+    li = np.where(ik.valid, mech.local_index(design, poses, ik.values)[0], 0.0)
     q = np.linspace(0.0, 360.0, n)
     q1, q2 = np.meshgrid(np.radians(q), np.radians(q), indexing="xy")
     joints = np.column_stack([q1.ravel(), q2.ravel(), np.full(q1.size, design.theta0)])
@@ -55,7 +55,7 @@ def rsr_maps(mech, design, options, n_alpha: int = 361, n_beta: int = 241, n_lbw
         ik = m.ik_batch(poses, design)
         lo, hi = design.params[1], design.params[2]
         within = np.all(np.mod(ik.values - lo, 2.0 * math.pi) <= hi - lo, axis=2)
-        li = np.where(ik.valid & within, mech.local_index(design, poses, ik.values), 0.0)
+        li = np.where(ik.valid & within, mech.local_index(design, poses, ik.values)[0], 0.0)
         best[idx[:, 0], idx[:, 1]] = li.max(axis=1).reshape(-1, n_lbw).max(axis=1)
     reach = best >= 0.0
     swing = np.array([beta[r].max() if r.any() else 0.0 for r in reach])

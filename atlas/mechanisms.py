@@ -160,9 +160,10 @@ class UnderactuatedWrist(Mechanism):
         t = f"{options.threshold:g}"
         return [*_common_measures(t, "the sampled joint triples"),
                 Measure("phi_lo", "deg", "smallest motor/sensor angle Phi_i = theta_i - theta0 (wrapped to "
-                        "(-180, 180]) of the home IK set (the set with Phi = 0 at the home pose) over the reachable "
-                        "sampled poses; i = 1, 2 motors, 3 sensor", None, ("motor",)),
-                Measure("phi_hi", "deg", "largest Phi_i of the home IK set over the reachable sampled poses", None,
+                        "(-180, 180]) over the sampled poses the home working mode reaches (the IK set whose signs "
+                        "of det[Zi1, Zi2, Zi3] are those of the home pose's set); i = 1, 2 motors, 3 sensor", None,
+                        ("motor",)),
+                Measure("phi_hi", "deg", "largest Phi_i over the sampled poses the home working mode reaches", None,
                         ("motor",)),
                 Measure("phi_range", "deg", "phi_hi - phi_lo: the travel each motor (1, 2) and the sensor (3) "
                         "must cover", "min", ("motor",))]
@@ -174,13 +175,16 @@ class UnderactuatedWrist(Mechanism):
     def joints(self, u, design):
         return 2.0 * math.pi * u
 
-    def home_set(self, design) -> int:
+    def home_mode(self, design) -> np.ndarray:
+        """The home working mode: signs of g_i = det[Zi1, Zi2, Zi3] (the branch's elbow sense; a working mode
+        ends where a g_i crosses 0, an inverse singularity) of the IK set with Phi = 0 at the home pose."""
         sol = self.module.ik((0.0, 0.0, 0.0), design)
-        motor = np.where(sol.valid[:, None], np.abs(sol.aux[:, :3]), np.inf)
-        return int(np.argmin(motor.max(axis=1)))
+        k = int(np.argmin(np.where(sol.valid[:, None], np.abs(sol.aux[:, :3]), np.inf).max(axis=1)))
+        _, g = self.local_index(design, np.zeros((1, 3)), sol.values[None, k:k + 1])
+        return np.array([x[0, 0] > 0.0 for x in g])
 
     def local_index(self, design, poses, values):
-        """1/kappa_F of J (w -> qdot) per IK set: g_i = det[Zi1, Zi2, Zi3], x_i = Zi2 x Zi3 (the module's
+        """(1/kappa_F, g) of J (w -> qdot) per IK set: g_i = det[Zi1, Zi2, Zi3], x_i = Zi2 x Zi3 (the module's
         derived axis kernels: jq qdot = jx w, docs/API.md `jacobians`)."""
         m, dc = self.module, design.constants
         rot = m._rotation_columns(poses)
@@ -195,7 +199,7 @@ class UnderactuatedWrist(Mechanism):
             x = (b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0])
             rows.append(x)
             g.append(a[0] * x[0] + a[1] * x[1] + a[2] * x[2])
-        return inverse_kappa_f(rows, g)
+        return inverse_kappa_f(rows, g), g
 
     def evaluate(self, design, u_pose, u_joint, options):
         m, out = self.module, {"design_ok": 1}
@@ -203,13 +207,13 @@ class UnderactuatedWrist(Mechanism):
         ik = m.ik_batch(poses, design)
         reach = ik.valid.any(axis=1)  # the conditioning is computed on reachable poses only (the cost is there)
         valid, aux = ik.valid[reach], ik.aux[reach]
-        li = self.local_index(design, poses[reach], ik.values[reach])
+        li, g = self.local_index(design, poses[reach], ik.values[reach])
         _ik_partials(out, len(poses), valid, li, aux[..., 3], aux[..., 4], options.threshold)
-        k0 = self.home_set(design)
-        reach = valid[:, k0]
-        phi = np.degrees(aux[reach, k0, :3])
-        out["phi_lo"] = phi.min(axis=0) if reach.any() else np.full(3, np.inf)
-        out["phi_hi"] = phi.max(axis=0) if reach.any() else np.full(3, -np.inf)
+        home = self.home_mode(design)
+        in_mode = valid & ((g[0] > 0.0) == home[0]) & ((g[1] > 0.0) == home[1]) & ((g[2] > 0.0) == home[2])
+        phi = np.degrees(aux[in_mode][:, :3])
+        out["phi_lo"] = phi.min(axis=0) if len(phi) else np.full(3, np.inf)
+        out["phi_hi"] = phi.max(axis=0) if len(phi) else np.full(3, -np.inf)
         fk = m.fk_batch(self.joints(u_joint, design), design)
         _fk_partials(out, fk.valid, fk.aux[..., m.FK_AUX_NAMES.index("cond_direct")], m.MAX_FK, options.threshold)
         return out
@@ -268,7 +272,7 @@ class RsrWrist(Mechanism):
             d_alpha = ca * c / (2.0 * ch)  # sin(beta/2) cos(alpha - a_i) cos(phi) / sin(beta)
             d_beta = 0.5 * ch * sa * c - 0.5 * sh * s
             rows.append((-d_alpha, -d_beta, np.full_like(c, 0.5)))
-        return inverse_kappa_f(rows, g)
+        return inverse_kappa_f(rows, g), g
 
     def evaluate(self, design, u_pose, u_joint, options):
         m, out = self.module, {"design_ok": 1}
@@ -284,7 +288,7 @@ class RsrWrist(Mechanism):
         within = np.all(offset <= hi - lo, axis=2)
         valid = ik.valid[solved] & within
         reach = valid.any(axis=1)
-        li = self.local_index(design, poses[solved][reach], values[reach])
+        li, _ = self.local_index(design, poses[solved][reach], values[reach])
         _ik_partials(out, len(poses), valid[reach], li, aux[reach][..., 1], aux[reach][..., 2], options.threshold)
         reach = np.flatnonzero(solved)[reach]
         bins = np.minimum((poses[:, 0] / (2.0 * math.pi) * options.swing_bins).astype(np.int64),
