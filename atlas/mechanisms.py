@@ -175,6 +175,11 @@ class UnderactuatedWrist(Mechanism):
     def joints(self, u, design):
         return 2.0 * math.pi * u
 
+    def __init__(self, module):
+        super().__init__(module)
+        self._home_cache: dict = {}
+        self._pose_cache: dict = {}
+
     def home_mode(self, design) -> np.ndarray:
         """The home working mode: signs of g_i = det[Zi1, Zi2, Zi3] (the branch's elbow sense; a working mode
         ends where a g_i crosses 0, an inverse singularity) of the IK set with Phi = 0 at the home pose."""
@@ -203,13 +208,19 @@ class UnderactuatedWrist(Mechanism):
 
     def evaluate(self, design, u_pose, u_joint, options):
         m, out = self.module, {"design_ok": 1}
-        poses = self.poses(u_pose, options)
+        # the poses do not depend on the design: mapped once per block (the task holds its blocks alive: ids stay)
+        key = (id(u_pose), options.tilt_max)
+        poses = self._pose_cache.get(key)
+        if poses is None:
+            poses = self._pose_cache.setdefault(key, self.poses(u_pose, options))
         ik = m.ik_batch(poses, design)
         reach = ik.valid.any(axis=1)  # the conditioning is computed on reachable poses only (the cost is there)
         valid, aux = ik.valid[reach], ik.aux[reach]
         li, g = self.local_index(design, poses[reach], ik.values[reach])
         _ik_partials(out, len(poses), valid, li, aux[..., 3], aux[..., 4], options.threshold)
-        home = self.home_mode(design)
+        home = self._home_cache.get(design.params)
+        if home is None:  # once per design, not per block
+            home = self._home_cache.setdefault(design.params, self.home_mode(design))
         in_mode = valid & ((g[0] > 0.0) == home[0]) & ((g[1] > 0.0) == home[1]) & ((g[2] > 0.0) == home[2])
         phi = np.degrees(aux[in_mode][:, :3])
         out["phi_lo"] = phi.min(axis=0) if len(phi) else np.full(3, np.inf)

@@ -14,21 +14,23 @@ import numpy as np
 from . import maps as maps_mod
 from . import seeds
 from .mechanisms import Options, mechanism
+from .store import design_dims
 
 MAP_MEASURES = ("reachable", "gci", "gci_best", "worst_li", "near_inverse", "near_direct", "fk_modes_mean",
-                "fk_no_assembly", "fk_near_direct", "swing_all", "swing_peak")
+                "fk_no_assembly", "fk_near_direct", "swing_all", "swing_peak", "ik_sets_mean", "singular",
+                "manipulability_mean", "manipulability_min")
 TOP = 5  # designs listed per measure
 
 
 def _scalar_measures(ds):
-    dims = ds["gci"].dims
+    dims = design_dims(ds)
     return [n for n, v in ds.data_vars.items() if v.dims == dims]
 
 
 def best_rows(ds) -> list[dict]:
     """The TOP designs per ranked scalar measure (ties broken by design order: deterministic)."""
     rows = []
-    dims = ds["gci"].dims
+    dims = design_dims(ds)
     for name in _scalar_measures(ds):
         var = ds[name]
         better = var.attrs.get("better")
@@ -194,7 +196,7 @@ def _fmt(v) -> str:
 
 
 def _markdown(ds, rows, measure_figs, focus_figs, focus_values, claims) -> str:
-    dims = list(ds["gci"].dims)
+    dims = list(design_dims(ds))
     timing = json.loads(ds.attrs["timing"])
     secs = [s for s in timing["task_seconds"] if s == s]
     n_designs = int(np.prod([ds.sizes[d] for d in dims]))
@@ -202,7 +204,7 @@ def _markdown(ds, rows, measure_figs, focus_figs, focus_values, claims) -> str:
              f"{n_designs} designs ("
              + " x ".join(f"{d} {float(ds[d].min()):g}..{float(ds[d].max()):g} {ds[d].attrs.get('units', '')} "
                           f"({ds.sizes[d]})" for d in dims)
-             + f"), each measured over {ds.attrs['samples_per_design']} pose samples and as many joint samples "
+             + f"), each measured over {ds.attrs['samples_per_design']} samples of each kind (docs/atlas.md) "
              f"({ds.attrs['sampling']}, seed {ds.attrs['seed']}; platform tilt up to {ds.attrs['tilt_max_deg']:g} "
              f"deg; near-singular threshold {ds.attrs['threshold']:g}). Fixed parameters: "
              f"{ds.attrs['fixed_design']}. Solvers: wristkin {ds.attrs['wristkin_version']} (inputs "

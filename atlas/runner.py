@@ -38,10 +38,11 @@ class Plan:
     options: Options
     design_chunk: int
     blocks_per_task: int
+    dim: int = 3  # sample dimension (joints of a serial arm; 3 for the wrists)
     n_blocks: int = field(init=False, default=0)
 
     def __post_init__(self):
-        object.__setattr__(self, "n_blocks", sampling.blocks(self.samples, 3, self.grid))
+        object.__setattr__(self, "n_blocks", sampling.blocks(self.samples, self.dim, self.grid))
 
     @property
     def n_design_chunks(self) -> int:
@@ -53,7 +54,7 @@ class Plan:
 
     @property
     def sample_count(self) -> int:
-        return sampling.sample_count(self.samples, 3, self.grid)
+        return sampling.sample_count(self.samples, self.dim, self.grid)
 
     def identity(self) -> dict:
         """What the stored partials depend on (the chunking too: it is the store's layout)."""
@@ -74,14 +75,15 @@ def make_plan(mechanism_name: str, sweeps: list[str], designs: list[str] | None 
     sweep = parse_sweep(mech.module, sweeps, designs)
     if samples < 1:
         raise ValueError("--samples must be at least 1")
-    n_blocks = sampling.blocks(samples, 3, grid)
+    dim = mech.joint_dim
+    n_blocks = sampling.blocks(samples, dim, grid)
     blocks_per_task = n_blocks if sample_chunk is None else max(1, math.ceil(sample_chunk / sampling.BLOCK))
     blocks_per_task = min(blocks_per_task, n_blocks, max(1, TARGET_TASK_SOLVES // sampling.BLOCK))
-    per_design = 2 * min(blocks_per_task * sampling.BLOCK, sampling.sample_count(samples, 3, grid))
+    per_design = 2 * min(blocks_per_task * sampling.BLOCK, sampling.sample_count(samples, dim, grid))
     if design_chunk is None:
         design_chunk = max(1, TARGET_TASK_SOLVES // per_design)
     return Plan(sweep, samples, seed, grid, options or Options(), max(1, min(design_chunk, sweep.size)),
-                blocks_per_task)
+                blocks_per_task, dim)
 
 
 def compute_task(name: str, designs: np.ndarray, seed: int, samples: int, grid: bool, options: Options,
@@ -92,8 +94,8 @@ def compute_task(name: str, designs: np.ndarray, seed: int, samples: int, grid: 
     mech = mechanism(name)
     specs = mech.partials()
     out = {s.name: s.empty(len(designs)) for s in specs}
-    units = [(sampling.unit_block(seed, sampling.POSE_STREAM, b, samples, 3, grid),
-              sampling.unit_block(seed, sampling.JOINT_STREAM, b, samples, 3, grid))
+    units = [(sampling.unit_block(seed, sampling.POSE_STREAM, b, samples, mech.pose_dim, grid),
+              sampling.unit_block(seed, sampling.JOINT_STREAM, b, samples, mech.joint_dim, grid))
              for b in range(block_lo, block_hi)]
     solves = 0
     for k, params in enumerate(designs):
@@ -220,6 +222,7 @@ def run_sweep(mechanism_name: str, sweeps: list[str], out: str | Path, designs: 
                                     plan.options, b0, b1, pure=False)
                 futures[fut] = (i, j, d0, d1)
             seconds = np.asarray(group["seconds"][...])
+            t_compute = time.perf_counter()
             for fut in as_completed(futures):
                 i, j, d0, d1 = futures.pop(fut)
                 part, secs, solves = fut.result()
@@ -230,8 +233,11 @@ def run_sweep(mechanism_name: str, sweeps: list[str], out: str | Path, designs: 
                 done[i, j] = True
                 group["done"][...] = done  # after the data: a task counts as stored only once it is
                 bar.step(solves)
+            compute_wall = time.perf_counter() - t_compute
         finally:
             close()
+    else:
+        compute_wall = 0.0
     wall = time.perf_counter() - t0
     if not done.all():
         return None
@@ -239,6 +245,7 @@ def run_sweep(mechanism_name: str, sweeps: list[str], out: str | Path, designs: 
 
     totals = {s.name: reduce_axis(s, np.asarray(group[s.name][...]), 1) for s in mech.partials()}
     measures = mech.finalize(totals, plan.options)
-    timing = {"wall_seconds_this_run": wall, "tasks": int(done.size),
+    timing = {"wall_seconds_this_run": wall, "compute_seconds_this_run": compute_wall,
+              "tasks_this_run": len(todo), "tasks": int(done.size),
               "task_seconds": np.asarray(group["seconds"][...]).ravel().tolist()}
     return write_dataset(out / "atlas.zarr", plan, mech, measures, timing)

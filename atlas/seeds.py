@@ -9,6 +9,8 @@ import math
 
 import numpy as np
 
+from .store import design_dims
+
 SEED000_DESIGN = {"alpha1": 60.0, "alpha2": 60.0, "beta1": 30.0, "beta2": 43.89}
 SEED000_HOME_DEG = 140.0
 SEED002_SWING_ALL_DEG = 60.0
@@ -75,7 +77,7 @@ def rsr_claims(mech, ds, maps: dict | None) -> list[str]:
 
 def _rank_lines(ds, design: dict, label: str) -> list[str]:
     """Where `design` (display units) sits in the sweep, per ranked scalar measure (nearest grid point)."""
-    dims = [d for d in ds["gci"].dims]
+    dims = list(design_dims(ds))
     sel = {d: design[d] for d in dims if d in design}
     off = {d: abs(float(ds[d].sel({d: v}, method="nearest")) - v) for d, v in sel.items()}
     if any(v > 1e-6 * max(1.0, abs(sel[d])) for d, v in off.items()):
@@ -88,7 +90,7 @@ def _ranks(ds, sel: dict, label: str) -> list[str]:
     out = []
     for name, var in ds.data_vars.items():
         better = var.attrs.get("better")
-        if not better or var.ndim != len(ds["gci"].dims):
+        if not better or var.ndim != len(design_dims(ds)):
             continue
         value = float(var.sel(sel, method="nearest"))
         vals = var.values[np.isfinite(var.values)]

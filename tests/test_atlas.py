@@ -139,7 +139,8 @@ def _same(a, b):
 
 
 @pytest.mark.parametrize("name,sweep", [("underactuated_wrist", ["beta2=40:46:3"]),
-                                        ("rsr_wrist", ["phi_min=20:30:2", "phi_max=70:80:2"])])
+                                        ("rsr_wrist", ["phi_min=20:30:2", "phi_max=70:80:2"]),
+                                        ("puma560", ["a2=0.3:0.5:3"])])
 def test_same_bits_for_any_chunking_and_scheduler(tmp_path, name, sweep, uw_two_workers):
     """2500 samples = 3 blocks: one task per block vs all blocks in one task, 1 vs all designs per task, the
     in-process scheduler vs 2 worker processes."""
@@ -241,3 +242,12 @@ def test_underactuated_local_index_equals_the_module_jacobians():
             assert float(got[0, 0]) == pytest.approx(want, rel=1e-9)
             checked += 1
     assert checked > 50
+
+
+def test_serial_arm_sweep_closes_ik_on_every_sampled_pose(tmp_path):
+    """A serial arm: FK of the joint samples, IK of those poses (all 8 PUMA branches where it is generic)."""
+    ds = wristkin_atlas.run_sweep("puma560", ["a2=0.3:0.5:2"], tmp_path, samples=500, seed=TEST_SEED,
+                                  progress=False).load()
+    assert np.all(ds["ik_closes"].values == 1.0)
+    assert np.all(ds["ik_sets_mean"].values > 7.0)
+    assert np.all(ds["manipulability_mean"].values > 0.0)
