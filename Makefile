@@ -117,7 +117,7 @@ fuzz: $(STAMP)
 # All three checks run; the target fails if any of them failed.
 lint: $(STAMP)
 	@rc=0; \
-	echo "ruff check $(wildcard derive tests bench)"; $(PY) -m ruff check $(wildcard derive tests bench) || rc=1; \
+	echo "ruff check $(wildcard derive tests bench atlas)"; $(PY) -m ruff check $(wildcard derive tests bench atlas) || rc=1; \
 	echo "ruff check generated/python"; $(PY) -m ruff check generated/python || rc=1; \
 	csrc="$(wildcard generated/c/*.c)"; \
 	if [ -z "$$csrc" ]; then echo "error: no generated/c/*.c: run make regenerate" >&2; rc=1; fi; \

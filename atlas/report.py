@@ -231,7 +231,8 @@ def _markdown(ds, rows, measure_figs, focus_figs, focus_values, claims) -> str:
     lines += ["", "## Where the seeds' claims stand", ""] + (claims or ["- (no seed claims for this mechanism)"])
     lines += ["", "## Measure maps", "",
               "Each map spans the first two swept parameters (any others at the catalogue design's value); the star "
-              "marks the catalogue (seed) design.", ""]
+              "marks the catalogue (seed) design; white cells are designs make_design rejects (or, for a ratio, "
+              "designs with nothing to average: no reachable sampled pose).", ""]
     for name in measure_figs:
         lines += [f"### {name}", "", f"{ds[name].attrs.get('definition', '')}", "",
                   f"![{name}](figures/map_{name}.png)", ""]
