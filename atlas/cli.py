@@ -25,7 +25,10 @@ def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="wristkin atlas", description="Design atlas: sweep design parameters, measure every design over "
                 "a seeded sample of its workspace (generated C batch solvers on Dask), write a Zarr store, a summary "
                 "table and a report. Angles in degrees, lengths in metres.")
-    p.add_argument("mechanism", metavar="MECHANISM", help="a catalogue mechanism (wristkin list)")
+    p.add_argument("mechanism", metavar="MECHANISM|SPEC",
+                   help="a catalogue mechanism (wristkin list), or a spec file / URDF: derived into DIR/derived "
+                        "first (needs wristkin[derive]), then swept")
+    p.add_argument("--free", metavar="JOINT", help="SPEC: a redundant arm's joint held as the design parameter")
     p.add_argument("--sweep", action="append", required=True, metavar="NAME=START:STOP:N",
                    help="a swept design parameter: N values from START to STOP (repeat for more; outer product)")
     p.add_argument("--design", nargs="+", action="extend", metavar="NAME=VALUE",
@@ -49,6 +52,41 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--no-report", action="store_true", help="write the store and summary only")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     return p
+
+
+class _Failed(Exception):
+    def __init__(self, message: str, code: int):
+        super().__init__(message)
+        self.code = code
+
+
+def _derived(target: str, out: str, free: str | None) -> str:
+    """A catalogue name as it is; a spec file / URDF derived into OUT/derived (once: a resumed sweep reuses it),
+    named by its solver's path (workers import it from there: a shared folder on a cluster)."""
+    from pathlib import Path
+
+    from .mechanisms import FILE_PREFIX
+
+    path = Path(target)
+    if path.suffix.lower() not in (".toml", ".urdf"):
+        return target
+    if not path.is_file():
+        raise _Failed(f"{target}: no such file (a spec file or a URDF)", EXIT_USAGE)
+    try:
+        from derive import own_robot
+        from derive.spec import SpecError
+    except ImportError as exc:
+        raise _Failed(f"a spec file is derived first, which needs the derivation stack ({exc}): pip install "
+                      "'wristkin[derive]'", EXIT_FAILED) from exc
+    try:
+        name = own_robot.load(path, free=free).NAME
+        folder = Path(out) / "derived"
+        solver = folder / "python" / f"{name}.py"
+        if not solver.is_file():
+            own_robot.derive(path, folder, free=free, progress=lambda text: print(text, file=sys.stderr))
+    except SpecError as exc:
+        raise _Failed(str(exc), EXIT_USAGE) from None
+    return FILE_PREFIX + str(solver.resolve())
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -78,7 +116,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_USAGE
     options = Options(threshold=args.threshold, tilt_max=math.radians(args.tilt_max))
     try:
-        ds = run_sweep(args.mechanism, args.sweep, args.out, designs=args.design, samples=args.samples,
+        target = _derived(args.mechanism, args.out, args.free)
+    except _Failed as exc:
+        print(f"wristkin atlas: error: {exc}", file=sys.stderr)
+        return exc.code
+    try:
+        ds = run_sweep(target, args.sweep, args.out, designs=args.design, samples=args.samples,
                        seed=args.seed, grid=args.grid, options=options, workers=args.workers,
                        scheduler=args.scheduler, design_chunk=args.design_chunk, sample_chunk=args.sample_chunk,
                        progress=not args.quiet, overwrite=args.overwrite)

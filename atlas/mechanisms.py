@@ -127,6 +127,7 @@ class Mechanism:
     def __init__(self, module):
         self.module = module
         self.name = module.NAME
+        self.key = module.NAME  # what mechanism() takes to make this again (a worker's task argument)
 
     def partials(self) -> tuple[Partial, ...]:
         raise NotImplementedError
@@ -151,6 +152,11 @@ class Mechanism:
 class UnderactuatedWrist(Mechanism):
     """Seed 000. Poses: ZXZ (psi, theta, phi) with psi, phi uniform and the platform axis uniform on the cap of
     tilt theta <= tilt_max (Haar measure on SO(3) restricted to the cap). Joints: theta_i uniform on [0, 2 pi)."""
+
+    @staticmethod
+    def fits(module) -> bool:
+        return tuple(module.DESIGN_NAMES) == ("alpha1", "alpha2", "beta1", "beta2") and hasattr(module,
+                                                                                               "_kv_middle_axes")
 
     def partials(self):
         return (*_COMMON_PARTIALS, Partial("modes", SUM, (self.module.MAX_FK + 1,)),
@@ -243,6 +249,11 @@ class RsrWrist(Mechanism):
     on the cap beta <= tilt_max, centre distance l_bw uniform on [lbw_min, lbw_max]. An IK set counts only with
     every phi_i in [phi_min, phi_max] (the design's leg limits). Joints: phi_i uniform on [phi_min, phi_max]."""
 
+    @staticmethod
+    def fits(module) -> bool:
+        return tuple(module.DESIGN_NAMES) == ("L", "phi_min", "phi_max", "lbw_min", "lbw_max") and hasattr(
+            module, "LEG_ANGLES")
+
     def partials(self):
         return (*_COMMON_PARTIALS, Partial("modes", SUM, (self.module.MAX_FK + 1,)),
                 Partial("swing_bins", MAX, (Options.swing_bins,)))
@@ -325,19 +336,57 @@ class RsrWrist(Mechanism):
 ADAPTERS = {"underactuated_wrist": UnderactuatedWrist, "rsr_wrist": RsrWrist}
 
 
+FILE_PREFIX = "file:"  # a solver written by `wristkin derive` (a spec file's own folder), by its .py path
+_DERIVED: dict = {}
+
+
+def _derived_module(path: str):
+    """Import a derived solver (its _wristkin_runtime and _wristkin_native beside it) once per process."""
+    import importlib.util
+    import sys
+    from pathlib import Path
+
+    if path not in _DERIVED:
+        file = Path(path)
+        if not file.is_file():
+            raise UnknownMechanism(f"no derived solver at {file}")
+        folder = str(file.parent)
+        if folder not in sys.path:
+            sys.path.insert(0, folder)  # its runtime and extension import by plain name
+        spec = importlib.util.spec_from_file_location(f"_wristkin_atlas_{file.stem}", file)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[spec.name] = module  # dataclasses look their module up there
+        spec.loader.exec_module(module)
+        _DERIVED[path] = module
+    return _DERIVED[path]
+
+
 def mechanism(name: str) -> Mechanism:
     import importlib
 
     import wristkin
 
-    if name not in wristkin.MECHANISMS:
-        raise UnknownMechanism(f"unknown mechanism {name!r} (catalogue: {', '.join(wristkin.MECHANISMS)})")
-    module = importlib.import_module(f"wristkin.{name}")
+    if name.startswith(FILE_PREFIX):
+        module = _derived_module(name[len(FILE_PREFIX):])
+    elif name not in wristkin.MECHANISMS:
+        raise UnknownMechanism(f"unknown mechanism {name!r} (catalogue: {', '.join(wristkin.MECHANISMS)}; or a "
+                               "spec file / URDF)")
+    else:
+        module = importlib.import_module(f"wristkin.{name}")
+    mech = None
     if name in ADAPTERS:
-        return ADAPTERS[name](module)
+        mech = ADAPTERS[name](module)
+    for adapter in ADAPTERS.values():
+        if mech is None and adapter.fits(module):  # a spec of a parallel family, derived into its own folder
+            mech = adapter(module)
+    if mech is not None:
+        mech.key = name
+        return mech
     from .serial import SerialArm, is_serial
 
     if is_serial(module):
-        return SerialArm(module)
+        mech = SerialArm(module)
+        mech.key = name
+        return mech
     raise UnknownMechanism(f"the atlas has no measures for {name!r} yet (it sweeps {', '.join(ADAPTERS)} and the "
                            "serial arms)")

@@ -13,7 +13,7 @@ import numpy as np
 
 from . import maps as maps_mod
 from . import seeds
-from .mechanisms import Options, mechanism
+from .mechanisms import Options, RsrWrist, UnderactuatedWrist, mechanism
 from .store import design_dims
 
 MAP_MEASURES = ("reachable", "gci", "gci_best", "worst_li", "near_inverse", "near_direct", "fk_modes_mean",
@@ -115,7 +115,7 @@ def _focus_design(mech, ds, focus: list[str] | None):
 
 def _focus_plots(plt, mech, design, options, figdir: Path) -> tuple[list[tuple[str, str]], dict | None]:
     figs = []
-    if mech.name == "underactuated_wrist":
+    if isinstance(mech, UnderactuatedWrist):
         mp = maps_mod.underactuated_maps(mech, design, options)
         t = mp["tilt"]
         fig, axes = plt.subplots(1, 2, figsize=(10, 4))
@@ -134,7 +134,7 @@ def _focus_plots(plt, mech, design, options, figdir: Path) -> tuple[list[tuple[s
                      "unreachable or singular). Right: the number of real FK assembly modes over (theta1, theta2) "
                      "at theta3 = theta0; its boundaries are direct singularities (two modes merge)."))
         return figs, None
-    if mech.name == "rsr_wrist":
+    if isinstance(mech, RsrWrist):
         mp = maps_mod.rsr_maps(mech, design, options)
         s = mp["swing"]
         fig, axes = plt.subplots(1, 2, figsize=(10, 4))
@@ -183,8 +183,8 @@ def write_outputs(out, ds, focus: list[str] | None = None, report: bool = True) 
             measure_figs.append(name)
     design, focus_values = _focus_design(mech, ds, focus)
     focus_figs, maps = _focus_plots(plt, mech, design, options, figdir) if design is not None else ([], None)
-    claims = (seeds.underactuated_claims(mech, ds) if mech.name == "underactuated_wrist" else
-              seeds.rsr_claims(mech, ds, maps) if mech.name == "rsr_wrist" else [])
+    claims = (seeds.underactuated_claims(mech, ds) if isinstance(mech, UnderactuatedWrist) else
+              seeds.rsr_claims(mech, ds, maps) if isinstance(mech, RsrWrist) else [])
     text = _markdown(ds, rows, measure_figs, focus_figs, focus_values, claims)
     (out / "report.md").write_text(text)
     paths += [out / "report.md", figdir]
@@ -200,7 +200,7 @@ def _markdown(ds, rows, measure_figs, focus_figs, focus_values, claims) -> str:
     timing = json.loads(ds.attrs["timing"])
     secs = [s for s in timing["task_seconds"] if s == s]
     n_designs = int(np.prod([ds.sizes[d] for d in dims]))
-    lines = [f"# Design atlas: {ds.attrs['mechanism']}", "",
+    lines = [f"# Design atlas: {ds.attrs.get('name', ds.attrs['mechanism'])}", "",
              f"{n_designs} designs ("
              + " x ".join(f"{d} {float(ds[d].min()):g}..{float(ds[d].max()):g} {ds[d].attrs.get('units', '')} "
                           f"({ds.sizes[d]})" for d in dims)

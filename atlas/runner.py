@@ -218,7 +218,7 @@ def run_sweep(mechanism_name: str, sweeps: list[str], out: str | Path, designs: 
             for i, j in todo:
                 d0, d1 = i * plan.design_chunk, min(plan.sweep.size, (i + 1) * plan.design_chunk)
                 b0, b1 = j * plan.blocks_per_task, min(plan.n_blocks, (j + 1) * plan.blocks_per_task)
-                fut = client.submit(compute_task, mech.name, matrix[d0:d1], plan.seed, plan.samples, plan.grid,
+                fut = client.submit(compute_task, mech.key, matrix[d0:d1], plan.seed, plan.samples, plan.grid,
                                     plan.options, b0, b1, pure=False)
                 futures[fut] = (i, j, d0, d1)
             seconds = np.asarray(group["seconds"][...])

@@ -50,10 +50,28 @@ class SerialArm(Mechanism):
         ]
 
     def joints(self, u, design):
-        kinds = self.module.JOINT_KINDS
-        lengths = [abs(v) for v in np.ravel(design.params) if np.isfinite(v)] if hasattr(design, "params") else []
+        """Joint samples: within the module's LOWER / UPPER where it has finite ones (a derived arm), else
+        revolute on [-pi, pi) and prismatic on [0, s] (s: the design's largest length, 1 when none); a derived
+        redundant arm's free joint (a design parameter) at the design's value."""
+        m = self.module
+        names, kinds = m.JOINT_NAMES, m.JOINT_KINDS
+        params = tuple(np.ravel(getattr(design, "params", ())))
+        free = {n: v for n, v in zip(m.DESIGN_NAMES, params, strict=False) if n in names}
+        lengths = [abs(v) for n, v in zip(m.DESIGN_NAMES, params, strict=False) if n not in names and np.isfinite(v)]
         stroke = max(lengths) if lengths and max(lengths) > 0 else 1.0
-        cols = [(2.0 * math.pi * u[:, i] - math.pi) if k == "R" else stroke * u[:, i] for i, k in enumerate(kinds)]
+        lower, upper = getattr(m, "LOWER", None), getattr(m, "UPPER", None)
+        cols = []
+        for i, (name, kind) in enumerate(zip(names, kinds, strict=True)):
+            lo = lower[i] if lower is not None else None
+            hi = upper[i] if upper is not None else None
+            if name in free:
+                cols.append(np.full(len(u), free[name]))
+            elif lo is not None and hi is not None and np.isfinite(lo) and np.isfinite(hi) and hi > lo:
+                cols.append(lo + (hi - lo) * u[:, i])
+            elif kind == "R":
+                cols.append(2.0 * math.pi * u[:, i] - math.pi)
+            else:
+                cols.append(stroke * u[:, i])
         return np.column_stack(cols)
 
     def evaluate(self, design, u_pose, u_joint, options):

@@ -44,7 +44,7 @@ def write_dataset(path: Path, plan, mech, measures: dict, timing: dict):
             coords[extra] = (extra, np.array(labels if labels else np.arange(size)))
     ds = xr.Dataset(variables, coords=coords)
     ds.attrs.update({
-        "mechanism": mech.name, "design_dims": json.dumps(list(dims)), "wristkin_version": _version(),
+        "mechanism": mech.key, "name": mech.name, "design_dims": json.dumps(list(dims)), "wristkin_version": _version(),
         "inputs_hash": getattr(mech.module, "INPUTS_HASH", ""), "backend": getattr(mech.module, "BACKEND", ""),
         "samples_per_design": plan.sample_count, "sampling": "grid" if plan.grid else "random", "seed": plan.seed,
         "threshold": plan.options.threshold, "tilt_max_deg": math.degrees(plan.options.tilt_max),

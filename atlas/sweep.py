@@ -21,6 +21,9 @@ def angle_names(module) -> tuple[str, ...]:
     names = getattr(module, "ANGLE_NAMES", None)
     if names is not None:
         return tuple(n for n in module.DESIGN_NAMES if n in names)
+    joints = dict(zip(getattr(module, "JOINT_NAMES", ()), getattr(module, "JOINT_KINDS", ()), strict=False))
+    if module.DESIGN_NAMES and all(n in joints for n in module.DESIGN_NAMES):  # a derived arm's free joint
+        return tuple(n for n in module.DESIGN_NAMES if joints[n] == "R")
     return tuple(module.DESIGN_NAMES)
 
 
@@ -114,6 +117,9 @@ def parse_sweep(module, sweeps: list[str], designs: list[str] | None = None) -> 
         values = tuple(float(v) for v in np.linspace(start, stop, n))
         axes.append(Axis(name, values, name in angles))
         fixed.pop(name)
+    if not names:
+        raise SweepError(f"{module.NAME} has no design parameters to sweep (a derived arm has one only with a free "
+                         "joint: wristkin derive ... --free JOINT)")
     if not axes:
         raise SweepError("at least one --sweep NAME=START:STOP:N is needed")
     return Sweep(module.NAME, tuple(axes), fixed, names, angles)

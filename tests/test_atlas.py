@@ -251,3 +251,23 @@ def test_serial_arm_sweep_closes_ik_on_every_sampled_pose(tmp_path):
     assert np.all(ds["ik_closes"].values == 1.0)
     assert np.all(ds["ik_sets_mean"].values > 7.0)
     assert np.all(ds["manipulability_mean"].values > 0.0)
+
+
+def test_spec_file_is_derived_into_out_then_swept(tmp_path):
+    """`wristkin atlas SPEC.toml --free JOINT`: derived once into OUT/derived, the free joint swept; a rerun
+    resumes (no second derivation, the same numbers)."""
+    from pathlib import Path
+
+    from wristkin import cli
+
+    spec = Path(__file__).parent / "robots" / "iiwa14" / "iiwa14_dh.toml"
+    argv = ["atlas", str(spec), "--free", "a3", "--sweep", "a3=-60:60:3", "--samples", "300", "--out",
+            str(tmp_path), "--quiet", "--no-report"]
+    assert cli.main(argv) == 0
+    solver = tmp_path / "derived" / "python" / "iiwa14_dh.py"
+    stamp = solver.stat().st_mtime_ns
+    first = wristkin_atlas.open_atlas(tmp_path).load()
+    assert np.all(first["ik_closes"].values == 1.0) and first.a3.attrs["units"] == "deg"
+    assert cli.main(argv) == 0
+    assert solver.stat().st_mtime_ns == stamp
+    _same(first, wristkin_atlas.open_atlas(tmp_path).load())
