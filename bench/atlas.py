@@ -78,8 +78,8 @@ def measure(quick: bool = False) -> dict:
     per_core = [_per_core("underactuated_wrist", 4 if quick else 16, 2048),
                 _per_core("rsr_wrist", 4 if quick else 16, 2048)]
     scale = (["alpha1=50:70:4", "beta2=35:55:4"] if quick else ["alpha1=50:70:8", "beta2=35:55:8"])
-    one = _sweep(scale, 2000, 1, design_chunk=2)  # many chunks: both workers stay busy to the end
-    two = _sweep(scale, 2000, 2, design_chunk=2)
+    one = _sweep(scale, 4000, 1, design_chunk=4)  # 16 chunks of ~0.1 s: both workers stay busy to the end
+    two = _sweep(scale, 4000, 2, design_chunk=4)
     same = bool(np.array_equal(one["gci"], two["gci"], equal_nan=True))
     big_axes = (["alpha1=40:80:4", "alpha2=40:80:4", "beta1=20:40:4", "beta2=30:60:4"] if quick else
                 ["alpha1=40:80:10", "alpha2=40:80:10", "beta1=20:40:10", "beta2=30:60:10"])
@@ -101,6 +101,11 @@ def tables(quick: bool = False, measured: dict | None = None) -> str:
     lines.append(f"| 2 workers vs 1 ({one['chunks']} chunks, compute wall {one['compute']:.2f} s -> "
                  f"{two['compute']:.2f} s; identical results: {'yes' if r['same_bits'] else 'NO'}) | "
                  f"{one['compute'] / two['compute']:.2f}x | >= 1.7x |")
+    busy1 = one["chunk_total"] / one["compute"]
+    lines.append(f"| workers kept busy (sum of chunk times / compute wall: 1 worker {busy1:.2f}, "
+                 f"2 workers {two['chunk_total'] / two['compute']:.2f}; mean chunk {one['chunk_mean']:.3f} s -> "
+                 f"{two['chunk_mean']:.3f} s: a chunk slower by 2 workers means no idle core to scale onto) | "
+                 f"{two['chunk_total'] / two['compute'] / 2:.0%} of 2 | - |")
     n = r["big_designs"] * r["big_samples"] * 2
     lines.append(f"| seed-000 sweep, {r['big_designs']:,} designs x {r['big_samples']:,} pose + "
                  f"{r['big_samples']:,} joint samples ({n:,} solves) on 2 workers | wall {big['wall']:.1f} s "
