@@ -271,3 +271,17 @@ def test_spec_file_is_derived_into_out_then_swept(tmp_path):
     assert cli.main(argv) == 0
     assert solver.stat().st_mtime_ns == stamp
     _same(first, wristkin_atlas.open_atlas(tmp_path).load())
+
+
+def test_existing_cluster_by_scheduler_address_gives_the_same_bits(tmp_path):
+    """--scheduler ADDRESS: an already running dask.distributed cluster (here a local one started by the test)."""
+    from distributed import LocalCluster
+
+    opts = Options(threshold=THRESHOLD, tilt_max=TILT)
+    kw = dict(samples=1500, seed=TEST_SEED, options=opts, progress=False)
+    with LocalCluster(n_workers=1, threads_per_worker=2, processes=True, dashboard_address=None) as cluster:
+        address = cluster.scheduler_address
+        a = wristkin_atlas.run_sweep("rsr_wrist", ["L=0.05:0.07:3"], tmp_path / "a", scheduler=address,
+                                     design_chunk=1, **kw).load()
+    b = wristkin_atlas.run_sweep("rsr_wrist", ["L=0.05:0.07:3"], tmp_path / "b", **kw).load()
+    _same(a, b)
