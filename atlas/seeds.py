@@ -47,7 +47,7 @@ def underactuated_claims(mech, ds) -> list[str]:
              f"angle theta0 is **{home:.2f} deg**, not the {SEED000_HOME_DEG:.0f} deg the seed states "
              f"(|difference| {abs(home - SEED000_HOME_DEG):.2f} deg); theta0 = 140 deg exactly needs beta2 = "
              + (f"**{b2:.3f} deg**." if b2 is not None else "no beta2 within 5 deg of the seed's.")]
-    lines += _rank_lines(ds, SEED000_DESIGN, "seed 000's design")
+    lines += _rank_lines(ds, SEED000_DESIGN, "seed 000's design", mech)
     return lines
 
 
@@ -75,29 +75,49 @@ def rsr_claims(mech, ds, maps: dict | None) -> list[str]:
     return lines
 
 
-def _rank_lines(ds, design: dict, label: str) -> list[str]:
-    """Where `design` (display units) sits in the sweep, per ranked scalar measure (nearest grid point)."""
-    dims = list(design_dims(ds))
-    sel = {d: design[d] for d in dims if d in design}
-    off = {d: abs(float(ds[d].sel({d: v}, method="nearest")) - v) for d, v in sel.items()}
-    if any(v > 1e-6 * max(1.0, abs(sel[d])) for d, v in off.items()):
-        return [f"- {label} is not a grid point of this sweep (nearest grid point used below, off by "
-                + ", ".join(f"{d} {v:.3g}" for d, v in off.items()) + ")."] + _ranks(ds, sel, label)
-    return _ranks(ds, sel, label)
+def evaluate_design(mech, ds, values: dict) -> dict:
+    """The measures of one design (display units, others at the sweep's fixed values) over the sweep's own
+    samples, computed here (the seed's design is rarely a grid point)."""
+    import json
+
+    from . import sampling
+    from .mechanisms import Options
+    from .runner import compute_task
+    from .sweep import angle_names
+
+    ident = json.loads(ds.attrs["identity"])
+    opts = Options(**ident["options"])
+    fixed = json.loads(ds.attrs["design_default"])
+    fixed.update(json.loads(ds.attrs["fixed_design"]))
+    fixed.update(values)
+    angles = set(angle_names(mech.module))
+    params = np.array([[math.radians(fixed[n]) if n in angles else fixed[n] for n in mech.module.DESIGN_NAMES]])
+    n_blocks = sampling.blocks(ident["samples"], mech.joint_dim, ident["grid"])
+    part, _, _ = compute_task(mech.key, params, ident["seed"], ident["samples"], ident["grid"], opts, 0, n_blocks)
+    return {k: v[0] for k, v in mech.finalize(part, opts).items()}
 
 
-def _ranks(ds, sel: dict, label: str) -> list[str]:
+def _rank_lines(ds, design: dict, label: str, mech=None) -> list[str]:
+    """Where `design` (display units) sits among the sweep's designs, per ranked scalar measure: its own measures
+    (evaluated on the same samples) against every valid design of the sweep."""
+    measures = evaluate_design(mech, ds, design)
     out = []
-    for name, var in ds.data_vars.items():
+    dims = design_dims(ds)
+    for name in measures:  # the mechanism's own order of measures
+        var = ds[name]
         better = var.attrs.get("better")
-        if not better or var.ndim != len(design_dims(ds)):
+        if not better or var.dims != dims:
             continue
-        value = float(var.sel(sel, method="nearest"))
+        value = float(measures[name])
         vals = var.values[np.isfinite(var.values)]
         if not np.isfinite(value) or vals.size == 0:
             continue
         best = vals.max() if better == "max" else vals.min()
         share = float(np.mean(vals > value) if better == "max" else np.mean(vals < value))
         out.append(f"- {label}: {name} = {value:.4g} (best in the sweep {best:.4g}; {100 * share:.0f} % of the "
-                   "valid designs do better)")
+                   f"{vals.size} valid swept designs do better)")
+    extra = {k: v for k, v in measures.items() if np.ndim(v) == 1 and k.startswith("phi_range")}
+    for name, v in extra.items():
+        out.append(f"- {label}: {name} (motor 1, motor 2, sensor) = "
+                   + ", ".join(f"{x:.1f}" for x in v) + " deg")
     return out
