@@ -301,18 +301,21 @@ class RsrWrist(Mechanism):
         lo, hi = design.params[1], design.params[2]
         poses = self.poses(u_pose, design, options)
         ik = m.ik_batch(poses, design)
-        solved = ik.valid.any(axis=1)  # work on the poses with real sets only (the cost is per row)
-        values, aux = ik.values[solved], ik.aux[solved]
-        # leg limits: phi within the arc [lo, hi] (values are wrapped to (-pi, pi], the limits need not be)
-        # (np.mod is ~20x slower than this: values lie in (-pi, pi], so one shift of 2 pi wraps the difference)
-        offset = values - math.remainder(lo, 2.0 * math.pi)
-        offset += np.where(offset < 0.0, 2.0 * math.pi, 0.0)
-        within = np.all(offset <= hi - lo, axis=2)
-        valid = ik.valid[solved] & within
-        reach = valid.any(axis=1)
-        li, _ = self.local_index(design, poses[solved][reach], values[reach])
-        _ik_partials(out, len(poses), valid[reach], li, aux[reach][..., 1], aux[reach][..., 2], options.threshold)
-        reach = np.flatnonzero(solved)[reach]
+        # leg limits: phi within the arc [lo, hi]. The values lie in (-pi, pi] (NaN where no set: False below), so
+        # off = phi - lo (lo wrapped) lies in (-2 pi, 2 pi] and the arc is off in [0, hi - lo] or off <= hi - lo -
+        # 2 pi (np.mod would cost ~20x these comparisons)
+        width = hi - lo
+        off = ik.values - math.remainder(lo, 2.0 * math.pi)
+        with np.errstate(invalid="ignore"):
+            within = ((off >= 0.0) & (off <= width)) | (off <= width - 2.0 * math.pi)
+        valid = ik.valid & within.all(axis=2)
+        reach = np.flatnonzero(valid.any(axis=1))
+        # the conditioning of the in-limit sets only (usually one of the eight per reachable pose)
+        rows, sets = np.nonzero(valid[reach])
+        li = np.zeros(valid[reach].shape)
+        li[rows, sets] = self.local_index(design, poses[reach][rows], ik.values[reach][rows, sets][:, None, :])[0][:, 0]
+        aux = ik.aux[reach]
+        _ik_partials(out, len(poses), valid[reach], li, aux[..., 1], aux[..., 2], options.threshold)
         bins = np.minimum((poses[:, 0] / (2.0 * math.pi) * options.swing_bins).astype(np.int64),
                           options.swing_bins - 1)
         swing = np.full(options.swing_bins, -np.inf)
