@@ -262,12 +262,11 @@ class RsrWrist(Mechanism):
         t = f"{options.threshold:g}"
         w = 360.0 / options.swing_bins
         return [*_common_measures(t, "the sampled leg angles within the limits"),
-                Measure("swing_all", "deg", f"largest sampled reachable swing beta that every {w:g} deg azimuth bin "
-                        "reaches (min over bins of the bin's max reachable beta): the seed's 'maximum swing over "
-                        "the whole cycle'", "max"),
-                Measure("swing_peak", "deg", "max over azimuth bins of the max reachable sampled swing", "max"),
-                Measure("swing_peak_azimuth", "deg", "centre of the azimuth bin with the largest reachable swing",
-                        None)]
+                Measure("swing_all", "deg", f"maximum swing over the whole cycle (the seed's measure): min over "
+                        f"azimuths 0, {w:g}, ..., {360 - w:g} deg of the largest reachable swing, computed exactly per "
+                        f"attitude (leg ranges within the limits) on a {self.SWING_STEP:g} deg swing grid", "max"),
+                Measure("swing_peak", "deg", "the largest reachable swing over those azimuths", "max"),
+                Measure("swing_peak_azimuth", "deg", "the azimuth of swing_peak (the first, if several)", None)]
 
     def poses(self, u, design, options):
         lo, hi = design.params[3], design.params[4]
@@ -296,6 +295,38 @@ class RsrWrist(Mechanism):
             rows.append((-d_alpha, -d_beta, np.full_like(c, 0.5)))
         return inverse_kappa_f(rows, g), g
 
+    SWING_STEP = 0.25  # deg: the swing grid of the exact swing profile
+
+    def feasible(self, design, alpha, beta) -> np.ndarray:
+        """Whether some centre distance reaches attitude (alpha, beta) (arrays, rad) with every leg within its
+        limits: leg i reaches n . S_i = L (A_i cos phi + B sin phi) over phi in [phi_min, phi_max], a closed
+        interval (end points, and the sinusoid's top or bottom where it falls inside the arc), intersected with
+        [lbw_min, lbw_max] / 2. The module's workspace(alpha, beta), vectorised (tests compare the two)."""
+        length, lo, hi, lbw_lo, lbw_hi = design.params
+        sh, ch = np.sin(0.5 * beta), np.cos(0.5 * beta)
+        bottom, top = np.full(np.shape(alpha), 0.5 * lbw_lo), np.full(np.shape(alpha), 0.5 * lbw_hi)
+        for a_i in self.module.LEG_ANGLES:
+            a, b = sh * np.sin(alpha - a_i), ch
+            ends = [length * (a * math.cos(p) + b * math.sin(p)) for p in (lo, hi)]
+            t0, rho = np.arctan2(b, a), length * np.hypot(a, b)
+            in_top = lo + np.mod(t0 - lo, 2.0 * math.pi) <= hi
+            in_bottom = lo + np.mod(t0 + math.pi - lo, 2.0 * math.pi) <= hi
+            top = np.minimum(top, np.where(in_top, rho, np.maximum(*ends)))
+            bottom = np.maximum(bottom, np.where(in_bottom, -rho, np.minimum(*ends)))
+        return bottom <= top
+
+    def swing_profile(self, design, options) -> np.ndarray:
+        """Largest reachable swing (deg) per azimuth 0, 5, ..., 355 deg on a SWING_STEP grid up to tilt_max
+        (feasibility need not be monotone in beta: the largest feasible grid value)."""
+        alpha = np.radians(np.arange(options.swing_bins) * 360.0 / options.swing_bins)
+        beta = np.arange(0.0, math.degrees(options.tilt_max) + 1e-9, self.SWING_STEP)
+        ok = self.feasible(design, alpha[:, None], np.radians(beta)[None, :])
+        return np.where(ok.any(axis=1), np.where(ok, beta[None, :], -np.inf).max(axis=1), 0.0)
+
+    def design_partials(self, design, options) -> dict:
+        """Per design (not per sample): the exact swing profile, once per design (the first sample chunk)."""
+        return {"swing_bins": self.swing_profile(design, options)}
+
     def evaluate(self, design, u_pose, u_joint, options):
         m, out = self.module, {"design_ok": 1}
         lo, hi = design.params[1], design.params[2]
@@ -316,11 +347,6 @@ class RsrWrist(Mechanism):
         li[rows, sets] = self.local_index(design, poses[reach][rows], ik.values[reach][rows, sets][:, None, :])[0][:, 0]
         aux = ik.aux[reach]
         _ik_partials(out, len(poses), valid[reach], li, aux[..., 1], aux[..., 2], options.threshold)
-        bins = np.minimum((poses[:, 0] / (2.0 * math.pi) * options.swing_bins).astype(np.int64),
-                          options.swing_bins - 1)
-        swing = np.full(options.swing_bins, -np.inf)
-        np.maximum.at(swing, bins[reach], np.degrees(poses[reach, 1]))  # reach: indices of reachable poses
-        out["swing_bins"] = swing
         fk = m.fk_batch(self.joints(u_joint, design), design)
         _fk_partials(out, fk.valid, fk.aux[..., m.FK_AUX_NAMES.index("cond_direct")], m.MAX_FK, options.threshold)
         return out
@@ -332,7 +358,7 @@ class RsrWrist(Mechanism):
         width = 360.0 / options.swing_bins
         out["swing_all"] = np.where(ok, swing.min(axis=1), np.nan)
         out["swing_peak"] = np.where(ok, swing.max(axis=1), np.nan)
-        out["swing_peak_azimuth"] = np.where(ok, (np.argmax(swing, axis=1) + 0.5) * width, np.nan)
+        out["swing_peak_azimuth"] = np.where(ok, np.argmax(swing, axis=1) * width, np.nan)
         return out
 
 

@@ -166,6 +166,7 @@ def write_outputs(out, ds, focus: list[str] | None = None, report: bool = True) 
     import matplotlib.pyplot as plt
 
     out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
     rows = best_rows(ds)
     _write_csv(out / "best.csv", rows)
     paths = [out / "atlas.zarr", out / "best.csv"]

@@ -18,7 +18,7 @@ import numpy as np
 
 from . import sampling
 from .mechanisms import Options, mechanism
-from .partials import reduce_axis
+from .partials import merge, reduce_axis
 from .sweep import Sweep, parse_sweep
 
 FORMAT = 2  # of partials.zarr: a store written under another format is not resumed
@@ -110,10 +110,12 @@ def compute_task(name: str, designs: np.ndarray, seed: int, samples: int, grid: 
             part = mech.evaluate(design, u_pose, u_joint, options)
             solves += len(u_pose) + len(u_joint)
             for s in specs:
-                cur = out[s.name][k]
-                out[s.name][k] = (cur + part[s.name] if s.op == "sum" else
-                                  np.minimum(cur, part[s.name]) if s.op == "min" else np.maximum(cur, part[s.name]))
+                if s.name in part:  # per-design partials (design_partials) are not per block
+                    out[s.name][k] = merge(s, out[s.name][k], part[s.name])
         out["design_ok"][k] = 1  # once per design, not per block
+        if block_lo == 0 and hasattr(mech, "design_partials"):  # per-design measures: in the first sample chunk
+            for name, value in mech.design_partials(design, options).items():
+                out[name][k] = value
     return out, time.perf_counter() - t0, solves
 
 

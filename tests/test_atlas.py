@@ -285,3 +285,18 @@ def test_existing_cluster_by_scheduler_address_gives_the_same_bits(tmp_path):
                                      design_chunk=1, **kw).load()
     b = wristkin_atlas.run_sweep("rsr_wrist", ["L=0.05:0.07:3"], tmp_path / "b", **kw).load()
     _same(a, b)
+
+
+def test_rsr_swing_feasibility_equals_the_module_workspace():
+    """The atlas's vectorised attitude feasibility (swing_all, swing_peak) against the module's exact
+    workspace(alpha, beta), for random designs and attitudes."""
+    mech = mechanism("rsr_wrist")
+    m = mech.module
+    rng = case_rng(2403)
+    for _ in range(20):
+        lo = rng.uniform(-0.5, 1.0)
+        d = m.make_design((0.06, lo, lo + rng.uniform(0.3, 2.5), rng.uniform(0.0, 0.05), rng.uniform(0.06, 0.12)))
+        alpha, beta = rng.uniform(0, 2 * math.pi, 200), rng.uniform(0, math.pi * 0.95, 200)
+        got = mech.feasible(d, alpha, beta)
+        want = np.array([m.workspace(a, b, d) is not None for a, b in zip(alpha, beta, strict=True)])
+        np.testing.assert_array_equal(got, want)
