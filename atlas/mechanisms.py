@@ -295,7 +295,7 @@ class RsrWrist(Mechanism):
             rows.append((-d_alpha, -d_beta, np.full_like(c, 0.5)))
         return inverse_kappa_f(rows, g), g
 
-    SWING_STEP = 0.25  # deg: the swing grid of the exact swing profile
+    SWING_STEP = 0.5  # deg: the swing grid of the exact swing profile (a design costs ~2 ms: 72 x 181 attitudes)
 
     def feasible(self, design, alpha, beta) -> np.ndarray:
         """Whether some centre distance reaches attitude (alpha, beta) (arrays, rad) with every leg within its
@@ -304,13 +304,20 @@ class RsrWrist(Mechanism):
         [lbw_min, lbw_max] / 2. The module's workspace(alpha, beta), vectorised (tests compare the two)."""
         length, lo, hi, lbw_lo, lbw_hi = design.params
         sh, ch = np.sin(0.5 * beta), np.cos(0.5 * beta)
-        bottom, top = np.full(np.shape(alpha), 0.5 * lbw_lo), np.full(np.shape(alpha), 0.5 * lbw_hi)
+        shape = np.broadcast(alpha, beta).shape
+        bottom, top = np.full(shape, 0.5 * lbw_lo), np.full(shape, 0.5 * lbw_hi)
+        lo_w, width = math.remainder(lo, 2.0 * math.pi), hi - lo
+
+        def in_arc(t):  # t in (-pi, pi]: t - lo_w in (-2 pi, 2 pi), so one comparison pair decides (no np.mod)
+            off = t - lo_w
+            return ((off >= 0.0) & (off <= width)) | (off <= width - 2.0 * math.pi)
+
         for a_i in self.module.LEG_ANGLES:
             a, b = sh * np.sin(alpha - a_i), ch
             ends = [length * (a * math.cos(p) + b * math.sin(p)) for p in (lo, hi)]
             t0, rho = np.arctan2(b, a), length * np.hypot(a, b)
-            in_top = lo + np.mod(t0 - lo, 2.0 * math.pi) <= hi
-            in_bottom = lo + np.mod(t0 + math.pi - lo, 2.0 * math.pi) <= hi
+            in_top = in_arc(t0)
+            in_bottom = in_arc(np.where(t0 > 0.0, t0 - math.pi, t0 + math.pi))
             top = np.minimum(top, np.where(in_top, rho, np.maximum(*ends)))
             bottom = np.maximum(bottom, np.where(in_bottom, -rho, np.minimum(*ends)))
         return bottom <= top

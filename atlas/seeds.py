@@ -73,7 +73,7 @@ def rsr_claims(mech, ds, maps: dict | None) -> list[str]:
         where = ", ".join(f"{d} = {float(best[d].values[0]):g}" for d in best.dims)
         lines.append(f"- Designs of this sweep whose whole-cycle swing reaches {SEED002_SWING_ALL_DEG:.0f} deg: "
                      f"{n_ok} of {int(ds['swing_all'].count())}; the largest, {float(ds['swing_all'].max()):.2f} deg, "
-                     f"at {where} (5 deg azimuth x 0.25 deg swing grid).")
+                     f"at {where} (5 deg azimuth x 0.5 deg swing grid).")
     return lines
 
 
