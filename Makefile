@@ -33,7 +33,7 @@ SENSITIVE_TESTS := tests/test_underactuated_wrist.py tests/test_reference_undera
 	tests/test_rsr_wrist.py tests/test_scara_rsr.py tests/test_reference_rsr_selfcheck.py \
 	tests/test_casadi_functions.py tests/test_fuzz.py tests/test_fuzz_python.py tests/test_generated_fresh.py \
 	tests/test_native.py tests/test_reproducers.py tests/test_chain_robots.py tests/test_chain_c.py \
-	tests/test_robot_descriptions.py tests/test_description_corpus.py
+	tests/test_robot_descriptions.py tests/test_description_corpus.py tests/test_atlas.py
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 export PIP_NO_INPUT := 1
@@ -128,7 +128,7 @@ fuzz: $(STAMP)
 # All three checks run; the target fails if any of them failed.
 lint: $(STAMP)
 	@rc=0; \
-	echo "ruff check $(wildcard derive tests bench)"; $(PY) -m ruff check $(wildcard derive tests bench) || rc=1; \
+	echo "ruff check $(wildcard derive tests bench atlas)"; $(PY) -m ruff check $(wildcard derive tests bench atlas) || rc=1; \
 	echo "ruff check generated/python"; $(PY) -m ruff check generated/python || rc=1; \
 	csrc="$(wildcard generated/c/*.c)"; \
 	if [ -z "$$csrc" ]; then echo "error: no generated/c/*.c: run make regenerate" >&2; rc=1; fi; \

@@ -390,6 +390,11 @@ def main(argv=None) -> int:
     screws_text = screws.tables(quick=args.quick)
     print()
     print(screws_text)
+    import atlas as atlas_bench  # bench/atlas.py: the design atlas's throughput and scaling, same run
+
+    atlas_text = atlas_bench.tables(quick=args.quick)
+    print()
+    print(atlas_text)
     import own_robots  # bench/own_robots.py: `wristkin derive` on the test robots vs EAIK / ik-geo, same run
 
     print()
@@ -408,7 +413,7 @@ def main(argv=None) -> int:
     summary = "\n\n".join([machine_line, "Goals (issue 13), measured in this run:", goals_table(goal_rows),
                             "Underactuated wrist (paper design), per call; ratio = time / generated C loop:",
                             table(rows, base), "\n".join(f"- {r['name']}: {r['note']}" for r in rows if r.get("note")),
-                            dh_text, rsr_text, screws_text, own_text, real_text])
+                            dh_text, rsr_text, screws_text, atlas_text, own_text, real_text])
     print("\n" + goals_table(goal_rows))
     if args.readme:
         write_readme(summary)
@@ -423,7 +428,8 @@ def main(argv=None) -> int:
             r[f"{k}_ratio_vs_c_loop"] = None if t is None else t / base[k]
     result = {"machine": machine, "unit": "seconds per call", "repeats_python": REPEATS, "counts": n,
               "c_loop_raw": c_raw, "rows": rows, "dh_tables_markdown": dh_text,
-              "rsr_tables_markdown": rsr_text, "screw_tables_markdown": screws_text, "goals": goal_rows}
+              "rsr_tables_markdown": rsr_text, "screw_tables_markdown": screws_text,
+              "atlas_tables_markdown": atlas_text, "goals": goal_rows}
     (BUILD_DIR / "results.json").write_text(json.dumps(result, indent=2) + "\n")
     return 0
 

@@ -1,0 +1,302 @@
+"""The design atlas (wristkin_atlas, docs/atlas.md).
+
+The CI sweep: a small underactuated-wrist sweep on a 2-worker local Dask cluster, checked measure by measure
+against a plain serial computation built from tests/reference (its own IK/FK, axes, conditioning and sampling
+recipe; nothing from the atlas or the generated code). Then: the same bits for any chunking / worker count /
+scheduler, resume after an interruption, the CLI (missing extra, bad arguments, the report), and the 3-RSR
+local index against the module's derived Jacobians."""
+
+from __future__ import annotations
+
+import math
+import sys
+
+import numpy as np
+import pytest
+
+pytest.importorskip("distributed")
+pytest.importorskip("xarray")
+pytest.importorskip("zarr")
+
+import wristkin_atlas  # noqa: E402
+from reference import underactuated_wrist as ref  # noqa: E402
+from seeding import TEST_SEED, case_rng  # noqa: E402
+from wristkin_atlas.mechanisms import Options, mechanism  # noqa: E402
+
+UW_SWEEP = ["alpha1=55:65:2", "beta2=40:46:2"]
+UW_SAMPLES = 160
+TILT = math.radians(60.0)
+THRESHOLD = 0.1
+BLOCK = 1024  # the documented sampling block (docs/atlas.md): part of the sample recipe
+
+
+def _unit(seed: int, stream: int, samples: int) -> np.ndarray:
+    """The documented recipe: block b = SeedSequence([seed, stream, b]) -> 1024 x 3 uniforms; concatenated, cut."""
+    blocks = [np.random.default_rng(np.random.SeedSequence([seed, stream, b])).random((BLOCK, 3))
+              for b in range(math.ceil(samples / BLOCK))]
+    return np.concatenate(blocks)[:samples]
+
+
+def _ref_jacobian_parts(thetas, R, d):
+    z1, z2, z3 = ref.base_axes(d), ref.middle_axes(thetas, d), (R @ ref.platform_axes(d).T).T
+    x = np.cross(z2, z3)
+    g = np.einsum("ij,ij->i", z1, x)
+    return x, g
+
+
+def _ref_inverse_kappa(x, g):
+    if np.any(g == 0.0) or abs(np.linalg.det(x)) == 0.0:
+        return 0.0
+    j = x / g[:, None]
+    return 3.0 / (np.linalg.norm(j, "fro") * np.linalg.norm(np.linalg.inv(j), "fro"))
+
+
+def reference_measures(design_deg: dict, seed: int, samples: int) -> dict:
+    """Every measure of one design, serially, from tests/reference."""
+    d = ref.as_design({k: math.radians(v) for k, v in design_deg.items()})
+    theta0 = ref.home_angle(d)
+    x0, g0 = _ref_jacobian_parts((theta0,) * 3, np.eye(3), d)
+    home = g0 > 0.0
+    up, uj = _unit(seed, 0, samples), _unit(seed, 1, samples)
+    n_reach = n_sets = near_inv = near_dir = 0
+    lis, best, phis = [], [], []
+    for u in up:
+        psi, phi = 2 * math.pi * u[0] - math.pi, 2 * math.pi * u[2] - math.pi
+        th = math.acos(1 - u[1] * (1 - math.cos(TILT)))  # the platform axis uniform on the cap
+        R = ref.rotation_from_euler(psi, th, phi)
+        res = ref.ik_reference(R, d)
+        assert "indeterminate" not in res.flags
+        if not res.triples:
+            continue
+        n_reach += 1
+        pose_li = []
+        for t in res.triples:
+            x, g = _ref_jacobian_parts(t, R, d)
+            li = _ref_inverse_kappa(x, g)
+            pose_li.append(li)
+            n_sets += 1
+            near_inv += min(abs(g)) / math.sin(d.alpha1) < THRESHOLD
+            near_dir += abs(np.linalg.det(x)) / np.prod(np.linalg.norm(x, axis=1)) < THRESHOLD
+            if np.array_equal(g > 0.0, home):
+                phis.append(np.degrees(np.remainder(np.array(t) - theta0 + math.pi, 2 * math.pi) - math.pi))
+        lis += pose_li
+        best.append(max(pose_li))
+    modes = np.zeros(9, dtype=int)
+    fk_near = 0
+    for u in uj:
+        thetas = 2 * math.pi * u
+        fk = ref.fk_reference(thetas, d)
+        modes[fk.count] += 1
+        near = False
+        for R in fk.rotations:
+            x, _ = _ref_jacobian_parts(thetas, R, d)
+            near |= abs(np.linalg.det(x)) / np.prod(np.linalg.norm(x, axis=1)) < THRESHOLD
+        fk_near += near
+    phis = np.array(phis).reshape(-1, 3)
+    if not lis:  # nothing reachable in the sample: the atlas reports NaN
+        lis, best, n_sets, phis = [math.nan], [math.nan], math.nan, np.full((1, 3), math.nan)
+    return {"reachable": n_reach / samples, "gci": float(np.mean(lis)), "gci_best": float(np.mean(best)),
+            "worst_li": float(np.min(lis)), "near_inverse": near_inv / n_sets, "near_direct": near_dir / n_sets,
+            "fk_modes": modes / samples, "fk_modes_mean": float(modes @ np.arange(9)) / samples,
+            "fk_no_assembly": modes[0] / samples, "fk_near_direct": fk_near / samples,
+            "phi_lo": phis.min(axis=0), "phi_hi": phis.max(axis=0)}
+
+
+@pytest.fixture(scope="module")
+def uw_two_workers(tmp_path_factory):
+    out = tmp_path_factory.mktemp("atlas_uw")
+    opts = Options(threshold=THRESHOLD, tilt_max=TILT)
+    ds = wristkin_atlas.run_sweep("underactuated_wrist", UW_SWEEP, out, samples=UW_SAMPLES, seed=TEST_SEED,
+                                  options=opts, workers=2, design_chunk=1, progress=False)
+    return ds.load(), out
+
+
+def test_ci_sweep_on_two_workers_matches_the_serial_reference(uw_two_workers):
+    ds, _ = uw_two_workers
+    default = dict(zip(("alpha1", "alpha2", "beta1", "beta2"), (60.0, 60.0, 30.0, 43.89), strict=True))
+    for a1 in ds.alpha1.values:
+        for b2 in ds.beta2.values:
+            want = reference_measures(dict(default, alpha1=float(a1), beta2=float(b2)), TEST_SEED, UW_SAMPLES)
+            got = ds.sel(alpha1=a1, beta2=b2)
+            where = f"alpha1={a1}, beta2={b2}"
+            # counts: exactly the same solutions found (ratios of the same integers are the same floats)
+            for name in ("reachable", "near_inverse", "near_direct", "fk_no_assembly", "fk_near_direct",
+                         "fk_modes_mean"):
+                assert float(got[name]) == want[name] or (math.isnan(want[name]) and math.isnan(float(got[name]))), (
+                    name, where, float(got[name]), want[name])
+            np.testing.assert_array_equal(got["fk_modes"].values, want["fk_modes"], err_msg=where)
+            # 1/kappa_F: the atlas's closed form vs inv() here; the sum is fixed point (2^-32 per value)
+            for name in ("gci", "gci_best", "worst_li"):
+                assert float(got[name]) == pytest.approx(want[name], rel=1e-8, abs=1e-9, nan_ok=True), (name, where)
+            # Phi_i: the reference's IK roots agree with the C roots to ~1e-10 rad
+            np.testing.assert_allclose(got["phi_lo"].values, want["phi_lo"], atol=1e-6, err_msg=where)
+            np.testing.assert_allclose(got["phi_hi"].values, want["phi_hi"], atol=1e-6, err_msg=where)
+
+
+def _same(a, b):
+    for name in a.data_vars:
+        np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
+
+
+@pytest.mark.parametrize("name,sweep", [("underactuated_wrist", ["beta2=40:46:3"]),
+                                        ("rsr_wrist", ["phi_min=20:30:2", "phi_max=70:80:2"]),
+                                        ("puma560", ["a2=0.3:0.5:3"])])
+def test_same_bits_for_any_chunking_and_scheduler(tmp_path, name, sweep, uw_two_workers):
+    """2500 samples = 3 blocks: one task per block vs all blocks in one task, 1 vs all designs per task, the
+    in-process scheduler vs 2 worker processes."""
+    opts = Options(threshold=THRESHOLD, tilt_max=TILT)
+    a = wristkin_atlas.run_sweep(name, sweep, tmp_path / "a", samples=2500, seed=TEST_SEED, options=opts,
+                                 design_chunk=1, sample_chunk=1024, progress=False).load()
+    b = wristkin_atlas.run_sweep(name, sweep, tmp_path / "b", samples=2500, seed=TEST_SEED, options=opts,
+                                 design_chunk=4, progress=False, workers=2).load()
+    _same(a, b)
+
+
+def test_interrupted_sweep_resumes_from_stored_chunks(tmp_path):
+    opts = Options(threshold=THRESHOLD, tilt_max=TILT)
+    kw = dict(samples=300, seed=TEST_SEED, options=opts, design_chunk=1, progress=False)
+    assert wristkin_atlas.run_sweep("underactuated_wrist", ["beta2=40:46:4"], tmp_path / "r", max_tasks=2,
+                                    **kw) is None
+    import zarr
+
+    done = zarr.open_group(str(tmp_path / "r" / "partials.zarr"), mode="r")["done"][...]
+    assert done.sum() == 2
+    resumed = wristkin_atlas.run_sweep("underactuated_wrist", ["beta2=40:46:4"], tmp_path / "r", **kw).load()
+    fresh = wristkin_atlas.run_sweep("underactuated_wrist", ["beta2=40:46:4"], tmp_path / "f", **kw).load()
+    _same(resumed, fresh)
+    opened = wristkin_atlas.open_atlas(tmp_path / "r")
+    assert opened["gci"].attrs["units"] == "1" and opened.beta2.attrs["units"] == "deg"
+    # other settings in the same folder: refused (exit 2 from the CLI), not mixed
+    from wristkin_atlas.runner import StoreMismatch
+
+    with pytest.raises(StoreMismatch):
+        wristkin_atlas.run_sweep("underactuated_wrist", ["beta2=40:46:5"], tmp_path / "r", **kw)
+
+
+def test_cli_writes_store_summary_and_report(tmp_path, capsys):
+    from wristkin import cli
+
+    rc = cli.main(["atlas", "underactuated_wrist", "--sweep", "alpha1=55:65:2", "--sweep", "beta2=40:46:2",
+                   "--samples", "200", "--tilt-max", "45", "--out", str(tmp_path), "--quiet"])
+    assert rc == 0
+    text = (tmp_path / "report.md").read_text()
+    assert "## Best designs" in text and "140.15 deg" in text and "figures/map_gci.png" in text
+    assert (tmp_path / "figures" / "map_gci.png").stat().st_size > 0
+    assert (tmp_path / "figures" / "focus_workspace.png").stat().st_size > 0
+    assert (tmp_path / "best.csv").read_text().startswith("measure,")
+
+
+@pytest.mark.parametrize("argv", [["nosuch", "--sweep", "a=1:2:2"], ["rsr_wrist", "--sweep", "nosuch=1:2:2"],
+                                  ["rsr_wrist", "--sweep", "L=1:2"], ["rsr_wrist"]])
+def test_cli_bad_arguments_exit_2(tmp_path, argv, capsys):
+    from wristkin import cli
+
+    assert cli.main(["atlas", *argv, "--out", str(tmp_path)]) == 2
+    assert "error" in capsys.readouterr().err
+
+
+def test_cli_without_the_atlas_extra_exits_1_naming_it(tmp_path, monkeypatch, capsys):
+    from wristkin import cli
+
+    monkeypatch.setitem(sys.modules, "distributed", None)  # import distributed -> ImportError
+    rc = cli.main(["atlas", "rsr_wrist", "--sweep", "L=0.05:0.07:2", "--out", str(tmp_path)])
+    assert rc == 1
+    assert "wristkin[atlas]" in capsys.readouterr().err
+
+
+def test_rsr_local_index_equals_the_module_jacobians():
+    """The atlas's 3-RSR J (v = (sin beta alpha_dot, beta_dot, l_bw_dot / L) -> phi_dot) against the derived
+    jacobians(q, pose) (jq phi_dot = jx (alpha, beta, l_bw)_dot), column-scaled to the same v."""
+    mech = mechanism("rsr_wrist")
+    m = mech.module
+    d = m.make_design()
+    rng = case_rng(2401)
+    checked = 0
+    for _ in range(200):
+        pose = (rng.uniform(0, 2 * math.pi), rng.uniform(0.05, 1.5), rng.uniform(0.03, 0.1))
+        sol = m.ik(pose, d)
+        for q in sol:
+            jq, jx = m.jacobians(q, pose, d)
+            j = (jx / jq[:, None]) @ np.diag([1.0 / math.sin(pose[1]), 1.0, d.params[0]])
+            want = 3.0 / (np.linalg.norm(j, "fro") * np.linalg.norm(np.linalg.inv(j), "fro"))
+            got, _ = mech.local_index(d, np.array([pose]), np.asarray(q)[None, None, :])
+            assert float(got[0, 0]) == pytest.approx(want, rel=1e-9)
+            checked += 1
+    assert checked > 100
+
+
+def test_underactuated_local_index_equals_the_module_jacobians():
+    mech = mechanism("underactuated_wrist")
+    m = mech.module
+    d = m.make_design()
+    rng = case_rng(2402)
+    checked = 0
+    for _ in range(100):
+        pose = (rng.uniform(-math.pi, math.pi), rng.uniform(0, 0.6), rng.uniform(-math.pi, math.pi))
+        sol = m.ik(pose, d)
+        for q in sol:
+            jq, jx = m.jacobians(q, pose, d)
+            j = jx / jq[:, None]
+            want = 3.0 / (np.linalg.norm(j, "fro") * np.linalg.norm(np.linalg.inv(j), "fro"))
+            got, _ = mech.local_index(d, np.array([pose]), np.asarray(q)[None, None, :])
+            assert float(got[0, 0]) == pytest.approx(want, rel=1e-9)
+            checked += 1
+    assert checked > 50
+
+
+def test_serial_arm_sweep_closes_ik_on_every_sampled_pose(tmp_path):
+    """A serial arm: FK of the joint samples, IK of those poses (all 8 PUMA branches where it is generic)."""
+    ds = wristkin_atlas.run_sweep("puma560", ["a2=0.3:0.5:2"], tmp_path, samples=500, seed=TEST_SEED,
+                                  progress=False).load()
+    assert np.all(ds["ik_closes"].values == 1.0)
+    assert np.all(ds["ik_sets_mean"].values > 7.0)
+    assert np.all(ds["manipulability_mean"].values > 0.0)
+
+
+def test_spec_file_is_derived_into_out_then_swept(tmp_path):
+    """`wristkin atlas SPEC.toml --free JOINT`: derived once into OUT/derived, the free joint swept; a rerun
+    resumes (no second derivation, the same numbers)."""
+    from pathlib import Path
+
+    from wristkin import cli
+
+    spec = Path(__file__).parent / "robots" / "iiwa14" / "iiwa14_dh.toml"
+    argv = ["atlas", str(spec), "--free", "a3", "--sweep", "a3=-60:60:3", "--samples", "300", "--out",
+            str(tmp_path), "--quiet", "--no-report"]
+    assert cli.main(argv) == 0
+    solver = tmp_path / "derived" / "python" / "iiwa14_dh.py"
+    stamp = solver.stat().st_mtime_ns
+    first = wristkin_atlas.open_atlas(tmp_path).load()
+    assert np.all(first["ik_closes"].values == 1.0) and first.a3.attrs["units"] == "deg"
+    assert cli.main(argv) == 0
+    assert solver.stat().st_mtime_ns == stamp
+    _same(first, wristkin_atlas.open_atlas(tmp_path).load())
+
+
+def test_existing_cluster_by_scheduler_address_gives_the_same_bits(tmp_path):
+    """--scheduler ADDRESS: an already running dask.distributed cluster (here a local one started by the test)."""
+    from distributed import LocalCluster
+
+    opts = Options(threshold=THRESHOLD, tilt_max=TILT)
+    kw = dict(samples=1500, seed=TEST_SEED, options=opts, progress=False)
+    with LocalCluster(n_workers=1, threads_per_worker=2, processes=True, dashboard_address=None) as cluster:
+        address = cluster.scheduler_address
+        a = wristkin_atlas.run_sweep("rsr_wrist", ["L=0.05:0.07:3"], tmp_path / "a", scheduler=address,
+                                     design_chunk=1, **kw).load()
+    b = wristkin_atlas.run_sweep("rsr_wrist", ["L=0.05:0.07:3"], tmp_path / "b", **kw).load()
+    _same(a, b)
+
+
+def test_rsr_swing_feasibility_equals_the_module_workspace():
+    """The atlas's vectorised attitude feasibility (swing_all, swing_peak) against the module's exact
+    workspace(alpha, beta), for random designs and attitudes."""
+    mech = mechanism("rsr_wrist")
+    m = mech.module
+    rng = case_rng(2403)
+    for _ in range(20):
+        lo = rng.uniform(-0.5, 1.0)
+        d = m.make_design((0.06, lo, lo + rng.uniform(0.3, 2.5), rng.uniform(0.0, 0.05), rng.uniform(0.06, 0.12)))
+        alpha, beta = rng.uniform(0, 2 * math.pi, 200), rng.uniform(0, math.pi * 0.95, 200)
+        got = mech.feasible(d, alpha, beta)
+        want = np.array([m.workspace(a, b, d) is not None for a, b in zip(alpha, beta, strict=True)])
+        np.testing.assert_array_equal(got, want)
