@@ -196,6 +196,15 @@ def _fmt(v) -> str:
     return f"{v:.4g}" if isinstance(v, float) else str(v)
 
 
+
+def _fixed_text(fixed: str) -> str:
+    """The fixed design values to 12 significant digits (degrees converted back from radians show 59.99999999999999)."""
+    try:
+        values = json.loads(fixed)
+    except (TypeError, ValueError):
+        return str(fixed)
+    return ", ".join(f"{k} = {v:.12g}" for k, v in values.items()) if isinstance(values, dict) else str(fixed)
+
 def _markdown(ds, rows, measure_figs, focus_figs, focus_values, claims) -> str:
     dims = list(design_dims(ds))
     timing = json.loads(ds.attrs["timing"])
@@ -208,7 +217,7 @@ def _markdown(ds, rows, measure_figs, focus_figs, focus_values, claims) -> str:
              + f"), each measured over {ds.attrs['samples_per_design']} samples of each kind (docs/atlas.md) "
              f"({ds.attrs['sampling']}, seed {ds.attrs['seed']}; platform tilt up to {ds.attrs['tilt_max_deg']:g} "
              f"deg; near-singular threshold {ds.attrs['threshold']:g}). Fixed parameters: "
-             f"{ds.attrs['fixed_design']}. Solvers: wristkin {ds.attrs['wristkin_version']} (inputs "
+             f"{_fixed_text(ds.attrs['fixed_design'])}. Solvers: wristkin {ds.attrs['wristkin_version']} (inputs "
              f"{ds.attrs['inputs_hash']}, backend {ds.attrs['backend']}). "
              f"{len(secs)} chunks, {sum(secs):.1f} s of worker time (mean {np.mean(secs) if secs else 0:.3f} s per "
              "chunk).", "",
