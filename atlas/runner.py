@@ -213,10 +213,10 @@ def _client(workers: int | None, scheduler: str | None):
         client = Client(scheduler)
         return client, client.close
     if workers:
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0")
     else:
         cluster = LocalCluster(n_workers=1, threads_per_worker=os.cpu_count() or 1, processes=False,
-                               dashboard_address=None)
+                               dashboard_address=":0")
     client = Client(cluster)
 
     def close():

@@ -279,7 +279,7 @@ def test_existing_cluster_by_scheduler_address_gives_the_same_bits(tmp_path):
 
     opts = Options(threshold=THRESHOLD, tilt_max=TILT)
     kw = dict(samples=1500, seed=TEST_SEED, options=opts, progress=False)
-    with LocalCluster(n_workers=1, threads_per_worker=2, processes=True, dashboard_address=None) as cluster:
+    with LocalCluster(n_workers=1, threads_per_worker=2, processes=True, dashboard_address=":0") as cluster:
         address = cluster.scheduler_address
         a = wristkin_atlas.run_sweep("rsr_wrist", ["L=0.05:0.07:3"], tmp_path / "a", scheduler=address,
                                      design_chunk=1, **kw).load()
