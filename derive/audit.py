@@ -65,8 +65,7 @@ def write_report(mech, dv, out: Path, solver=None) -> list[Path]:
     audit_dir = out / "audit"
     audit_dir.mkdir(parents=True, exist_ok=True)
     numeric = {"summary": [], "sections": [], "findings": [], "decisions": [], "files": []}
-    if hasattr(mech, "audit_numbers"):
-        numeric.update(mech.audit_numbers(dv, solver, audit_dir))
+    numeric.update(mech.audit_numbers(dv, solver, audit_dir))
     text = render("audit/report.md.jinja", header=header_lines(), dv=dv, tolerances=sorted(TOLERANCES.items()),
                   steps=[step_view(s) for s in dv.steps], findings=dv.findings + numeric.get("findings", []),
                   decisions=dv.decisions + numeric.get("decisions", []), numeric=numeric,

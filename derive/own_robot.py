@@ -27,7 +27,7 @@ def load(source: str | Path, name=None, base=None, tip=None, free=None, geometry
          packages=None):
     """The mechanism of a URDF / xacro or a spec file (command-line options override the spec's own fields)."""
     path = Path(source)
-    readers = [f for f in FAMILIES.values() if path.suffix.lower() in getattr(f, "SOURCE_SUFFIXES", ())]
+    readers = [f for f in FAMILIES.values() if path.suffix.lower() in f.SOURCE_SUFFIXES]
     if readers:  # a description file a family reads itself (a URDF, a xacro file)
         spec = readers[0].spec_for_file(path, name=name, base=base, tip=tip, free=free, geometry_tol=geometry_tol,
                                         xacro_args=xacro_args, packages=packages)

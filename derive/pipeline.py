@@ -6,7 +6,6 @@ import difflib
 import filecmp
 import hashlib
 import json
-import math
 import multiprocessing
 import os
 import shutil
@@ -17,6 +16,7 @@ from pathlib import Path
 from . import angle_reduction, cli_commands
 from .catalogue import CATALOGUE, registry
 from .lower import lower
+from .mechanism import Mechanism
 from .render import ROOT, header_lines, input_hash, render, tool_versions
 from .tolerances import TOLERANCES
 
@@ -40,15 +40,8 @@ def _context(mod, ks) -> dict:
         "tol": TOLERANCES,
         "inputs_hash": input_hash(),
     }
-    if hasattr(mod, "DESIGN_DEFAULT_DEG"):
-        ctx["design_default"] = [repr(math.radians(v)) for v in mod.DESIGN_DEFAULT_DEG]
-        ctx["n_design_constants"] = len(mod.DESIGN_CONSTANTS)
     ctx.update(mod.extra_context(ks))
     return ctx
-
-
-def _templates(name: str, mod) -> tuple[str, str, str]:
-    return getattr(mod, "TEMPLATES", (f"python/{name}.py.jinja", f"c/{name}.h.jinja", f"c/{name}.c.jinja"))
 
 
 def tasks(names=None, catalogue: Path = CATALOGUE) -> list[tuple[str, ...]]:
@@ -56,19 +49,19 @@ def tasks(names=None, catalogue: Path = CATALOGUE) -> list[tuple[str, ...]]:
     (the same DERIVE_GROUP) run one after another in one process, costliest first."""
     reg = registry(catalogue)
     chosen = sorted(n for n in reg if not names or n in names)
-    cost = {n: getattr(reg[n], "DERIVE_SECONDS", 5) for n in chosen}
+    cost = {n: reg[n].DERIVE_SECONDS for n in chosen}
     groups: dict[str, list[str]] = {}
     for n in chosen:
-        groups.setdefault(getattr(reg[n], "DERIVE_GROUP", n), []).append(n)
+        groups.setdefault(reg[n].DERIVE_GROUP or n, []).append(n)
     jobs = [tuple(sorted(g, key=lambda n: (-cost[n], n))) for g in groups.values()]
     return sorted(jobs, key=lambda g: (-sum(cost[n] for n in g), g))
 
 
-def emit_solvers(name: str, mod, ks, py_dir: Path, c_dir: Path) -> list[Path]:
+def emit_solvers(name: str, mod: Mechanism, ks, py_dir: Path, c_dir: Path) -> list[Path]:
     """The mechanism's Python module (py_dir/name.py) and C header and source (c_dir) rendered from its kernels:
     the catalogue's and a `wristkin derive` folder's alike."""
     ctx = _context(mod, ks)
-    t_py, t_h, t_c = _templates(name, mod)
+    t_py, t_h, t_c = mod.TEMPLATES
     return [write_file(py_dir / f"{name}.py", render(t_py, **ctx)),
             write_file(c_dir / f"{name}.h", render(t_h, **ctx)), write_file(c_dir / f"{name}.c", render(t_c, **ctx))]
 
@@ -80,14 +73,14 @@ def emit_c_runtime(c_dir: Path) -> list[Path]:
             write_file(c_dir / "wristkin_runtime.c", render("c/wristkin_runtime.c.jinja", **ctx))]
 
 
-def emit_casadi(name: str, mod, dv, ks, casadi_dir: Path, solver) -> list[Path]:
+def emit_casadi(name: str, mod: Mechanism, dv, ks, casadi_dir: Path, solver) -> list[Path]:
     """The mechanism's CasADi functions; their design input has the solver's DESIGN_NAMES unless the mechanism's
     functions take fewer (the 3-RSR wrist's take only L)."""
     from . import casadi_export
 
-    design_names = getattr(mod, "CASADI_DESIGN_NAMES", None) or solver.DESIGN_NAMES
+    design_names = mod.CASADI_DESIGN_NAMES or solver.DESIGN_NAMES
     return casadi_export.write_casadi(mod.casadi_functions(dv, ks), casadi_dir, name=name, design_names=design_names,
-                                      docs=getattr(mod, "CASADI_DOCS", None))
+                                      docs=mod.CASADI_DOCS)
 
 
 def mechanism_products(name: str, out: Path, catalogue: Path = CATALOGUE) -> list[Path]:

@@ -108,3 +108,34 @@ def test_the_catalogue_is_the_spec_files():
     assert set(FAMILIES) == {p.name for p in (DERIVE / "families").iterdir() if (p / "__init__.py").is_file()}
     for family in FAMILIES.values():
         assert callable(family.from_spec) and family.SPEC_FIELDS
+
+
+def test_families_and_mechanisms_have_the_typed_interface():
+    """Every family is a derive.mechanism.Family and every catalogue mechanism a Mechanism built on
+    MechanismDefaults: the core reads their members directly."""
+    from derive.catalogue import registry
+    from derive.families import FAMILIES
+    from derive.mechanism import Family, Mechanism, MechanismDefaults
+
+    for name, family in FAMILIES.items():
+        assert isinstance(family, Family), name
+    for name, mech in registry().items():
+        assert isinstance(mech, Mechanism) and isinstance(mech, MechanismDefaults), name
+        assert len(mech.TEMPLATES) == 3 and mech.DERIVE_SECONDS > 0, name
+
+
+def test_the_core_probes_no_mechanism_member():
+    """No hasattr / getattr hooks in the modules that drive mechanisms (the types above say what is there)."""
+    for stem in ("pipeline", "audit", "own_robot", "catalogue", "render"):
+        text = (DERIVE / f"{stem}.py").read_text()
+        assert not re.search(r"\b(hasattr|getattr)\(", text), f"derive/{stem}.py probes with hasattr/getattr"
+
+
+def test_the_reference_imports_nothing_of_the_code_under_test():
+    """tests/reference is the independent check: it imports neither the derivation nor the generated solvers."""
+    for p in sorted((ROOT / "tests" / "reference").glob("*.py")):
+        for node in ast.walk(ast.parse(p.read_text())):
+            names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
+                     [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
+            for n in names:
+                assert n.split(".")[0] not in ("derive", "wristkin", "wristkin_atlas"), f"{p.name} imports {n}"

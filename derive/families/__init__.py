@@ -2,22 +2,10 @@
 sub-package is a family, named by its folder) and reaches them only through the interface below, so adding a
 family touches no core file (tests/test_architecture.py checks that the core names no mechanism).
 
-A family package offers:
-  from_spec(spec: derive.spec.Spec) -> mechanism   read and validate its spec fields (docs/specs.md), raising
-                                                   derive.spec.SpecError naming the file and field
-  SPEC_FIELDS                                      the fields it reads beside the common ones (documentation)
-
-A mechanism (the object from_spec returns) offers:
-  NAME                           its name: generated/python/wristkin/NAME.py, generated/c/NAME.{h,c}, ...
-  derive() -> Derivation         every step with its rule, inputs and checks (derive/model.py)
-  kernels(dv) -> [Kernel]        the expressions the solvers evaluate
-  extra_context(kernels) -> dict what its templates need beyond the kernels and tolerances
-  casadi_functions(dv, kernels)  {name: casadi.Function} for generated/casadi/NAME.casadi
-  audit_numbers(dv, solver, audit_dir) -> dict   numeric findings for the audit (optional)
-  TEMPLATES                      (python, C header, C source) templates
-  VECTORISED_KERNELS             kernels also printed for numpy
-  CASADI_DESIGN_NAMES, CASADI_DOCS   the CasADi index's design inputs and function texts (optional)
-  DERIVE_SECONDS, DERIVE_AFTER   scheduling hints for parallel regeneration (optional)
+A family package is a `derive.mechanism.Family` (from_spec, SPEC_FIELDS, SOURCE_SUFFIXES); the object its
+from_spec returns is a `derive.mechanism.Mechanism` (NAME, TEMPLATES, derive, kernels, extra_context,
+casadi_functions, audit_numbers and the scheduling / CasADi members), built on `MechanismDefaults` for the optional
+ones. tests/test_architecture.py checks every family and catalogue mechanism against these types.
 """
 
 import importlib

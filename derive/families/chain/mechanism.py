@@ -10,6 +10,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...checks import numeric_predicate
+from ...mechanism import MechanismDefaults
 from ...model import Check, Derivation, Finding, Step
 from .description import Description
 from .geometry import common_point
@@ -20,7 +21,7 @@ from .robot import Chain, normalised, reduce_free, reverse
 FREE_SAMPLES = (0.0, 0.7, -1.9, 2.6)  # values of a free joint the decomposition must hold at
 
 
-class ChainMechanism:
+class ChainMechanism(MechanismDefaults):
     """A serial chain from a description (DH, POE, URDF), solved by the planner's decomposition."""
 
     TEMPLATES = ("python/chain.py.jinja", "c/chain.h.jinja", "c/chain.c.jinja")

@@ -11,23 +11,25 @@ from __future__ import annotations
 import dataclasses
 import math
 
+from ...mechanism import MechanismDefaults
 from ...spec import COMMON_FIELDS, Spec, common
 from . import rsr_wrist, scara_rsr
 
 SPEC_FIELDS = ("kind", "wrist", "arm", "seed")
+SOURCE_SUFFIXES = ()
 SEEDS = ("002",)
 KINDS = {"wrist": rsr_wrist, "scara_hybrid": scara_rsr}
 
 
-class RsrMechanism:
+class RsrMechanism(MechanismDefaults):
     """The 3-RSR wrist or the SCARA hybrid under a spec's name, title, source and default design."""
 
     def __init__(self, module, name: str, title: str, source: str, design: tuple[float, ...], seed: str | None):
         self.module, self.NAME, self.title, self.source = module, name, title, source
         self.design_default, self.seed = design, seed
-        for attr in ("TEMPLATES", "VECTORISED_KERNELS", "DERIVE_SECONDS", "DERIVE_GROUP", "CASADI_DESIGN_NAMES"):
-            if hasattr(module, attr):
-                setattr(self, attr, getattr(module, attr))
+        self.TEMPLATES, self.VECTORISED_KERNELS = module.TEMPLATES, module.VECTORISED_KERNELS
+        self.DERIVE_SECONDS, self.DERIVE_GROUP = module.DERIVE_SECONDS, module.DERIVE_GROUP
+        self.CASADI_DESIGN_NAMES = module.CASADI_DESIGN_NAMES
 
     def derive(self):
         return dataclasses.replace(self.module.derive(), mechanism=self.NAME, title=self.title, seed=self.source)

@@ -29,6 +29,7 @@ VECTORISED_KERNELS = ()
 DERIVE_GROUP = "rsr"  # regenerated in the wrist's process: it builds on the wrist's cached derivation
 DERIVE_SECONDS = 3
 TEMPLATES = ("python/scara_rsr.py.jinja", "c/scara_rsr.h.jinja", "c/scara_rsr.c.jinja")
+CASADI_DESIGN_NAMES = None  # the solver's DESIGN_NAMES
 TH1, TH2, D3, TH4 = sp.symbols("theta1 theta2 d3 theta4", real=True)
 L1, L2, D, DF = sp.symbols("L1 L2 d d_f", real=True)
 ALPHA1, THETA = sp.symbols("alpha1 theta", real=True)

@@ -15,6 +15,7 @@ from .screw_robots import STRUCTURES, ScrewMechanism
 from .screw_serial import DESIGN_UNIT_TOL
 
 SPEC_FIELDS = ("structure", "joint", "seed")
+SOURCE_SUFFIXES = ()
 SEEDS = ("003",)
 
 

@@ -11,7 +11,9 @@ from ...spec import Spec
 from .dh_spec import SPEC_FIELDS, load
 from .mechanism import SerialMechanism
 
-__all__ = ["SPEC_FIELDS", "from_spec"]
+__all__ = ["SOURCE_SUFFIXES", "SPEC_FIELDS", "from_spec"]
+
+SOURCE_SUFFIXES = ()  # spec files only
 
 
 def from_spec(spec: Spec) -> SerialMechanism:

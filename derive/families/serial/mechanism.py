@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import math
 
+from ...mechanism import MechanismDefaults
 from . import dh_serial
 
 
-class SerialMechanism:
+class SerialMechanism(MechanismDefaults):
     """A SerialSpec behind the interface the pipeline expects (derive/families/__init__.py)."""
 
     TEMPLATES = ("python/serial.py.jinja", "c/serial.h.jinja", "c/serial.c.jinja")

@@ -9,15 +9,18 @@ generated module; every design is a run-time argument), `seed = "000"` to audit 
 from __future__ import annotations
 
 import dataclasses
+import math
 
+from ...mechanism import MechanismDefaults
 from ...spec import COMMON_FIELDS, Spec, common
 from . import underactuated_wrist as uw
 
 SPEC_FIELDS = ("design", "seed")
+SOURCE_SUFFIXES = ()
 SEEDS = ("000",)
 
 
-class SphericalParallelWrist:
+class SphericalParallelWrist(MechanismDefaults):
     TEMPLATES = ("python/underactuated_wrist.py.jinja", "c/underactuated_wrist.h.jinja",
                  "c/underactuated_wrist.c.jinja")
     VECTORISED_KERNELS = uw.VECTORISED_KERNELS
@@ -36,7 +39,9 @@ class SphericalParallelWrist:
         return uw.kernels(dv)
 
     def extra_context(self, ks) -> dict:
-        return {"name": self.NAME, "upper": self.NAME.upper(), **uw.extra_context(ks, self.DESIGN_DEFAULT_DEG)}
+        return {"name": self.NAME, "upper": self.NAME.upper(), **uw.extra_context(ks, self.DESIGN_DEFAULT_DEG),
+                "design_default": [repr(math.radians(v)) for v in self.DESIGN_DEFAULT_DEG],
+                "n_design_constants": len(self.DESIGN_CONSTANTS)}
 
     def casadi_functions(self, dv, ks) -> dict:
         return uw.casadi_functions(dv, ks)
