@@ -139,3 +139,20 @@ def test_the_reference_imports_nothing_of_the_code_under_test():
                      [node.module or ""] if isinstance(node, ast.ImportFrom) else [])
             for n in names:
                 assert n.split(".")[0] not in ("derive", "wristkin", "wristkin_atlas"), f"{p.name} imports {n}"
+
+
+# The one family -> family edge left: the finite-screw chains are rendered through the serial family's stages and
+# templates; it goes when the serial-arm families become one (issue 22). No other edge may appear.
+KNOWN_FAMILY_EDGES = {("screw", "serial")}
+
+
+def test_families_import_no_other_family():
+    """Families share code through the core (derive/kinematics, derive/identities), never through each other."""
+    edges = set()
+    for m, targets in import_graph().items():
+        if not m.startswith("derive.families."):
+            continue
+        for t in targets:
+            if t.startswith("derive.families.") and t.split(".")[2] != m.split(".")[2]:
+                edges.add((m.split(".")[2], t.split(".")[2]))
+    assert edges == KNOWN_FAMILY_EDGES, f"family -> family imports: {sorted(edges)}"

@@ -1,11 +1,11 @@
-"""The subproblem formulas every chain solver evaluates are proven with SymPy (derive/families/chain/proofs.py):
+"""The subproblem formulas every chain solver evaluates are proven with SymPy (derive/kinematics/subproblems.py):
 each proof runs here afresh (not from the cache the derivation keeps), and a wrong formula fails its proof."""
 
 from __future__ import annotations
 
 import sympy as sp
 
-from derive.families.chain import proofs
+from derive.kinematics import subproblems as proofs
 
 
 def test_every_subproblem_formula_is_proven():

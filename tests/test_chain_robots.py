@@ -221,7 +221,7 @@ def test_a_calibrated_arm_is_solved_on_ideal_axes_and_polished_on_the_true_ones(
 
 
 def test_a_tolerance_below_the_deviation_is_refused_naming_the_axes():
-    from derive.families.chain.planner import NoClosedForm
+    from derive.kinematics.planner import NoClosedForm
 
     with pytest.raises(NoClosedForm, match="a2/a3"):
         own_robot.load(_file("kr6_calibrated", "urdf"), geometry_tol=1e-9).plan()
@@ -435,7 +435,7 @@ def test_chains_with_fewer_joints_and_slides(name, tmp_path):
 
 def test_a_wrist_at_the_base_is_solved_from_the_tool(tmp_path):
     """The KR6 read backwards (its spherical wrist at the base): the planner reverses the chain."""
-    from derive.families.chain.robot import reverse
+    from derive.kinematics.poe import reverse
 
     kr6 = own_robot.load(_file("kr6", "poe")).chain
     back = reverse(kr6)

@@ -28,6 +28,12 @@ def skew(v) -> sp.Matrix:
     return sp.Matrix([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
 
 
+def rodrigues(k, c, s) -> sp.Matrix:
+    """Rotation about the unit axis k from the (cos, sin) of its angle: I + s [k]x + (1 - c) [k]x^2."""
+    kx = skew(k)
+    return sp.eye(3) + s * kx + (1 - c) * kx * kx
+
+
 def zxz_rate_matrix(psi, theta) -> sp.Matrix:
     """E with omega = E * (psi_dot, theta_dot, phi_dot) for R = Rz(psi) Rx(theta) Rz(phi).
 

@@ -34,6 +34,7 @@ import numpy as np
 import sympy as sp
 
 from ..checks import numeric_predicate, symbolic_identity
+from ..kinematics.poe import screw
 from ..model import Derivation, Finding, Step
 from .frames import skew
 
@@ -280,17 +281,9 @@ def np_triangle(Sa, Sb) -> np.ndarray:
 
 
 def np_twist_exp(kind: str, s, r, q) -> np.ndarray:
-    """exp([xi] q) for the joint twist xi = (s; r x s) ('R') or (0; s) ('P'): Rodrigues + Chasles, not via screws."""
-    s, r = np.asarray(s, float), np.asarray(r, float)
-    T = np.eye(4)
-    if kind == "P":
-        T[:3, 3] = q * s
-        return T
-    K = np_skew(s)
-    R = np.eye(3) + np.sin(q) * K + (1 - np.cos(q)) * K @ K
-    T[:3, :3] = R
-    T[:3, 3] = (np.eye(3) - R) @ r
-    return T
+    """exp([xi] q) for the joint twist xi = (s; r x s) ('R') or (0; s) ('P'): the shared layer's one Rodrigues /
+    Chasles exponential (derive/kinematics/poe.py), not via screws."""
+    return screw(kind, np.asarray(s, float), np.asarray(r, float), q)
 
 
 def np_poe(axes: Sequence[JointAxis], qs) -> np.ndarray:

@@ -6,7 +6,7 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-from .robot import Chain
+from ...kinematics.poe import Chain
 
 
 def _screw(kind, axis, point, q):

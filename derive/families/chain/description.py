@@ -10,11 +10,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ...kinematics.planner import DEFAULT_GEOMETRY_TOL
+from ...kinematics.poe import Chain, dh_link, from_dh, from_frames, rot, rpy_matrix, transform
 from ...spec import COMMON_FIELDS, Spec, common
 from . import urdf
 from .description_names import JOINT_NAME
-from .planner import DEFAULT_GEOMETRY_TOL
-from .robot import Chain, dh_link, from_dh, from_frames, rot, rpy_matrix, transform
 
 SPEC_FIELDS = ("convention", "unit", "joint", "home", "base", "tool", "free", "geometry_tol", "urdf", "base_link",
                "tip_link", "xacro_args", "packages")

@@ -10,13 +10,13 @@ from dataclasses import replace
 import numpy as np
 
 from ...checks import numeric_predicate
+from ...kinematics.geometry import common_point
+from ...kinematics.planner import Geometry, NoClosedForm, Plan, find_plan, op_branches, replay
+from ...kinematics.poe import Chain, normalised, reduce_free, reverse
+from ...kinematics.subproblems import subproblem_checks
 from ...mechanism import MechanismDefaults
 from ...model import Check, Derivation, Finding, Step
 from .description import Description
-from .geometry import common_point
-from .planner import Geometry, NoClosedForm, Plan, find_plan, op_branches, replay
-from .proofs import subproblem_checks
-from .robot import Chain, normalised, reduce_free, reverse
 
 FREE_SAMPLES = (0.0, 0.7, -1.9, 2.6)  # values of a free joint the decomposition must hold at
 

@@ -25,9 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ...kinematics.poe import from_frames, rpy_matrix, transform
 from ...model import DescriptionError
 from .description_names import JOINT_NAME
-from .robot import from_frames, rpy_matrix, transform
 
 MOVABLE = ("revolute", "continuous", "prismatic")
 KNOWN_TYPES = (*MOVABLE, "fixed", "floating", "planar")
@@ -355,7 +355,7 @@ def read(path: str | Path, base: str | None = None, tip: str | None = None, name
 def composed_fk(model: Model, path_joints: list[Joint]):
     """The URDF's own composition, origin_i . motion_i(q_i) along the joint path, as a function of the movable
     joints (independent of the product-of-exponentials form the chain is solved in)."""
-    from .robot import rot
+    from ...kinematics.poe import rot
 
     steps = [(model.origin(j), j.type, None if j.type == "fixed" else model.axis(j)) for j in path_joints]
 

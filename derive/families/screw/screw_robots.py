@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-from ...identities.frames import skew
+from ...identities.frames import rodrigues
 from ...identities.screws import JointAxis
 from ..serial.dh_serial import P_POSE, R_POSE, Stage
 from ..serial.mechanism import SerialMechanism
@@ -27,12 +27,6 @@ def _vec(name: str) -> sp.Matrix:
 
 def _dot(u, v):
     return (u.T * v)[0]
-
-
-def _rot(s: sp.Matrix, c, si) -> sp.Matrix:
-    """Rodrigues for a unit s, from (cos, sin) of the angle."""
-    K = skew(s)
-    return sp.eye(3) + si * K + (1 - c) * K * K
 
 
 def _angle_a(a, b):
@@ -70,7 +64,7 @@ def p1p2p3rarb(name: str, title: str, source: str, default: tuple[float, ...], s
     axes = (JointAxis("P", tuple(p1)), JointAxis("P", tuple(p2)), JointAxis("P", tuple(p3)),
             JointAxis("R", tuple(a), tuple(ra)), JointAxis("R", tuple(b), tuple(rb)))
     design = tuple(x for v in (p1, p2, p3, a, ra, b, rb) for x in v)
-    Ra = _rot(a, sp.cos(tha), sp.sin(tha))
+    Ra = rodrigues(a, sp.cos(tha), sp.sin(tha))
     # p = t1 p1 + t2 p2 + t3 p3 + (I - Ra) ra + Ra (I - Rb) rb and Ra Rb = R
     d = P_POSE - ra + Ra * ra - Ra * rb + R_POSE * rb
     det = _dot(p1, p2.cross(p3))
@@ -112,8 +106,8 @@ def rarararbrb(name: str, title: str, source: str, default: tuple[float, ...], s
     B4 = _dot(a, b.cross(w45))
     C4 = ab * _dot(b, w45) + _dot(a, r4) - _dot(a, R_POSE * r5) - _dot(a, P_POSE)
     # d = Rot(a, theta1) (r2 - r1) + Rot(a, theta1 + theta2) (r3 - r2), from p with R_phi_a = R Rot(b, -phi_b)
-    Rb5 = _rot(b, c5, -s5)  # Rot(b, -theta5)
-    Rb45 = _rot(b, c4 * c5 - s4 * s5, -(s4 * c5 + c4 * s5))  # Rot(b, -(theta4 + theta5))
+    Rb5 = rodrigues(b, c5, -s5)  # Rot(b, -theta5)
+    Rb45 = rodrigues(b, c4 * c5 - s4 * s5, -(s4 * c5 + c4 * s5))  # Rot(b, -(theta4 + theta5))
     d = P_POSE - r1 - R_POSE * Rb5 * w45 + R_POSE * r5 - R_POSE * Rb45 * (r4 - r3)
     u = (r2 - r1) - _dot(a, r2 - r1) * a
     v = (r3 - r2) - _dot(a, r3 - r2) * a

@@ -1,4 +1,4 @@
-"""The serial family's IK stages from the geometric planner (derive/families/chain/planner.py): the planner
+"""The serial family's IK stages from the geometric planner (derive/kinematics/planner.py): the planner
 reads the DH chain's axes at its default design and finds the decomposition; each op becomes a symbolic stage
 over the pose, the design and the joints solved before it, in the stage kinds dh_serial emits. Each stage is
 then checked against the chain's own FK by the derivation (dh_serial._ik_steps) at sampled designs, so a
@@ -16,8 +16,8 @@ import numpy as np
 import sympy as sp
 
 from ...identities.dh import chain as dh_chain
-from ..chain.planner import NoClosedForm, find_plan
-from ..chain.robot import Chain
+from ...kinematics.planner import NoClosedForm, find_plan
+from ...kinematics.poe import Chain
 from .dh_serial import P_POSE, R_POSE, Stage, wrist_stage
 
 SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient"}
@@ -224,6 +224,6 @@ def _without_slides(expr, slides):
 
 
 def numeric_point(c: Chain, js) -> np.ndarray:
-    from ..chain.geometry import common_point
+    from ...kinematics.geometry import common_point
 
     return common_point([c.points[j] for j in js], [c.axes[j] for j in js])[0]

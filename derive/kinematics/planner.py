@@ -30,9 +30,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...model import NoDecomposition
+from ..model import NoDecomposition
 from .geometry import common_point, line_distance, parallel_deviation
-from .robot import Chain, reverse, screw
+from .poe import Chain, reverse, screw
 
 DEFAULT_GEOMETRY_TOL = 1e-6  # metres and radians (sin of an angle): documented in docs/specs.md
 

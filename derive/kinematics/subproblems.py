@@ -11,7 +11,8 @@ from functools import lru_cache
 
 import sympy as sp
 
-from ...model import Check
+from ..identities.frames import rodrigues
+from ..model import Check
 
 
 def _vec(name):
@@ -31,11 +32,6 @@ def _reduce(expr, units, c, s):
 
 def _zero(exprs, units, c=None, s=None) -> bool:
     return all(_reduce(e, units, c, s) == 0 for e in exprs)
-
-
-def rodrigues(k, c, s):
-    kx = sp.Matrix([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
-    return sp.eye(3) + s * kx + (1 - c) * kx * kx
 
 
 def _cache_file():
