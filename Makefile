@@ -128,8 +128,13 @@ fuzz: $(STAMP)
 # All three checks run; the target fails if any of them failed.
 lint: $(STAMP)
 	@rc=0; \
-	echo "ruff check $(wildcard derive tests bench atlas)"; $(PY) -m ruff check $(wildcard derive tests bench atlas) || rc=1; \
+	echo "ruff check $(wildcard derive tests bench atlas runtime)"; \
+	$(PY) -m ruff check $(wildcard derive tests bench atlas runtime) || rc=1; \
 	echo "ruff check generated/python"; $(PY) -m ruff check generated/python || rc=1; \
+	for f in runtime/c/wristkin_runtime.c tests/c/poly_roots_harness.c; do \
+		echo "$(CC) $(CSTRICT) -Iruntime/c -c $$f"; \
+		$(CC) $(CSTRICT) -Iruntime/c -c "$$f" -o /dev/null || rc=1; \
+	done; \
 	csrc="$(wildcard generated/c/*.c)"; \
 	if [ -z "$$csrc" ]; then echo "error: no generated/c/*.c: run make regenerate" >&2; rc=1; fi; \
 	for f in $$csrc; do \

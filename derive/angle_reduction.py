@@ -20,7 +20,8 @@ ONE_TURN_MAX = 9.4  # < 3 pi = 9.42477...: |q| / (2 pi) < 1.5, one turn from the
 
 
 def runtime_context() -> dict:
-    """Template variables of the runtimes' angle reduction (both languages, bit-exact hex / repr)."""
+    """The runtimes' angle-reduction constants as their sources write them (bit-exact hex / repr): runtime/c and
+    runtime/python hold them literally, tests/test_runtime_sources.py holds them equal to these."""
     with mpmath.workprec(TWO_PI_FIX_BITS + 64):
         two_pi = 2 * mpmath.pi
         hi = float(two_pi)  # fl(2 pi), rounded to nearest

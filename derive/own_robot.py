@@ -17,9 +17,9 @@ import sysconfig
 import time
 from pathlib import Path
 
-from . import angle_reduction
+from . import runtime_files
 from .families import FAMILIES
-from .render import header_lines, render
+from .render import header_lines
 from .spec import Spec, SpecError
 
 
@@ -117,9 +117,8 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
     dv = mech.derive()
     stage(f"derived {len(dv.steps)} steps, {sum(len(s.checks) for s in dv.steps)} checks passed")
     ks = mech.kernels(dv)
-    written = [write_file(out / "python" / "_wristkin_runtime.py",
-                          render("python/_runtime.py.jinja", header=header_lines(),
-                                 **angle_reduction.runtime_context())),
+    written = [write_file(out / "python" / "_wristkin_runtime.py", runtime_files.emit("python/_runtime.py",
+                                                                                   header_lines())),
                *emit_solvers(nm, mech, ks, out / "python", out / "c"), *emit_c_runtime(out / "c")]
     stage("emitted Python and C")
     if native:

@@ -13,7 +13,7 @@ import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from . import angle_reduction, cli_commands
+from . import cli_commands, runtime_files
 from .catalogue import CATALOGUE, registry
 from .lower import lower
 from .mechanism import Mechanism
@@ -68,9 +68,9 @@ def emit_solvers(name: str, mod: Mechanism, ks, py_dir: Path, c_dir: Path) -> li
 
 def emit_c_runtime(c_dir: Path) -> list[Path]:
     """The C runtime every generated solver compiles with (wristkin_common.h, wristkin_runtime.c)."""
-    ctx = {"header": header_lines(), **angle_reduction.runtime_context()}
-    return [write_file(c_dir / "wristkin_common.h", render("c/wristkin_common.h.jinja", **ctx)),
-            write_file(c_dir / "wristkin_runtime.c", render("c/wristkin_runtime.c.jinja", **ctx))]
+    header = header_lines()
+    return [write_file(c_dir / name, runtime_files.emit(f"c/{name}", header))
+            for name in ("wristkin_common.h", "wristkin_runtime.c")]
 
 
 def emit_casadi(name: str, mod: Mechanism, dv, ks, casadi_dir: Path, solver) -> list[Path]:
@@ -106,11 +106,11 @@ def _job(args) -> list[Path]:
 def _shared_files(out: Path, catalogue: Path = CATALOGUE) -> list[Path]:
     """The runtime and package files every mechanism's products import (written before any mechanism)."""
     pkg = out / "python" / "wristkin"
-    extra = {"cli": {"derivation_commands": cli_commands.literal()},  # the table wristkin/cli.py carries
-             "_runtime": angle_reduction.runtime_context()}
-    files = [write_file(pkg / f"{stem}.py", render(f"python/{stem}.py.jinja", header=header_lines(),
-                                                  **extra.get(stem, {})))
-             for stem in ("_runtime", "cli", "__main__")]
+    extra = {"cli": {"derivation_commands": cli_commands.literal()}}  # the table wristkin/cli.py carries
+    files = [write_file(pkg / "_runtime.py", runtime_files.emit("python/_runtime.py", header_lines()))]
+    files += [write_file(pkg / f"{stem}.py", render(f"python/{stem}.py.jinja", header=header_lines(),
+                                                   **extra.get(stem, {})))
+              for stem in ("cli", "__main__")]
     files.append(write_file(pkg / "__init__.py", render("python/__init__.py.jinja", header=header_lines(),
                                                      names=sorted(registry(catalogue)))))
     files += emit_c_runtime(out / "c")

@@ -21,10 +21,9 @@ from cbuild import SANITIZE_FLAGS, compile_executable, compile_shared, compiler,
 from chain_specs import SKEW3, poe_spec
 from seeding import case_rng
 
-from derive import own_robot, pipeline
-from derive.angle_reduction import runtime_context
+from derive import own_robot, pipeline, runtime_files
 from derive.catalogue import load as load_spec
-from derive.render import header_lines, render
+from derive.render import header_lines
 
 SPECS = {
     "puma_t": """family = "chain"
@@ -102,8 +101,7 @@ def rendered(tmp_path_factory):
     """name -> (Python module, folder of its C): both rendered from one derivation, as pipeline / own_robot do."""
     out = tmp_path_factory.mktemp("chain_c")
     (out / "python").mkdir()
-    (out / "python" / "_wristkin_runtime.py").write_text(render("python/_runtime.py.jinja", header=header_lines(),
-                                                                    **runtime_context()))
+    (out / "python" / "_wristkin_runtime.py").write_text(runtime_files.emit("python/_runtime.py", header_lines()))
     pipeline.emit_c_runtime(out / "c")
     mods = {}
     for name, text in SPECS.items():
@@ -111,7 +109,7 @@ def rendered(tmp_path_factory):
         spec.write_text(text)
         mech = load_spec(spec)
         mech.derive()
-        assert pipeline._templates(name, mech)[1:] == ("c/chain.h.jinja", "c/chain.c.jinja")
+        assert mech.TEMPLATES[1:] == ("c/chain.h.jinja", "c/chain.c.jinja")
         files = pipeline.emit_solvers(name, mech, [], out / "python", out / "c")
         first = [f.read_bytes() for f in files]
         pipeline.emit_solvers(name, mech, [], out / "python", out / "c")

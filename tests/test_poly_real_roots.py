@@ -34,8 +34,8 @@ import mpmath
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-C_PARTIAL = ROOT / "templates" / "c" / "partials" / "poly_real_roots.c.jinja"
-PY_PARTIAL = ROOT / "templates" / "python" / "partials" / "poly_real_roots.py.jinja"
+C_PARTIAL = ROOT / "runtime" / "c" / "poly_real_roots.c"  # real sources, inlined into the generated files
+PY_PARTIAL = ROOT / "runtime" / "python" / "poly_real_roots.py"
 HARNESS = ROOT / "tests" / "c" / "poly_roots_harness.c"
 
 EPS = 2.0**-52

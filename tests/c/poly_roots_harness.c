@@ -1,4 +1,4 @@
-/* Test harness for templates/c/partials/poly_real_roots.c.jinja.
+/* Test harness for runtime/c/poly_real_roots.c.
  *
  * Built by tests/test_poly_real_roots.py, which prepends the partial itself
  * (defining WK_POLY_PARTIAL_INLINED) so that the build cache sees its bytes;
@@ -12,7 +12,7 @@
  */
 #include <math.h>
 #ifndef WK_POLY_PARTIAL_INLINED
-#include "../../templates/c/partials/poly_real_roots.c.jinja"
+#include "../../runtime/c/poly_real_roots.c"
 #endif
 
 int wk_test_poly_real_roots(const double *coef, int n, double *roots, unsigned *flags, int *status);

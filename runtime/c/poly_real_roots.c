@@ -4,7 +4,7 @@
  * Included verbatim into generated C99 sources (no Jinja in this file).
  * Needs only <math.h>; no allocation, no VLAs, fixed-size stack arrays.
  *
- * Algorithm (mirrored exactly by _poly_real_roots in the Python partial):
+ * Algorithm (mirrored exactly by _poly_real_roots in runtime/python/poly_real_roots.py):
  *   1. Reject non-finite input / n outside 0..8 (status BAD_INPUT).
  *      All-zero input -> status ZERO, no roots.
  *   2. Normalise by max|k_i|; drop leading coefficients with

@@ -1,8 +1,12 @@
+"""Every real root of a real polynomial of degree <= 8: the source that generated Python modules inline (from the
+marker line on; derive/runtime_files.py), linted and tested here as it is (tests/test_poly_real_roots.py)."""
+
+# wristkin: inlined from here
 # ---------------------------------------------------------------------------
 # Every real root of a real polynomial of degree <= 8 (pure Python, math only).
 #
 # Same algorithm, constants and operation order as wk_poly_real_roots in
-# templates/c/partials/poly_real_roots.c.jinja (see the comment there):
+# runtime/c/poly_real_roots.c (see the comment there):
 # normalise by max|k|, drop leading |k_i| <= 1e-14 max|k| (status DEGREE_DROP),
 # deflate exact x^m factors, Fujiwara bound rounded up to a power of two,
 # then derivative recursion: the roots of p^(k+1) split [-B, B] into monotone

@@ -1,8 +1,8 @@
 """wristkin runtime: the status codes, flags, errors and result types every generated module shares (generated,
 do not edit).
 
-{% for line in header %}{{ line }}
-{% endfor %}
+@generated-by@
+
 Every mechanism module imports these, so `except wristkin.InvalidInput` catches bad input from any of them and
 a `Solutions` of one mechanism is the same class as another's. numpy only; Python >= 3.10. See docs/API.md.
 """
@@ -314,19 +314,17 @@ def _as_rotation(r, what="pose"):
 def _projected_note(dev):
     """Text appended to a result's reason when the input rotation was projected."""
     return f"input rotation projected onto SO(3) (max|R^T R - I| was {dev:.3g})" if dev > 0.0 else ""
-
-
-{%- set ar = angle_reduction %}
 # 2 pi = _TWO_PI_HI + _TWO_PI_LO + O(6e-33) and floor(2 pi 2^_TWO_PI_FIX_BITS), from pi at high precision
 # (derive/angle_reduction.py): remainder(a, 2.0 * math.pi) reduces against fl(2 pi), 2.45e-16 short of 2 pi per turn
-_TWO_PI_HI = {{ ar.two_pi_hi_repr }}
-_TWO_PI_LO = {{ ar.two_pi_lo_repr }}
-_TWO_PI_FIX_BITS = {{ ar.two_pi_fix_bits }}
+_TWO_PI_HI = 6.283185307179586
+_TWO_PI_LO = 2.4492935982947064e-16
+_TWO_PI_FIX_BITS = 1280
 _TWO_PI_FIX = int(
-{%- for part in ar.two_pi_fix_hex %}
-    "{{ part }}"
-{%- endfor %}, 16)
-_ONE_TURN_MAX = {{ ar.one_turn_max }}  # < 3 pi: one turn from the reduced angle
+    "6487ed5110b4611a62633145c06e0e68948127044533e63a0105df531d89cd9128a5043cc71a026ef7ca8cd9e69d218d"
+    "98158536f92f8a1ba7f09ab6b6a8e122f242dabb312f3f637a262174d31bf6b585ffae5b7a035bf6f71c35fdad44cfd2"
+    "d74f9208be258ff324943328f6722d9ee1003e5c50b1df82cc6d241b0e2ae9cd348b1fd47e9267afc1b2ae91ee51d6cb"
+    "0e3179ab1042a95dcf6a9483b84b4b36b", 16)
+_ONE_TURN_MAX = 9.4  # < 3 pi: one turn from the reduced angle
 
 
 def _wrap(a):

@@ -1,6 +1,6 @@
 /* wristkin: status codes and flags shared by every generated mechanism (do not edit).
-{% for line in header %} * {{ line }}
-{% endfor %} */
+ * @generated-by@
+ */
 #ifndef WRISTKIN_COMMON_H
 #define WRISTKIN_COMMON_H
 

@@ -1,24 +1,31 @@
 /* wristkin runtime: what every generated mechanism shares (generated, do not edit). C99, libm only.
-{% for line in header %} * {{ line }}
-{% endfor %} *
+ * @generated-by@
+ *
  * A mechanism is usable by copying its M.h / M.c plus wristkin_common.h and this file. */
 #include "wristkin_common.h"
 
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
-{% set ar = angle_reduction %}
-/* 2 pi = WK_TWO_PI_HI + WK_TWO_PI_LO + O(6e-33), from pi at high precision (derive/angle_reduction.py) */
+
+/* 2 pi = WK_TWO_PI_HI + WK_TWO_PI_LO + O(6e-33), from pi at high precision: derive/angle_reduction.py computes
+ * these constants and tests/test_runtime_sources.py holds them equal */
 #define WK_PI_BELOW 3.141592653589793 /* fl(pi) < pi: |a| up to it is reduced already */
-#define WK_TWO_PI_HI {{ ar.two_pi_hi }}
-#define WK_TWO_PI_LO {{ ar.two_pi_lo }}
-#define WK_ONE_TURN_MAX {{ ar.one_turn_max }} /* < 3 pi: one turn from the reduced angle */
-#define WK_WINDOW_WORDS {{ ar.window_words }}
+#define WK_TWO_PI_HI 0x1.921fb54442d18p+2
+#define WK_TWO_PI_LO 0x1.1a62633145c07p-52
+#define WK_ONE_TURN_MAX 9.4 /* < 3 pi: one turn from the reduced angle */
+#define WK_WINDOW_WORDS 8
 
 /* The bits of 1 / (2 pi) after the binary point, 32 per word, most significant first: the words up to the largest
  * double's exponent plus a window of WK_WINDOW_WORDS. */
-static const uint32_t wk_inv_two_pi[{{ ar.inv_two_pi_words | length }}] = {
-{%- for w in ar.inv_two_pi_words %}{{ "\n    " if loop.index0 % 6 == 0 else " " }}{{ w }}{{ "," if not loop.last }}{% endfor %}
+static const uint32_t wk_inv_two_pi[38] = {
+    0x28be60dbu, 0x9391054au, 0x7f09d5f4u, 0x7d4d3770u, 0x36d8a566u, 0x4f10e410u,
+    0x7f9458eau, 0xf7aef158u, 0x6dc91b8eu, 0x909374b8u, 0x01924bbau, 0x82746487u,
+    0x3f877ac7u, 0x2c4a69cfu, 0xba208d7du, 0x4baed121u, 0x3a671c09u, 0xad17df90u,
+    0x4e64758eu, 0x60d4ce7du, 0x272117e2u, 0xef7e4a0eu, 0xc7fe25ffu, 0xf7816603u,
+    0xfbcbc462u, 0xd6829b47u, 0xdb4d9fb3u, 0xc9f2c26du, 0xd3d18fd9u, 0xa797fa8bu,
+    0x5d49eeb1u, 0xfaf97c5eu, 0xcf41ce7du, 0xe294a4bau, 0x9afed7ecu, 0x47e35742u,
+    0x1580cc11u, 0xbf1edaeau
 };
 
 /* limb[pos..] += t (32-bit limbs, least significant first; the caller's sum fits) */
