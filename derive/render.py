@@ -56,7 +56,9 @@ def input_hash() -> str:
     for base, label, suffixes in ((DERIVE, "derive", (".py",)), (TEMPLATES, "templates", (".jinja",)),
                                   (runtime_files.RUNTIME, "runtime", runtime_files.SUFFIXES),
                                   (CATALOGUE, "catalogue", (".toml",))):
-        found = [p for p in base.rglob("*") if p.suffix in suffixes and p.is_file() and "__pycache__" not in p.parts]
+        found = [p for p in base.rglob("*") if p.suffix in suffixes and p.is_file() and "__pycache__" not in p.parts
+                 # an install ships runtime/ inside derive/ (derive/runtime): its .py files count once, as runtime/
+                 and (label == "runtime" or not p.is_relative_to(runtime_files.RUNTIME))]
         for p in sorted(found, key=lambda q: q.relative_to(base).as_posix()):
             h.update(f"{label}/{p.relative_to(base).as_posix()}".encode())
             h.update(p.read_bytes())

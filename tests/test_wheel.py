@@ -6,6 +6,7 @@ here, not on the user's machine.)"""
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 import venv
@@ -27,7 +28,12 @@ def _run(cmd, cwd, timeout=900):
 @pytest.fixture(scope="module")
 def installed(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("wheel")
-    _run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", tmp / "dist", ROOT], cwd=tmp)
+    # from a copy without the checkout's build outputs: setuptools reuses ./build, whose stale files (a module moved
+    # since) would go into the wheel, as they would for a user building in an old checkout after `git pull`
+    src = tmp / "src"
+    shutil.copytree(ROOT, src, ignore=shutil.ignore_patterns("build", ".venv", ".git", "__pycache__", "*.egg-info",
+                                                             ".pytest_cache", ".ruff_cache", ".hypothesis", "*.so"))
+    _run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", tmp / "dist", src], cwd=tmp)
     (wheel,) = (tmp / "dist").glob("wristkin-*.whl")
     venv.create(tmp / "venv", with_pip=True)
     py = tmp / "venv" / "bin" / "python"
