@@ -362,6 +362,29 @@ def test_near_the_wrist_singularity_c_equals_python(solvers, name):
         _assert_same(py, s, c.ik(pose), f"{name} near-singular {i}", tol=tol)
 
 
+@pytest.mark.parametrize("name", ("puma_t", "ur_t", "ur_off"))
+def test_previous_changes_no_set_near_the_wrist_singularity(solvers, name):
+    """|q5| from 1e-9 to 1e-6: ik(pose) and ik(pose, previous=q) return the same sets, flags and status, in Python and
+    in C (ik_near), and C equals Python. Was (ur_off, subproblem 6): with previous the singularity's candidate was
+    kept as a family (its member at previous's q6 verified within IK_VERIFY_TOL) where without it no grid angle
+    verified and the split roots were returned: 8 regular sets, status ok, against 6 with an indeterminate
+    family."""
+    py, c = solvers[name]
+    rng = case_rng(9108)
+    for i in range(60):
+        q = _joints(rng, py)
+        q[WRIST] = (1.0 if i % 2 else -1.0) * (1e-9, 1e-7, 1e-6)[i % 3]
+        pose = py.fk_matrix(q)
+        a, b = py.ik(pose), py.ik(pose, None, q)
+        assert (a.count, a.status) == (b.count, b.status) and a.count >= 1, (name, i, a.reason, b.reason)
+        np.testing.assert_array_equal(a.flags, b.flags)
+        _assert_same(py, a, c.ik(pose), f"{name} near {i}", tol=1.0)  # the sets, flags, status; values below
+        _assert_same(py, b, c.ik(pose, None, q), f"{name} near {i} previous", tol=1.0)
+        for k in range(a.count):  # a regular set stays (a family's member is previous's to pick)
+            if not a.flags[k] & FLAG_INDETERMINATE:
+                assert _gap(a.values[k], b.values[k], py.JOINT_KINDS) < 1e-9, (name, i, k)
+
+
 def test_offset_wrist_singularity_equals_python(solvers):
     """The offset-wrist UR (subproblem 6) at its exact wrist singularity, q5 = 0 or pi at any group sum (the free
     angle is q6's, and only an interval of it reaches the pose): C equals Python set for set (values, order, flags)

@@ -205,7 +205,10 @@ def test_previous_moves_only_a_family_never_a_regular_wrist():
     T = mod.fk(q).values[0]
     prev = q.copy()
     prev[3] = -3.12
-    numpy_ik = (lambda pose, previous=None: mod._ik_numpy(pose, mod._design(None), previous))
+
+    def numpy_ik(pose, previous=None):
+        return mod._ik_numpy(pose, mod._design(None), previous)
+
     for ik in (mod.ik, numpy_ik):
         a, b = ik(T), ik(T, previous=prev)
         assert a.count == b.count >= 1 and a.status == b.status == mod.STATUS_INDETERMINATE
