@@ -193,3 +193,31 @@ def test_rsr_select_ranks_flagged_sets_by_distance_in_c_as_in_python():
         assert mod.select(sol, previous=prev) == k
         assert c.select(pose, previous=prev) == k
     assert mod.select(sol) == c.select(pose) and not sol.flags[mod.select(sol)] & 3
+
+
+def test_previous_moves_only_a_family_never_a_regular_wrist():
+    """rpp_wrist with d3 = 0 (the wrist centre on axis 1: theta1 is a one-parameter family) and |sin theta5| = 1e-12,
+    above WRIST_EXACT_TOL (1e-13): the wrist sets are regular, so `previous` must not move theta4 (it moved from
+    -2.6e-6 to previous's -3.12: the wrist's nearest-member move ran on theta1's indeterminate flag), and theta1's
+    family is represented by previous's theta1 (it stayed 0). Python and C."""
+    mod, c = serial("rpp_wrist")
+    q = np.array([0.0, 0.2, 0.0, -2.6e-6, 1e-12, 0.5])
+    T = mod.fk(q).values[0]
+    prev = q.copy()
+    prev[3] = -3.12
+
+    def numpy_ik(pose, previous=None):
+        return mod._ik_numpy(pose, mod._design(None), previous)
+
+    for ik in (mod.ik, numpy_ik):
+        a, b = ik(T), ik(T, previous=prev)
+        assert a.count == b.count >= 1 and a.status == b.status == mod.STATUS_INDETERMINATE
+        np.testing.assert_allclose(a.values[a.valid], b.values[b.valid], atol=1e-3)  # theta4 to ~eps / 1e-12
+        assert min(wrapped(v, q) for v in b) < 1e-3
+        moved = prev.copy()
+        moved[0] = 0.4  # the family's member nearest previous
+        s = ik(T, previous=moved)
+        assert s.count >= 1 and all(abs(v[0] - 0.4) < 1e-12 for v in s)
+        assert np.max(s.aux[s.valid]) <= mod.IK_VERIFY_TOL
+    res, _ = c.ik_near(T, moved)
+    assert res.count >= 1 and all(abs(v[0] - 0.4) < 1e-12 for v in res.values[res.valid])
