@@ -42,7 +42,7 @@ export MPLBACKEND := Agg
 DEMO_POSE := -35.99 0.26 38.93
 DEMO_JOINTS := 137.92 138.44 137.82
 
-.PHONY: all setup venv native regenerate check-generated demo test test-portable test-haswell fuzz lint bench clean distclean help
+.PHONY: all setup venv native regenerate check-generated demo test test-portable test-haswell test-seeds fuzz lint bench clean distclean help
 
 all: venv regenerate demo
 
@@ -53,6 +53,7 @@ help:
 	@echo "make test             the full pytest suite, incl. drift check and C compile tests (WRISTKIN_TEST_SEED=N: other cases)"
 	@echo "make test-portable    the numerically sensitive tests again as another CPU computes (Sandybridge kernels, no AVX2)"
 	@echo "make test-haswell     the numerically sensitive tests as an AVX2 CPU without AVX-512 computes (HASWELL_SEED=N)"
+	@echo "make test-seeds       test-portable and test-haswell under two seeds drawn now (printed)"
 	@echo "make fuzz             1e6 fuzz cases per mechanism (1e7 in all) on the generated C under ASan/UBSan, then Python"
 	@echo "make regenerate       rebuild generated/ from the derivations (and the C extension)"
 	@echo "make native           compile the generated C into wristkin._native (Python then runs the C)"
@@ -118,6 +119,15 @@ test-haswell: $(STAMP)
 	$(PY) -m pytest -n $(TEST_WORKERS) --dist worksteal $(SENSITIVE_TESTS) $(PYTEST_ARGS) || rc=$$?; \
 	if [ $$rc -eq 5 ]; then echo "error: pytest collected no tests (exit code 5)" >&2; fi; \
 	exit $$rc
+
+# The sensitive tests under two seeds drawn now and printed (make test-portable and make test-haswell with them):
+# "every seed must pass", tried on cases no run saw before.
+test-seeds: $(STAMP)
+	@a=$$(( (RANDOM << 15 | RANDOM) % 1000000 + 1 )); b=$$(( (RANDOM << 15 | RANDOM) % 1000000 + 1 )); \
+	echo "== test seeds drawn: $$a (portable), $$b (haswell)"; rc=0; \
+	$(MAKE) --no-print-directory test-portable PORTABLE_SEED=$$a || rc=$$?; \
+	$(MAKE) --no-print-directory test-haswell HASWELL_SEED=$$b || rc=$$?; \
+	[ $$rc -eq 0 ] || echo "failed with test seeds $$a (portable), $$b (haswell)" >&2; exit $$rc
 
 # 1e6 cases per mechanism through the C fuzz driver (10 mechanisms: 1e7), then 20x the Python examples.
 FUZZ_CASES ?= 1000000
