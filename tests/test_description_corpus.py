@@ -67,6 +67,15 @@ CORPUS = {
     "rtb_vx300s_xacro": (lambda: rtb("trossen_descriptions/urdf/vx300s.urdf.xacro"), {"tip": "vx300s/ee_arm_link"},
                          {}, {"robot_name": "vx300s"}, None),
 }
+# the reference's base and tip links, read off the files by hand (derive is given only the tip where a tree has several
+# end links: its default base, the tree's root, must be these too)
+REFERENCE_LINKS = {
+    "pybullet_panda": ("panda_link0", "panda_hand"), "pybullet_iiwa": ("lbr_iiwa_link_0", "lbr_iiwa_link_7"),
+    "rtb_puma560": ("link1", "link7"), "rtb_kr120": ("base_link", "tool0"), "rtb_kr16_xacro": ("base_link", "tool0"),
+    "rtb_iiwa_xacro": ("base_link", "tool0"), "rtb_panda_xacro": ("panda_link0", "panda_hand"),
+    "rtb_px100_xacro": ("px100/base_link", "px100/ee_arm_link"),
+    "rtb_vx300s_xacro": ("vx300s/base_link", "vx300s/ee_arm_link"),
+}
 _SOLVERS: dict = {}
 
 
@@ -97,17 +106,8 @@ def corpus_solver(key: str, tmp_path_factory):
                          xacro_args=args, packages=given, **options)
         solver = own_robot.import_solver(tmp / "out", key)
         urdf = twin() if twin else file if file.suffix == ".urdf" else _expanded_by_xacro(file, packages, args, tmp)
-        info_base = reader.chain_path(reader.load_model(file, args, {k: v() for k, v in packages.items()}),
-                                      None, options.get("tip"))[0]
-        _SOLVERS[key] = (solver, ref.urdf_fk(urdf, info_base, options.get("tip") or _only_leaf(urdf)))
+        _SOLVERS[key] = (solver, ref.urdf_fk(urdf, *REFERENCE_LINKS[key]))
     return _SOLVERS[key]
-
-
-def _only_leaf(urdf: Path) -> str:
-    model = reader.load_model(urdf)
-    parents = {j.parent for j in model.joints.values()}
-    (leaf,) = [lk for lk in model.joints if lk not in parents]
-    return leaf
 
 
 def _design(m, q):

@@ -101,8 +101,7 @@ def test_fk_takes_the_free_joint_from_free_and_degrees(iiwa):
 def test_ik_columns_and_degrees(iiwa):
     script, m = iiwa
     q = np.radians([10, 20, 30, 40, 50, 60, 70])
-    T = m.fk_matrix(q, [q[2]])
-    pose = [*T[:3, 3], *T[:3, :3].ravel()]
+    T = m.fk_matrix(q, [q[2]])  # the pose given as its 12 row-major numbers [R | p]
     r = _run(script, "ik", "--pose", *T[:3].ravel(), "--free", 30, "--deg", "--json")
     assert r.returncode == 0, r.stderr
     out = json.loads(r.stdout)
@@ -110,7 +109,8 @@ def test_ik_columns_and_degrees(iiwa):
     assert min(np.max(np.abs(np.array(s["values"]) - np.degrees(q))) for s in out["solutions"]) < 1e-6
     text = _run(script, "ik", "--pose", *T[:3].ravel(), "--free", q[2]).stdout
     assert "a1 (rad)" in text.splitlines()[1]
-    assert pose  # the matrix form above is the row-major 12 numbers
+    # the text lists the same sets as the JSON, one row each below the status and the column header
+    assert len(text.strip().splitlines()) - 2 == len(out["solutions"])
 
 
 def test_a_rounded_quaternion_is_refused_like_a_rounded_matrix(iiwa):

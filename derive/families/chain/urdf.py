@@ -108,6 +108,7 @@ def package_finder(file: Path, packages: Mapping[str, str | Path]):
     package.xml naming PKG or a folder named PKG near the file (its parents and their subfolders, as a source
     tree lays packages out), then ROS_PACKAGE_PATH and AMENT_PREFIX_PATH (share/PKG)."""
     parents = list(file.resolve().parents)[:4]
+    manifests: dict[str, Path] = {}  # package.xml names around the file: scanned once, on the first need
 
     def find(pkg: str) -> str:
         if pkg in packages:
@@ -117,10 +118,12 @@ def package_finder(file: Path, packages: Mapping[str, str | Path]):
                 return str(up)
             if (up / pkg).is_dir():
                 return str(up / pkg)
-        for up in parents:
-            hit = _package_xml_names(up, 3).get(pkg)
-            if hit is not None:
-                return str(hit)
+        if not manifests:
+            for up in parents:  # the nearest folder's package first
+                for name, folder in _package_xml_names(up, 3).items():
+                    manifests.setdefault(name, folder)
+        if pkg in manifests:
+            return str(manifests[pkg])
         for var, sub in (("ROS_PACKAGE_PATH", ""), ("AMENT_PREFIX_PATH", "share")):
             for entry in filter(None, os.environ.get(var, "").split(os.pathsep)):
                 cand = Path(entry) / sub / pkg
