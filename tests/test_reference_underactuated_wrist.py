@@ -125,9 +125,12 @@ def test_home_angle():
 
 
 def test_ik_roots_satisfy_loops():
+    # at least 20 reachable orientations are checked whatever the test seed: a batch of 20 wide orientations is
+    # added until they are there (19 of the 60 first ones were reachable at WRISTKIN_TEST_SEED=850437)
     Rs = _orientations(40, seed=1) + _orientations(20, seed=2, max_nutation_deg=90, max_twist_deg=180)
-    n_reachable = 0
-    for R in Rs:
+    n_reachable, extra = 0, 0
+    while Rs:
+        R = Rs.pop(0)
         res = ik_reference(R)
         for i, roots in enumerate(res.roots):
             assert all(0.0 <= t < 2 * math.pi for t in roots)
@@ -139,6 +142,9 @@ def test_ik_roots_satisfy_loops():
         n_reachable += bool(res.triples)
         for t in res.triples:
             assert np.max(np.abs(loop_residuals(t, R))) < 1e-12
+        if not Rs and n_reachable < 20 and extra < 10:
+            extra += 1
+            Rs = _orientations(20, seed=100 + extra, max_nutation_deg=90, max_twist_deg=180)
     assert n_reachable >= 20
 
 
