@@ -70,6 +70,20 @@ int wk_conditioning_bound(const double *jac, int n, double eps, double *man);
  * partial pivoting; returns 0 if singular. */
 int wk_normal_solve(const double *jac, int n, const double *e, double damping, double *x);
 
+/* Merge two valid sets that differ only in the branch of one two-root stage (k and k | 1 << bits[b]) when the pose
+ * cannot tell them apart: their midpoint, refitted by one Gauss-Newton step no longer than an eighth of their span,
+ * fits the pose within WK_MERGE_ULPS eps max(1, scale) of their residuals (scale: the pose's size, max |p|;
+ * wristkin_runtime.c says why). values: max_sets x n row-major; aux: the residual at aux[k * aux_stride].
+ * Returns the number of sets removed. */
+/* refit: the residual max |FK(q) - pose| after at most one damped Gauss-Newton step of at most max_step per joint
+ * (q updated when the step helps); ctx: the pose and the design */
+typedef double (*wk_refit_fn)(double *q, double max_step, const void *ctx);
+#define WK_MERGE_MAX_JOINTS 16
+#define WK_MERGE_ULPS 16.0
+int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bits, int n_bits, double *values,
+                        int *valid, unsigned *flags, double *aux, int aux_stride, wk_refit_fn refit, const void *ctx,
+                        double scale);
+
 /* The selection rule of every mechanism (docs/API.md, `select`): among valid sets (values: max_sets x n,
  * row-major) within [lower, upper] (either may be NULL), with `previous` the nearest by weighted distance
  * (revolute differences wrapped; weights NULL = 1; ties by plain distance, then index), whatever the flags;

@@ -6,6 +6,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 
 /* 2 pi = WK_TWO_PI_HI + WK_TWO_PI_LO + O(6e-33), from pi at high precision: derive/angle_reduction.py computes
@@ -324,4 +325,62 @@ int wk_select(int max_sets, int n, const int *valid, const unsigned *flags, cons
         }
     }
     return best;
+}
+
+/* Two valid sets that differ only in the branch of one two-root stage (sets k and k | 1 << bit) are one solution,
+   a double root, when the pose cannot tell them apart: a point between them fits the pose as well as they do.
+   At a fold of the chain the residual grows with the square of the distance along the fold, so the joints solved
+   before the stage, off by rounding (1e-13 where the pose's 12 entries over-determine a 5-joint chain), push the
+   two computed roots ~1e-6 apart, and both fit the pose to rounding; their midpoint then misses it only by that
+   upstream error, at first order, which one Gauss-Newton step removes with a step far shorter than the pair's
+   span. Two distinct roots leave the midpoint off the pose by curvature x (span / 2)^2 along the fold, which a
+   short step cannot remove (reaching either root takes span / 2). So: refit(midpoint, span / 8) within
+   WK_MERGE_ULPS eps max(1, scale) (the FK's own rounding of a pose of that size) of the pair's residuals. The pair
+   becomes whichever of the two and the refitted midpoint fits best, flagged a double root. Pairs farther apart than
+   WK_MERGE_SPAN in a joint are not compared: at a curvature above 1e-7 their midpoint misses by more than the
+   floor, and it bounds the extra work to near-coincident pairs. Returns the number of sets removed. */
+#define WK_MERGE_SPAN 1e-3
+int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bits, int n_bits, double *values,
+                        int *valid, unsigned *flags, double *aux, int aux_stride, wk_refit_fn refit, const void *ctx,
+                        double scale)
+{
+    const double floor_ = WK_MERGE_ULPS * DBL_EPSILON * (scale > 1.0 ? scale : 1.0);
+    int b, k, j, removed = 0;
+    double mid[WK_MERGE_MAX_JOINTS];
+    if (n > WK_MERGE_MAX_JOINTS || !revolute || !bits || !values || !valid || !flags || !aux || !refit) return 0;
+    for (b = 0; b < n_bits; ++b) {
+        const int m = 1 << bits[b];
+        for (k = 0; k < max_sets; ++k) {
+            const int k2 = k | m;
+            double *x, *y, rx, ry, rm, span = 0.0;
+            if ((k & m) || k2 >= max_sets || !valid[k] || !valid[k2]) continue;
+            x = values + (size_t)k * (size_t)n;
+            y = values + (size_t)k2 * (size_t)n;
+            for (j = 0; j < n; ++j) {
+                const double d = revolute[j] ? wk_wrap(y[j] - x[j]) : y[j] - x[j];
+                mid[j] = x[j] + 0.5 * d;
+                if (revolute[j]) mid[j] = wk_wrap(mid[j]);
+                if (!(fabs(d) <= span)) span = fabs(d);
+            }
+            if (!(span <= WK_MERGE_SPAN)) continue;
+            rx = aux[(size_t)k * (size_t)aux_stride];
+            ry = aux[(size_t)k2 * (size_t)aux_stride];
+            rm = refit(mid, 0.125 * span, ctx);
+            if (!(rm <= (rx > ry ? rx : ry) + floor_)) continue;
+            if (rm < rx && rm < ry) {
+                for (j = 0; j < n; ++j) x[j] = mid[j];
+                aux[(size_t)k * (size_t)aux_stride] = rm;
+            } else if (ry < rx) {
+                for (j = 0; j < n; ++j) x[j] = y[j];
+                aux[(size_t)k * (size_t)aux_stride] = ry;
+            }
+            flags[k] |= flags[k2] | WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
+            valid[k2] = 0;
+            flags[k2] = 0u;
+            aux[(size_t)k2 * (size_t)aux_stride] = NAN;
+            for (j = 0; j < n; ++j) y[j] = NAN;
+            ++removed;
+        }
+    }
+    return removed;
 }

@@ -380,6 +380,50 @@ def _design_values(params, names, default):
         raise InvalidDesign(str(exc)) from exc
 
 
+MERGE_ULPS = 16.0  # the FK of 6-7 joints rounds to a few eps of the pose's size
+MERGE_SPAN = 1e-3  # sets farther apart in a joint are distinct at any curvature above 1e-7: not compared
+
+
+def merge_indistinct(values, valid, flags, aux, bits, revolute, refit, scale):
+    """Two valid sets that differ only in the branch of one two-root stage (k and k | 1 << bit) are one solution, a
+    double root, when the pose cannot tell them apart: a point between them fits the pose as well as they do. At a
+    fold of the chain the residual grows with the square of the distance along the fold, so the joints solved before
+    the stage, off by rounding, push the two computed roots ~1e-6 apart while both fit the pose to rounding; their
+    midpoint misses it only by that upstream error, which one Gauss-Newton step far shorter than the span removes.
+    Two distinct roots leave the midpoint off by curvature x (span / 2)^2, which a short step cannot remove. So:
+    `refit(midpoint, span / 8)` (the residual after one such step, the midpoint updated in place) within MERGE_ULPS
+    eps max(1, scale) of the pair's residuals. The pair becomes whichever of the two and the refitted midpoint fits
+    best, flagged a double root (in place; the C runtime's wk_merge_indistinct). Returns the sets removed."""
+    floor = MERGE_ULPS * 2.220446049250313e-16 * max(1.0, scale)
+    removed = 0
+    for b in bits:
+        m = 1 << b
+        for k in range(len(values)):
+            k2 = k | m
+            if k & m or k2 >= len(values) or not (valid[k] and valid[k2]):
+                continue
+            x, y = values[k], values[k2]
+            d = [_wrap(float(v - u)) if r else float(v - u) for u, v, r in zip(x, y, revolute, strict=True)]
+            span = max(abs(e) for e in d)
+            if not span <= MERGE_SPAN:
+                continue
+            mid = [_wrap(float(u) + 0.5 * e) if r else float(u) + 0.5 * e
+                   for u, e, r in zip(x, d, revolute, strict=True)]
+            rx, ry = float(aux[k][0]), float(aux[k2][0])
+            rm = refit(mid, 0.125 * span)
+            if not rm <= max(rx, ry) + floor:
+                continue
+            if rm < rx and rm < ry:
+                values[k], aux[k][0] = mid, rm
+            elif ry < rx:
+                values[k], aux[k][0] = y.copy(), ry
+            flags[k] |= flags[k2] | FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE
+            valid[k2], flags[k2], aux[k2][0] = False, 0, math.nan
+            values[k2] = math.nan
+            removed += 1
+    return removed
+
+
 def select(solutions: Solutions, previous=None, lower=None, upper=None, weights=None, joint_kinds=None) -> int:
     """Index of the solution to use, or -1: valid and within [lower, upper] (limits compared as given). With
     `previous`, the nearest such set (weighted, wrapped for revolute joints; ties by plain distance, then index):

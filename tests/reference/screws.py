@@ -135,13 +135,28 @@ def ik_reference(robot, T, max_solutions: int, starts: int = 60, seed: int = 0, 
             cols.append(d.ravel())
         return np.array(cols).T
     found: list[np.ndarray] = []
-    for i in range(starts):
-        q0 = np.zeros(n) if i == 0 else np.array([rng.uniform(-math.pi, math.pi) if k == "R" else
-                                                  rng.uniform(-L, L) for k, _, _ in robot])
-        sol = least_squares(res, q0, jac=jac, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=200)
+
+    def solve_from(q0) -> bool:
+        # near a fold LM converges linearly: 1000 evaluations let it reach a simple root 1e-5 from its twin
+        sol = least_squares(res, q0, jac=jac, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=1000)
         q = _wrap(robot, sol.x)
         if pose_error(robot, q, T) <= tol and all(distance(robot, q, f) > 1e-6 for f in found):
             found.append(q)
-            if len(found) >= max_solutions:
-                break
+        return len(found) >= max_solutions
+
+    for i in range(starts):
+        q0 = np.zeros(n) if i == 0 else np.array([rng.uniform(-math.pi, math.pi) if k == "R" else
+                                                  rng.uniform(-L, L) for k, _, _ in robot])
+        if solve_from(q0):
+            return found
+    # A root at a fold (the Jacobian near rank-deficient) has a twin along the weak direction that random starts
+    # rarely reach (its basin is as narrow as their separation): start on both sides of each such root.
+    for f in list(found):
+        _, sv, vt = np.linalg.svd(jac(f))
+        if sv[-1] > 1e-3 * sv[0]:
+            continue
+        for h in (1e-5, 1e-4, 1e-3, 1e-2):
+            for sign in (1.0, -1.0):
+                if solve_from(f + sign * h * vt[-1]):
+                    return found
     return found

@@ -304,6 +304,12 @@ def stage_view(spec: SerialSpec) -> list[dict]:
     return out
 
 
+def fold_bits(spec) -> list[int]:
+    """The set-index bits of the two-root (trig_linear) stages: sets differing in one of them are a pair that the
+    runtime merges when the pose cannot tell them apart (a double root)."""
+    return [v["bit"] for v in stage_view(spec) if v["kind"] == "trig_linear"]
+
+
 def _flip_parity(e, flipped: set, known: dict):
     """0 when e is unchanged, 1 when it is exactly negated, once the symbols in `flipped` are negated; None when
     neither holds. Exact in IEEE arithmetic term by term: a product with a negated factor, a sum of negated terms and

@@ -45,7 +45,8 @@ class SerialMechanism(MechanismDefaults):
         return {"name": self.NAME, "title": sp_.title, "joint_names": [str(q) for q in sp_.joints],
                 "joint_kinds": list(sp_.kinds), "design_names": [str(d) for d in sp_.design],
                 "design_values": [repr(float(v)) for v in sp_.design_default], "n_joints": n,
-                "max_ik": n_combos, "stages": dh_serial.stage_view(sp_), "upper": self.NAME.upper(),
+                "max_ik": n_combos, "stages": dh_serial.stage_view(sp_),
+                "fold_bits": dh_serial.fold_bits(sp_), "upper": self.NAME.upper(),
                 "mirror_keeps_fk": dh_serial.mirror_keeps_fk(sp_, next(k for k in ks if k.name == "fk_cs")),
                 "design_default": [repr(float(v)) for v in sp_.design_default],
                 # DH design values are link lengths and offsets: each is 0 or at least DESIGN_SCALE_MIN
