@@ -39,5 +39,18 @@ def inline(rel: str) -> str:
     return text.split(INLINE_FROM, 1)[1] if rel.endswith(".py") else text
 
 
+@functools.cache
+def load_python(rel: str):
+    """The Python runtime source `rel` as a module: the derivation runs the very numerics the outputs carry (to
+    choose among their options and to check them on the robot)."""
+    import importlib.util
+
+    path = RUNTIME / rel
+    spec = importlib.util.spec_from_file_location(f"wristkin_runtime_{path.stem}", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def files() -> list[Path]:
     return sorted(p for p in RUNTIME.rglob("*") if p.suffix in SUFFIXES and "__pycache__" not in p.parts)

@@ -1,0 +1,311 @@
+"""The general 6R arm's inverse kinematics by elimination (Raghavan and Roth 1993; the linear algebra of Manocha
+and Canny 1994), derived per robot with SymPy from its DH parameters (dh_frames.py).
+
+With F = base_dh^-1 T end_dh^-1 = A1 ... A6, the last joint's line in frame 0 has direction l = F e_z and point
+p = F o (A6 = Rz(theta6) turns about it), so
+
+    A3 A4 A5 (e_z, o) = A2^-1 A1^-1 (l, p)                                     (3 + 3 equations)
+
+and, from these two vectors on each side, p.p, p.l, p x l and (p.p) l - 2 (p.l) p (1 + 1 + 3 + 3 more): 14
+equations. On the left each is linear in X = (s4 s5, s4 c5, c4 s5, c4 c5, s4, c4, s5, c5, 1) with coefficients
+linear in (c3, s3, 1) and free of the pose; on the right linear in Y = (s1 s2, s1 c2, c1 s2, c1 c2, s1, c1, s2, c2)
+plus a constant, with coefficients polynomial in (l, p). Both facts are what the derivation proves for the robot
+(after reducing c^2 + s^2 = 1, no other monomial is left):
+
+    (P0 + P1 c3 + P2 s3) X = Q(l, p) Y + r(l, p)                              (14 x 9, 14 x 8, 14)
+
+At run time Y is eliminated by the 6 x 14 left null space N of Q (N Q = 0), leaving N (P(theta3) X - r) = 0: six
+equations in theta3, theta4, theta5. The half-angle tangents x3 (of theta3 - phi, phi chosen per pose), x4, x5
+turn them into a 12 x 12 matrix polynomial (A x3^2 + B x3 + C) m = 0 over the monomials m = x4^i x5^j (i <= 3,
+j <= 2) (the six equations and their x4 multiples); its real eigenvalues give theta3, the null vector of
+M(x3) gives theta4 and theta5, Y (least squares on the 14 equations) theta1 and theta2, and the remaining
+rotation theta6. runtime/python/general6r.py does that numerically; this module derives P0, P1, P2, Q and r.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+import sympy as sp
+from sympy import QQ, lex, ring
+
+from .. import runtime_files
+from ..model import Check, NoDecomposition, Step
+from .dh_frames import DHChain
+from .poe import Chain
+
+X_NAMES = ("s4*s5", "s4*c5", "c4*s5", "c4*c5", "s4", "c4", "s5", "c5", "1")
+Y_NAMES = ("s1*s2", "s1*c2", "c1*s2", "c1*c2", "s1", "c1", "s2", "c2")
+EQUATION_NAMES = ("l_x", "l_y", "l_z", "p_x", "p_y", "p_z", "p.p", "p.l", "(p x l)_x", "(p x l)_y", "(p x l)_z",
+                  "((p.p) l - 2 (p.l) p)_x", "((p.p) l - 2 (p.l) p)_y", "((p.p) l - 2 (p.l) p)_z")
+POSE_LP = sp.symbols("lx ly lz px py pz", real=True)
+EXACT_ZERO = 1e-15  # a DH constant this close to 0, 1 or -1 is the geometry's exact value (meeting, right angle)
+
+# exponents of X's and Y's monomials in (c, s) of joints (4, 5) and (1, 2)
+_X_EXP = ((0, 1, 0, 1), (0, 1, 1, 0), (1, 0, 0, 1), (1, 0, 1, 0), (0, 1, 0, 0), (1, 0, 0, 0), (0, 0, 0, 1),
+          (0, 0, 1, 0), (0, 0, 0, 0))
+_Y_EXP = ((0, 1, 0, 1), (0, 1, 1, 0), (1, 0, 0, 1), (1, 0, 1, 0), (0, 1, 0, 0), (1, 0, 0, 0), (0, 0, 0, 1),
+          (0, 0, 1, 0))
+_NAMES = ([f"s{i}" for i in range(1, 6)] + [f"sa{i}" for i in range(1, 6)] + [f"c{i}" for i in range(1, 6)] +
+          [f"ca{i}" for i in range(1, 6)] + [f"d{i}" for i in range(1, 6)] + [f"a{i}" for i in range(1, 6)] +
+          ["lx", "ly", "lz", "px", "py", "pz"])
+
+
+@dataclass(frozen=True)
+class Elimination:
+    P: np.ndarray  # (3, 14, 9): P0, P1 (times c3), P2 (times s3); free of the pose
+    Q: sp.Matrix  # 14 x 8, polynomial in l, p
+    r: sp.Matrix  # 14 x 1, polynomial in l, p
+
+
+@dataclass(frozen=True)
+class GeneralEquations:
+    """The 14 equations for symbolic DH constants, reduced to normal form modulo c^2 + s^2 = 1 for every joint
+    angle and twist (lex order with the sines first: these binomials are a Groebner basis, so the remainder is
+    unique and zero exactly when the expression vanishes on the circles)."""
+
+    ring: object
+    gens: dict
+    left: tuple  # 14 polynomials in c3..s5, DH constants of links 3-5
+    right: tuple  # 14 polynomials in c1..s2, DH constants of links 1-2, l, p
+
+
+@lru_cache(maxsize=1)
+def general_equations() -> GeneralEquations:
+    R, *g = ring(",".join(_NAMES), QQ, lex)
+    G = dict(zip(_NAMES, g, strict=True))
+    c = [G[f"c{i}"] for i in range(1, 6)]
+    s = [G[f"s{i}"] for i in range(1, 6)]
+    ideal = [s[i] ** 2 + c[i] ** 2 - 1 for i in range(5)] + [G[f"sa{i}"] ** 2 + G[f"ca{i}"] ** 2 - 1
+                                                            for i in range(1, 6)]
+
+    def link(i):
+        ca, sa, d, a = G[f"ca{i + 1}"], G[f"sa{i + 1}"], G[f"d{i + 1}"], G[f"a{i + 1}"]
+        z, o = R.zero, R.one
+        return [[c[i], -s[i] * ca, s[i] * sa, a * c[i]], [s[i], c[i] * ca, -c[i] * sa, a * s[i]], [z, sa, ca, d],
+                [z, z, z, o]]
+
+    def inverse(t):
+        rt = [[t[j][i] for j in range(3)] for i in range(3)]
+        return [[*rt[i], -(rt[i][0] * t[0][3] + rt[i][1] * t[1][3] + rt[i][2] * t[2][3])] for i in range(3)] + [
+            [R.zero, R.zero, R.zero, R.one]]
+
+    def mul(a, b):
+        return [[sum((a[i][k] * b[k][j] for k in range(4)), R.zero) for j in range(4)] for i in range(4)]
+
+    def dot(u, v):
+        return sum((x * y for x, y in zip(u, v, strict=True)), R.zero)
+
+    def fourteen(p, d):  # of a line with point p and direction d
+        pp, pd = dot(p, p), dot(p, d)
+        cross = [p[1] * d[2] - p[2] * d[1], p[2] * d[0] - p[0] * d[2], p[0] * d[1] - p[1] * d[0]]
+        return [*d, *p, pp, pd, *cross, *(pp * d[i] - 2 * pd * p[i] for i in range(3))]
+
+    left = mul(mul(link(2), link(3)), link(4))
+    right = mul(inverse(link(1)), inverse(link(0)))
+    lv, pv = [G["lx"], G["ly"], G["lz"]], [G["px"], G["py"], G["pz"]]
+    lhs = fourteen([left[i][3] for i in range(3)], [left[i][2] for i in range(3)])
+    rhs = fourteen([dot(right[i][:3], pv) + right[i][3] for i in range(3)], [dot(right[i][:3], lv) for i in range(3)])
+    return GeneralEquations(R, G, tuple(e.rem(ideal) for e in lhs), tuple(e.rem(ideal) for e in rhs))
+
+
+def structure_violations() -> list[str]:
+    """Monomials outside (c3, s3, 1) x X on the left or Y + 1 on the right, for every 6R: the claim the
+    elimination rests on (empty when it holds)."""
+    eq = general_equations()
+    idx = {n: i for i, n in enumerate(_NAMES)}
+    bad = []
+    for row, e in enumerate(eq.left):
+        for mono in e.monoms():
+            t3 = (mono[idx["c3"]], mono[idx["s3"]])
+            x = (mono[idx["c4"]], mono[idx["s4"]], mono[idx["c5"]], mono[idx["s5"]])
+            if t3 not in ((0, 0), (1, 0), (0, 1)) or x not in _X_EXP:
+                bad.append(f"left {EQUATION_NAMES[row]}: c3^{t3[0]} s3^{t3[1]} X-part {x}")
+    for row, e in enumerate(eq.right):
+        for mono in e.monoms():
+            y = (mono[idx["c1"]], mono[idx["s1"]], mono[idx["c2"]], mono[idx["s2"]])
+            if y not in _Y_EXP and y != (0, 0, 0, 0):
+                bad.append(f"right {EQUATION_NAMES[row]}: Y-part {y}")
+    return bad
+
+
+def _exact(v: float):
+    for exact in (0.0, 1.0, -1.0):
+        if abs(v - exact) <= EXACT_ZERO:
+            return sp.Integer(int(exact))
+    return sp.Float(v, 17)
+
+
+def dh_values(dh: DHChain) -> dict:
+    """The robot's DH constants of links 1-5 by name (exact 0 and +-1 where the geometry makes them so)."""
+    out = {}
+    for i in range(5):
+        out[f"ca{i + 1}"] = _exact(float(np.cos(dh.alpha[i])))
+        out[f"sa{i + 1}"] = _exact(float(np.sin(dh.alpha[i])))
+        out[f"d{i + 1}"] = _exact(float(dh.d[i]))
+        out[f"a{i + 1}"] = _exact(float(dh.a[i]))
+    return out
+
+
+def derive_elimination(dh: DHChain) -> Elimination:
+    """P0, P1, P2, Q and r for this robot: the general equations with its DH constants substituted."""
+    eq = general_equations()
+    idx = {n: i for i, n in enumerate(_NAMES)}
+    vals = dh_values(dh)
+    pose = dict(zip(("lx", "ly", "lz", "px", "py", "pz"), POSE_LP, strict=True))
+    P = np.zeros((3, 14, 9))
+    for row, e in enumerate(eq.left):
+        for mono, coef in e.terms():
+            t3 = {(0, 0): 0, (1, 0): 1, (0, 1): 2}[(mono[idx["c3"]], mono[idx["s3"]])]
+            col = _X_EXP.index((mono[idx["c4"]], mono[idx["s4"]], mono[idx["c5"]], mono[idx["s5"]]))
+            value = sp.Rational(coef)
+            for name, k in idx.items():
+                if mono[k] and name not in ("c3", "s3", "c4", "s4", "c5", "s5"):
+                    value *= vals[name] ** mono[k]
+            P[t3, row, col] += float(value)
+    Q, r = sp.zeros(14, 8), sp.zeros(14, 1)
+    for row, e in enumerate(eq.right):
+        for mono, coef in e.terms():
+            y = (mono[idx["c1"]], mono[idx["s1"]], mono[idx["c2"]], mono[idx["s2"]])
+            term = sp.Rational(coef)
+            for name, k in idx.items():
+                if mono[k] and name not in ("c1", "s1", "c2", "s2"):
+                    term *= (pose[name] if name in pose else vals[name]) ** mono[k]
+            if y == (0, 0, 0, 0):
+                r[row] += term
+            else:
+                Q[row, _Y_EXP.index(y)] += term
+    return Elimination(P, Q.applyfunc(sp.expand), r.applyfunc(sp.expand))
+
+
+# ------------------------------------------------------------------------------------------------ per robot
+REGULARITY_MIN = 1e-8  # sigma_min / sigma_max of Q or of M(x) below this: the labelling's equations are dependent
+OPTIONS = tuple((shift, rev, hidden) for rev in (False, True) for shift in range(6) for hidden in range(3))
+
+
+def numerics():
+    """The run-time numerics (runtime/python/general6r.py), as the generated solvers carry them."""
+    return runtime_files.load_python("python/general6r.py")
+
+
+@dataclass(frozen=True)
+class Labelling:
+    shift: int  # the loop read from this joint (0-based)
+    reverse: bool  # ... backwards
+    hidden: int  # the eigenvalue's variable: 0, 1, 2 for the third, fourth, fifth joint of the labelled loop
+    regularity: float  # its worst regularity over the sampled poses
+    scores: tuple  # (shift, reverse, hidden, regularity) of every option, in OPTIONS order
+
+    def text(self, names) -> str:
+        order = [names[j] for j in (list(range(6))[::-1] if self.reverse else list(range(6)))]
+        k = self.shift % 6
+        order = order[k:] + order[:k]
+        return (f"the loop read {' -> '.join(order)}{' (reversed)' if self.reverse else ''}: {order[0]}, "
+                f"{order[1]} eliminated, {order[2 + self.hidden]} the eigenvalue's variable, {order[5]} last")
+
+
+def choose_labelling(chain: Chain, rng: np.random.Generator, poses: int = 4) -> Labelling:
+    """The labelling whose elimination stays regular at every sampled pose (the best worst case), or
+    NoDecomposition when every one is degenerate."""
+    if chain.n != 6 or any(k != "R" for k in chain.kinds):
+        raise NoDecomposition(f"the general 6R elimination needs 6 revolute joints ({chain.n} joints, kinds "
+                              f"{''.join(chain.kinds)})")
+    g6 = numerics()
+    frames = g6.g6_z_frames(chain.axes, chain.points)
+    samples = [chain.fk(rng.uniform(-np.pi, np.pi, 6)) for _ in range(poses)]
+    scores = []
+    for shift, rev, hidden in OPTIONS:
+        worst = min(g6.g6_regularity(g6.g6_labelled(g6.g6_loop_links(frames, chain.home, t), shift, rev)[0], hidden)
+                    for t in samples)
+        scores.append((shift, rev, hidden, worst))
+    best = max(scores, key=lambda s: s[3])
+    if not best[3] >= REGULARITY_MIN:
+        raise NoDecomposition(f"the general 6R elimination is degenerate for every labelling of the loop (best "
+                              f"regularity {best[3]:.1e} < {REGULARITY_MIN:g}): the 14 equations are dependent for "
+                              "this geometry")
+    return Labelling(best[0], best[1], best[2], best[3], tuple(scores))
+
+
+def solve(chain: Chain, labelling: Labelling, pose: np.ndarray, tol: float = 1e-9) -> list[np.ndarray]:
+    """Every solution the generated solvers return for the pose of chain.fk (the same numerics): candidates,
+    polished, verified to `tol`, merged within 1e-6."""
+    g6 = numerics()
+    frames = g6.g6_z_frames(chain.axes, chain.points)
+    out: list[np.ndarray] = []
+    for q in g6.g6_solve(frames, chain.home, pose, labelling.shift, labelling.reverse, labelling.hidden):
+        q, err = g6.g6_polish(q, chain.fk, chain.jacobian, pose)
+        if not err <= tol:
+            continue
+        q = np.array([float(np.remainder(v + np.pi, 2 * np.pi) - np.pi) for v in q])
+        if all(np.max(np.abs(np.remainder(q - s + np.pi, 2 * np.pi) - np.pi)) > 1e-6 for s in out):
+            out.append(q)
+    return out
+
+
+def multistart(chain: Chain, pose: np.ndarray, rng: np.random.Generator, starts: int = 200, tol: float = 1e-10):
+    """An independent count: damped Gauss-Newton from random starts on the chain's pose error (no elimination)."""
+    g6 = numerics()
+    found: list[np.ndarray] = []
+    for _ in range(starts):
+        q, err = g6.g6_polish(rng.uniform(-np.pi, np.pi, chain.n), chain.fk, chain.jacobian, pose, iters=60)
+        if not err <= tol:
+            continue
+        q = np.remainder(q + np.pi, 2 * np.pi) - np.pi
+        if all(np.max(np.abs(np.remainder(q - s + np.pi, 2 * np.pi) - np.pi)) > 1e-6 for s in found):
+            found.append(q)
+    return found
+
+
+def steps(chain: Chain, labelling: Labelling, rng: np.random.Generator, poses: int = 6) -> list[Step]:
+    """The derivation's records: the structure (proven for every 6R), the robot's equations on its FK, the
+    labelling chosen and why, and sampled poses against a multistart count."""
+    g6 = numerics()
+    viol = structure_violations()
+    frames = g6.g6_z_frames(chain.axes, chain.points)
+    out = [Step("g6_structure", "The 14 equations of the general 6R", "Raghavan-Roth: the line of the last joint "
+                "seen from both sides of the loop, its direction l and point p, p.p, p.l, p x l, (p.p) l - 2 (p.l) p; "
+                "reduced modulo c^2 + s^2 = 1 of every joint angle and twist (a Groebner basis in lex order)",
+                (), {"left": "linear in (1, c, s) of each of theta3, theta4, theta5",
+                     "right": "linear in (1, c, s) of each of theta1, theta2"},
+                (Check("symbolic", "no other monomial left, for symbolic DH constants (any rigid link is a DH link "
+                       "up to turns about the joint axes, which shift angles and keep the span)", not viol),))]
+
+    def eq_err(r):
+        q = r.uniform(-np.pi, np.pi, 6)
+        links, joints, sign = g6.g6_labelled(g6.g6_loop_links(frames, chain.home, chain.fk(q)), labelling.shift,
+                                              labelling.reverse)
+        t = [sign * q[j] for j in joints]
+        P, Q, rr = g6.g6_equations(links)
+        f = [np.array([1.0, np.cos(v), np.sin(v)]) for v in t]
+        lhs = np.einsum("eabc,a,b,c->e", P, f[2], f[3], f[4]) - rr
+        y = np.array([f[0][2] * f[1][2], f[0][2] * f[1][1], f[0][1] * f[1][2], f[0][1] * f[1][1], f[0][2],
+                      f[0][1], f[1][2], f[1][1]])
+        return float(np.max(np.abs(lhs - Q @ y)) / (1.0 + float(np.max(np.abs(P)))))
+
+    from ..checks import numeric_predicate
+
+    out.append(Step("g6_equations", "The robot's 14 equations", "each side's coefficients from its values at three "
+                    "angles per joint (0, 2 pi / 3, 4 pi / 3: exact, the sides lie in the span), at run time",
+                    ("g6_structure",), {"labelling": labelling.text(chain.joint_names)},
+                    (numeric_predicate(eq_err, "(P X - r) = Q Y at the joints of the chain's own FK, relative to "
+                                       "max |P|", samples=40, tol=1e-12),),
+                    note=f"regularity (sigma_min / sigma_max of Q and of M(0.3), worst of 4 poses) "
+                         f"{labelling.regularity:.1e} >= {REGULARITY_MIN:g}; best of {len(OPTIONS)} labellings"))
+    counts, missed = [], 0
+    for _ in range(poses):
+        q = rng.uniform(-np.pi, np.pi, 6)
+        pose = chain.fk(q)
+        sols = solve(chain, labelling, pose)
+        ref = multistart(chain, pose, rng)
+        missed += sum(1 for x in ref if all(np.max(np.abs(np.remainder(x - s + np.pi, 2 * np.pi) - np.pi)) > 1e-5
+                                            for s in sols))
+        counts.append((len(sols), len(ref)))
+    out.append(Step("g6_solutions", "Every real solution", "the real eigenvalues of the 24 x 24 companion matrix of "
+                    "(A x^2 + B x + C) (det: degree 24, of which 16 at most are the arm's, the rest at x = +-i), each "
+                    "polished by Gauss-Newton on the chain and verified", ("g6_equations",),
+                    {"solutions per pose (elimination, multistart)": str(counts)},
+                    (Check("numeric", f"no pose of {poses} where a 200-start damped Gauss-Newton finds a solution "
+                           "the elimination lacks", missed == 0, float(missed), 0.0, poses),)))
+    return out

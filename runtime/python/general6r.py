@@ -1,0 +1,274 @@
+"""The general 6R arm's inverse kinematics by elimination (numpy only): every real solution of an arm whose axes
+fit no closed-form decomposition. derive/kinematics/general6r.py proves the structure this rests on and chooses,
+per robot, the labelling of the loop and the hidden variable that keep the elimination regular.
+
+The arm and the pose close a loop of six revolute joints, each a turn Rz(theta) in a frame whose z axis is the
+joint's line, joined by constant rigid links (one of them holds the pose):
+
+    Rz(t1) K1 Rz(t2) K2 Rz(t3) K3 Rz(t4) K4 Rz(t5) K5 Rz(t6) K6 = I.
+
+Any joint may be called the first and the loop read either way (a labelling). Then (Raghavan and Roth 1993)
+
+    Rz(t3) K3 Rz(t4) K4 Rz(t5) K5 (e_z, o) = K2^-1 Rz(-t2) K1^-1 Rz(-t1) K6^-1 (e_z, o)
+
+(the line of joint 6 seen from both sides) and, from the two vectors (l, p) on each side, p.p, p.l, p x l and
+(p.p) l - 2 (p.l) p: 14 equations. The left side is linear in (1, c, s) of each of t3, t4, t5 (27 coefficients),
+the right side in (1, c, s) of each of t1, t2 (9). Because each side lies exactly in that span, its coefficients
+follow from its values at three angles per joint (0, 2 pi / 3, 4 pi / 3: the interpolation is a 3-point DFT,
+perfectly conditioned): P (14 x 27) and, on the right, Q (14 x 8, the terms in t1 and t2) and r (14, constant).
+
+With N the 6 x 14 left null space of Q, N (P X - r) = 0 eliminates t1 and t2. One of t3, t4, t5 (the hidden one)
+is written phi + 2 atan(x); the other two by their half-angle tangents u, v. Each (1, c, s) times (1 + u^2) is a
+polynomial of degree 2 in u, so the six equations and their u multiples are (A x^2 + B x + C) m = 0 over the 12
+monomials m = u^i v^j (i <= 3, j <= 2). The real eigenvalues x give the hidden angle, the null vector of
+M(x) the other two, the least-squares Y the angles t1, t2 (its entries include (c1, s1) and (c2, s2)), and the
+loop what turns t6. Each candidate is then polished on the chain and verified by the caller.
+
+The source generated Python modules inline (from the marker line on; derive/runtime_files.py), linted and tested
+here as it is (tests/test_general6r.py).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+# wristkin: inlined from here
+
+_G6_GRID = (0.0, 2.0 * math.pi / 3.0, 4.0 * math.pi / 3.0)
+# B[k, m] = (1, cos g_k, sin g_k)[m]: values at the grid from coefficients; its inverse interpolates
+_G6_B = np.array([[1.0, math.cos(g), math.sin(g)] for g in _G6_GRID])
+_G6_BINV = np.linalg.inv(_G6_B)
+# (1 + u^2) times 1, c, s (c = (1 - u^2) / (1 + u^2), s = 2u / (1 + u^2)) as coefficients of u^0, u^1, u^2
+_G6_HALF = np.array([[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0]])
+G6_NULL_TOL = 1e-8  # singular values of M(x) up to this x the largest span its null space
+G6_REAL_TOL = 1e-6  # |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding (the polish decides)
+_G6_PHIS = (0.0, 2.0 * math.pi / 3.0, -2.0 * math.pi / 3.0, math.pi / 2.0)
+
+
+def g6_rz(t: float) -> np.ndarray:
+    c, s = math.cos(t), math.sin(t)
+    out = np.eye(4)
+    out[0, 0], out[0, 1], out[1, 0], out[1, 1] = c, -s, s, c
+    return out
+
+
+def g6_inverse(t: np.ndarray) -> np.ndarray:
+    out = np.eye(4)
+    out[:3, :3] = t[:3, :3].T
+    out[:3, 3] = -t[:3, :3].T @ t[:3, 3]
+    return out
+
+
+def g6_fourteen(d: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """The 14 functions of a line (direction d, point p): d, p, p.p, p.d, p x d, (p.p) d - 2 (p.d) p."""
+    pp, pd = p @ p, p @ d
+    return np.concatenate([d, p, [pp, pd], np.cross(p, d), pp * d - 2.0 * pd * p])
+
+
+def g6_equations(links):
+    """(P, Q, r) of the loop with links K1..K6 (4x4 each): P[e, a, b, c] the coefficient of the product of the
+    a-th, b-th, c-th of (1, c, s) of t3, t4, t5 in equation e of the left side; the right side as Q Y + r, Y =
+    (s1 s2, s1 c2, c1 s2, c1 c2, s1, c1, s2, c2)."""
+    k1, k2, k3, k4, k5, k6 = links
+    vals = np.zeros((3, 3, 3, 14))
+    for a, ga in enumerate(_G6_GRID):
+        ta = g6_rz(ga) @ k3
+        for b, gb in enumerate(_G6_GRID):
+            tb = ta @ g6_rz(gb) @ k4
+            for c, gc in enumerate(_G6_GRID):
+                t = tb @ g6_rz(gc) @ k5
+                vals[a, b, c] = g6_fourteen(t[:3, 2], t[:3, 3])
+    P = np.einsum("ma,nb,oc,abce->emno", _G6_BINV, _G6_BINV, _G6_BINV, vals)
+    k2i, k1i, k6i = g6_inverse(k2), g6_inverse(k1), g6_inverse(k6)
+    rvals = np.zeros((3, 3, 14))
+    for a, ga in enumerate(_G6_GRID):
+        for b, gb in enumerate(_G6_GRID):
+            t = k2i @ g6_rz(-gb) @ k1i @ g6_rz(-ga) @ k6i
+            rvals[a, b] = g6_fourteen(t[:3, 2], t[:3, 3])
+    R = np.einsum("ma,nb,abe->emn", _G6_BINV, _G6_BINV, rvals)  # R[e, m1, m2] over (1, c, s) of t1 and of t2
+    # Y = (s1 s2, s1 c2, c1 s2, c1 c2, s1, c1, s2, c2) in those indices (1 = 0, c = 1, s = 2)
+    y_index = ((2, 2), (2, 1), (1, 2), (1, 1), (2, 0), (1, 0), (0, 2), (0, 1))
+    Q = np.stack([R[:, i, j] for i, j in y_index], axis=1)
+    return P, Q, R[:, 0, 0]
+
+
+def _g6_matrix_polynomial(t6, hidden, phi):
+    """(A, B, C), 12 x 12, for the hidden joint (0, 1, 2 of t3, t4, t5) = phi + 2 atan x."""
+    e = np.moveaxis(t6, 1 + hidden, 1)  # (eq, hidden, u, v)
+    c, s = math.cos(phi), math.sin(phi)
+    # hidden's (1, c, s) with c_h = c c' - s s', s_h = s c' + c s' (c', s' of 2 atan x), times (1 + x^2)
+    one, ch, sh = e[:, 0], e[:, 1], e[:, 2]
+    k1, kc, ks = one, ch * c + sh * s, sh * c - ch * s
+    # (x power, eq, u basis, v basis): (1 + x^2) k1 + (1 - x^2) kc + 2 x ks
+    coeffs = (np.einsum("k,eab->keab", _G6_HALF[0], k1) + np.einsum("k,eab->keab", _G6_HALF[1], kc) +
+              np.einsum("k,eab->keab", _G6_HALF[2], ks))
+    out = []
+    for power in range(3):
+        g = np.einsum("ai,bj,eab->eij", _G6_HALF, _G6_HALF, coeffs[power])  # over u^i v^j, i, j <= 2
+        m = np.zeros((12, 12))
+        m[:6, :9] = g.reshape(6, 9)
+        m[6:, 3:] = g.reshape(6, 9)
+        out.append(m)
+    return out[2], out[1], out[0]
+
+
+def _g6_half_angle(v, axis):
+    """The angle 2 atan(x) of u (axis 0) or v (axis 1) from the monomial vector (4 x 3 grid of u^i v^j): x is
+    num / den of neighbours along that axis where (den, num) is largest, taken as 2 atan2(num, den) (the same for
+    -vector, and pi where den vanishes)."""
+    g = v.reshape(4, 3)
+    pairs = ([(g[i, j], g[i + 1, j]) for i in range(3) for j in range(3)] if axis == 0 else
+             [(g[i, j], g[i, j + 1]) for i in range(4) for j in range(2)])
+    den, num = max(pairs, key=lambda dn: math.hypot(*dn))
+    return 2.0 * math.atan2(num, den)
+
+
+def g6_regularity(links, hidden) -> float:
+    """How far the elimination is from degenerate for these links: sigma_min / sigma_max of Q's 8th singular value
+    and of M(x) at x = 0.3 (a geometry whose six equations are dependent makes M singular for every x)."""
+    P, Q, r = g6_equations(links)
+    sq = np.linalg.svd(Q, compute_uv=False)
+    u = np.linalg.svd(Q)[0]
+    t6 = np.einsum("fe,eabc->fabc", u[:, 8:].T, _g6_with_constant(P, r))
+    a, b, c = _g6_matrix_polynomial(t6, hidden, 0.7)
+    sm = np.linalg.svd(a * 0.09 + b * 0.3 + c, compute_uv=False)
+    return float(min(sq[-1] / sq[0], sm[-1] / sm[0]))
+
+
+def _g6_with_constant(P, r):
+    out = P.copy()
+    out[:, 0, 0, 0] -= r
+    return out
+
+
+def g6_candidates(links, hidden=0):
+    """Loop angles (t1..t6) of every real root of the eliminated system for the loop's links."""
+    P, Q, r = g6_equations(links)
+    u = np.linalg.svd(Q)[0]
+    t6 = np.einsum("fe,eabc->fabc", u[:, 8:].T, _g6_with_constant(P, r))
+    best = None
+    for phi in _G6_PHIS:
+        a, b, c = _g6_matrix_polynomial(t6, hidden, phi)
+        sv = np.linalg.svd(a, compute_uv=False)
+        rc = sv[-1] / sv[0] if sv[0] > 0.0 else 0.0
+        if best is None or rc > best[0]:
+            best = (rc, phi, a, b, c)
+        if rc > 1e-3:  # the hidden angle phi + pi (x = infinity) is far from a root: A well conditioned
+            break
+    _, phi, a, b, c = best
+    ainv = np.linalg.inv(a)
+    comp = np.zeros((24, 24))
+    comp[:12, 12:] = np.eye(12)
+    comp[12:, :12] = -ainv @ c
+    comp[12:, 12:] = -ainv @ b
+    others = [k for k in range(3) if k != hidden]
+    out = []
+    for x in np.linalg.eigvals(comp):
+        if abs(x.imag) > G6_REAL_TOL * (1.0 + abs(x)):
+            continue
+        x = float(x.real)
+        for v in _g6_monomial_vectors(a * x * x + b * x + c):
+            angles = [0.0, 0.0, 0.0]
+            angles[hidden] = phi + 2.0 * math.atan(x)
+            angles[others[0]], angles[others[1]] = _g6_half_angle(v, 0), _g6_half_angle(v, 1)
+            out.append(_g6_complete(angles, links, P, Q, r))
+    return out
+
+
+def _g6_monomial_vectors(m):
+    """The monomial vectors u^i v^j in the null space of M(x): its null vector, or, where several solutions share
+    the hidden angle (a null space of dimension k > 1, e.g. a wrist's two flips), the k vectors of that space
+    with the shift structure u^(i+1) v^j = u u^i v^j: eigenvectors of the k x k pencil it gives."""
+    _, sv, vt = np.linalg.svd(m)
+    k = max(1, int(np.sum(sv <= G6_NULL_TOL * sv[0])))
+    if k == 1:
+        return [vt[-1]]
+    basis = vt[-k:].T  # 12 x k
+    grid = basis.reshape(4, 3, k)
+    down, up = grid[:3].reshape(9, k), grid[1:].reshape(9, k)
+    swap = np.linalg.norm(down) < np.linalg.norm(up)  # u large: the shift read the other way (1/u), better scaled
+    lhs, rhs = (up, down) if swap else (down, up)
+    vals, vecs = np.linalg.eig(np.linalg.lstsq(lhs, rhs, rcond=None)[0])
+    return [np.real(basis @ vecs[:, i]) for i in range(k)
+            if abs(vals[i].imag) <= G6_REAL_TOL * (1.0 + abs(vals[i]))]
+
+
+def _g6_complete(angles, links, P, Q, r):
+    """theta1, theta2 (least-squares Y of the 14 equations) and theta6 (what the loop leaves) for theta3..5."""
+    k1, k2, k3, k4, k5, k6 = links
+    t3, t4, t5 = angles
+    f3, f4, f5 = (np.array([1.0, math.cos(t), math.sin(t)]) for t in angles)
+    lhs = np.einsum("eabc,a,b,c->e", _g6_with_constant(P, r), f3, f4, f5)
+    y = np.linalg.lstsq(Q, lhs, rcond=None)[0]
+    t1, t2 = math.atan2(y[4], y[5]), math.atan2(y[6], y[7])
+    # Rz(t6) = (Rz(t1) K1 ... Rz(t5) K5)^-1 K6^-1
+    f = g6_rz(t1) @ k1 @ g6_rz(t2) @ k2 @ g6_rz(t3) @ k3 @ g6_rz(t4) @ k4 @ g6_rz(t5) @ k5
+    r6 = g6_inverse(f) @ g6_inverse(k6)
+    return [t1, t2, t3, t4, t5, math.atan2(r6[1, 0], r6[0, 0])]
+
+
+def g6_polish(q, fk, jacobian, target, iters=8):
+    """Gauss-Newton on the pose error (position, then half the sum of column cross products): the
+    elimination's roots carry the eigenproblem's conditioning (1e-9 where roots are close); a few steps bring a
+    candidate to rounding. fk(q) -> 4x4, jacobian(q) -> 6 x n geometric. Returns (q, max |fk(q) - target|)."""
+    q = np.array(q, dtype=float)
+    t = fk(q)
+    err = float(np.max(np.abs(t[:3] - target[:3])))
+    for _ in range(iters):
+        e = np.concatenate([target[:3, 3] - t[:3, 3],
+                            0.5 * sum(np.cross(t[:3, i], target[:3, i]) for i in range(3))])
+        step = np.linalg.lstsq(jacobian(q), e, rcond=None)[0]
+        trial = q + step
+        t2 = fk(trial)
+        err2 = float(np.max(np.abs(t2[:3] - target[:3])))
+        if not err2 < err:
+            break
+        q, t, err = trial, t2, err2
+    return q, err
+
+
+def g6_z_frames(axes, points) -> list[np.ndarray]:
+    """A frame per joint with its z axis on the joint's line (x any normal): exp(S_i q) = Z_i Rz(q) Z_i^-1."""
+    out = []
+    for a, p in zip(axes, points, strict=True):
+        z = np.asarray(a, dtype=float) / np.linalg.norm(a)
+        e = np.eye(3)[int(np.argmin(np.abs(z)))]
+        x = np.cross(z, e)
+        x /= np.linalg.norm(x)
+        f = np.eye(4)
+        f[:3, 0], f[:3, 1], f[:3, 2], f[:3, 3] = x, np.cross(z, x), z, p
+        out.append(f)
+    return out
+
+
+def g6_loop_links(frames, home, pose):
+    """K1..K6 of the loop Rz(q1) K1 ... Rz(q6) K6 = I for the chain pose(q) = prod Z_i Rz(q_i) Z_i^-1 home."""
+    links = [g6_inverse(frames[i]) @ frames[i + 1] for i in range(5)]
+    links.append(g6_inverse(frames[5]) @ home @ g6_inverse(pose) @ frames[0])
+    return links
+
+
+def g6_labelled(links, shift: int, reverse: bool):
+    """(links, joints, sign) of the same loop read from joint `shift` (0-based), backwards when `reverse`: the
+    loop Rz(sign q[joints[0]]) links[0] ... Rz(sign q[joints[5]]) links[5] = I."""
+    if reverse:  # K6^-1 Rz(-q6) K5^-1 ... K1^-1 Rz(-q1) = I, read from Rz(-q6)
+        links = [g6_inverse(links[i]) for i in (4, 3, 2, 1, 0, 5)]
+        joints = [5, 4, 3, 2, 1, 0]
+    else:
+        joints = [0, 1, 2, 3, 4, 5]
+    k = shift % 6
+    return links[k:] + links[:k], joints[k:] + joints[:k], -1.0 if reverse else 1.0
+
+
+def g6_solve(frames, home, pose, shift=0, reverse=False, hidden=0):
+    """Joint candidates q (length 6, unpolished) of the chain prod Z_i Rz(q_i) Z_i^-1 home = pose."""
+    links, joints, sign = g6_labelled(g6_loop_links(frames, home, pose), shift, reverse)
+    out = []
+    for t in g6_candidates(links, hidden):
+        q = [0.0] * 6
+        for j, v in zip(joints, t, strict=True):
+            q[j] = sign * v
+        out.append(q)
+    return out

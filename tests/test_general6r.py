@@ -1,0 +1,189 @@
+"""The general 6R by elimination (derive/kinematics/general6r.py + runtime/python/general6r.py) against the
+independent multistart reference (tests/reference/chain.py: Levenberg-Marquardt from many starts on a POE product
+of its own): random 6R arms with no two axes parallel or meeting, a UR5e whose wrist_1 axis is tilted by 10
+degrees, the xArm6 as pybullet ships it, and the Panda with joint 1 or 3 held (the arms the planner refuses)."""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib.util
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+from reference import chain as ref
+from seeding import case_rng
+
+from derive.families.chain import urdf
+from derive.kinematics import general6r as g6
+from derive.kinematics.dh_frames import dh_from_chain
+from derive.kinematics.planner import NoClosedForm, find_plan
+from derive.kinematics.poe import Chain, reduce_free, rot
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def _runtime():
+    spec = importlib.util.spec_from_file_location("general6r_runtime", ROOT / "runtime/python/general6r.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+G6 = _runtime()
+
+
+def random_arm(rng, reach=0.4):
+    """Six axes in general position: random directions and points (no neighbours within 0.05 of parallel)."""
+    while True:
+        axes = np.array([v / np.linalg.norm(v) for v in rng.normal(size=(6, 3))])
+        if min(np.linalg.norm(np.cross(axes[i], axes[i + 1])) for i in range(5)) > 0.05:
+            break
+    points = rng.normal(size=(6, 3)) * reach
+    home = np.eye(4)
+    home[:3, :3] = rot(axes[0], rng.uniform(-3, 3)) @ rot(axes[3], rng.uniform(-3, 3))
+    home[:3, 3] = rng.normal(size=3) * reach
+    return Chain("arm", tuple(f"j{i + 1}" for i in range(6)), ("R",) * 6, axes, points, home)
+
+
+def reference_of(chain: Chain) -> ref.PoeChain:
+    """The same numbers read by the reference's own POE product (twists (w, -w x p), its own exponential)."""
+    twists = [(a, -np.cross(a, p)) for a, p in zip(chain.axes, chain.points, strict=True)]
+    return ref.PoeChain(chain.name, twists, chain.home, np.eye(4), np.eye(4), chain.joint_names,
+                        ("revolute",) * chain.n, [-math.pi] * chain.n, [math.pi] * chain.n)
+
+
+def tilted_ur5e() -> Chain:
+    ur, _ = urdf.read(ROOT / "tests/robots/ur5e/ur5e.urdf", "base_link", "tool0")
+    axes = ur.axes.copy()
+    n = np.cross(axes[3], axes[4])
+    axes[3] = rot(n / np.linalg.norm(n), math.radians(10.0)) @ axes[3]
+    return dataclasses.replace(ur, axes=axes)
+
+
+def _distance(a, b) -> float:
+    return float(np.max(np.abs(ref.wrap_angle(np.asarray(a) - np.asarray(b)))))
+
+
+def _check_pose(chain, labelling, reference, q, fixed=None, seed=0):
+    """The generating joints among the sets, every reference solution among them, none spurious."""
+    free = sorted(fixed or {})
+    solver = reduce_free(chain, free[0], q[free[0]]) if free else chain
+    T = reference(q)
+    sols = g6.solve(solver, labelling, T)
+    full = [np.insert(s, free[0], q[free[0]]) if free else s for s in sols]
+    # the generating joints: within eps / sigma_min of J (the conditioning of the pose -> joints map)
+    jac = reference.jacobian(q)
+    smin = np.linalg.svd(np.delete(jac, free, axis=1) if free else jac, compute_uv=False)[-1]
+    assert min(_distance(q, s) for s in full) < 1e-9 + 1e-13 / smin
+    expected = ref.ik_all(reference, chain.n, T, starts=120, seed=seed, fixed=fixed)
+    for x in expected:  # none missed
+        assert min(_distance(x, s) for s in full) < 1e-6, (x, full)
+    for s in full:  # none spurious
+        assert ref.pose_error(reference(s), T) < 1e-9
+    assert len(sols) <= 16
+
+
+def test_the_fourteen_equations_are_linear_in_x_and_y_for_every_6r():
+    """Raghavan and Roth's structure, proven for symbolic DH constants: after reducing c^2 + s^2 = 1 (a Groebner
+    basis in lex order, so the normal form is unique), no monomial outside (c3, s3, 1) x X or Y + 1 is left."""
+    assert g6.structure_violations() == []
+    eq = g6.general_equations()
+    assert len(eq.left) == len(eq.right) == 14
+
+
+def test_the_run_time_equations_are_the_symbolic_ones():
+    """The coefficients the solvers interpolate at run time (three angles per joint) equal the general symbolic
+    equations specialised to the robot's DH constants (same loop, read in DH frames)."""
+    rng = case_rng(600)
+    for _ in range(3):
+        chain = random_arm(rng)
+        dh = dh_from_chain(chain)
+        el = g6.derive_elimination(dh)
+        fq, fr = sp.lambdify(g6.POSE_LP, el.Q, "numpy"), sp.lambdify(g6.POSE_LP, el.r, "numpy")
+        pose = chain.fk(rng.uniform(-math.pi, math.pi, 6))
+        f = np.linalg.inv(dh.base) @ pose @ np.linalg.inv(dh.end)
+        # the DH loop: Rz(t1) K1 ... Rz(t5) K5 Rz(t6) K6 = I with K_i = Tz Tx Rx of link i, K6 = F^-1
+        links = [dh_link(dh, i) for i in range(5)] + [np.linalg.inv(f)]
+        P, Q, r = G6.g6_equations(links)
+        lp = (*f[:3, 2], *f[:3, 3])
+        np.testing.assert_allclose(Q, np.array(fq(*lp), float), atol=1e-12)
+        np.testing.assert_allclose(r, np.array(fr(*lp), float).ravel(), atol=1e-12)
+        # P's tensor over (1, c, s) of t3, t4, t5 against P0, P1, P2 over X
+        parts = (("s", "s"), ("s", "c"), ("c", "s"), ("c", "c"), ("s", "1"), ("c", "1"), ("1", "s"), ("1", "c"),
+                 ("1", "1"))
+        idx = {"1": 0, "c": 1, "s": 2}
+        for k3 in range(3):
+            for col, (a, b) in enumerate(parts):
+                np.testing.assert_allclose(P[:, k3, idx[a], idx[b]], el.P[k3, :, col], atol=1e-12)
+
+
+def dh_link(dh, i):
+    t = np.eye(4)
+    ca, sa = math.cos(dh.alpha[i]), math.sin(dh.alpha[i])
+    t[:3, :3] = [[1, 0, 0], [0, ca, -sa], [0, sa, ca]]
+    t[:3, 3] = [dh.a[i], 0.0, dh.d[i]]
+    return t
+
+
+def test_dh_frames_reproduce_the_chain():
+    rng = case_rng(601)
+    for _ in range(10):
+        chain = random_arm(rng)
+        dh = dh_from_chain(chain)
+        for q in rng.uniform(-math.pi, math.pi, size=(10, 6)):
+            np.testing.assert_allclose(dh.fk(q), chain.fk(q), atol=1e-13)
+
+
+@pytest.mark.parametrize("robot", range(4))
+def test_every_solution_of_a_random_general_6r(robot):
+    rng = case_rng(602 + robot)
+    chain = random_arm(rng)
+    with pytest.raises(NoClosedForm):
+        find_plan(chain)
+    labelling = g6.choose_labelling(chain, rng)
+    reference = reference_of(chain)
+    for _ in range(3):
+        _check_pose(chain, labelling, reference, rng.uniform(-math.pi, math.pi, 6), seed=int(rng.integers(1 << 30)))
+
+
+@pytest.mark.parametrize("name", ["ur5e_tilted", "xarm6"])
+def test_every_solution_of_real_arms_the_planner_refuses(name):
+    """Parallel neighbours make the first labelling's equations dependent (M(x) singular for every x): another
+    reading of the loop is chosen, from the sampled regularity."""
+    rng = case_rng(610)
+    if name == "xarm6":
+        import pybullet_data
+
+        chain, _ = urdf.read(Path(pybullet_data.getDataPath()) / "xarm/xarm6_robot.urdf")
+    else:
+        chain = tilted_ur5e()
+    with pytest.raises(NoClosedForm):
+        find_plan(chain)
+    labelling = g6.choose_labelling(chain, rng)
+    reference = reference_of(chain)
+    for _ in range(3):
+        _check_pose(chain, labelling, reference, rng.uniform(-math.pi, math.pi, 6), seed=int(rng.integers(1 << 30)))
+
+
+@pytest.mark.parametrize("free", [0, 2])
+def test_the_panda_with_a_free_joint_the_planner_refuses(free):
+    """Joint 1 or 3 held: no decomposition; the general 6R solves the rest for any held value (the labelling is
+    chosen over several)."""
+    from derive.families.chain import description
+    from derive.spec import Spec
+
+    path = ROOT / "tests/robots/panda/panda_dh.toml"
+    import tomllib
+
+    chain = description.read(Spec(tomllib.loads(path.read_text()), path)).chain
+    rng = case_rng(620 + free)
+    with pytest.raises(NoClosedForm):
+        find_plan(reduce_free(chain, free, 0.7))
+    labelling = g6.choose_labelling(reduce_free(chain, free, 0.7), rng)
+    reference = reference_of(chain)
+    for _ in range(3):
+        q = rng.uniform(-2.5, 2.5, 7)
+        _check_pose(chain, labelling, reference, q, fixed={free: q[free]}, seed=int(rng.integers(1 << 30)))
