@@ -1,0 +1,704 @@
+/* wristkin: dense real eigenvalues, the quadratic eigenproblem and null vectors (C99, libm only; do not edit).
+ * @generated-by@
+ *
+ * Algorithms from the literature (written for this file): Parlett & Reinsch, "Balancing a matrix for
+ * calculation of eigenvalues and eigenvectors" (1969); Householder reduction to Hessenberg form and the Francis
+ * implicit double-shift QR step (Golub & Van Loan, Matrix Computations, 4th ed., 7.4-7.5); the companion
+ * linearisation of a quadratic matrix polynomial (Tisseur & Meerbergen, SIAM Review 43, 2001) with the
+ * Fan-Lin-Van Dooren parameter scaling; Hestenes' one-sided Jacobi SVD (Demmel & Veselic 1992).
+ * Contracts in wk_eigen.h.
+ */
+#include "wk_eigen.h"
+
+#include <float.h>
+#include <math.h>
+
+#define WK_EIG_EPS DBL_EPSILON
+/* QR iterations allowed: 30 per eigenvalue, as one budget of 30 n for the whole matrix (EISPACK's hqr): a
+ * defective eigenvalue converges only linearly (a Jordan block of 6: ~40 iterations for the first deflation,
+ * then the rest of the block follows quickly), so a per-window cap of 30 would give up on matrices LAPACK solves */
+#define WK_EIG_ITMAX 30
+
+static int wk_eig_finite(int count, const double *x)
+{
+    int i;
+    for (i = 0; i < count; ++i)
+        if (!isfinite(x[i]))
+            return 0;
+    return 1;
+}
+
+/* The exponent e with max|x| in [2^(e-1), 2^e) (0 when all are zero): scaling by 2^-e is exact and brings the
+ * largest entry near 1, so nothing below overflows or loses precision in the subnormal range. */
+static int wk_eig_exponent(int count, const double *x)
+{
+    double amax = 0.0;
+    int i, e = 0;
+    for (i = 0; i < count; ++i)
+        if (fabs(x[i]) > amax)
+            amax = fabs(x[i]);
+    if (amax == 0.0)
+        return 0;
+    (void)frexp(amax, &e);
+    return e;
+}
+
+/* Parlett-Reinsch: scale row i by 1/f and column i by f (f a power of 2, so exact and a similarity) until
+ * no row/column pair's off-diagonal 1-norms improve their sum by 5%. The total scale of an index is kept
+ * within 2^+-900, so that no scale itself overflows and a row is not pushed wholesale into underflow. */
+static void wk_eig_balance(int n, double *a, double *scale)
+{
+    const double big = 0x1p+900, small = 0x1p-900;
+    int i, j, sweep, done = 0;
+    for (i = 0; i < n; ++i)
+        scale[i] = 1.0;
+    for (sweep = 0; sweep < 64 && !done; ++sweep) {
+        done = 1;
+        for (i = 0; i < n; ++i) {
+            double c = 0.0, r = 0.0, g, f = 1.0, s;
+            for (j = 0; j < n; ++j) {
+                if (j == i)
+                    continue;
+                c += fabs(a[j * n + i]);
+                r += fabs(a[i * n + j]);
+            }
+            if (c == 0.0 || r == 0.0)
+                continue;
+            s = c + r;
+            /* c and f move together: the column sum after scaling by f is c f, the row sum r / f; c here
+             * tracks c0 f^2 so that c0 f^2 ~ r is the balance point. */
+            g = r / 2.0;
+            while (c < g && scale[i] * f < big) {
+                f *= 2.0;
+                c *= 4.0;
+            }
+            g = r * 2.0;
+            while (c >= g && scale[i] * f > small) {
+                f /= 2.0;
+                c /= 4.0;
+            }
+            if ((c + r) / f < 0.95 * s) {
+                double fi = 1.0 / f;
+                done = 0;
+                scale[i] *= f;
+                for (j = 0; j < n; ++j)
+                    a[i * n + j] *= fi;
+                for (j = 0; j < n; ++j)
+                    a[j * n + i] *= f;
+            }
+        }
+    }
+}
+
+/* Householder reduction to upper Hessenberg form, H = Q^T a Q (Q not kept: only eigenvalues are wanted).
+ * v: n doubles of workspace. */
+static void wk_eig_hessenberg(int n, double *a, double *v)
+{
+    int i, j, k;
+    for (k = 0; k + 2 < n; ++k) {
+        double amax = 0.0, sigma = 0.0, tail = 0.0, alpha, beta;
+        for (i = k + 1; i < n; ++i)
+            if (fabs(a[i * n + k]) > amax)
+                amax = fabs(a[i * n + k]);
+        if (amax == 0.0)
+            continue;
+        for (i = k + 1; i < n; ++i) {
+            v[i] = a[i * n + k] / amax; /* scaled: the reflector is the same, the squares cannot overflow */
+            sigma += v[i] * v[i];
+            if (i > k + 1)
+                tail += v[i] * v[i];
+        }
+        if (tail == 0.0)
+            continue; /* already Hessenberg in this column */
+        alpha = -copysign(sqrt(sigma), v[k + 1]);
+        v[k + 1] -= alpha;
+        /* v^T v = 2 (sigma - alpha v1_old) = -2 alpha v[k+1] > 0, so 2 / v^T v = 1 / (-alpha v[k+1]) */
+        beta = 1.0 / (-alpha * v[k + 1]);
+        for (j = k + 1; j < n; ++j) {
+            double s = 0.0;
+            for (i = k + 1; i < n; ++i)
+                s += v[i] * a[i * n + j];
+            s *= beta;
+            for (i = k + 1; i < n; ++i)
+                a[i * n + j] -= s * v[i];
+        }
+        a[(k + 1) * n + k] = alpha * amax;
+        for (i = k + 2; i < n; ++i)
+            a[i * n + k] = 0.0;
+        for (i = 0; i < n; ++i) {
+            double s = 0.0;
+            for (j = k + 1; j < n; ++j)
+                s += a[i * n + j] * v[j];
+            s *= beta;
+            for (j = k + 1; j < n; ++j)
+                a[i * n + j] -= s * v[j];
+        }
+    }
+}
+
+/* Eigenvalues of [[p, q], [r, s]]: (e1, e2) real (im = 0) or re +- i im. */
+static void wk_eig_2x2(double p, double q, double r, double s, double *e1, double *e2, double *im)
+{
+    double h = 0.5 * (p - s), bc = q * r, disc = h * h + bc;
+    *im = 0.0;
+    if (disc >= 0.0) {
+        /* z = h + sign(h) sqrt(disc) has no cancellation; the other root from the product (e1 e2 = ps - qr) */
+        double z = h + copysign(sqrt(disc), h);
+        *e1 = s + z;
+        *e2 = (z != 0.0) ? s - bc / z : s;
+    } else {
+        *e1 = *e2 = s + h;
+        *im = sqrt(-disc);
+    }
+}
+
+/* Francis double-shift QR on the Hessenberg matrix h (n x n), eigenvalues only: each step works on the active
+ * unreduced window [l, hi]. Returns WK_EIG_OK or WK_EIG_ERR_NOCONV. */
+static int wk_eig_hqr(int n, double *h, double *wr, double *wi)
+{
+    const double eps = WK_EIG_EPS;
+    /* below this a subdiagonal entry is negligible whatever its neighbours (the smallest normal number scaled
+     * by n / eps, as LAPACK's dlahqr does): keeps an underflowing subdiagonal from stalling the iteration */
+    const double smlnum = DBL_MIN * ((double)n / eps);
+    double norm = 0.0;
+    int i, j, hi = n - 1, its = 0, budget = WK_EIG_ITMAX * n;
+    for (i = 0; i < n; ++i)
+        for (j = (i > 0 ? i - 1 : 0); j < n; ++j)
+            norm += h[i * n + j] * h[i * n + j]; /* entries <= ~1 (scaled): no overflow */
+    norm = sqrt(norm); /* ||H||_F, invariant under the orthogonal QR steps */
+    while (hi >= 0) {
+        int l, k;
+        double sr, si, p, q, r;
+        for (l = hi; l > 0; --l) {
+            double sub = fabs(h[l * n + l - 1]);
+            double tst = fabs(h[(l - 1) * n + l - 1]) + fabs(h[l * n + l]);
+            if (tst == 0.0)
+                tst = norm;
+            /* Wilkinson's local test: small next to its diagonal neighbours (keeps the small eigenvalues of
+             * a graded matrix accurate); a zero diagonal pair falls back to ||H||_F */
+            if (sub <= eps * tst || sub <= smlnum) {
+                h[l * n + l - 1] = 0.0;
+                break;
+            }
+        }
+        if (l == hi) { /* a 1x1 block deflated */
+            wr[hi] = h[hi * n + hi];
+            wi[hi] = 0.0;
+            --hi;
+            its = 0;
+            continue;
+        }
+        if (l == hi - 1) { /* a 2x2 block deflated */
+            double e1, e2, im;
+            wk_eig_2x2(h[l * n + l], h[l * n + hi], h[hi * n + l], h[hi * n + hi], &e1, &e2, &im);
+            if (im == 0.0) {
+                wr[l] = e1;
+                wr[hi] = e2;
+                wi[l] = wi[hi] = 0.0;
+            } else {
+                wr[l] = wr[hi] = e1;
+                wi[l] = im;
+                wi[hi] = -im;
+            }
+            hi -= 2;
+            its = 0;
+            continue;
+        }
+        if (budget-- == 0)
+            return WK_EIG_ERR_NOCONV;
+        /* shifts: the eigenvalues of the trailing 2x2 (Wilkinson's double shift); when both are real, the
+         * one nearer h[hi][hi] twice. Every 10th iteration on one window an exceptional pair built from the last
+         * subdiagonals, 0.75 e + h[hi][hi] +- i sqrt(0.4375) e, breaks the cycles the standard shift can fall
+         * into (e.g. a cyclic permutation matrix). */
+        if (its > 0 && its % 10 == 0) {
+            double e = fabs(h[hi * n + hi - 1]) + fabs(h[(hi - 1) * n + hi - 2]);
+            sr = 0.75 * e + h[hi * n + hi];
+            si = sqrt(0.4375) * e;
+        } else {
+            double e1, e2;
+            wk_eig_2x2(h[(hi - 1) * n + hi - 1], h[(hi - 1) * n + hi], h[hi * n + hi - 1], h[hi * n + hi], &e1, &e2,
+                       &si);
+            sr = (fabs(e1 - h[hi * n + hi]) <= fabs(e2 - h[hi * n + hi])) ? e1 : e2;
+            if (si != 0.0)
+                sr = e1;
+        }
+        ++its;
+        /* first column of (H - s1 I)(H - s2 I) at the window's top, s1,2 = sr +- i si, in factored form:
+         * (h00 - sr)^2 + si^2 + h01 h10, not h00^2 - (s1 + s2) h00 + s1 s2, whose cancellation leaves nothing
+         * but rounding when the shifts are within sqrt(eps) of h00 (a cluster, a defective eigenvalue) and
+         * turns the step into a random rotation */
+        {
+            double h00 = h[l * n + l], h01 = h[l * n + l + 1], h10 = h[(l + 1) * n + l];
+            double h11 = h[(l + 1) * n + l + 1], h21 = h[(l + 2) * n + l + 1];
+            double d0 = h00 - sr, d1 = h11 - sr;
+            p = d0 * d0 + si * si + h01 * h10;
+            q = h10 * (d0 + d1);
+            r = h21 * h10;
+        }
+        /* chase the bulge down with 3x3 (last: 2x2) reflectors */
+        for (k = l; k < hi; ++k) {
+            int nr = (k < hi - 1) ? 3 : 2, last;
+            double scal, nrm, v1, v2, tau;
+            if (k > l) {
+                p = h[k * n + k - 1];
+                q = h[(k + 1) * n + k - 1];
+                r = (nr == 3) ? h[(k + 2) * n + k - 1] : 0.0;
+            }
+            scal = fabs(p) + fabs(q) + fabs(r);
+            if (scal == 0.0)
+                continue;
+            p /= scal;
+            q /= scal;
+            r /= scal;
+            nrm = copysign(sqrt(p * p + q * q + r * r), p);
+            if (k > l) {
+                h[k * n + k - 1] = -nrm * scal;
+                h[(k + 1) * n + k - 1] = 0.0;
+                if (nr == 3)
+                    h[(k + 2) * n + k - 1] = 0.0;
+            }
+            /* reflector I - tau u u^T with u = (1, v1, v2) maps (p, q, r) to (-nrm, 0, 0) */
+            tau = (p + nrm) / nrm;
+            v1 = q / (p + nrm);
+            v2 = r / (p + nrm);
+            for (j = k; j <= hi; ++j) {
+                double d = h[k * n + j] + v1 * h[(k + 1) * n + j];
+                if (nr == 3)
+                    d += v2 * h[(k + 2) * n + j];
+                d *= tau;
+                h[k * n + j] -= d;
+                h[(k + 1) * n + j] -= d * v1;
+                if (nr == 3)
+                    h[(k + 2) * n + j] -= d * v2;
+            }
+            last = (k + 3 < hi) ? k + 3 : hi;
+            for (i = l; i <= last; ++i) {
+                double d = h[i * n + k] + v1 * h[i * n + k + 1];
+                if (nr == 3)
+                    d += v2 * h[i * n + k + 2];
+                d *= tau;
+                h[i * n + k] -= d;
+                h[i * n + k + 1] -= d * v1;
+                if (nr == 3)
+                    h[i * n + k + 2] -= d * v2;
+            }
+        }
+    }
+    return WK_EIG_OK;
+}
+
+int wk_eig_real(int n, double *a, double *wr, double *wi, double *work)
+{
+    int e, e2, i, rc;
+    if (!a || !wr || !wi || !work || n < 1 || n > WK_EIG_MAXN)
+        return WK_EIG_ERR_INPUT;
+    for (i = 0; i < n; ++i)
+        wr[i] = wi[i] = 0.0;
+    if (!wk_eig_finite(n * n, a))
+        return WK_EIG_ERR_INPUT;
+    /* balancing comes first, on the matrix as given: a scaling to max ~ 1 before it would flush the small
+     * entries of a graded matrix (2^+-620 and more) to zero, and balancing is what makes them matter. Only
+     * a matrix near the ends of the range is scaled first, so that the row and column sums cannot overflow
+     * (32 terms below 2^1017). */
+    e = wk_eig_exponent(n * n, a);
+    e = (e > 960 || e < -960) ? e : 0;
+    for (i = 0; i < n * n && e != 0; ++i)
+        a[i] = ldexp(a[i], -e);
+    wk_eig_balance(n, a, work);
+    /* then to max ~ 1 (balancing can also shrink a graded matrix as a whole by 2^-500 and more): else the
+     * shifts' products in the QR step fall into the subnormal range and lose their bits */
+    e2 = wk_eig_exponent(n * n, a);
+    for (i = 0; i < n * n; ++i)
+        a[i] = ldexp(a[i], -e2);
+    e += e2;
+    wk_eig_hessenberg(n, a, work + n);
+    rc = wk_eig_hqr(n, a, wr, wi);
+    if (rc != WK_EIG_OK) {
+        for (i = 0; i < n; ++i)
+            wr[i] = wi[i] = 0.0;
+        return rc;
+    }
+    for (i = 0; i < n; ++i) {
+        wr[i] = ldexp(wr[i], e);
+        wi[i] = ldexp(wi[i], e);
+        if (!isfinite(wr[i]) || !isfinite(wi[i]))
+            rc = WK_EIG_ERR_INPUT; /* |lambda| <= n max|a| can exceed DBL_MAX: refused, not returned as inf */
+    }
+    if (rc != WK_EIG_OK)
+        for (i = 0; i < n; ++i)
+            wr[i] = wi[i] = 0.0;
+    return rc;
+}
+
+/* ------------------------------------------------------------------ quadratic eigenproblem */
+
+/* LU with partial pivoting of the m x m row-major a in place (piv: row swaps). 0 when a pivot is exactly
+ * zero (singular), else 1. */
+static int wk_qep_lu(int m, double *a, int *piv)
+{
+    int i, j, k;
+    for (k = 0; k < m; ++k) {
+        int p = k;
+        for (i = k + 1; i < m; ++i)
+            if (fabs(a[i * m + k]) > fabs(a[p * m + k]))
+                p = i;
+        piv[k] = p;
+        if (a[p * m + k] == 0.0)
+            return 0;
+        if (p != k)
+            for (j = 0; j < m; ++j) {
+                double t = a[k * m + j];
+                a[k * m + j] = a[p * m + j];
+                a[p * m + j] = t;
+            }
+        for (i = k + 1; i < m; ++i) {
+            double f = a[i * m + k] /= a[k * m + k];
+            for (j = k + 1; j < m; ++j)
+                a[i * m + j] -= f * a[k * m + j];
+        }
+    }
+    return 1;
+}
+
+/* Solve (LU) x = b in place for `cols` right-hand sides stored as the columns of the m x cols row-major b. */
+static void wk_qep_solve(int m, const double *lu, const int *piv, double *b, int cols)
+{
+    int i, j, k;
+    for (k = 0; k < m; ++k)
+        if (piv[k] != k)
+            for (j = 0; j < cols; ++j) {
+                double t = b[k * cols + j];
+                b[k * cols + j] = b[piv[k] * cols + j];
+                b[piv[k] * cols + j] = t;
+            }
+    for (j = 0; j < cols; ++j) {
+        for (i = 1; i < m; ++i) {
+            double s = b[i * cols + j];
+            for (k = 0; k < i; ++k)
+                s -= lu[i * m + k] * b[k * cols + j];
+            b[i * cols + j] = s;
+        }
+        for (i = m - 1; i >= 0; --i) {
+            double s = b[i * cols + j];
+            for (k = i + 1; k < m; ++k)
+                s -= lu[i * m + k] * b[k * cols + j];
+            b[i * cols + j] = s / lu[i * m + i];
+        }
+    }
+}
+
+static double wk_qep_norm1(int m, const double *a)
+{
+    double best = 0.0;
+    int i, j;
+    for (j = 0; j < m; ++j) {
+        double s = 0.0;
+        for (i = 0; i < m; ++i)
+            s += fabs(a[i * m + j]);
+        if (s > best)
+            best = s;
+    }
+    return best;
+}
+
+/* The coefficients after the Moebius rotation x = (c y + s) / (c - s y): multiplying M(x) by (c - s y)^2,
+ *   A' = c^2 A - c s B + s^2 C = (c - s y)^2 M(x) at y = inf,  B' = 2 c s A + (c^2 - s^2) B - 2 c s C,
+ *   C' = s^2 A + c s B + c^2 C.  (c, s) = (1, 0) is the problem itself, (0, 1) its reversal (y = -1/x). */
+static void wk_qep_rotate(int m, const double *A, const double *B, const double *C, double c, double s,
+                          double *a2, double *b2, double *c2)
+{
+    int i;
+    for (i = 0; i < m * m; ++i) {
+        a2[i] = c * c * A[i] - c * s * B[i] + s * s * C[i];
+        b2[i] = 2.0 * c * s * (A[i] - C[i]) + (c * c - s * s) * B[i];
+        c2[i] = s * s * A[i] + c * s * B[i] + c * c * C[i];
+    }
+}
+
+/* 1-norm reciprocal condition number of L (m x m), computed from its explicit inverse (m <= 12: the exact
+ * value costs little more than an estimator); lu/piv receive its factorisation. 0 when singular. */
+static double wk_qep_rcond(int m, const double *L, double *lu, int *piv)
+{
+    double inv[WK_QEP_MAXM * WK_QEP_MAXM], nl = wk_qep_norm1(m, L), ni;
+    int i;
+    for (i = 0; i < m * m; ++i)
+        lu[i] = L[i];
+    if (nl == 0.0 || !wk_qep_lu(m, lu, piv))
+        return 0.0;
+    for (i = 0; i < m * m; ++i)
+        inv[i] = (i % (m + 1) == 0) ? 1.0 : 0.0;
+    wk_qep_solve(m, lu, piv, inv, m);
+    ni = wk_qep_norm1(m, inv);
+    return (isfinite(ni) && ni > 0.0) ? 1.0 / (nl * ni) : 0.0;
+}
+
+static void wk_qep_sort(int k, double *x, unsigned *f)
+{
+    int i, j;
+    for (i = 1; i < k; ++i)
+        for (j = i; j > 0 && x[j - 1] > x[j]; --j) {
+            double t = x[j];
+            unsigned u = f[j];
+            x[j] = x[j - 1];
+            f[j] = f[j - 1];
+            x[j - 1] = t;
+            f[j - 1] = u;
+        }
+}
+
+/* Why this linearisation. The companion form [[0, I], [-L^-1 C', -L^-1 B']] needs the leading coefficient L
+ * inverted, and its backward error grows with cond(L); in the 6R elimination A is singular at poses where
+ * theta = pi solves (x = inf) and ill-conditioned near them, C likewise at theta = 0. So the leading
+ * coefficient is chosen, not assumed: among Moebius rotations x = (c y + s) / (c - s y) of the projective line
+ * (angle 0 = the problem as given, pi/2 = its reversal, and four fixed irrational angles for when A and C are
+ * both singular) the one whose leading coefficient s^2 M(x = -c/s) has the largest reciprocal condition
+ * (a later one only if at least twice that of the earlier ones).
+ * A rotation keeps the three coefficients' norms comparable (an orthogonal change of the homogeneous
+ * variables), so it costs no accuracy, unlike a general Moebius map. Before that, x = g mu with g =
+ * 2^round(log2 sqrt(||C|| / ||A||)) (Fan, Lin & Van Dooren's scaling, rounded to a power of 2 so exact) makes
+ * ||A|| ~ ||C||, which is what makes the companion linearisation's backward error comparable to the
+ * polynomial's. The pencil is reported singular when even the best rcond is below 64 m eps: then
+ * det M(x) vanishes (numerically) at all six points, which a regular 12 x 12 problem with 24 eigenvalues does
+ * not do unless it is within rounding of a singular one.
+ *
+ * Why tol is an angle. x = tan(theta/2), and d theta = 2 dx / (1 + x^2): 2 |Im x| / (1 + |x|^2) is the
+ * imaginary part of theta. A real double root (a tangency: two IK branches meeting) perturbed by the backward
+ * error delta ~ c m eps / rcond splits by ~ sqrt(delta) -- into two reals or into a complex pair; delta
+ * ~ 1e-13 gives ~ 3e-7, so the default 2^-20 ~ 9.5e-7 keeps such pairs as one real root flagged DOUBLE (the
+ * caller verifies and polishes on the true chain; poly_real_roots.c's tol_touch 1e-12, a backward error,
+ * is the same split). A genuine complex pair that close to the real axis is a near-tangency the caller's
+ * check rejects. Likewise |x| >= 2 / tol (theta within ~tol of pi) is reported as infinite, never as a huge
+ * finite real root. */
+int wk_generalized_quadratic_eig(int m, const double *A, const double *B, const double *C, double tol,
+                                 wk_qep_result *out)
+{
+    /* cos and sin of 0, pi/2 and the fixed angles 0.4, 1.1, 2.0, 2.6 (radians; arbitrary, no two close) */
+    static const double rot[6][2] = {{1.0, 0.0},
+                                     {0.0, 1.0},
+                                     {0.92106099400288508, 0.38941834230865049},
+                                     {0.45359612142557731, 0.89120736006143534},
+                                     {-0.41614683654714241, 0.90929742682568170},
+                                     {-0.85688875336894723, 0.51550137182146428}};
+    double As[WK_QEP_MAXM * WK_QEP_MAXM], Bs[WK_QEP_MAXM * WK_QEP_MAXM], Cs[WK_QEP_MAXM * WK_QEP_MAXM];
+    double a2[WK_QEP_MAXM * WK_QEP_MAXM], b2[WK_QEP_MAXM * WK_QEP_MAXM], c2[WK_QEP_MAXM * WK_QEP_MAXM];
+    double lu[WK_QEP_MAXM * WK_QEP_MAXM], best_lu[WK_QEP_MAXM * WK_QEP_MAXM];
+    double comp[4 * WK_QEP_MAXM * WK_QEP_MAXM], rhs[WK_QEP_MAXM * 2 * WK_QEP_MAXM];
+    double wr[2 * WK_QEP_MAXM], wi[2 * WK_QEP_MAXM], work[WK_EIG_WORK(2 * WK_QEP_MAXM)];
+    int piv[WK_QEP_MAXM], best_piv[WK_QEP_MAXM];
+    double na, nb, nc, g = 1.0, best = -1.0, c, s;
+    int i, j, k, n2 = 2 * m, mm = m * m, eg = 0, en, best_k = 0, rc;
+    if (!out)
+        return WK_EIG_ERR_INPUT;
+    out->n_real = out->n_complex = out->n_infinite = 0;
+    out->rcond = 0.0;
+    out->growth = 0.0;
+    out->angle = 0.0;
+    if (!A || !B || !C || m < 1 || m > WK_QEP_MAXM || !(tol < 0.5) || isnan(tol))
+        return WK_EIG_ERR_INPUT;
+    if (!wk_eig_finite(mm, A) || !wk_eig_finite(mm, B) || !wk_eig_finite(mm, C))
+        return WK_EIG_ERR_INPUT;
+    if (tol <= 0.0)
+        tol = WK_QEP_TOL_DEFAULT;
+    /* exact power-of-two scalings: first everything to max entry ~ 1, then x = g mu */
+    {
+        int ea = wk_eig_exponent(mm, A), eb = wk_eig_exponent(mm, B), ec = wk_eig_exponent(mm, C);
+        en = ea > eb ? ea : eb;
+        en = en > ec ? en : ec;
+    }
+    for (i = 0; i < mm; ++i) {
+        As[i] = ldexp(A[i], -en);
+        Bs[i] = ldexp(B[i], -en);
+        Cs[i] = ldexp(C[i], -en);
+    }
+    na = wk_qep_norm1(m, As);
+    nb = wk_qep_norm1(m, Bs);
+    nc = wk_qep_norm1(m, Cs);
+    if (na > 0.0 && nc > 0.0) {
+        int e2;
+        (void)frexp(nc / na, &e2); /* nc / na in [2^(e2-1), 2^e2): g^2 ~ that */
+        eg = e2 / 2;
+        if (eg > 200)
+            eg = 200;
+        if (eg < -200)
+            eg = -200;
+        g = ldexp(1.0, eg);
+        for (i = 0; i < mm; ++i) {
+            As[i] = ldexp(As[i], 2 * eg);
+            Bs[i] = ldexp(Bs[i], eg);
+        }
+        /* and back to max entry ~ 1 */
+        {
+            int ea = wk_eig_exponent(mm, As), eb = wk_eig_exponent(mm, Bs), ec = wk_eig_exponent(mm, Cs);
+            int e3 = ea > eb ? ea : eb;
+            e3 = e3 > ec ? e3 : ec;
+            for (i = 0; i < mm; ++i) {
+                As[i] = ldexp(As[i], -e3);
+                Bs[i] = ldexp(Bs[i], -e3);
+                Cs[i] = ldexp(Cs[i], -e3);
+            }
+        }
+    }
+    if (na == 0.0 && nb == 0.0 && nc == 0.0)
+        return WK_EIG_ERR_SINGULAR; /* all three zero */
+    for (k = 0; k < 6; ++k) {
+        double rcond;
+        wk_qep_rotate(m, As, Bs, Cs, rot[k][0], rot[k][1], a2, b2, c2);
+        rcond = wk_qep_rcond(m, a2, lu, piv);
+        /* a later candidate must be twice as well conditioned to win: ties (A = 0 makes every rotation's
+         * leading coefficient s^2 C) keep the problem as given or its reversal, where the infinite
+         * eigenvalues land exactly on y = 0 */
+        if (rcond > 2.0 * best || (k == 0 && rcond > best)) {
+            best = rcond;
+            best_k = k;
+            for (i = 0; i < mm; ++i)
+                best_lu[i] = lu[i];
+            for (i = 0; i < m; ++i)
+                best_piv[i] = piv[i];
+        }
+    }
+    out->rcond = best;
+    if (!(best >= 64.0 * m * WK_EIG_EPS))
+        return WK_EIG_ERR_SINGULAR;
+    c = rot[best_k][0];
+    s = rot[best_k][1];
+    out->angle = atan2(s, c);
+    wk_qep_rotate(m, As, Bs, Cs, c, s, a2, b2, c2);
+    /* rhs = [C' B'] (m x 2m), solved in place to [L^-1 C', L^-1 B'] */
+    for (i = 0; i < m; ++i)
+        for (j = 0; j < m; ++j) {
+            rhs[i * n2 + j] = c2[i * m + j];
+            rhs[i * n2 + m + j] = b2[i * m + j];
+        }
+    wk_qep_solve(m, best_lu, best_piv, rhs, n2);
+    out->growth = 1.0;
+    for (j = 0; j < n2; ++j) {
+        double col = 0.0;
+        for (i = 0; i < m; ++i)
+            col += fabs(rhs[i * n2 + j]);
+        if (col > out->growth)
+            out->growth = col;
+    }
+    for (i = 0; i < n2 * n2; ++i)
+        comp[i] = 0.0;
+    for (i = 0; i < m; ++i) {
+        comp[i * n2 + m + i] = 1.0;
+        for (j = 0; j < n2; ++j)
+            comp[(m + i) * n2 + j] = -rhs[i * n2 + j];
+    }
+    if (!wk_eig_finite(n2 * n2, comp))
+        return WK_EIG_ERR_SINGULAR;
+    rc = wk_eig_real(n2, comp, wr, wi, work);
+    if (rc != WK_EIG_OK)
+        return rc;
+    for (k = 0; k < n2; ++k) {
+        if (wi[k] == 0.0) {
+            /* x = g (c y + s) / (c - s y), real */
+            double num = c * wr[k] + s, den = c - s * wr[k];
+            if (fabs(den) * 2.0 <= tol * g * fabs(num)) {
+                ++out->n_infinite; /* |x| >= 2 / tol (den = 0 included) */
+            } else {
+                out->real[out->n_real] = g * num / den;
+                out->real_flags[out->n_real++] = 0u;
+            }
+        } else if (wi[k] > 0.0) {
+            /* x = g (c y + s) / (c - s y) with y = yr + i yi: numerator (c yr + s) + i c yi, denominator
+             * (c - s yr) - i s yi; the division as (num * conj(den)) / |den|^2, entries ~ 1 so no overflow */
+            double nr = c * wr[k] + s, ni = c * wi[k], dr = c - s * wr[k], di = -s * wi[k];
+            double d2 = dr * dr + di * di, n2abs = nr * nr + ni * ni;
+            if (d2 * 4.0 <= tol * tol * g * g * n2abs) {
+                out->n_infinite += 2;
+            } else {
+                double xr = g * (nr * dr + ni * di) / d2, xi = g * (ni * dr - nr * di) / d2;
+                if (2.0 * fabs(xi) <= tol * (1.0 + xr * xr + xi * xi)) {
+                    out->real[out->n_real] = xr;
+                    out->real_flags[out->n_real++] = WK_QEP_FLAG_DOUBLE;
+                } else {
+                    out->complex_re[out->n_complex] = xr;
+                    out->complex_im[out->n_complex++] = fabs(xi);
+                }
+            }
+        }
+    }
+    wk_qep_sort(out->n_real, out->real, out->real_flags);
+    return WK_EIG_OK;
+}
+
+/* ------------------------------------------------------------------ null vector */
+
+/* Hestenes' one-sided Jacobi: rotate pairs of columns of W = M (scaled to max entry ~ 1) until all are
+ * mutually orthogonal to working precision (|w_p . w_q| <= eps |w_p| |w_q|), accumulating the rotations in V;
+ * then W = U Sigma and the column norms are the singular values, V's columns the right singular vectors.
+ * Small singular values come out with high relative accuracy, so sigma_min / sigma_max is meaningful even
+ * far below eps. At most 60 sweeps (quadratic convergence makes ~10 the norm for m = 24). */
+int wk_null_vector(int m, const double *M, double *v, double *rel)
+{
+    double W[WK_NULL_MAXM * WK_NULL_MAXM], V[WK_NULL_MAXM * WK_NULL_MAXM], sig[WK_NULL_MAXM];
+    double smax = 0.0;
+    int i, j, p, q, sweep, rotated = 1, e, jmin = 0, j2 = -1;
+    if (!M || !v || m < 1 || m > WK_NULL_MAXM)
+        return WK_EIG_ERR_INPUT;
+    if (!wk_eig_finite(m * m, M))
+        return WK_EIG_ERR_INPUT;
+    e = wk_eig_exponent(m * m, M);
+    for (i = 0; i < m * m; ++i) {
+        W[i] = ldexp(M[i], -e);
+        V[i] = (i % (m + 1) == 0) ? 1.0 : 0.0;
+    }
+    for (sweep = 0; sweep < 60 && rotated; ++sweep) {
+        rotated = 0;
+        for (p = 0; p < m - 1; ++p)
+            for (q = p + 1; q < m; ++q) {
+                double al = 0.0, be = 0.0, ga = 0.0, zeta, t, cs, sn;
+                for (i = 0; i < m; ++i) {
+                    al += W[i * m + p] * W[i * m + p];
+                    be += W[i * m + q] * W[i * m + q];
+                    ga += W[i * m + p] * W[i * m + q];
+                }
+                if (ga == 0.0 || fabs(ga) <= WK_EIG_EPS * sqrt(al) * sqrt(be))
+                    continue;
+                rotated = 1;
+                /* the rotation that zeroes the (p, q) entry of W^T W: t = tan of its angle, the smaller root
+                 * of t^2 + 2 zeta t - 1 = 0 (for huge zeta, t ~ 1 / (2 zeta) avoids squaring it) */
+                zeta = (be - al) / (2.0 * ga);
+                if (fabs(zeta) > 1e150)
+                    t = 0.5 / zeta;
+                else
+                    t = copysign(1.0, zeta) / (fabs(zeta) + sqrt(1.0 + zeta * zeta));
+                cs = 1.0 / sqrt(1.0 + t * t);
+                sn = cs * t;
+                for (i = 0; i < m; ++i) {
+                    double wp = W[i * m + p], wq = W[i * m + q], vp = V[i * m + p], vq = V[i * m + q];
+                    W[i * m + p] = cs * wp - sn * wq;
+                    W[i * m + q] = sn * wp + cs * wq;
+                    V[i * m + p] = cs * vp - sn * vq;
+                    V[i * m + q] = sn * vp + cs * vq;
+                }
+            }
+    }
+    if (rotated)
+        return WK_EIG_ERR_NOCONV;
+    for (j = 0; j < m; ++j) {
+        double amax = 0.0, ss = 0.0;
+        for (i = 0; i < m; ++i)
+            if (fabs(W[i * m + j]) > amax)
+                amax = fabs(W[i * m + j]);
+        if (amax > 0.0)
+            for (i = 0; i < m; ++i)
+                ss += (W[i * m + j] / amax) * (W[i * m + j] / amax);
+        sig[j] = amax * sqrt(ss); /* scaled sum: a tiny column's norm does not underflow */
+        if (sig[j] > smax)
+            smax = sig[j];
+        if (sig[j] < sig[jmin])
+            jmin = j;
+    }
+    for (j = 0; j < m; ++j)
+        if (j != jmin && (j2 < 0 || sig[j] < sig[j2]))
+            j2 = j;
+    for (i = 0; i < m; ++i)
+        v[i] = V[i * m + jmin];
+    if (rel) {
+        rel[0] = smax > 0.0 ? sig[jmin] / smax : 0.0;
+        rel[1] = j2 < 0 ? 1.0 : (smax > 0.0 ? sig[j2] / smax : 0.0);
+    }
+    return WK_EIG_OK;
+}
