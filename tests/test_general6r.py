@@ -187,3 +187,79 @@ def test_the_panda_with_a_free_joint_the_planner_refuses(free):
     for _ in range(3):
         q = rng.uniform(-2.5, 2.5, 7)
         _check_pose(chain, labelling, reference, q, fixed={free: q[free]}, seed=int(rng.integers(1 << 30)))
+
+
+# ------------------------------------------------------------------------------------------------ the C twin
+@pytest.fixture(scope="module")
+def clib():
+    import ctypes
+
+    import cbuild
+
+    c_dir = ROOT / "runtime/c"
+    so = cbuild.load(cbuild.compile_shared([c_dir / "wk_general6r.c", c_dir / "wk_eigen.c"], [c_dir],
+                                           name="wk_general6r"))
+    dp = np.ctypeslib.ndpointer(dtype=np.float64, flags="C_CONTIGUOUS")
+    so.wk_g6_z_frames.argtypes = [dp, dp, dp]
+    so.wk_g6_z_frames.restype = None
+    so.wk_g6_solve.argtypes = [dp, dp, dp, ctypes.c_int, ctypes.c_int, ctypes.c_int, dp, ctypes.c_int]
+    so.wk_g6_solve.restype = ctypes.c_int
+    return so
+
+
+def _c_solve(clib, chain, labelling, pose):
+    """The C candidates, polished and verified as the Python's are (derive/kinematics/general6r.solve)."""
+    frames = np.zeros((6, 16))
+    clib.wk_g6_z_frames(np.ascontiguousarray(chain.axes, dtype=float),
+                        np.ascontiguousarray(chain.points, dtype=float), frames)
+    out = np.zeros((64, 6))
+    n = clib.wk_g6_solve(frames, np.ascontiguousarray(chain.home, dtype=float), np.ascontiguousarray(pose),
+                         labelling.shift, int(labelling.reverse), labelling.hidden, out, 64)
+    assert n >= 0
+    sols: list = []
+    for q in out[:n]:
+        q, err = G6.g6_polish(q, chain.fk, chain.jacobian, pose)
+        if err <= 1e-9 and all(_distance(q, s) > 1e-6 for s in sols):
+            sols.append(ref.wrap_angle(q))
+    return sols
+
+
+@pytest.mark.parametrize("case", ["random", "ur5e_tilted"])
+def test_the_c_elimination_gives_the_python_sets(clib, case):
+    """C (wk_general6r.c, with wk_eigen.c's quadratic eigenproblem) and Python (numpy) give the same solutions,
+    the generating joints among them, for random general arms and the tilted UR5e."""
+    rng = case_rng(630)
+    chains = [random_arm(rng) for _ in range(3)] if case == "random" else [tilted_ur5e()]
+    for chain in chains:
+        labelling = g6.choose_labelling(chain, rng)
+        for _ in range(4):
+            q = rng.uniform(-math.pi, math.pi, 6)
+            pose = chain.fk(q)
+            c_sets, py_sets = _c_solve(clib, chain, labelling, pose), g6.solve(chain, labelling, pose)
+            assert len(c_sets) == len(py_sets)
+            for s in c_sets:
+                assert min(_distance(s, p) for p in py_sets) < 1e-9
+            smin = np.linalg.svd(chain.jacobian(q), compute_uv=False)[-1]
+            assert min(_distance(q, s) for s in c_sets) < 1e-9 + 1e-13 / smin
+
+
+def test_the_c_elimination_under_asan_ubsan():
+    """Random arms through all 36 labellings (a degenerate one among them for arms with parallel neighbours),
+    hostile poses and arguments: no sanitizer report, no write past max_out, finite candidates only."""
+    import subprocess
+
+    import cbuild
+    from seeding import TEST_SEED
+
+    probe = subprocess.run([cbuild.compiler(), "-fsanitize=address,undefined", "-x", "c", "-", "-o", "/dev/null"],
+                           input="int main(void){return 0;}", capture_output=True, text=True)
+    if probe.returncode != 0:
+        pytest.skip("compiler has no ASan/UBSan runtime")
+    c_dir = ROOT / "runtime/c"
+    exe = cbuild.compile_executable([ROOT / "tests/c/general6r_sanitize.c", c_dir / "wk_general6r.c",
+                                     c_dir / "wk_eigen.c"], [c_dir, ROOT / "tests/c"], "general6r_sanitize",
+                                    extra_flags=cbuild.SANITIZE_FLAGS)
+    run = subprocess.run([str(exe), str(TEST_SEED)], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert run.stdout.startswith("ok ")
+    assert "runtime error" not in run.stderr and "AddressSanitizer" not in run.stderr

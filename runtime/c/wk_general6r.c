@@ -1,0 +1,493 @@
+/* wristkin: the general 6R arm's inverse kinematics by elimination (C99, libm only; do not edit).
+ * @generated-by@
+ *
+ * See wk_general6r.h; the method is runtime/python/general6r.py's, step for step, except that the quadratic
+ * eigenproblem chooses its own leading coefficient (wk_generalized_quadratic_eig: the problem, its reversal or a
+ * Moebius rotation), where the Python picks the hidden angle's origin phi. */
+#include "wk_general6r.h"
+
+#include "wk_eigen.h"
+
+#include <math.h>
+#include <string.h>
+
+#define G6_NEQ 14
+#define G6_NY 8
+#define G6_PI 3.14159265358979323846
+#define G6_SQRT3 1.73205080756887729353
+
+static const double g6_grid[3] = {0.0, 2.0 * G6_PI / 3.0, 4.0 * G6_PI / 3.0};
+/* interpolation: the (1, c, s) coefficients of f(t) = c0 + c1 cos t + c2 sin t from f at the grid */
+static const double g6_binv[3][3] = {{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0},
+                                     {2.0 / 3.0, -1.0 / 3.0, -1.0 / 3.0},
+                                     {0.0, 1.0 / G6_SQRT3, -1.0 / G6_SQRT3}};
+/* (1 + u^2) times 1, c, s as coefficients of u^0, u^1, u^2 */
+static const double g6_half[3][3] = {{1.0, 0.0, 1.0}, {1.0, 0.0, -1.0}, {0.0, 2.0, 0.0}};
+
+static void g6_mul(const double *a, const double *b, double *o)
+{
+    double t[16];
+    int i, j, k;
+    for (i = 0; i < 4; ++i)
+        for (j = 0; j < 4; ++j) {
+            double s = 0.0;
+            for (k = 0; k < 4; ++k) s += a[4 * i + k] * b[4 * k + j];
+            t[4 * i + j] = s;
+        }
+    memcpy(o, t, sizeof t);
+}
+
+static void g6_inverse(const double *t, double *o)
+{
+    double r[16];
+    int i, j;
+    for (i = 0; i < 3; ++i) {
+        for (j = 0; j < 3; ++j) r[4 * i + j] = t[4 * j + i];
+        r[4 * i + 3] = -(t[i] * t[3] + t[4 + i] * t[7] + t[8 + i] * t[11]);
+    }
+    r[12] = r[13] = r[14] = 0.0;
+    r[15] = 1.0;
+    memcpy(o, r, sizeof r);
+}
+
+static void g6_rz(double a, double *o)
+{
+    const double c = cos(a), s = sin(a);
+    memset(o, 0, 16 * sizeof(double));
+    o[0] = c;
+    o[1] = -s;
+    o[4] = s;
+    o[5] = c;
+    o[10] = 1.0;
+    o[15] = 1.0;
+}
+
+/* the 14 functions of the line of t's z axis: d, p, p.p, p.d, p x d, (p.p) d - 2 (p.d) p */
+static void g6_fourteen(const double *t, double *e)
+{
+    const double d[3] = {t[2], t[6], t[10]}, p[3] = {t[3], t[7], t[11]};
+    const double pp = p[0] * p[0] + p[1] * p[1] + p[2] * p[2], pd = p[0] * d[0] + p[1] * d[1] + p[2] * d[2];
+    int i;
+    for (i = 0; i < 3; ++i) {
+        e[i] = d[i];
+        e[3 + i] = p[i];
+        e[11 + i] = pp * d[i] - 2.0 * pd * p[i];
+    }
+    e[6] = pp;
+    e[7] = pd;
+    e[8] = p[1] * d[2] - p[2] * d[1];
+    e[9] = p[2] * d[0] - p[0] * d[2];
+    e[10] = p[0] * d[1] - p[1] * d[0];
+}
+
+/* P[e][9 m3 + 3 m4 + m5] (the constant term already minus r), Q[e][k], r[e] of the labelled loop */
+static void g6_equations(double links[6][16], double P[G6_NEQ][27], double Q[G6_NEQ][G6_NY], double *r)
+{
+    static const int y_index[G6_NY][2] = {{2, 2}, {2, 1}, {1, 2}, {1, 1}, {2, 0}, {1, 0}, {0, 2}, {0, 1}};
+    double vals[3][3][3][G6_NEQ], rvals[3][3][G6_NEQ], R[G6_NEQ][3][3], t[16], ta[16], tb[16], rot[16];
+    double k1i[16], k2i[16], k6i[16];
+    int a, b, c, e, m3, m4, m5;
+    for (a = 0; a < 3; ++a) {
+        g6_rz(g6_grid[a], rot);
+        g6_mul(rot, links[2], ta);
+        for (b = 0; b < 3; ++b) {
+            g6_rz(g6_grid[b], rot);
+            g6_mul(ta, rot, tb);
+            g6_mul(tb, links[3], tb);
+            for (c = 0; c < 3; ++c) {
+                g6_rz(g6_grid[c], rot);
+                g6_mul(tb, rot, t);
+                g6_mul(t, links[4], t);
+                g6_fourteen(t, vals[a][b][c]);
+            }
+        }
+    }
+    for (e = 0; e < G6_NEQ; ++e)
+        for (m3 = 0; m3 < 3; ++m3)
+            for (m4 = 0; m4 < 3; ++m4)
+                for (m5 = 0; m5 < 3; ++m5) {
+                    double s = 0.0;
+                    for (a = 0; a < 3; ++a)
+                        for (b = 0; b < 3; ++b)
+                            for (c = 0; c < 3; ++c)
+                                s += g6_binv[m3][a] * g6_binv[m4][b] * g6_binv[m5][c] * vals[a][b][c][e];
+                    P[e][9 * m3 + 3 * m4 + m5] = s;
+                }
+    g6_inverse(links[0], k1i);
+    g6_inverse(links[1], k2i);
+    g6_inverse(links[5], k6i);
+    for (a = 0; a < 3; ++a)
+        for (b = 0; b < 3; ++b) {
+            g6_rz(-g6_grid[b], rot);
+            g6_mul(k2i, rot, t);
+            g6_mul(t, k1i, t);
+            g6_rz(-g6_grid[a], rot);
+            g6_mul(t, rot, t);
+            g6_mul(t, k6i, t);
+            g6_fourteen(t, rvals[a][b]);
+        }
+    for (e = 0; e < G6_NEQ; ++e) {
+        for (m3 = 0; m3 < 3; ++m3)
+            for (m4 = 0; m4 < 3; ++m4) {
+                double s = 0.0;
+                for (a = 0; a < 3; ++a)
+                    for (b = 0; b < 3; ++b) s += g6_binv[m3][a] * g6_binv[m4][b] * rvals[a][b][e];
+                R[e][m3][m4] = s;
+            }
+        for (a = 0; a < G6_NY; ++a) Q[e][a] = R[e][y_index[a][0]][y_index[a][1]];
+        r[e] = R[e][0][0];
+        P[e][0] -= r[e];
+    }
+}
+
+/* Householder QR of Q (14 x 8): the reflections in v (column k below the diagonal, v[k][k] their head), the
+ * diagonal of R in diag; 0 when a column is (numerically) dependent. */
+typedef struct {
+    double a[G6_NEQ][G6_NY]; /* R above the diagonal, the reflections' tails below */
+    double head[G6_NY];      /* each reflection's first entry */
+    double beta[G6_NY];      /* I - beta v v^T */
+    double diag[G6_NY];
+} g6_qr;
+
+static int g6_qr_factor(double Q[G6_NEQ][G6_NY], g6_qr *f)
+{
+    int i, j, k;
+    double scale = 0.0;
+    memcpy(f->a, Q, sizeof f->a);
+    for (i = 0; i < G6_NEQ; ++i)
+        for (j = 0; j < G6_NY; ++j)
+            if (fabs(Q[i][j]) > scale) scale = fabs(Q[i][j]);
+    for (k = 0; k < G6_NY; ++k) {
+        double norm = 0.0, alpha, vtv;
+        for (i = k; i < G6_NEQ; ++i) norm += f->a[i][k] * f->a[i][k];
+        norm = sqrt(norm);
+        if (!(norm > 1e-13 * scale)) return 0;
+        alpha = f->a[k][k] > 0.0 ? -norm : norm;
+        f->head[k] = f->a[k][k] - alpha;
+        vtv = f->head[k] * f->head[k];
+        for (i = k + 1; i < G6_NEQ; ++i) vtv += f->a[i][k] * f->a[i][k];
+        f->beta[k] = vtv > 0.0 ? 2.0 / vtv : 0.0;
+        for (j = k + 1; j < G6_NY; ++j) {
+            double s = f->head[k] * f->a[k][j];
+            for (i = k + 1; i < G6_NEQ; ++i) s += f->a[i][k] * f->a[i][j];
+            s *= f->beta[k];
+            f->a[k][j] -= s * f->head[k];
+            for (i = k + 1; i < G6_NEQ; ++i) f->a[i][j] -= s * f->a[i][k];
+        }
+        f->diag[k] = alpha;
+    }
+    return 1;
+}
+
+/* x := H^T x (the reflections applied in order) */
+static void g6_qr_apply(const g6_qr *f, double *x)
+{
+    int i, k;
+    for (k = 0; k < G6_NY; ++k) {
+        double s = f->head[k] * x[k];
+        for (i = k + 1; i < G6_NEQ; ++i) s += f->a[i][k] * x[i];
+        s *= f->beta[k];
+        x[k] -= s * f->head[k];
+        for (i = k + 1; i < G6_NEQ; ++i) x[i] -= s * f->a[i][k];
+    }
+}
+
+/* the least-squares y of Q y = b */
+static void g6_qr_solve(const g6_qr *f, const double *b, double *y)
+{
+    double x[G6_NEQ];
+    int i, j;
+    memcpy(x, b, sizeof x);
+    g6_qr_apply(f, x);
+    for (i = G6_NY - 1; i >= 0; --i) {
+        double s = x[i];
+        for (j = i + 1; j < G6_NY; ++j) s -= f->a[i][j] * y[j];
+        y[i] = s / f->diag[i];
+    }
+}
+
+/* the (u, v) half angles from a monomial vector m[4][3] of u^i v^j: 2 atan2(num, den) of the neighbours along the
+ * axis where (den, num) is largest */
+static double g6_half_angle(const double *m, int axis)
+{
+    double best = -1.0, den = 1.0, num = 0.0;
+    int i, j;
+    for (i = 0; i < (axis == 0 ? 3 : 4); ++i)
+        for (j = 0; j < (axis == 0 ? 3 : 2); ++j) {
+            const double d = m[3 * i + j], n = axis == 0 ? m[3 * (i + 1) + j] : m[3 * i + j + 1];
+            const double h = hypot(d, n);
+            if (h > best) {
+                best = h;
+                den = d;
+                num = n;
+            }
+        }
+    return 2.0 * atan2(num, den);
+}
+
+/* Gaussian elimination with partial pivoting, k <= 4: a x = b in place (b: k x k right-hand sides); 0 if singular */
+static int g6_small_solve(int k, double *a, double *b)
+{
+    int i, j, c, p;
+    for (c = 0; c < k; ++c) {
+        p = c;
+        for (i = c + 1; i < k; ++i)
+            if (fabs(a[i * k + c]) > fabs(a[p * k + c])) p = i;
+        if (!(fabs(a[p * k + c]) > 0.0)) return 0;
+        for (j = 0; j < k; ++j) {
+            double t = a[c * k + j];
+            a[c * k + j] = a[p * k + j];
+            a[p * k + j] = t;
+            t = b[c * k + j];
+            b[c * k + j] = b[p * k + j];
+            b[p * k + j] = t;
+        }
+        for (i = c + 1; i < k; ++i) {
+            const double f = a[i * k + c] / a[c * k + c];
+            for (j = 0; j < k; ++j) {
+                a[i * k + j] -= f * a[c * k + j];
+                b[i * k + j] -= f * b[c * k + j];
+            }
+        }
+    }
+    for (c = k - 1; c >= 0; --c)
+        for (j = 0; j < k; ++j) {
+            double s = b[c * k + j];
+            for (i = c + 1; i < k; ++i) s -= a[c * k + i] * b[i * k + j];
+            b[c * k + j] = s / a[c * k + c];
+        }
+    return 1;
+}
+
+#define G6_MAXK 4
+
+/* The monomial vectors in the null space of M (12 x 12): its null vector, or, where k > 1 solutions share the
+ * hidden angle, the k vectors with the shift structure u^(i+1) v^j = u u^i v^j (eigenvectors of a k x k pencil).
+ * Returns how many were written to m (rows of 12). */
+static int g6_monomial_vectors(const double *M, double m[G6_MAXK][12])
+{
+    double work[144], basis[G6_MAXK][12], rel[2], scale = 0.0;
+    int k = 0, i, j, c;
+    for (i = 0; i < 144; ++i) scale += M[i] * M[i];
+    scale = sqrt(scale);
+    memcpy(work, M, sizeof work);
+    while (k < G6_MAXK) {
+        if (wk_null_vector(12, work, basis[k], rel) != WK_EIG_OK) return 0;
+        ++k;
+        if (!(rel[1] <= WK_G6_NULL_TOL)) break;
+        /* the next null direction: push this one's singular value up to the matrix's size */
+        for (i = 0; i < 12; ++i)
+            for (j = 0; j < 12; ++j) work[12 * i + j] += scale * basis[k - 1][i] * basis[k - 1][j];
+    }
+    if (k == 1) {
+        memcpy(m[0], basis[0], sizeof m[0]);
+        return 1;
+    }
+    {
+        double down[9][G6_MAXK], up[9][G6_MAXK], nd = 0.0, nu = 0.0, lhs[G6_MAXK * G6_MAXK], rhs[G6_MAXK * G6_MAXK];
+        double e[G6_MAXK * G6_MAXK], wr[G6_MAXK], wi[G6_MAXK], wk[WK_EIG_WORK(G6_MAXK)];
+        int n = 0, swap;
+        for (i = 0; i < 9; ++i)
+            for (c = 0; c < k; ++c) {
+                down[i][c] = basis[c][i];
+                up[i][c] = basis[c][i + 3];
+                nd += down[i][c] * down[i][c];
+                nu += up[i][c] * up[i][c];
+            }
+        swap = nd < nu; /* u large: read the shift the other way (1 / u), better scaled */
+        /* normal equations of the least-squares E with lhs E = rhs (9 x k each) */
+        for (i = 0; i < k; ++i)
+            for (j = 0; j < k; ++j) {
+                double s = 0.0, t = 0.0;
+                for (c = 0; c < 9; ++c) {
+                    const double li = swap ? up[c][i] : down[c][i];
+                    s += li * (swap ? up[c][j] : down[c][j]);
+                    t += li * (swap ? down[c][j] : up[c][j]);
+                }
+                lhs[i * k + j] = s;
+                rhs[i * k + j] = t;
+            }
+        if (!g6_small_solve(k, lhs, rhs)) return 0;
+        memcpy(e, rhs, sizeof(double) * (size_t)(k * k));
+        if (wk_eig_real(k, e, wr, wi, wk) != WK_EIG_OK) return 0;
+        for (c = 0; c < k; ++c) {
+            double shifted[G6_MAXK * G6_MAXK], vec[G6_MAXK], r2[2];
+            if (!(fabs(wi[c]) <= 1e-6 * (1.0 + fabs(wr[c])))) continue;
+            memcpy(shifted, rhs, sizeof(double) * (size_t)(k * k));
+            for (i = 0; i < k; ++i) shifted[i * k + i] -= wr[c];
+            if (wk_null_vector(k, shifted, vec, r2) != WK_EIG_OK) continue;
+            for (i = 0; i < 12; ++i) {
+                double s = 0.0;
+                for (j = 0; j < k; ++j) s += basis[j][i] * vec[j];
+                m[n][i] = s;
+            }
+            ++n;
+        }
+        return n;
+    }
+}
+
+void wk_g6_z_frames(const double *axes, const double *points, double *frames)
+{
+    int i, k;
+    for (i = 0; i < 6; ++i) {
+        const double *a = axes + 3 * i;
+        const double na = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        double z[3], e[3] = {0.0, 0.0, 0.0}, x[3], y[3], nx;
+        int small = 0;
+        for (k = 0; k < 3; ++k) z[k] = a[k] / na;
+        for (k = 1; k < 3; ++k)
+            if (fabs(z[k]) < fabs(z[small])) small = k;
+        e[small] = 1.0;
+        x[0] = z[1] * e[2] - z[2] * e[1];
+        x[1] = z[2] * e[0] - z[0] * e[2];
+        x[2] = z[0] * e[1] - z[1] * e[0];
+        nx = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        for (k = 0; k < 3; ++k) x[k] /= nx;
+        y[0] = z[1] * x[2] - z[2] * x[1];
+        y[1] = z[2] * x[0] - z[0] * x[2];
+        y[2] = z[0] * x[1] - z[1] * x[0];
+        for (k = 0; k < 3; ++k) {
+            frames[16 * i + 4 * k] = x[k];
+            frames[16 * i + 4 * k + 1] = y[k];
+            frames[16 * i + 4 * k + 2] = z[k];
+            frames[16 * i + 4 * k + 3] = points[3 * i + k];
+        }
+        frames[16 * i + 12] = frames[16 * i + 13] = frames[16 * i + 14] = 0.0;
+        frames[16 * i + 15] = 1.0;
+    }
+}
+
+/* theta1, theta2 and theta6 for theta3..5 (angles), from the least-squares Y and the loop */
+static void g6_complete(const double *angles, double links[6][16], double P[G6_NEQ][27], const g6_qr *f,
+                        double *t)
+{
+    double fb[3][3], lhs[G6_NEQ], y[G6_NY], acc[16], rot[16], inv[16], k6i[16];
+    int i, e, a, b, c;
+    for (i = 0; i < 3; ++i) {
+        fb[i][0] = 1.0;
+        fb[i][1] = cos(angles[i]);
+        fb[i][2] = sin(angles[i]);
+    }
+    for (e = 0; e < G6_NEQ; ++e) {
+        double s = 0.0;
+        for (a = 0; a < 3; ++a)
+            for (b = 0; b < 3; ++b)
+                for (c = 0; c < 3; ++c) s += P[e][9 * a + 3 * b + c] * fb[0][a] * fb[1][b] * fb[2][c];
+        lhs[e] = s;
+    }
+    g6_qr_solve(f, lhs, y);
+    t[0] = atan2(y[4], y[5]);
+    t[1] = atan2(y[6], y[7]);
+    t[2] = angles[0];
+    t[3] = angles[1];
+    t[4] = angles[2];
+    g6_rz(t[0], acc);
+    for (i = 0; i < 5; ++i) {
+        if (i > 0) {
+            g6_rz(t[i], rot);
+            g6_mul(acc, rot, acc);
+        }
+        g6_mul(acc, links[i], acc);
+    }
+    g6_inverse(acc, inv);
+    g6_inverse(links[5], k6i);
+    g6_mul(inv, k6i, acc);
+    t[5] = atan2(acc[4], acc[0]);
+}
+
+int wk_g6_solve(const double *frames, const double *home, const double *pose, int shift, int reverse, int hidden,
+                double *q, int max_out)
+{
+    double loop[6][16], links[6][16], P[G6_NEQ][27], Q[G6_NEQ][G6_NY], r[G6_NEQ], t6[6][27], W[G6_NEQ][G6_NEQ];
+    double A[144], B[144], C[144], zinv[16], pinv[16];
+    int joints[6], i, j, e, n = 0, k, a, b, c, hv, uv, vv, root;
+    double sign;
+    g6_qr f;
+    wk_qep_result qep;
+    if (!frames || !home || !pose || !q || shift < 0 || shift > 5 || hidden < 0 || hidden > 2 || max_out < 0) return -1;
+    for (i = 0; i < 5; ++i) {
+        g6_inverse(frames + 16 * i, zinv);
+        g6_mul(zinv, frames + 16 * (i + 1), loop[i]);
+    }
+    g6_inverse(frames + 80, zinv);
+    g6_inverse(pose, pinv);
+    g6_mul(zinv, home, loop[5]);
+    g6_mul(loop[5], pinv, loop[5]);
+    g6_mul(loop[5], frames, loop[5]);
+    for (i = 0; i < 6; ++i) {
+        /* reversed: K6^-1 Rz(-q6) K5^-1 ... K1^-1 Rz(-q1) = I read from Rz(-q6): links K5^-1 .. K1^-1, K6^-1 */
+        static const int rev_link[6] = {4, 3, 2, 1, 0, 5};
+        const int src = (i + shift) % 6;
+        if (reverse) {
+            g6_inverse(loop[rev_link[src]], links[i]);
+            joints[i] = 5 - src;
+        } else {
+            memcpy(links[i], loop[src], sizeof links[i]);
+            joints[i] = src;
+        }
+    }
+    sign = reverse ? -1.0 : 1.0;
+    g6_equations(links, P, Q, r);
+    if (!g6_qr_factor(Q, &f)) return -1;
+    /* N: rows 8..13 of H^T, the left null space of Q */
+    for (j = 0; j < G6_NEQ; ++j) {
+        double col[G6_NEQ];
+        for (i = 0; i < G6_NEQ; ++i) col[i] = i == j ? 1.0 : 0.0;
+        g6_qr_apply(&f, col);
+        for (i = 0; i < G6_NEQ; ++i) W[i][j] = col[i];
+    }
+    for (e = 0; e < 6; ++e)
+        for (k = 0; k < 27; ++k) {
+            double s = 0.0;
+            for (i = 0; i < G6_NEQ; ++i) s += W[8 + e][i] * P[i][k];
+            t6[e][k] = s;
+        }
+    /* (1 + x^2) times the equations with the hidden angle 2 atan x, over u^i v^j of the other two */
+    memset(A, 0, sizeof A);
+    memset(B, 0, sizeof B);
+    memset(C, 0, sizeof C);
+    for (e = 0; e < 6; ++e)
+        for (i = 0; i < 3; ++i)
+            for (j = 0; j < 3; ++j) {
+                double g[3] = {0.0, 0.0, 0.0};
+                for (hv = 0; hv < 3; ++hv)
+                    for (uv = 0; uv < 3; ++uv)
+                        for (vv = 0; vv < 3; ++vv) {
+                            int idx[3];
+                            double w;
+                            idx[hidden] = hv;
+                            idx[hidden == 0 ? 1 : 0] = uv;
+                            idx[hidden == 2 ? 1 : 2] = vv;
+                            w = t6[e][9 * idx[0] + 3 * idx[1] + idx[2]] * g6_half[uv][i] * g6_half[vv][j];
+                            for (k = 0; k < 3; ++k) g[k] += g6_half[hv][k] * w;
+                        }
+                for (k = 0; k < 2; ++k) {
+                    const int row = e + 6 * k, col = 3 * (i + k) + j;
+                    C[12 * row + col] = g[0];
+                    B[12 * row + col] = g[1];
+                    A[12 * row + col] = g[2];
+                }
+            }
+    if (wk_generalized_quadratic_eig(12, A, B, C, 0.0, &qep) != WK_EIG_OK) return -1;
+    for (root = 0; root < qep.n_real + qep.n_infinite; ++root) {
+        double M[144], m[G6_MAXK][12], angles[3];
+        const int infinite = root >= qep.n_real;
+        const double x = infinite ? 0.0 : qep.real[root];
+        int count;
+        for (i = 0; i < 144; ++i) M[i] = infinite ? A[i] : (A[i] * x + B[i]) * x + C[i];
+        count = g6_monomial_vectors(M, m);
+        for (c = 0; c < count && n < max_out; ++c) {
+            double t[6];
+            a = hidden == 0 ? 1 : 0;
+            b = hidden == 2 ? 1 : 2;
+            angles[hidden] = infinite ? G6_PI : 2.0 * atan(x);
+            angles[a] = g6_half_angle(m[c], 0);
+            angles[b] = g6_half_angle(m[c], 1);
+            g6_complete(angles, links, P, &f, t);
+            for (i = 0; i < 6; ++i) q[6 * n + joints[i]] = sign * t[i];
+            ++n;
+        }
+    }
+    return n;
+}
