@@ -402,3 +402,31 @@ def test_the_api_source_solves_the_stand_in_robot(py):
     sol = api.ik(api.fk_matrix(q))
     assert sol.status == api.STATUS_INDETERMINATE
     assert any(fl & api.FLAG_SINGULAR_INVERSE and fl & api.FLAG_INDETERMINATE for fl in sol.flags[:sol.count])
+
+
+# ------------------------------------------------------------------------------------------------ the plan's view
+@pytest.mark.parametrize("name", ["puma_t", "ur_t", "skew3", "ur_off"])
+def test_the_stages_of_a_plan_set_every_joint_and_print_ck_op_rows(name, tmp_path):
+    """derive/families/chain/stages.py: every op of the planner's decomposition is a Stage; together they set every
+    joint of the solver's chain, and each prints one ck_op initializer of its 14 fields."""
+    sys.path.insert(0, str(ROOT / "tests"))
+    from test_chain_c import SPECS
+
+    from derive.families.chain.stages import stage
+
+    spec = tmp_path / f"{name}.toml"
+    spec.write_text(SPECS[name])
+    mech = load_spec(spec)
+    plan, _ = mech.plan()
+    solver = mech.solver_chain(mech.chain, 0.0, plan.reversed)
+    stages = [stage(i, op) for i, op in enumerate(plan.ops)]
+    assert [s.op for s in stages] == [op["op"] for op in plan.ops]
+    assert {j for s in stages for j in s.solved} == set(range(solver.n))
+    for s in stages:
+        row = s.c_row()
+        # 14 fields at the top level of the initializer (braces nest the arrays)
+        depth, fields = 0, 1
+        for ch in row:
+            depth += (ch == "{") - (ch == "}")
+            fields += ch == "," and depth == 0
+        assert depth == 0 and fields == 14, row

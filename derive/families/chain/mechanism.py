@@ -18,6 +18,7 @@ from ...mechanism import MechanismDefaults
 from ...model import Check, Derivation, Finding, Step
 from . import views
 from .description import Description
+from .stages import stage
 
 FREE_SAMPLES = (0.0, 0.7, -1.9, 2.6)  # values of a free joint the decomposition must hold at
 
@@ -216,7 +217,8 @@ class ChainMechanism(MechanismDefaults):
                 "has_spatial3": any(op["op"] == "spatial3" for op in plan.ops),
                 "has_sp6": any(op["op"] == "sp6" for op in plan.ops),
                 "has_poly": any(op["op"] in ("spatial3", "sp6") for op in plan.ops),
-                "c_plan_rows": views.c_plan_rows(plan.ops), "c_runtime_files": views.c_runtime_files(plan.ops),
+                "c_plan_rows": views.c_plan_rows([stage(i, op) for i, op in enumerate(plan.ops)], solver.joint_names),
+                "c_runtime_files": views.c_runtime_files(plan.ops),
                 "c_flags": views.c_flags(plan.ops, free, plan.reversed), "py_runtime_files": views.PY_RUNTIME_FILES,
                 # the same data as plain numbers, for the C template
                 "c_data": {"axes": _floats(c.axes), "points": _floats(c.points), "home": _floats(c.home),

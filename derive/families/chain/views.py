@@ -14,53 +14,13 @@ PY_RUNTIME_FILES = tuple(f"python/{name}.py" for name in (
     "chain_spatial3", "chain_sp6", "chain_solve", "chain_verify", "chain_api"))
 
 
-def _vec(v) -> str:
-    return "{ " + ", ".join(str(x) for x in v) + " }"
-
-
-def _spec(s) -> str:
-    """An op's point or direction spec: its kind, how many joints it names and those joints."""
-    return f"CK_{s[0].upper()}, {len(s) - 1}, {_vec(s[1:] if len(s) > 1 else [0])}"
-
-
-_NO_SPEC = "CK_NONE, 0, { 0 }"
-_NO_UNITS = "0, 0, 0, { 0 }, { { 0 } }"
-
-
-def _row(op: dict) -> str:
-    """One ck_op initializer: op, j, k, prismatic, spec, n_spec, spec_js, lo, hi, n_units, unit_len, units, n_js,
-    js (the field order of ck_op)."""
-    o = op["op"]
-    slide = 1 if op.get("kind") == "P" else 0
-    if o == "begin":
-        return f"CK_BEGIN, -1, -1, 0, {_spec(op['x'])}, {op['lo']}, {op['hi']}, 0, {{ 0 }}, {{ {{ 0 }} }}, 0, {{ 0 }}"
-    if o in ("first_plane", "last_plane"):
-        return f"CK_{o.upper()}, {op['j']}, -1, {slide}, {_spec(op['n'])}, {_NO_UNITS}, 0, {{ 0 }}"
-    if o in ("first_dist", "last_dist"):
-        return f"CK_{o.upper()}, {op['j']}, -1, {slide}, {_spec(op['s'])}, {_NO_UNITS}, 0, {{ 0 }}"
-    if o == "pair":
-        return f"CK_PAIR, {op['j']}, {op['k']}, 0, {_spec(op['s'])}, {_NO_UNITS}, 0, {{ 0 }}"
-    if o == "single":
-        return f"CK_SINGLE, {op['j']}, -1, {slide}, {_NO_SPEC}, {_NO_UNITS}, 0, {{ 0 }}"
-    if o == "linear":
-        return f"CK_LINEAR, -1, -1, 1, {_NO_SPEC}, {_NO_UNITS}, {len(op['js'])}, {_vec(op['js'])}"
-    if o == "sp6":
-        return f"CK_SP6, {op['j']}, {op['k']}, 0, {_spec(op['n'])}, {_NO_UNITS}, 1, {_vec([op['l']])}"
-    if o == "spatial3":
-        return f"CK_SPATIAL3, -1, -1, 0, {_NO_SPEC}, {_NO_UNITS}, 3, {_vec(op['js'])}"
-    if o == "orient":
-        units = ", ".join(_vec(u) for u in op["units"])
-        return (f"CK_ORIENT, -1, -1, 0, {_NO_SPEC}, {op['lo']}, {op['hi']}, {len(op['units'])}, "
-                f"{_vec([len(u) for u in op['units']])},\n      {{ {units} }}, 0, {{ 0 }}")
-    if o == "group_rest":
-        return (f"CK_GROUP_REST, {op['j']}, -1, 0, {_NO_SPEC}, {_NO_UNITS}, {len(op['group'])}, "
-                f"{_vec(op['group'])}")
-    raise ValueError(f"no C row for the plan op {o!r}")
-
-
-def c_plan_rows(ops) -> list[str]:
-    """ck_plan[]'s rows, each with a comment naming its op."""
-    return [f"/* {i}: {op['op']} */\n    {{ {_row(op)} }}" for i, op in enumerate(ops)]
+def c_plan_rows(stages, joint_names) -> list[str]:
+    """ck_plan[]'s rows (stages.Stage.c_row), each with a comment naming its op and the joints it sets."""
+    def named(s):
+        groups = s.units if s.op == "orient" else [(j,) for j in s.solved]  # a parallel group turns as one
+        names = ", ".join("+".join(joint_names[j] for j in g) for g in groups).replace("*/", "* /")
+        return f"{s.op}: {names}" if names else s.op
+    return [f"/* {s.index}: {named(s)} */\n    {{ {s.c_row()} }}" for s in stages]
 
 
 def _kinds(ops) -> set[str]:
