@@ -9,12 +9,13 @@ from __future__ import annotations
 
 import math
 
+import chain_sp6  # noqa: F401  (registers its stage, as inlining it does)
+import chain_spatial3  # noqa: F401
 import numpy as np
 from chain_poe import _between
 from chain_points import _direction, _point
-from chain_rigid import _add, _apply, _cross, _dot, _inverse, _mm, _mt, _mtv, _mv, _norm, _rot, _scale, _screw, _sub
-from chain_sp6 import _sp6, _sp6_split
-from chain_spatial3 import _spatial3
+from chain_rigid import _add, _apply, _cross, _dot, _inverse, _mm, _mtv, _mv, _norm, _rot, _scale, _screw, _sub
+from chain_stages import _OP_STAGES
 from chain_stand_in import (
     _PLAN,
     DOUBLE_ROOT_TOL,
@@ -200,40 +201,9 @@ def _solve(ch, g, prev, accept):
             else:
                 q[j] = t
                 run(k + 1, x, y, flags)
-        elif kind == "sp6":
-            _, j, kk, ll, ns = op
-            nv = _direction(ch, ns)
-            h0, r0, h4, r4, h5 = ch.axes[j], ch.points[j], ch.axes[kk], ch.points[kk], ch.axes[ll]
-            rg = g[0]
-            p0, p4, d0, g5 = _sub(y, r0), _sub(x, r4), _dot(nv, r4) - _dot(nv, r0), _mv(rg, h5)  # g5: the group's axis
-
-            def sp6_set(q0, q4, f, may_split=True):
-                # the group keeps n: n^T R4 R5 = n^T R0^T Rg, so rot(h5, -q5) (R4^T n) = (R0^T Rg)^T n
-                t5 = _sp1(h5, _mtv(_rot(h4, q4), nv), _mtv(_mm(_mt(_rot(h0, q0)), rg), nv), 1.0)
-                q[j], q[kk] = q0, q4
-                before = count()
-                if t5 is not None:
-                    q[ll] = -t5
-                    run(k + 1, x, y, flags | f)
-                else:  # the wrist singularity: q5 and the group turn about one direction (a family); q5 from
-                    # `previous`, else the first of FAMILY_ANGLES with a verified set (it moves the position)
-                    def place(angle):
-                        q[ll] = angle
-                    run_family(k, x, y, flags | f | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE, place,
-                               None if prev is None else prev[ll])
-                if count() == before and may_split and f & FLAG_SINGULAR_INVERSE:
-                    # a merged near-double root (or the singularity's candidate near, not at, the singularity)
-                    # that verified nothing: the two roots it merged
-                    for s0, s4, fs in _sp6_split(nv, h0, p0, h4, p4, d0, 0.0, g5, h5, q0, q4):
-                        sp6_set(s0, s4, (f & ~FLAG_DOUBLE_ROOT) | fs, may_split=False)
-
-            for q0, q4, f in _sp6(nv, h0, p0, h4, p4, d0, 0.0, g5, h5):
-                sp6_set(q0, q4, f)
-        elif kind == "spatial3":
-            _, ja, jb, jc = op
-            for qa, qb, qc, f in _spatial3(ch, ja, jb, jc, x, y):
-                q[ja], q[jb], q[jc] = qa, qb, qc
-                run(k + 1, x, y, flags | f)
+        elif kind in _OP_STAGES:  # an op whose kernels the module inlines only when its plan uses them
+            _OP_STAGES[kind](ch, g, prev, op, x, y, q, count, lambda f: run(k + 1, x, y, flags | f),
+                             lambda f, place, angle: run_family(k, x, y, flags | f, place, angle))
         elif kind == "linear":
             _, js = op
             a = np.array([ch.axes[j] for j in js]).T

@@ -9,9 +9,19 @@ from __future__ import annotations
 
 import math
 
+from chain_points import _direction
 from chain_poly import _poly_add, _poly_mul, _scale3
-from chain_rigid import _cross, _dot, _mtv, _mv, _rot, _scale, _sub
-from chain_stand_in import DEGENERATE_EPS, DOUBLE_ROOT_TOL, FLAG_DOUBLE_ROOT, FLAG_SINGULAR_INVERSE, SCALE, _wrap
+from chain_rigid import _cross, _dot, _mm, _mt, _mtv, _mv, _rot, _scale, _sub
+from chain_stages import _OP_STAGES
+from chain_stand_in import (
+    DEGENERATE_EPS,
+    DOUBLE_ROOT_TOL,
+    FLAG_DOUBLE_ROOT,
+    FLAG_INDETERMINATE,
+    FLAG_SINGULAR_INVERSE,
+    SCALE,
+    _wrap,
+)
 from chain_subproblems import _sp1, _sp4
 from poly_real_roots import _POLY_FLAG_DOUBLE, _poly_real_roots
 
@@ -153,3 +163,38 @@ def _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
             break
         q0, q4, res = n0, n4, new
     return q0, q4
+
+
+def _sp6_stage(ch, g, prev, op, x, y, q, count, go_on, family):
+    """Joints j and k of subproblem 6 (the op ("sp6", j, k, l, n)), then l about the group's axis; a merged
+    near-double root that verified nothing is split into its two roots."""
+    _, j, kk, ll, ns = op
+    nv = _direction(ch, ns)
+    h0, r0, h4, r4, h5 = ch.axes[j], ch.points[j], ch.axes[kk], ch.points[kk], ch.axes[ll]
+    rg = g[0]
+    p0, p4, d0, g5 = _sub(y, r0), _sub(x, r4), _dot(nv, r4) - _dot(nv, r0), _mv(rg, h5)  # g5: the group's axis
+
+    def sp6_set(q0, q4, f, may_split=True):
+        # the group keeps n: n^T R4 R5 = n^T R0^T Rg, so rot(h5, -q5) (R4^T n) = (R0^T Rg)^T n
+        t5 = _sp1(h5, _mtv(_rot(h4, q4), nv), _mtv(_mm(_mt(_rot(h0, q0)), rg), nv), 1.0)
+        q[j], q[kk] = q0, q4
+        before = count()
+        if t5 is not None:
+            q[ll] = -t5
+            go_on(f)
+        else:  # the wrist singularity: q5 and the group turn about one direction (a family); q5 from
+            # `previous`, else the first of FAMILY_ANGLES with a verified set (it moves the position)
+            def place(angle):
+                q[ll] = angle
+            family(f | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE, place, None if prev is None else prev[ll])
+        if count() == before and may_split and f & FLAG_SINGULAR_INVERSE:
+            # a merged near-double root (or the singularity's candidate near, not at, the singularity)
+            # that verified nothing: the two roots it merged
+            for s0, s4, fs in _sp6_split(nv, h0, p0, h4, p4, d0, 0.0, g5, h5, q0, q4):
+                sp6_set(s0, s4, (f & ~FLAG_DOUBLE_ROOT) | fs, may_split=False)
+
+    for q0, q4, f in _sp6(nv, h0, p0, h4, p4, d0, 0.0, g5, h5):
+        sp6_set(q0, q4, f)
+
+
+_OP_STAGES["sp6"] = _sp6_stage

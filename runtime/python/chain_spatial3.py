@@ -11,6 +11,7 @@ import math
 
 from chain_poly import _poly_add, _poly_mul, _scale3
 from chain_rigid import _add, _apply, _compose, _cross, _dot, _scale, _screw, _sub
+from chain_stages import _OP_STAGES
 from chain_stand_in import DEGENERATE_EPS, FLAG_DOUBLE_ROOT, FLAG_INDETERMINATE, FLAG_SINGULAR_INVERSE, SCALE
 from chain_subproblems import _sp1
 from poly_real_roots import _POLY_FLAG_DOUBLE, _poly_real_roots
@@ -82,3 +83,14 @@ def _spatial3(ch, ja, jb, jc, x, y):
     return out
 
 
+
+
+def _spatial3_stage(ch, g, prev, op, x, y, q, count, go_on, family):
+    """The op ("spatial3", a, b, c): every real root of the polynomial."""
+    _, ja, jb, jc = op
+    for qa, qb, qc, f in _spatial3(ch, ja, jb, jc, x, y):
+        q[ja], q[jb], q[jc] = qa, qb, qc
+        go_on(f)
+
+
+_OP_STAGES["spatial3"] = _spatial3_stage

@@ -219,7 +219,8 @@ class ChainMechanism(MechanismDefaults):
                 "has_poly": any(op["op"] in ("spatial3", "sp6") for op in plan.ops),
                 "c_plan_rows": views.c_plan_rows([stage(i, op) for i, op in enumerate(plan.ops)], solver.joint_names),
                 "c_runtime_files": views.c_runtime_files(plan.ops),
-                "c_flags": views.c_flags(plan.ops, free, plan.reversed), "py_runtime_files": views.PY_RUNTIME_FILES,
+                "c_flags": views.c_flags(plan.ops, free, plan.reversed),
+                "py_runtime_files": views.py_runtime_files(plan.ops),
                 # the same data as plain numbers, for the C template
                 "c_data": {"axes": _floats(c.axes), "points": _floats(c.points), "home": _floats(c.home),
                            "ideal_axes": _floats(ideal.axes), "ideal_points": _floats(ideal.points),

@@ -8,12 +8,6 @@ from __future__ import annotations
 _C_CORE = ("c/chain/ck_chain.c", "c/chain/ck_dense.c", "c/chain/ck_subproblems.c", "c/chain/ck_points.c",
            "c/chain/ck_verify.c")
 _C_TAIL = ("c/chain/ck_interpreter.c", "c/chain/ck_api.c")
-# the Python module inlines every kernel (an op it does not use is never called; its interpreter names them all)
-PY_RUNTIME_FILES = tuple(f"python/{name}.py" for name in (
-    "chain_design", "chain_rigid", "chain_poe", "chain_subproblems", "chain_points", "poly_real_roots", "chain_poly",
-    "chain_spatial3", "chain_sp6", "chain_solve", "chain_verify", "chain_api"))
-
-
 def c_plan_rows(stages, joint_names) -> list[str]:
     """ck_plan[]'s rows (stages.Stage.c_row), each with a comment naming its op and the joints it sets."""
     def named(s):
@@ -33,6 +27,17 @@ def c_runtime_files(ops) -> list[str]:
     poly = ["c/poly_real_roots.c", "c/chain/ck_poly.c"] if kinds & {"spatial3", "sp6"} else []
     return [*_C_CORE, *poly, *(["c/chain/ck_spatial3.c"] if "spatial3" in kinds else []),
             *(["c/chain/ck_sp6.c"] if "sp6" in kinds else []), *_C_TAIL]
+
+
+def py_runtime_files(ops) -> list[str]:
+    """The Python runtime sources this decomposition calls, in inlining order (subproblem 6 and the general 3R
+    stage register themselves in chain_stages._OP_STAGES, which _solve runs by the op's kind)."""
+    kinds = _kinds(ops)
+    poly = ["python/poly_real_roots.py", "python/chain_poly.py"] if kinds & {"spatial3", "sp6"} else []
+    return [*(f"python/chain_{n}.py" for n in ("design", "rigid", "poe", "subproblems", "points", "stages")), *poly,
+            *(["python/chain_spatial3.py"] if "spatial3" in kinds else []),
+            *(["python/chain_sp6.py"] if "sp6" in kinds else []),
+            *(f"python/chain_{n}.py" for n in ("solve", "verify", "api"))]
 
 
 def c_flags(ops, free: int, reversed_: bool) -> dict:
