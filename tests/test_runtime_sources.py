@@ -68,3 +68,21 @@ def test_outputs_are_the_sources_with_the_banner(rel, out):
     assert [ln for ln in emitted if not any(h in ln for h in header_lines())] == \
            [ln for ln in src if runtime_files.MARKER not in ln]
     assert (ROOT / "generated" / out).read_text().splitlines() == emitted
+
+
+def test_runtime_sources_hold_no_template_syntax():
+    """They are compiled and linted as they are: a Jinja delimiter in one would reach the outputs verbatim."""
+    for path in runtime_files.files():
+        text = path.read_text()
+        assert not any(d in text for d in ("{{", "{%", "{#")), path
+
+
+@pytest.mark.parametrize("template", ["c/chain.c.jinja", "python/chain.py.jinja"])
+def test_the_own_robot_templates_print_data_not_numerics(template):
+    """The own-robot solver's templates print the robot's constants, data and plan rows and inline the runtime
+    sources (issue 22): at most 400 lines, no dispatch on a plan op (derive/families/chain/views.py renders the
+    rows)."""
+    text = (ROOT / "templates" / template).read_text()
+    assert len(text.splitlines()) <= 400
+    assert not re.search(r"\{%-?\s*(el)?if\s+(o|op|kind)\b", text)
+    assert "runtime_source(" in text

@@ -16,7 +16,9 @@ from ...kinematics.poe import Chain, normalised, reduce_free, reverse
 from ...kinematics.subproblems import subproblem_checks
 from ...mechanism import MechanismDefaults
 from ...model import Check, Derivation, Finding, Step
+from . import views
 from .description import Description
+from .stages import stage
 
 FREE_SAMPLES = (0.0, 0.7, -1.9, 2.6)  # values of a free joint the decomposition must hold at
 
@@ -215,6 +217,10 @@ class ChainMechanism(MechanismDefaults):
                 "has_spatial3": any(op["op"] == "spatial3" for op in plan.ops),
                 "has_sp6": any(op["op"] == "sp6" for op in plan.ops),
                 "has_poly": any(op["op"] in ("spatial3", "sp6") for op in plan.ops),
+                "c_plan_rows": views.c_plan_rows([stage(i, op) for i, op in enumerate(plan.ops)], solver.joint_names),
+                "c_runtime_files": views.c_runtime_files(plan.ops),
+                "c_flags": views.c_flags(plan.ops, free, plan.reversed),
+                "py_runtime_files": views.py_runtime_files(plan.ops),
                 # the same data as plain numbers, for the C template
                 "c_data": {"axes": _floats(c.axes), "points": _floats(c.points), "home": _floats(c.home),
                            "ideal_axes": _floats(ideal.axes), "ideal_points": _floats(ideal.points),

@@ -1,0 +1,47 @@
+"""What the user-robot templates print, prepared here so that no solver decision is taken in Jinja: the
+decomposition's ops as rows of ck_plan[] (runtime/c/chain/ck_types.h: ck_op), and the runtime sources
+(runtime/c/chain/ck_*.c, runtime/python/chain_*.py) a robot's module inlines, in order."""
+
+from __future__ import annotations
+
+# inlined after the robot's data, in this order (each reads only what the ones before it define)
+_C_CORE = ("c/chain/ck_chain.c", "c/chain/ck_dense.c", "c/chain/ck_subproblems.c", "c/chain/ck_points.c",
+           "c/chain/ck_verify.c")
+_C_TAIL = ("c/chain/ck_interpreter.c", "c/chain/ck_api.c")
+def c_plan_rows(stages, joint_names) -> list[str]:
+    """ck_plan[]'s rows (stages.Stage.c_row), each with a comment naming its op and the joints it sets."""
+    def named(s):
+        groups = s.units if s.op == "orient" else [(j,) for j in s.solved]  # a parallel group turns as one
+        names = ", ".join("+".join(joint_names[j] for j in g) for g in groups).replace("*/", "* /")
+        return f"{s.op}: {names}" if names else s.op
+    return [f"/* {s.index}: {named(s)} */\n    {{ {s.c_row()} }}" for s in stages]
+
+
+def _kinds(ops) -> set[str]:
+    return {op["op"] for op in ops}
+
+
+def c_runtime_files(ops) -> list[str]:
+    """The C runtime sources this decomposition calls, in inlining order."""
+    kinds = _kinds(ops)
+    poly = ["c/poly_real_roots.c", "c/chain/ck_poly.c"] if kinds & {"spatial3", "sp6"} else []
+    return [*_C_CORE, *poly, *(["c/chain/ck_spatial3.c"] if "spatial3" in kinds else []),
+            *(["c/chain/ck_sp6.c"] if "sp6" in kinds else []), *_C_TAIL]
+
+
+def py_runtime_files(ops) -> list[str]:
+    """The Python runtime sources this decomposition calls, in inlining order (subproblem 6 and the general 3R
+    stage register themselves in chain_stages._OP_STAGES, which _solve runs by the op's kind)."""
+    kinds = _kinds(ops)
+    poly = ["python/poly_real_roots.py", "python/chain_poly.py"] if kinds & {"spatial3", "sp6"} else []
+    return [*(f"python/chain_{n}.py" for n in ("design", "rigid", "poe", "subproblems", "points", "stages")), *poly,
+            *(["python/chain_spatial3.py"] if "spatial3" in kinds else []),
+            *(["python/chain_sp6.py"] if "sp6" in kinds else []),
+            *(f"python/chain_{n}.py" for n in ("solve", "verify", "api"))]
+
+
+def c_flags(ops, free: int, reversed_: bool) -> dict:
+    """The preprocessor switches the runtime sources read (ck_chain.c, ck_interpreter.c, ck_api.c)."""
+    kinds = _kinds(ops)
+    return {"CK_FREE": free, "CK_REVERSED": int(bool(reversed_)), "CK_HAS_SP6": int("sp6" in kinds),
+            "CK_HAS_SPATIAL3": int("spatial3" in kinds)}

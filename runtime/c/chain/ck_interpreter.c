@@ -1,0 +1,605 @@
+/* The decomposition's interpreter (ck_run): each op solves its joints, recurses into every root.
+ * (a wristkin runtime source, inlined whole into every user robot's generated C, after the robot's CK_*
+ * constants; derive/runtime_files.py, tests/test_chain_runtime.py) */
+/* ------------------------------------------------------------------ the decomposition's interpreter */
+typedef struct {
+    const ck_chain *ideal;   /* the chain the plan reads */
+    const ck_chain *truth;   /* the same joints on the true geometry: the check */
+    ck_rt g;                 /* the ideal chain's product of exponentials */
+    ck_rt target;            /* the end frame of the chain the solver reads */
+    ck_rt pose;              /* the input pose (its rotation projected): what the returned sets must reach */
+    const ck_design *design;
+    const double *prev;      /* the previous solution in the chain's order, or NULL */
+    double free_value;
+    unsigned projected;
+    int indeterminate;
+    double noise;            /* 1 / g of the near-singular orientation the current candidate went through, else 1 */
+    int probe;               /* a family's existence probed: candidates verified and counted in hits, not stored */
+    int hits;
+    double q[CK_N];
+    double theta[CK_N];      /* the angle of a parallel group (orient), by its first joint */
+    double spec[CK_N_OPS][3];/* each op's point or direction on the ideal chain */
+    ck_ik_solutions *out;
+} ck_ctx;
+
+static int ck_same(const double *a, const double *b)
+{
+    int i;
+    for (i = 0; i < CK_N; ++i) {
+        double d = fabs(a[i] - b[i]);
+        if (ck_revolute[i] && d > CK_SAME_TOL) {
+            if (fabs(d - CK_TWO_PI) > 1e-6) return 0; /* clearly apart: no wrap brings them together */
+            d = fabs(ck_wrap(a[i] - b[i]));
+        }
+        if (!(d <= CK_SAME_TOL)) return 0;
+    }
+    return 1;
+}
+
+/* A singular orientation family's free angle when no `previous` is given: the first of these (every degree, nearest
+ * to 0 first) for which the rest of the decomposition has a verified solution (the Python module's FAMILY_ANGLES) */
+#define CK_N_FAMILY 360
+static double ck_family_angle(int t)
+{
+    const int k = (t + 1) / 2;
+    return t == 0 ? 0.0 : (t % 2 ? 1.0 : -1.0) * k * CK_PI / 180.0;
+}
+
+/* The angle of an orientation op's first unit (one joint, or a parallel group turning as one) at prev. */
+static double ck_unit_angle(const ck_chain *ch, const ck_op *op, const double *prev)
+{
+    const double *u = ch->axis[op->units[0][0]];
+    double s = 0.0;
+    int m;
+    for (m = 0; m < op->unit_len[0]; ++m) {
+        const int j = op->units[0][m];
+        s += copysign(1.0, ck_dot(u, ch->axis[j])) * prev[j];
+    }
+    return s;
+}
+
+/* Store an orientation op's unit angles: a joint's value, or a parallel group's sum (its first joint's slot). */
+static void ck_orient_set(ck_ctx *c, const ck_op *op, const double *angles)
+{
+    int m;
+    for (m = 0; m < op->n_units; ++m) {
+        if (op->unit_len[m] == 1)
+            c->q[op->units[m][0]] = angles[m];
+        else
+            c->theta[op->units[m][0]] = angles[m];
+    }
+}
+
+/* The unit angles of R(u0, a0) R(u1, a1) [R(u2, a2)] = rd given a0 = -t1 (and a1 = t2 for three units). */
+static void ck_orient_rest(int nu, const double *const *u, const double *rd, double t1, double t2, double *angles)
+{
+    double r1[9], w[3], rw[3], a = 0.0;
+    ck_rot(u[0], -t1, r1);
+    angles[0] = -t1;
+    if (nu == 3) {
+        double r2[9];
+        ck_rot(u[1], t2, r2);
+        ck_mm(r1, r2, r2);
+        ck_perpendicular(u[2], w);
+        ck_mv(rd, w, rw);
+        ck_mtv(r2, rw, rw);
+        angles[1] = t2;
+        angles[2] = ck_sp1(u[2], w, rw, 1.0, &a) ? a : 0.0;
+    } else {
+        ck_perpendicular(u[1], w);
+        ck_mv(rd, w, rw);
+        ck_mtv(r1, rw, rw);
+        angles[1] = ck_sp1(u[1], w, rw, 1.0, &a) ? a : 0.0;
+    }
+}
+
+static void ck_fk_full(const double *q, const ck_design *d, ck_rt *o);
+
+/* A solution of the solver's chain (values in its order) as the description's joint values, wrapped */
+static void ck_full_joints(const ck_ctx *c, const double *qc, double *full)
+{
+    int i;
+    for (i = 0; i < CK_N; ++i) full[i] = 0.0;
+    for (i = 0; i < c->truth->n; ++i) full[c->truth->index[i]] = qc[i];
+#if CK_FREE >= 0
+    full[CK_FREE] = c->free_value;
+#endif
+    for (i = 0; i < CK_N; ++i)
+        if (ck_revolute[i]) full[i] = ck_wrap(full[i]);
+}
+
+/* The noise of the stages after a three-unit orientation root: 1 / g with g = |u0 x R(u1, t2) u2| (how far the middle
+ * unit turns the last axis off the first), at least the outer one (Python: the orient op) */
+static double ck_orient_noise(const double *const *u, double t2, double outer)
+{
+    double r[9], w[3], x[3], g;
+    ck_rot(u[1], t2, r);
+    ck_mv(r, u[2], w);
+    ck_cross(u[0], w, x);
+    g = ck_norm(x);
+    g = 1.0 / (g > 1e-300 ? g : 1e-300);
+    return g > outer ? g : outer;
+}
+
+/* A candidate of the plan: verified (and polished) on the true chain, deduplicated, flagged, stored. */
+static void ck_candidate(ck_ctx *c, unsigned flags)
+{
+    ck_ik_solutions *out = c->out;
+    const ck_chain *ch = c->truth;
+    double qc[CK_N], full[CK_N], jac[6 * CK_N], err;
+    ck_rt t;
+    int i, k;
+    if (out->count >= CK_MAX_IK) return;
+    for (i = 0; i < ch->n; ++i) qc[i] = ch->prismatic[i] ? c->q[i] : ck_wrap(c->q[i]);
+    ck_jacobian_chain(ch, qc, jac, &t); /* the FK and the Jacobian share their screws */
+    err = ck_frame_error(&t, &c->target);
+    if (err > CK_IK_VERIFY_TOL) {
+        err = ck_polish(ch, qc, &c->target);
+        ck_jacobian_chain(ch, qc, jac, NULL);
+    }
+    if (!(err <= CK_IK_VERIFY_TOL)) return;
+    ck_full_joints(c, qc, full);
+    /* the residual reported and checked is the module's own FK (fk_matrix) of the returned set: the solver's chain
+     * (held, maybe reversed: T^-1's entries) and base . chain . tool round differently, and the tool's lever scales
+     * an orientation error, so a set within the tolerance there can miss it here; such a set is polished on to
+     * CK_POLISH_TOL and kept only if it then meets CK_IK_VERIFY_TOL */
+    ck_fk_full(full, c->design, &t);
+    err = ck_frame_error(&t, &c->pose);
+    if (err > CK_IK_VERIFY_TOL) {
+        ck_polish(ch, qc, &c->target);
+        ck_jacobian_chain(ch, qc, jac, NULL);
+        ck_full_joints(c, qc, full);
+        ck_fk_full(full, c->design, &t);
+        err = ck_frame_error(&t, &c->pose);
+        if (!(err <= CK_IK_VERIFY_TOL)) return;
+    }
+    for (k = 0; k < out->count; ++k)
+        if (ck_same(full, out->values[k])) return;
+    if (c->probe) {
+        ++c->hits;
+        return;
+    }
+    if (ck_is_singular(jac, ch->n)) flags |= WK_FLAG_SINGULAR_INVERSE;
+    k = out->count;
+    for (i = 0; i < CK_N; ++i) out->values[k][i] = full[i];
+    out->valid[k] = 1;
+    out->flags[k] = flags | c->projected;
+    out->aux[k][0] = err;
+    if (flags & WK_FLAG_INDETERMINATE) c->indeterminate = 1;
+    out->count = k + 1;
+}
+
+/* Sets stored so far (while probing: sets that would be) */
+static int ck_count(const ck_ctx *c)
+{
+    return c->probe ? c->hits : c->out->count;
+}
+
+/* gp = (product of the joints before lo)^-1 g (product of the joints after hi)^-1 */
+static void ck_reduced(const ck_ctx *c, int lo, int hi, ck_rt *gp)
+{
+    ck_rt a;
+    ck_product(c->ideal, c->q, 0, lo, &a);
+    ck_inverse(&a, &a);
+    ck_compose(&a, &c->g, gp);
+    ck_product(c->ideal, c->q, hi + 1, c->ideal->n, &a);
+    ck_inverse(&a, &a);
+    ck_compose(gp, &a, gp);
+}
+
+static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned flags);
+
+/* Where a singular family's free angle goes: one joint (subproblem 6's q5), or an orientation op's first unit */
+typedef struct {
+    int joint;               /* >= 0: that joint; -1: the orientation op below */
+    const ck_op *op;
+    int nu;
+    const double *const *u;
+    const double *rd;
+    double t2;
+} ck_place;
+
+static void ck_place_angle(ck_ctx *c, const ck_place *p, double angle)
+{
+    double angles[3];
+    if (p->joint >= 0) {
+        c->q[p->joint] = angle;
+        return;
+    }
+    ck_orient_rest(p->nu, p->u, p->rd, -angle, p->t2, angles);
+    ck_orient_set(c, p->op, angles);
+}
+
+/* A singular family from op k on (Python's run_family): without `previous`, the first of ck_family_angle(t) with a
+ * verified set; with it, the family is kept exactly where it is kept without it (the grid probed first: previous
+ * picks the member, never whether the family or the split roots are returned), as previous's member when that
+ * verifies, else the grid's. */
+static void ck_run_family(ck_ctx *c, int k, const double *x, const double *y, unsigned flags, const ck_place *p,
+                          const double *prev_angle)
+{
+    int t, before;
+    if (prev_angle && !c->probe) {
+        c->probe = 1;
+        c->hits = 0;
+        for (t = 0; t < CK_N_FAMILY && c->hits == 0; ++t) {
+            ck_place_angle(c, p, ck_family_angle(t));
+            ck_run(c, k + 1, x, y, flags);
+        }
+        c->probe = 0;
+        if (c->hits == 0) return;
+        before = c->out->count;
+        ck_place_angle(c, p, *prev_angle);
+        ck_run(c, k + 1, x, y, flags);
+        if (c->out->count == before) { /* previous's member verifies nothing: the grid's, found by the probe */
+            ck_place_angle(c, p, ck_family_angle(t - 1));
+            ck_run(c, k + 1, x, y, flags);
+        }
+        return;
+    }
+    for (t = 0; t < CK_N_FAMILY; ++t) {
+        before = ck_count(c);
+        ck_place_angle(c, p, ck_family_angle(t));
+        ck_run(c, k + 1, x, y, flags);
+        if (ck_count(c) > before) break;
+    }
+}
+#if CK_HAS_SP6
+
+/* subproblem 6's inputs at one op: its joints, direction, the points and constant of the first equation, g = Rg h5 */
+typedef struct {
+    int j0, j4, j5;
+    const double *n;
+    double p0[3], p4[3], d0, g[3];
+} ck_sp6_in;
+
+/* One candidate (q0, q4) of subproblem 6: q5 from the group's invariant, then the rest of the plan; a merged
+ * near-double root that verified nothing is split into its two roots (may_split: not a split root itself) */
+static void ck_sp6_set(ck_ctx *c, int k, const double *x, const double *y, unsigned flags, const ck_sp6_in *in,
+                       double q0, double q4, unsigned f, int may_split)
+{
+    const ck_chain *ch = c->ideal;
+    const double *h0 = ch->axis[in->j0], *h4 = ch->axis[in->j4], *h5 = ch->axis[in->j5];
+    double r0[9], rt[9], r4[9], m[9], a[3], b[3], t5 = 0.0, s0[2], s4[2];
+    const int before = ck_count(c);
+    int i, ns;
+    /* the group keeps n: n^T R4 R5 = n^T R0^T Rg, so rot(h5, -q5) (R4^T n) = (R0^T Rg)^T n */
+    ck_rot(h0, q0, r0);
+    ck_transpose(r0, rt);
+    ck_mm(rt, c->g.r, m);
+    ck_rot(h4, q4, r4);
+    ck_mtv(r4, in->n, a);
+    ck_mtv(m, in->n, b);
+    c->q[in->j0] = q0;
+    c->q[in->j4] = q4;
+    if (ck_sp1(h5, a, b, 1.0, &t5)) {
+        c->q[in->j5] = -t5;
+        ck_run(c, k + 1, x, y, flags | f);
+    } else {
+        /* the wrist singularity: joint j5 and the group turn about one direction (a family); its angle from
+         * `previous` or the grid (ck_run_family: it moves the position) */
+        ck_place p;
+        p.joint = in->j5;
+        p.op = NULL;
+        p.nu = 0;
+        p.u = NULL;
+        p.rd = NULL;
+        p.t2 = 0.0;
+        ck_run_family(c, k, x, y, flags | f | WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE, &p,
+                      c->prev ? &c->prev[in->j5] : NULL);
+    }
+    if (ck_count(c) > before || !may_split || !(f & WK_FLAG_SINGULAR_INVERSE)) return;
+    /* a merged near-double root (or the singularity's candidate near, not at, the singularity) that verified
+     * nothing: the two roots it merged */
+    ns = ck_sp6_split(in->n, h0, in->p0, h4, in->p4, in->d0, 0.0, in->g, h5, q0, q4, s0, s4);
+    for (i = 0; i < ns; ++i)
+        ck_sp6_set(c, k, x, y, flags, in, s0[i], s4[i], (f & ~WK_FLAG_DOUBLE_ROOT) | WK_FLAG_SINGULAR_INVERSE, 0);
+}
+#endif
+
+/* Op k and everything after it, for each root: x the point the joints place (moved by the solved last joints),
+ * y its image (moved back by the solved first joints). */
+static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned flags)
+{
+    const ck_chain *ch = c->ideal;
+    const ck_op *op;
+    if (c->out->count >= CK_MAX_IK) return;
+    if (k == CK_N_OPS) {
+        ck_candidate(c, flags);
+        return;
+    }
+    op = &ck_plan[k];
+    switch (op->op) {
+    case CK_BEGIN: {
+        ck_rt gp;
+        double yy[3];
+        ck_reduced(c, op->lo, op->hi, &gp);
+        ck_apply(&gp, c->spec[k], yy);
+        ck_run(c, k + 1, c->spec[k], yy, flags);
+        break;
+    }
+    case CK_FIRST_PLANE:
+    case CK_LAST_PLANE: {
+        const int first = op->op == CK_FIRST_PLANE, j = op->j;
+        const double *nv = c->spec[k], *h = ch->axis[j], *r = ch->point[j];
+        double d[3], d2[3], moved[3], t[2];
+        unsigned f[2];
+        int nr, i;
+        if (op->prismatic) {
+            const double den = ck_dot(nv, h);
+            double v;
+            if (!(fabs(den) > 0.0)) return;
+            ck_sub(y, x, d);
+            v = ck_dot(nv, d) / den;
+            c->q[j] = v;
+            ck_scale(h, v, d);
+            if (first) {
+                ck_sub(y, d, moved);
+                ck_run(c, k + 1, x, moved, flags);
+            } else {
+                ck_add(x, d, moved);
+                ck_run(c, k + 1, moved, y, flags);
+            }
+            return;
+        }
+        if (first) { /* n . rot(h, -q)(y - r) = n . (x - r) */
+            ck_sub(y, r, d);
+            ck_sub(x, r, d2);
+            nr = ck_sp4(nv, h, d, ck_dot(nv, d2), CK_SCALE, c->noise, t, f);
+            for (i = 0; i < nr; ++i) t[i] = -t[i];
+        } else { /* n . rot(h, q)(x - r) = n . (y - r) */
+            ck_sub(x, r, d);
+            ck_sub(y, r, d2);
+            nr = ck_sp4(nv, h, d, ck_dot(nv, d2), CK_SCALE, c->noise, t, f);
+        }
+        for (i = 0; i < nr; ++i) {
+            ck_rt e;
+            c->q[j] = t[i];
+            ck_screw(0, h, r, t[i], &e);
+            if (first) {
+                ck_inverse(&e, &e);
+                ck_apply(&e, y, moved);
+                ck_run(c, k + 1, x, moved, flags | f[i]);
+            } else {
+                ck_apply(&e, x, moved);
+                ck_run(c, k + 1, moved, y, flags | f[i]);
+            }
+        }
+        break;
+    }
+    case CK_FIRST_DIST:
+    case CK_LAST_DIST: {
+        const int first = op->op == CK_FIRST_DIST, j = op->j;
+        const double *s = c->spec[k], *h = ch->axis[j], *r = ch->point[j];
+        const double *moving = first ? y : x, *other = first ? x : y;
+        double d3[3], ms[3], sr[3], mr[3], moved[3], dist, t[2];
+        unsigned f[2];
+        int nr, i;
+        ck_sub(other, s, d3);
+        dist = ck_norm(d3);
+        if (op->prismatic) { /* |moving -+ v h - s| = d: a quadratic in v */
+            double b, cc, disc;
+            ck_sub(moving, s, ms);
+            b = ck_dot(h, ms) * (first ? -1.0 : 1.0);
+            cc = ck_dot(ms, ms) - dist * dist;
+            disc = b * b - cc;
+            if (disc < -CK_TANGENT_TOL * CK_SCALE * CK_SCALE) return;
+            if (disc <= CK_DOUBLE_ROOT_TOL * CK_SCALE * CK_SCALE) {
+                t[0] = -b;
+                f[0] = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
+                nr = 1;
+            } else {
+                t[0] = -b + sqrt(disc);
+                t[1] = -b - sqrt(disc);
+                f[0] = f[1] = 0u;
+                nr = 2;
+            }
+            for (i = 0; i < nr; ++i) {
+                double hv[3];
+                c->q[j] = t[i];
+                ck_scale(h, t[i], hv);
+                if (first) {
+                    ck_sub(y, hv, moved);
+                    ck_run(c, k + 1, x, moved, flags | f[i]);
+                } else {
+                    ck_add(x, hv, moved);
+                    ck_run(c, k + 1, moved, y, flags | f[i]);
+                }
+            }
+            return;
+        }
+        ck_sub(moving, r, mr);
+        ck_sub(s, r, sr);
+        nr = ck_sp3(h, mr, sr, dist, CK_SCALE, c->noise, t, f);
+        for (i = 0; i < nr; ++i) {
+            ck_rt e;
+            const double tt = first ? -t[i] : t[i];
+            c->q[j] = tt;
+            ck_screw(0, h, r, tt, &e);
+            if (first) {
+                ck_inverse(&e, &e);
+                ck_apply(&e, y, moved);
+                ck_run(c, k + 1, x, moved, flags | f[i]);
+            } else {
+                ck_apply(&e, x, moved);
+                ck_run(c, k + 1, moved, y, flags | f[i]);
+            }
+        }
+        break;
+    }
+    case CK_PAIR: { /* rot_j rot_k (x - s) = y - s */
+        const double *s = c->spec[k];
+        double ys[3], xs[3], t1[2], t2[2];
+        unsigned f[2];
+        int has1[2], nr, i, split;
+        const int before = ck_count(c);
+        ck_sub(y, s, ys);
+        ck_sub(x, s, xs);
+        for (split = 0; split < 2; ++split) { /* a near-double root's two roots when its merged one verified nothing */
+            if (split && ck_count(c) > before) break;
+            nr = ck_sp2(ys, ch->axis[op->j], xs, ch->axis[op->k], CK_SCALE, split, t1, has1, t2, f);
+            for (i = 0; i < nr; ++i) {
+                c->q[op->j] = has1[i] ? -t1[i] : (c->prev ? c->prev[op->j] : 0.0);
+                c->q[op->k] = t2[i];
+                ck_run(c, k + 1, x, y, flags | f[i]);
+            }
+        }
+        break;
+    }
+    case CK_SINGLE: {
+        const int j = op->j;
+        const double *h = ch->axis[j], *r = ch->point[j];
+        double xr[3], yr[3], t;
+        if (op->prismatic) {
+            ck_sub(y, x, xr);
+            c->q[j] = ck_dot(h, xr);
+            ck_run(c, k + 1, x, y, flags);
+            return;
+        }
+        ck_sub(x, r, xr);
+        ck_sub(y, r, yr);
+        if (!ck_sp1(h, xr, yr, CK_SCALE, &t)) {
+            c->q[j] = c->prev ? c->prev[j] : 0.0;
+            ck_run(c, k + 1, x, y, flags | WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE);
+        } else {
+            c->q[j] = t;
+            ck_run(c, k + 1, x, y, flags);
+        }
+        break;
+    }
+#if CK_HAS_SP6
+    case CK_SP6: { /* subproblem 6: joints j and k from the group's invariants, then js[0] about the group's axis */
+        const double *n = c->spec[k];
+        ck_sp6_in in;
+        double q0[CK_SP6_MAX], q4[CK_SP6_MAX];
+        unsigned f6[CK_SP6_MAX];
+        int i, nr;
+        in.j0 = op->j;
+        in.j4 = op->k;
+        in.j5 = op->js[0];
+        in.n = n;
+        ck_sub(y, ch->point[in.j0], in.p0);
+        ck_sub(x, ch->point[in.j4], in.p4);
+        in.d0 = ck_dot(n, ch->point[in.j4]) - ck_dot(n, ch->point[in.j0]);
+        ck_mv(c->g.r, ch->axis[in.j5], in.g);
+        nr = ck_sp6(n, ch->axis[in.j0], in.p0, ch->axis[in.j4], in.p4, in.d0, 0.0, in.g, ch->axis[in.j5], q0, q4,
+                    f6);
+        for (i = 0; i < nr; ++i) ck_sp6_set(c, k, x, y, flags, &in, q0[i], q4[i], f6[i], 1);
+        break;
+    }
+#endif
+#if CK_HAS_SPATIAL3
+    case CK_SPATIAL3: { /* three revolute axes in general position: every real root of the polynomial */
+        double qa[9], qb[9], qc[9];
+        unsigned f3[9];
+        int i, nr = ck_spatial3(ch, op->js[0], op->js[1], op->js[2], x, y, qa, qb, qc, f3);
+        for (i = 0; i < nr; ++i) {
+            c->q[op->js[0]] = qa[i];
+            c->q[op->js[1]] = qb[i];
+            c->q[op->js[2]] = qc[i];
+            ck_run(c, k + 1, x, y, flags | f3[i]);
+        }
+        break;
+    }
+#endif
+    case CK_LINEAR: { /* x + sum q_i h_i = y: least squares over the slides */
+        double a[3 * 3], b[3], sol[3];
+        int i, r;
+        ck_sub(y, x, b);
+        for (r = 0; r < 3; ++r)
+            for (i = 0; i < op->n_js; ++i) a[r * op->n_js + i] = ch->axis[op->js[i]][r];
+        ck_lstsq(a, 3, op->n_js, b, sol);
+        for (i = 0; i < op->n_js; ++i) c->q[op->js[i]] = sol[i];
+        ck_run(c, k + 1, x, y, flags);
+        break;
+    }
+    case CK_ORIENT: {
+        const int nu = op->n_units;
+        const double *u[3];
+        double t1[2], t2[2], rv[3];
+        unsigned f[2];
+        int has1[2], ns, i;
+        const int before_op = ck_count(c);
+        ck_rt gp;
+        ck_reduced(c, op->lo, op->hi, &gp);
+        for (i = 0; i < nu; ++i) u[i] = ch->axis[op->units[i][0]];
+        if (nu == 3) {
+            ck_mv(gp.r, u[2], rv);
+            ns = ck_sp2(rv, u[0], u[2], u[1], 1.0, 0, t1, has1, t2, f);
+        } else if (nu == 2) {
+            double a = 0.0;
+            ck_mv(gp.r, u[1], rv);
+            has1[0] = ck_sp1(u[0], u[1], rv, 1.0, &a);
+            t1[0] = has1[0] ? -a : 0.0;
+            t2[0] = 0.0;
+            f[0] = 0u;
+            ns = 1;
+        } else {
+            t1[0] = t2[0] = 0.0;
+            has1[0] = 1;
+            f[0] = 0u;
+            ns = 1;
+        }
+        for (i = 0; i < ns; ++i) {
+            double angles[3], w[3], rw[3], a = 0.0;
+            if (nu == 1) {
+                ck_perpendicular(u[0], w);
+                ck_mv(gp.r, w, rw);
+                angles[0] = ck_sp1(u[0], w, rw, 1.0, &a) ? a : 0.0;
+                ck_orient_set(c, op, angles);
+                ck_run(c, k + 1, x, y, flags | f[i]);
+            } else if (has1[i]) {
+                const double outer = c->noise;
+                ck_orient_rest(nu, u, gp.r, t1[i], t2[i], angles);
+                ck_orient_set(c, op, angles);
+                if (nu == 3) c->noise = ck_orient_noise(u, t2[i], outer);
+                ck_run(c, k + 1, x, y, flags | f[i]);
+                c->noise = outer;
+            } else {
+                /* a singular family (the first and last axes line up): the first unit's angle is free. With
+                 * `previous`, its angle there; else the first of ck_family_angle(t) for which the rest of the
+                 * decomposition has a verified solution (the position may depend on it: a parallel group). */
+                ck_place p;
+                const double prev_angle = c->prev ? ck_unit_angle(ch, op, c->prev) : 0.0;
+                p.joint = -1;
+                p.op = op;
+                p.nu = nu;
+                p.u = u;
+                p.rd = gp.r;
+                p.t2 = t2[i];
+                ck_run_family(c, k, x, y, flags | f[i], &p, c->prev ? &prev_angle : NULL);
+            }
+        }
+        if (nu == 3 && ck_count(c) == before_op) {
+            /* near (not at) the singular family the merged root is a family that verifies nothing: its two roots
+             * are two sets with every angle defined */
+            ns = ck_sp2(rv, u[0], u[2], u[1], 1.0, 1, t1, has1, t2, f);
+            for (i = 0; i < ns; ++i) {
+                double angles[3];
+                const double outer = c->noise;
+                ck_orient_rest(nu, u, gp.r, t1[i], t2[i], angles);
+                ck_orient_set(c, op, angles);
+                c->noise = ck_orient_noise(u, t2[i], outer);
+                ck_run(c, k + 1, x, y, flags | f[i]);
+                c->noise = outer;
+            }
+        }
+        break;
+    }
+    case CK_GROUP_REST: { /* rotations about parallel axes add: the last is the sum minus the others */
+        const double *u = ch->axis[op->js[0]];
+        double acc = 0.0, rest;
+        int i;
+        for (i = 0; i < op->n_js; ++i) {
+            const int m = op->js[i];
+            if (m != op->j) acc = acc + copysign(1.0, ck_dot(u, ch->axis[m])) * c->q[m];
+        }
+        rest = c->theta[op->js[0]] - acc;
+        c->q[op->j] = rest * copysign(1.0, ck_dot(u, ch->axis[op->j]));
+        ck_run(c, k + 1, x, y, flags);
+        break;
+    }
+    default:
+        break;
+    }
+}
+

@@ -1,0 +1,222 @@
+/* Subproblem 6 (two joints from two invariants): its polynomial, near-double root split and Newton.
+ * (a wristkin runtime source, inlined whole into every user robot's generated C, after the robot's CK_*
+ * constants; derive/runtime_files.py, tests/test_chain_runtime.py) */
+/* o = r^T */
+static void ck_transpose(const double *r, double *o)
+{
+    int i, j;
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j) o[3 * i + j] = r[3 * j + i];
+}
+
+/* a (cos t, sin t, const) of n . rot(k, sign t) p */
+static void ck_trig_coef(const double *n, const double *k, const double *p, double sign, double *o)
+{
+    const double kp = ck_dot(k, p);
+    double perp[3], kx[3];
+    ck_scale(k, kp, perp);
+    ck_sub(p, perp, perp);
+    ck_cross(k, p, kx);
+    o[0] = ck_dot(n, perp);
+    o[1] = sign * ck_dot(n, kx);
+    o[2] = kp * ck_dot(n, k);
+}
+
+/* q0 = pi (tan(q0 / 2) infinite) is a candidate of subproblem 6 when cos^2 + sin^2 of the q4 it gives is 1 within
+ * this (the Python module's SP6_AT_PI_TOL) */
+#define CK_SP6_AT_PI_TOL 1e-9
+/* at most 4 roots and q0 = pi, and 2 x 2 singular candidates */
+#define CK_SP6_MAX 9
+
+/* Newton steps on subproblem 6's equations from a root (quadratic convergence from a root of the quartic or of the
+ * local model: 3 suffice; the Python module's SP6_NEWTON_STEPS) */
+#define CK_SP6_NEWTON_STEPS 3
+
+/* f = (F1, F2) of subproblem 6 without the constants, jac their gradients (row-major), hs their second derivatives
+ * ((F1_00, F1_44), (F2_00, F2_44)); the mixed ones vanish (each equation is a function of q0 plus one of q4).
+ * The Python module's _sp6_eval. */
+static void ck_sp6_eval(const double *n, const double *h0, const double *p0, const double *h4, const double *p4,
+                        const double *g, const double *h5, double q0, double q4, double *f, double *jac, double *hs)
+{
+    double r0[9], r4[9], w[4][3], a[3], b[3];
+    int i;
+    ck_rot(h0, -q0, r0);
+    ck_rot(h4, q4, r4);
+    ck_mv(r0, p0, w[0]);
+    ck_mv(r0, g, w[1]);
+    ck_mv(r4, p4, w[2]);
+    ck_mv(r4, h5, w[3]);
+    for (i = 0; i < 2; ++i) { /* i = 0: F1 (p0, p4), i = 1: F2 (g, h5) */
+        const double *wa = w[i], *wb = w[2 + i];
+        f[i] = ck_dot(n, wa) - ck_dot(n, wb);
+        ck_cross(h0, wa, a);
+        ck_cross(h4, wb, b);
+        jac[2 * i] = -ck_dot(n, a);
+        jac[2 * i + 1] = -ck_dot(n, b);
+        if (hs) {
+            double aa[3], bb[3];
+            ck_cross(h0, a, aa);
+            ck_cross(h4, b, bb);
+            hs[2 * i] = ck_dot(n, aa);
+            hs[2 * i + 1] = -ck_dot(n, bb);
+        }
+    }
+}
+
+/* (q0, q4) after Newton steps on both equations of subproblem 6, each kept only when it lowers the residual (the
+ * Python module's _sp6_newton): the quartic resolves two roots ~delta apart only to ~sqrt(eps) in tan(q0 / 2), the
+ * equations to eps / delta in the angles */
+static void ck_sp6_newton(const double *n, const double *h0, const double *p0, const double *h4, const double *p4,
+                          double d0, double e0, const double *g, const double *h5, double *q0, double *q4)
+{
+    double f[2], jac[4], res;
+    int it;
+    ck_sp6_eval(n, h0, p0, h4, p4, g, h5, *q0, *q4, f, jac, NULL);
+    res = fmax(fabs(f[0] - d0), fabs(f[1] - e0));
+    for (it = 0; it < CK_SP6_NEWTON_STEPS; ++it) {
+        const double dt = jac[0] * jac[3] - jac[1] * jac[2];
+        const double r1 = f[0] - d0, r2 = f[1] - e0;
+        double n0, n4, nres;
+        if (res == 0.0 || dt == 0.0) break;
+        n0 = *q0 - (jac[3] * r1 - jac[1] * r2) / dt;
+        n4 = *q4 - (jac[0] * r2 - jac[2] * r1) / dt;
+        ck_sp6_eval(n, h0, p0, h4, p4, g, h5, n0, n4, f, jac, NULL);
+        nres = fmax(fabs(f[0] - d0), fabs(f[1] - e0));
+        if (!(nres < res)) break;
+        *q0 = n0;
+        *q4 = n4;
+        res = nres;
+    }
+}
+
+/* The two roots of subproblem 6 near (q0, q4), a merged near-double root that verified nothing (the Python
+ * module's _sp6_split): along the first equation's solution curve the second is quadratic to third order; its two
+ * roots, polished by Newton on both equations. Returns 0 or 2. */
+static int ck_sp6_split(const double *n, const double *h0, const double *p0, const double *h4, const double *p4,
+                        double d0, double e0, const double *g, const double *h5, double q0, double q4, double *s0,
+                        double *s4)
+{
+    double f[2], jac[4], hs[4], gn, r, t0, t4, qa, qb, qc, disc;
+    int i;
+    ck_sp6_eval(n, h0, p0, h4, p4, g, h5, q0, q4, f, jac, hs);
+    gn = hypot(jac[0], jac[1]);
+    if (gn <= CK_DEGENERATE_EPS * CK_SCALE) return 0;
+    /* onto the first equation's curve, then along its tangent; the curve's bend seen through F2's gradient */
+    r = -(f[0] - d0) / gn;
+    q0 += r * jac[0] / gn;
+    q4 += r * jac[1] / gn;
+    t0 = -jac[1] / gn;
+    t4 = jac[0] / gn;
+    qa = 0.5 * (hs[2] * t0 * t0 + hs[3] * t4 * t4)
+         - 0.5 * (hs[0] * t0 * t0 + hs[1] * t4 * t4) * (jac[2] * jac[0] + jac[3] * jac[1]) / (gn * gn);
+    qb = jac[2] * t0 + jac[3] * t4;
+    qc = f[1] - e0;
+    disc = qb * qb - 4.0 * qa * qc;
+    if (qa == 0.0 || !(disc > 0.0)) return 0;
+    for (i = 0; i < 2; ++i) {
+        const double s = (-qb + (i ? -1.0 : 1.0) * sqrt(disc)) / (2.0 * qa);
+        s0[i] = q0 + s * t0;
+        s4[i] = q4 + s * t4;
+        ck_sp6_newton(n, h0, p0, h4, p4, d0, e0, g, h5, &s0[i], &s4[i]);
+        s0[i] = ck_wrap(s0[i]);
+        s4[i] = ck_wrap(s4[i]);
+    }
+    return 2;
+}
+
+/* (q0, q4, flags) with n.rot(h0, -q0) p0 - n.rot(h4, q4) p4 = d0 and n.rot(h0, -q0) gv - n.rot(h4, q4) h5 = e0
+ * (subproblem 6, the Python module's _sp6): (cos q4, sin q4) affine in (cos q0, sin q0) by Cramer's rule, and
+ * cos^2 + sin^2 = 1 a quartic in tan(q0 / 2); then the wrist singularity (rot(h4, q4) h5 = +-n) tried directly.
+ * At most CK_SP6_MAX candidates, the regular ones first. */
+static int ck_sp6(const double *n, const double *h0, const double *p0, const double *h4, const double *p4, double d0,
+                  double e0, const double *gv, const double *h5, double *q0, double *q4, unsigned *fl)
+{
+    static const double apoly[3][3] = { {1.0, 0.0, 1.0}, {1.0, 0.0, -1.0}, {0.0, 2.0, 0.0} };
+    double k1[3], m1[3], k2[3], m2[3], e1, e2, det, al[3], be[3], pa[3], pb[3], pd[3], poly[5], sq[5];
+    double roots[8], ang[5], tol[5], sq0[4], sq4[4], t4 = 0.0;
+    unsigned rf[8], af[5], sfl[4];
+    int i, j, nroot, status = 0, na = 0, out = 0, ns = 0;
+    ck_trig_coef(n, h0, p0, -1.0, k1);
+    ck_trig_coef(n, h4, p4, 1.0, m1);
+    ck_trig_coef(n, h0, gv, -1.0, k2);
+    ck_trig_coef(n, h4, h5, 1.0, m2);
+    e1 = d0 - k1[2] + m1[2];
+    e2 = e0 - k2[2] + m2[2];
+    det = m1[0] * m2[1] - m1[1] * m2[0];
+    if (fabs(det) <= CK_DEGENERATE_EPS * CK_SCALE) return 0;
+    al[0] = -e1 * m2[1] + m1[1] * e2;
+    al[1] = k1[0] * m2[1] - m1[1] * k2[0];
+    al[2] = k1[1] * m2[1] - m1[1] * k2[1];
+    be[0] = -m1[0] * e2 + m2[0] * e1;
+    be[1] = m1[0] * k2[0] - m2[0] * k1[0];
+    be[2] = m1[0] * k2[1] - m2[0] * k1[1];
+    for (i = 0; i < 3; ++i) {
+        pa[i] = apoly[0][i] * al[0] + apoly[1][i] * al[1] + apoly[2][i] * al[2];
+        pb[i] = apoly[0][i] * be[0] + apoly[1][i] * be[1] + apoly[2][i] * be[2];
+        pd[i] = apoly[0][i] * det;
+    }
+    ck_poly_mul(pa, 3, pa, 3, poly);
+    ck_poly_mul(pb, 3, pb, 3, sq);
+    ck_poly_axpy(poly, sq, 5, 1.0);
+    ck_poly_mul(pd, 3, pd, 3, sq);
+    ck_poly_axpy(poly, sq, 5, -1.0);
+    nroot = wk_poly_real_roots(poly, 4, roots, rf, &status);
+    for (i = 0; i < nroot && na < 4; ++i) {
+        ang[na] = 2.0 * atan(roots[i]);
+        tol[na] = 1e-6;
+        af[na++] = (rf[i] & WK_POLY_FLAG_DOUBLE) ? (WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE) : 0u;
+    }
+    ang[na] = CK_PI; /* tan(q0 / 2) = infinity is no root of the polynomial: tried directly, kept at rounding only */
+    tol[na] = CK_SP6_AT_PI_TOL;
+    af[na++] = 0u;
+    /* the wrist singularity: where rot(h4, q4) h5 = +-n the second equation holds for every q0, so those q4 are tried
+     * with q0 from the first equation alone, kept when the second holds within the double-root tolerance */
+    if (ck_sp1(h4, h5, n, 1.0, &t4)) {
+        for (j = 0; j < 2; ++j) {
+            const double a4 = t4 + (j ? CK_PI : 0.0);
+            double r4[9], v[3], side, t0[2];
+            unsigned f0[2];
+            int m, n0;
+            ck_rot(h4, a4, r4);
+            ck_mv(r4, h5, v);
+            side = ck_dot(n, v);
+            if (fabs(fabs(side) - 1.0) > 1e-12) continue;
+            ck_mv(r4, p4, v);
+            n0 = ck_sp4(n, h0, p0, d0 + ck_dot(n, v), CK_SCALE, 1.0, t0, f0);
+            for (m = 0; m < n0; ++m) {
+                double r0[9], w[3], dn;
+                ck_rot(h0, -t0[m], r0);
+                ck_mtv(r0, gv, w);
+                dn = ck_dot(n, w);
+                if (dn * side > 0.0 && 1.0 - dn * dn <= CK_DOUBLE_ROOT_TOL) {
+                    sq0[ns] = -t0[m];
+                    sq4[ns] = ck_wrap(a4);
+                    sfl[ns++] = f0[m] | WK_FLAG_SINGULAR_INVERSE;
+                }
+            }
+        }
+    }
+    for (i = 0; i < na; ++i) {
+        const double c0 = cos(ang[i]), s0 = sin(ang[i]);
+        const double cc = (al[0] + al[1] * c0 + al[2] * s0) / det, ss = (be[0] + be[1] * c0 + be[2] * s0) / det;
+        double a0 = ang[i], a4 = atan2(ss, cc);
+        int dup = 0;
+        if (fabs(hypot(cc, ss) - 1.0) > tol[i]) continue; /* the root at infinity, or a poorly resolved one */
+        /* a merged double root stays (Newton is ill-conditioned there; its split is the caller's) */
+        if (!af[i]) ck_sp6_newton(n, h0, p0, h4, p4, d0, e0, gv, h5, &a0, &a4);
+        for (j = 0; j < ns; ++j) /* the same (singular) configuration as a singular candidate */
+            if (fabs(ck_wrap(a0 - sq0[j])) <= 1e-6 && fabs(ck_wrap(a4 - sq4[j])) <= 1e-6) dup = 1;
+        if (dup) continue;
+        q0[out] = a0;
+        q4[out] = a4;
+        fl[out] = af[i];
+        ++out;
+    }
+    for (j = 0; j < ns; ++j) {
+        q0[out] = sq0[j];
+        q4[out] = sq4[j];
+        fl[out] = sfl[j];
+        ++out;
+    }
+    return out;
+}

@@ -1,0 +1,204 @@
+/* The Paden-Kahan subproblems 1-4 (and subproblem 2's height), a trig equation, a 3x3 solve.
+ * (a wristkin runtime source, inlined whole into every user robot's generated C, after the robot's CK_*
+ * constants; derive/runtime_files.py, tests/test_chain_runtime.py) */
+/* ------------------------------------------------------------------ subproblems */
+/* Roots t of a cos t + b sin t = c (at most 2): a double root once (flagged), a vanishing equation one
+ * representative t = 0 (flagged indeterminate). */
+static int ck_trig(double a, double b, double c, double scale, double noise, double *t, unsigned *f)
+{
+    const double r = hypot(a, b);
+    const double tangent = fmax(CK_TANGENT_TOL, CK_STAGE_NOISE * noise);
+    const double dbl = fmax(CK_DOUBLE_ROOT_TOL, 2.0 * CK_STAGE_NOISE * noise);
+    double u, phi, w;
+    if (r <= CK_DEGENERATE_EPS * scale) {
+        if (fabs(c) <= CK_DEGENERATE_EPS * scale) {
+            t[0] = 0.0;
+            f[0] = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
+            return 1;
+        }
+        return 0;
+    }
+    u = c / r;
+    if (!(fabs(u) <= 1.0 + tangent)) return 0;
+    u = u > 1.0 ? 1.0 : (u < -1.0 ? -1.0 : u);
+    phi = atan2(b, a);
+    if (1.0 - u * u <= dbl) {
+        t[0] = phi + (u > 0.0 ? 0.0 : CK_PI);
+        f[0] = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
+        return 1;
+    }
+    w = acos(u);
+    t[0] = phi + w;
+    t[1] = phi - w;
+    f[0] = f[1] = 0u;
+    return 2;
+}
+
+/* t with rot(k, t) p = q (least squares); 0 when p or q is on the axis (within CK_DEGENERATE_EPS of `scale`:
+ * CK_SCALE for points, 1 for directions) */
+static int ck_sp1(const double *k, const double *p, const double *q, double scale, double *t)
+{
+    double pp[3], qq[3], c[3];
+    ck_scale(k, ck_dot(k, p), pp);
+    ck_sub(p, pp, pp);
+    ck_scale(k, ck_dot(k, q), qq);
+    ck_sub(q, qq, qq);
+    if (ck_norm(pp) <= CK_DEGENERATE_EPS * scale || ck_norm(qq) <= CK_DEGENERATE_EPS * scale) return 0;
+    ck_cross(pp, qq, c);
+    *t = atan2(ck_dot(k, c), ck_dot(pp, qq));
+    return 1;
+}
+
+/* t with |rot(k, t) p1 - p2| = d */
+static int ck_sp3(const double *k, const double *p1, const double *p2, double d, double scale, double noise,
+                  double *t, unsigned *f)
+{
+    const double kp1 = ck_dot(k, p1);
+    double perp[3], kx[3], c;
+    ck_scale(k, kp1, perp);
+    ck_sub(p1, perp, perp);
+    c = 0.5 * (ck_dot(p1, p1) + ck_dot(p2, p2) - d * d) - kp1 * ck_dot(k, p2);
+    ck_cross(k, p1, kx);
+    return ck_trig(ck_dot(p2, perp), ck_dot(p2, kx), c, scale * scale, noise, t, f);
+}
+
+/* t with h . rot(k, t) p = d */
+static int ck_sp4(const double *h, const double *k, const double *p, double d, double scale, double noise, double *t,
+                  unsigned *f)
+{
+    const double kp = ck_dot(k, p);
+    double perp[3], kx[3];
+    ck_scale(k, kp, perp);
+    ck_sub(p, perp, perp);
+    ck_cross(k, p, kx);
+    return ck_trig(ck_dot(h, perp), ck_dot(h, kx), d - kp * ck_dot(h, k), scale, noise, t, f);
+}
+
+/* g^2 of subproblem 2's common vector w = alpha k1 + beta k2 + g k1 x k2, read on the circle of the smaller radius
+ * (p1's about k1 or p2's about k2) so that near a singular family it has no cancellation, and (*res2) the scale at
+ * which the inputs' rounding enters it (see Python's _sp2_height2) */
+static double ck_sp2_height2(const double *p1, const double *k1, const double *p2, const double *k2, double c,
+                             double a1, double a2, double den, double scale, double *res2)
+{
+    double r1[3], r2[3], n1, n2, n, e, size;
+    ck_cross(k1, p1, r1);
+    ck_cross(k2, p2, r2);
+    n1 = ck_dot(r1, r1);
+    n2 = ck_dot(r2, r2);
+    if (n1 <= n2) {
+        n = n1;
+        e = a2 - c * a1;
+    } else {
+        n = n2;
+        e = a1 - c * a2;
+    }
+    size = sqrt(0.5 * (ck_dot(p1, p1) + ck_dot(p2, p2)));
+    if (!(size >= scale)) size = scale;
+    *res2 = size * (sqrt(n) + fabs(e)) / den;
+    return (den * n - e * e) / (den * den);
+}
+
+/* (t1, t2, flags) with rot(k1, t1) p1 = rot(k2, t2) p2, k1 not parallel to k2 (at most 2). has1[i] = 0 when p1
+ * lies on k1 (any t1: a singular family, returned once). */
+static int ck_sp2(const double *p1, const double *k1, const double *p2, const double *k2, double scale, int split,
+                  double *t1, int *has1, double *t2, unsigned *f)
+{
+    const double c = ck_dot(k1, k2), a1 = ck_dot(k1, p1), a2 = ck_dot(k2, p2), den = 1.0 - c * c;
+    double alpha, beta, kk[3], base[3], tmp[3], ws[2][3], g2, scale2, res2;
+    unsigned flag;
+    int nw, i, near, out = 0;
+    if (!(den > 0.0)) return 0;
+    alpha = (a1 - c * a2) / den;
+    beta = (a2 - c * a1) / den;
+    ck_cross(k1, k2, kk);
+    ck_scale(k1, alpha, base);
+    ck_scale(k2, beta, tmp);
+    ck_add(base, tmp, base);
+    g2 = ck_sp2_height2(p1, k1, p2, k2, c, a1, a2, den, scale, &res2);
+    scale2 = ck_dot(p1, p1) + ck_dot(p2, p2);
+    if (g2 < -CK_TANGENT_TOL * scale2) return 0;
+    /* one double root where g^2 is within CK_DOUBLE_ROOT_TOL of what rounding leaves in it (Python's _sp2) */
+    /* `split`: only the two roots of a near-double root (see Python's _sp2), for a caller whose merged root
+       verified nothing */
+    near = g2 <= CK_DOUBLE_ROOT_TOL * res2 || g2 <= CK_FAMILY_TOL * CK_FAMILY_TOL * scale2;
+    if (split && !(near && g2 > 0.0)) return 0;
+    if (!split && near) {
+        ws[0][0] = base[0];
+        ws[0][1] = base[1];
+        ws[0][2] = base[2];
+        nw = 1;
+        flag = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
+    } else {
+        const double g = sqrt(g2);
+        ck_scale(kk, g, tmp);
+        ck_add(base, tmp, ws[0]);
+        ck_scale(kk, -g, tmp);
+        ck_add(base, tmp, ws[1]);
+        nw = 2;
+        flag = split ? WK_FLAG_SINGULAR_INVERSE : 0u;
+    }
+    for (i = 0; i < nw; ++i) {
+        double a = 0.0, b = 0.0;
+        const int ok1 = ck_sp1(k1, p1, ws[i], scale, &a);
+        if (!ck_sp1(k2, p2, ws[i], scale, &b) || (split && !ok1)) continue;
+        t1[out] = ok1 ? a : 0.0;
+        has1[out] = ok1;
+        t2[out] = b;
+        f[out] = ok1 ? flag : (flag | WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE);
+        ++out;
+        if (!ok1) break; /* p1 on the axis k1: both w coincide (one family) */
+    }
+    return out;
+}
+
+/* A unit vector normal to k */
+static void ck_perpendicular(const double *k, double *o)
+{
+    double e[3] = {0.0, 0.0, 0.0};
+    if (fabs(k[0]) <= fmin(fabs(k[1]), fabs(k[2])))
+        e[0] = 1.0;
+    else if (fabs(k[1]) <= fabs(k[2]))
+        e[1] = 1.0;
+    else
+        e[2] = 1.0;
+    ck_cross(k, e, o);
+    ck_scale(o, 1.0 / ck_norm(o), o);
+}
+
+/* x with m x = v (3 x 3, row-major) by Gaussian elimination with partial pivoting; 0 when a pivot is below
+ * 1e-12 of the largest entry (then the caller takes the least-squares path) */
+static int ck_solve3(const double *m_in, const double *v_in, double *x)
+{
+    double m[3][4], big = 0.0;
+    int i, j, k;
+    for (i = 0; i < 3; ++i) {
+        for (j = 0; j < 3; ++j) {
+            m[i][j] = m_in[3 * i + j];
+            if (fabs(m[i][j]) > big) big = fabs(m[i][j]);
+        }
+        m[i][3] = v_in[i];
+    }
+    for (i = 0; i < 3; ++i) {
+        int piv = i;
+        for (k = i + 1; k < 3; ++k)
+            if (fabs(m[k][i]) > fabs(m[piv][i])) piv = k;
+        if (!(fabs(m[piv][i]) > 1e-12 * big)) return 0;
+        for (j = 0; j < 4; ++j) {
+            const double t = m[i][j];
+            m[i][j] = m[piv][j];
+            m[piv][j] = t;
+        }
+        for (k = i + 1; k < 3; ++k) {
+            const double f = m[k][i] / m[i][i];
+            for (j = i; j < 4; ++j) m[k][j] -= f * m[i][j];
+        }
+    }
+    for (i = 2; i >= 0; --i) {
+        double acc = m[i][3];
+        for (j = i + 1; j < 3; ++j) acc -= m[i][j] * x[j];
+        x[i] = acc / m[i][i];
+    }
+    return 1;
+}
+
+/* The point nearest to the axes js (their common point), by least squares */

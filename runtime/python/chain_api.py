@@ -1,0 +1,538 @@
+"""Input handling, FK, Jacobian, IK, branches, limits and the command line of a user robot's module.
+
+A wristkin runtime source: every user robot's generated module inlines it from the marker line on
+(derive/runtime_files.py), after the robot's constants; above the marker, what it reads from them and from the
+other sources (chain_stand_in.py: a stand-in robot), so that it is linted and tested as it is
+(tests/test_chain_runtime.py)."""
+
+from __future__ import annotations
+
+import math
+
+import _runtime
+import numpy as np
+from chain_design import _JOINT_SHAPE, _POSE_SHAPES, _design
+from chain_poe import _fk_chain, _full_chain, _held, _product, _reversed
+from chain_rigid import _apply, _as_rt, _compose, _dot, _inverse, _mm, _mv, _rot, _scale, _sub, _to_matrix
+from chain_solve import _solve
+from chain_stand_in import (
+    _AXES,
+    _C_FK,
+    _C_FK_BATCH,
+    _C_FK_MATRIX,
+    _C_IK,
+    _C_IK_BATCH,
+    _C_JACOBIAN,
+    _FK_RESULT,
+    _FREE,
+    _HOME,
+    _IDEAL_AXES,
+    _IDEAL_HOME,
+    _IDEAL_POINTS,
+    _IK_RESULT,
+    _POINTS,
+    _REVERSED,
+    _ROLES,
+    BRANCHES,
+    CONTROLS,
+    DESIGN_NAMES,
+    FLAG_INDETERMINATE,
+    FLAG_PROJECTED,
+    FLAG_SINGULAR_INVERSE,
+    IK_VERIFY_TOL,
+    JOINT_KINDS,
+    JOINT_NAMES,
+    LENGTH_MAX,
+    LOWER,
+    MAX_IK,
+    N_JOINTS,
+    NAME,
+    ROTATION_TOL,
+    SINGULAR_EPS,
+    STATUS_INDETERMINATE,
+    STATUS_NAMES,
+    STATUS_OK,
+    STATUS_UNREACHABLE,
+    UPPER,
+    BatchSolutions,
+    InvalidInput,
+    Solutions,
+    WristkinError,
+    _array,
+    _as_rotation,
+    _projected_note,
+    _rows,
+    _stack,
+    _vector,
+    _wrap,
+)
+from chain_verify import _frame_error, _jacobian_chain, _polish, _pose_error, _ratio
+
+
+# wristkin: inlined from here
+# ---------------------------------------------------------------------------- input handling
+def _quat_matrix(x, y, z, w):
+    """A unit quaternion's rotation; within ROTATION_TOL of unit norm it is normalised (as a matrix within
+    that band is projected), beyond it refused: a quaternion rounded to a few digits is not taken as exact."""
+    n = math.sqrt(x * x + y * y + z * z + w * w)
+    if not abs(n - 1.0) <= ROTATION_TOL:
+        raise InvalidInput(f"pose: the quaternion's norm is {n:.9g}: a unit quaternion is expected (accepted within "
+                           f"{ROTATION_TOL:g} of 1, then normalised); normalise it or pass it with more "
+                           "digits")
+    x, y, z, w = x / n, y / n, z / n, w / n
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def _rpy_matrix(r, p, y):
+    rz, ry, rx = _rot((0.0, 0.0, 1.0), y), _rot((0.0, 1.0, 0.0), p), _rot((1.0, 0.0, 0.0), r)
+    return np.array(_mm(_mm(rz, ry), rx))
+
+
+def pose_matrix(pose) -> np.ndarray:
+    """A pose as a 4x4 matrix: from a 4x4 / 3x4 matrix, 12 / 16 numbers (row-major), xyz + rpy (6 numbers) or
+    xyz + quaternion x, y, z, w (7 numbers)."""
+    a = _array(pose, "pose")
+    if not np.all(np.isfinite(a)):
+        raise InvalidInput("pose: values must be finite")
+    if a.ndim == 1 and a.size in (6, 7):
+        out = np.eye(4)
+        out[:3, 3] = a[:3]
+        out[:3, :3] = _rpy_matrix(*a[3:]) if a.size == 6 else _quat_matrix(*a[3:])
+        return out
+    if a.ndim == 1 and a.size in (12, 16):
+        a = a.reshape(-1, 4)
+    if a.shape not in ((3, 4), (4, 4)):
+        raise InvalidInput(f"pose: expected a 4x4 or 3x4 matrix, 12 / 16 numbers, xyz + rpy (6) or xyz + "
+                           f"quaternion (7), got shape {a.shape}")
+    out = np.eye(4)
+    out[:a.shape[0]] = a
+    return out
+
+
+def _pose(pose):
+    """(the target as (R, t), rotation deviation): validated, the rotation projected onto SO(3) when it deviates
+    by at most ROTATION_PROJECT_TOL."""
+    a = pose_matrix(pose)
+    if not np.max(np.abs(a[3] - (0.0, 0.0, 0.0, 1.0))) <= ROTATION_TOL:
+        raise InvalidInput(f"pose: last row must be (0, 0, 0, 1) (within {ROTATION_TOL:g}), got {a[3].tolist()}")
+    if not np.max(np.abs(a[:3, 3])) <= LENGTH_MAX:
+        raise InvalidInput(f"pose: translation must be within {LENGTH_MAX:g} m, got {a[:3, 3].tolist()}")
+    r, dev = _as_rotation(a[:3, :3])
+    return (tuple(tuple(float(x) for x in row) for row in r), tuple(float(x) for x in a[:3, 3])), dev
+
+
+def _joints(joints, what="joints"):
+    q = _vector(joints, N_JOINTS, what)
+    for v, kind, name in zip(q, JOINT_KINDS, JOINT_NAMES, strict=True):
+        if kind == "P" and not abs(v) <= LENGTH_MAX:
+            raise InvalidInput(f"{what}: prismatic joint {name} must be within {LENGTH_MAX:g} m, got {v!r}")
+    return tuple(_wrap(v) if kind == "R" else v for v, kind in zip(q, JOINT_KINDS, strict=True))
+
+
+def _frames(d):
+    return _as_rt(d.base), _as_rt(d.tool)
+
+
+_TRUE = _full_chain(_AXES, _POINTS, _HOME)
+_IDEAL = _full_chain(_IDEAL_AXES, _IDEAL_POINTS, _IDEAL_HOME)
+
+
+# ---------------------------------------------------------------------------- forward kinematics
+def _fk_full(q, d):
+    base, tool = _frames(d)
+    return _compose(_compose(base, _fk_chain(_TRUE, q)), tool)
+
+
+def _jacobian_full(q, d):
+    """Jacobian of base . chain . tool: the chain's columns rotated into the base frame, the tool's offset in
+    the linear rows."""
+    base, tool = _frames(d)
+    jc = _jacobian_chain(_TRUE, q)
+    r = np.array(base[0])
+    chain_end = _fk_chain(_TRUE, q)
+    end = _compose(chain_end, tool)[1]  # chain frame: the tool point
+    t_end = np.array(chain_end[1])
+    lin, ang = jc[:3], jc[3:]
+    lin = lin + np.cross(ang.T, np.array(end) - t_end).T
+    return np.vstack([r @ lin, r @ ang])
+
+
+def fk(joints, design=None) -> Solutions:
+    """The end pose (one solution; values = entries of [R | p]); aux = manipulability sqrt(det J J^T) (J^T J for
+    fewer than 6 joints); flagged singular when sigma_min / sigma_max of J is at or below SINGULAR_EPS."""
+    d = _design(design)
+    if d.native is not None:
+        sol = _C_FK(joints, d.native, _FK_RESULT)
+        if sol.__class__ is not Solutions:  # a conversion, or words
+            sol = _runtime.c_explained(sol, _C_FK, joints, _JOINT_SHAPE, (d.native, _FK_RESULT),
+                                       _fk_numpy, (joints, d))
+        if sol is not None:
+            return sol
+    return _fk_numpy(joints, d)
+
+
+def _fk_numpy(joints, d):
+    """fk on the numpy path (also what words the reason of an answer from C that needs one)."""
+    q = _joints(joints)
+    t = _fk_full(q, d)
+    values = np.array([[*t[0][0], t[1][0], *t[0][1], t[1][1], *t[0][2], t[1][2]]])
+    jac = _jacobian_full(q, d)
+    s = np.linalg.svd(jac, compute_uv=False)
+    ratio = float(s[-1] / s[0]) if s[0] > 0.0 else 0.0
+    man = float(np.prod(s))
+    flags = np.array([FLAG_SINGULAR_INVERSE if ratio <= SINGULAR_EPS else 0], dtype=np.int64)
+    return Solutions(values, np.array([True]), flags, np.array([[man]]), STATUS_OK, "1 pose")
+
+
+def fk_matrix(joints, design=None) -> np.ndarray:
+    """The end pose as a 4x4 homogeneous matrix."""
+    d = _design(design)
+    if d.native is not None:
+        t = _C_FK_MATRIX(joints, d.native)
+        if t.__class__ is not np.ndarray:
+            t = _runtime.c_retry(t, _C_FK_MATRIX, joints, _JOINT_SHAPE, d.native)
+        if t.__class__ is np.ndarray:  # else an error: the Python path explains
+            return t
+    return _to_matrix(_fk_full(_joints(joints), d))
+
+
+def fk_batch(joints, design=None) -> BatchSolutions:
+    """FK over rows of an (N, n) array."""
+    d = _design(design)
+    if d.native is not None:
+        q = _runtime.c_floats(joints, None)
+        if q is not None and q.ndim == 2 and q.shape[1] == N_JOINTS:
+            n = q.shape[0]
+            out = (np.empty((n, 1, 12)), np.empty((n, 1), bool), np.empty((n, 1), np.int64), np.empty((n, 1, 1)),
+                   np.empty(n, np.int64))
+            if _C_FK_BATCH(q, d.native, *out, N_JOINTS) >= 0:
+                return BatchSolutions(*out)
+    q = _rows(joints, N_JOINTS, "joints")
+    return _stack([fk(row, d) for row in q], 1, 12, 1)
+
+
+def jacobian(joints, design=None) -> np.ndarray:
+    """Geometric Jacobian (6 x n): linear velocity of the end frame's origin first, base frame."""
+    d = _design(design)
+    if d.native is not None:
+        jac = _C_JACOBIAN(joints, d.native)
+        if jac.__class__ is not np.ndarray:
+            jac = _runtime.c_retry(jac, _C_JACOBIAN, joints, _JOINT_SHAPE, d.native)
+        if jac.__class__ is np.ndarray:  # else an error: the Python path explains
+            return jac
+    return _jacobian_full(_joints(joints), d)
+
+
+# ---------------------------------------------------------------------------- inverse kinematics
+def _solver_chains(d):
+    """(ideal chain, true chain) the decomposition reads: free joint held, maybe reversed (built once when no
+    free joint makes them depend on the call)."""
+    if _FREE < 0 and _STATIC_SOLVER:
+        return _STATIC_SOLVER[0]
+    ideal, true = _IDEAL, _TRUE
+    if _FREE >= 0:
+        ideal, true = _held(ideal, _FREE, d.params[0]), _held(true, _FREE, d.params[0])
+    if _REVERSED:
+        ideal, true = _reversed(ideal), _reversed(true)
+    if _FREE < 0:
+        _STATIC_SOLVER.append((ideal, true))
+    return ideal, true
+
+
+_STATIC_SOLVER = []
+
+
+def _full_joints(qc, index, d):
+    """A solution of the solver's chain (values in its order) as the description's joint values, wrapped."""
+    full = [0.0] * N_JOINTS
+    for v, i in zip(qc, index, strict=True):
+        full[i] = v
+    if _FREE >= 0:
+        full[_FREE] = d.params[0]
+    return [_wrap(v) if k == "R" else v for v, k in zip(full, JOINT_KINDS, strict=True)]
+
+
+def _same(a, b):
+    return all((abs(_wrap(x - y)) if k == "R" else abs(x - y)) <= 1e-9
+               for x, y, k in zip(a, b, JOINT_KINDS, strict=True))
+
+
+def ik(pose, design=None, previous=None) -> Solutions:
+    """Every IK solution (at most MAX_IK), each verified by FK on the true chain (and polished there when the
+    decomposition used ideal axes). A singular family is returned once: its member nearest `previous` in the
+    free angle when given, else with that angle 0."""
+    d = _design(design)
+    if d.native is not None:
+        prev = None if previous is None else _runtime.c_floats(previous, _JOINT_SHAPE)
+        if prev is not None or previous is None:
+            sol = _C_IK(pose, d.native, prev, _IK_RESULT)
+            if sol.__class__ is not Solutions:  # a conversion, or words
+                sol = _runtime.c_explained(sol, _C_IK, pose, _POSE_SHAPES, (d.native, prev, _IK_RESULT),
+                                           _ik_numpy, (pose, d, previous))
+            if sol is not None:
+                return sol
+    return _ik_numpy(pose, d, previous)
+
+
+def _ik_numpy(pose, d, previous):
+    """ik on the numpy path (also what words the reason of an answer from C that needs one)."""
+    target, dev = _pose(pose)
+    prev = None if previous is None else _joints(previous, "previous")
+    base, tool = _frames(d)
+    g_chain = _compose(_compose(_inverse(base), target), _inverse(tool))  # the chain's end frame
+    ideal, true = _solver_chains(d)
+    target_rt = _inverse(g_chain) if _REVERSED else g_chain  # the end frame of the chain the solver reads
+    g = _compose(target_rt, _inverse(ideal.home))  # its product of exponentials
+    prev_c = None if prev is None else [prev[i] for i in ideal.index]
+    values = np.full((MAX_IK, N_JOINTS), np.nan)
+    aux = np.full((MAX_IK, 1), np.nan)
+    valid = np.zeros(MAX_IK, dtype=bool)
+    flags = np.zeros(MAX_IK, dtype=np.int64)
+    found = []
+
+    def accept(qc, f, dry=False):
+        """Verify a candidate on the true chain (polished there when needed), deduplicate, flag, store (`dry`: say
+        whether it would be stored)."""
+        if len(found) >= MAX_IK:
+            return False
+        qc = [_wrap(v) if k == "R" else v for v, k in zip(qc, ideal.kinds, strict=True)]
+        err, _ = _pose_error(true, qc, target_rt)
+        if err > IK_VERIFY_TOL:
+            qc, err = _polish(true, qc, target_rt)
+        if not err <= IK_VERIFY_TOL:
+            return False
+        full = _full_joints(qc, ideal.index, d)
+        # the residual reported and checked is the module's own FK (fk_matrix) of the returned set: the solver's
+        # chain (held, maybe reversed: T^-1's entries) and base . chain . tool round differently, and the tool's
+        # lever scales an orientation error, so a set within IK_VERIFY_TOL there can miss it here; such a set is
+        # polished on to POLISH_TOL and kept only if it then meets IK_VERIFY_TOL
+        err = _frame_error(_fk_full(full, d), target)
+        if err > IK_VERIFY_TOL:
+            qc, _ = _polish(true, qc, target_rt)
+            full = _full_joints(qc, ideal.index, d)
+            err = _frame_error(_fk_full(full, d), target)
+            if not err <= IK_VERIFY_TOL:
+                return False
+        if any(_same(full, other) for other, _, _ in found):
+            return False
+        if _ratio(true, qc) <= SINGULAR_EPS:
+            f |= FLAG_SINGULAR_INVERSE
+        if dry:
+            return True
+        found.append((full, f, err))
+        return True
+
+    reached = _solve(ideal, g, prev_c, accept)
+    for k, (full, f, err) in enumerate(found[:MAX_IK]):
+        values[k], valid[k], flags[k], aux[k] = full, True, f | (FLAG_PROJECTED if dev else 0), err
+    note = _projected_note(dev)
+    if valid.any():
+        status = STATUS_INDETERMINATE if np.any(flags & FLAG_INDETERMINATE) else STATUS_OK
+        return Solutions(values, valid, flags, aux, status, "; ".join([f"{int(valid.sum())} solution(s)"] +
+                                                                      ([note] if note else [])))
+    why = ("no branch passes the FK check" if reached else "a subproblem has no real solution (outside the "
+           "workspace)")
+    if N_JOINTS - (1 if _FREE >= 0 else 0) < 6:
+        why += f"; this chain controls {CONTROLS} only"
+    return Solutions(values, valid, flags, aux, STATUS_UNREACHABLE, "pose not reachable: " + why +
+                     (f"; {note}" if note else ""))
+
+
+def ik_batch(poses, design=None) -> BatchSolutions:
+    """IK over a stack of poses: shape (N, 4, 4), (N, 3, 4), or (N, 12) / (N, 16) rows (what fk_batch returns)."""
+    a = _array(poses, "poses")
+    if not (a.ndim == 3 and a.shape[1:] in ((4, 4), (3, 4))) and not (a.ndim == 2 and a.shape[1] in (12, 16)):
+        raise InvalidInput(f"poses: expected an (N, 4, 4), (N, 3, 4), (N, 12) or (N, 16) array, got shape {a.shape}")
+    d = _design(design)
+    if d.native is not None:
+        n, c = a.shape[0], np.ascontiguousarray(a)
+        out = (np.empty((n, MAX_IK, N_JOINTS)), np.empty((n, MAX_IK), bool), np.empty((n, MAX_IK), np.int64),
+               np.empty((n, MAX_IK, 1)), np.empty(n, np.int64))
+        if _C_IK_BATCH(c, d.native, *out, c[0].size if n else 12) >= 0:
+            return BatchSolutions(*out)
+    return _stack([ik(x, d) for x in a], MAX_IK, N_JOINTS, 1)
+
+
+# ---------------------------------------------------------------------------- branches and limits
+def branch_of(joints, design=None) -> dict:
+    """The named branches of a configuration: {branch: label} for every branch in BRANCHES (e.g. elbow up /
+    down), read from the configuration itself."""
+    d = _design(design)
+    q = _joints(joints)
+    ideal, _ = _solver_chains(d)
+    qc = [q[i] for i in ideal.index]
+    out = {}
+    for name, kind, j, ref in _ROLES:
+        labels = BRANCHES[name]
+        if kind == "wrist":  # the middle wrist joint's sign
+            out[name] = labels[0] if math.sin(qc[j]) >= 0.0 else labels[1]
+        elif kind == "elbow":  # the elbow axis above / below the line shoulder -> placed point (along ref)
+            s, e, w = (_apply(_product(ideal, qc, range(i)), p) for i, p in
+                       ((ref[0], ref[1]), (j, ideal.points[j]), (ref[2], ref[3])))
+            sw = _sub(w, s)
+            off = _sub(_sub(e, s), _scale(sw, _dot(_sub(e, s), sw) / max(_dot(sw, sw), 1e-300)))
+            out[name] = labels[0] if _dot(off, ref[4]) >= 0.0 else labels[1]
+        else:  # shoulder: the placed point in front of / behind the first axis, along the arm's own direction
+            w = _apply(_product(ideal, qc, range(ref[0])), ref[1])
+            fwd = _mv(_rot(ideal.axes[j], qc[j]), ref[2])
+            out[name] = labels[0] if _dot(_sub(w, ideal.points[j]), fwd) >= 0.0 else labels[1]
+    return out
+
+
+def select(solutions: Solutions, previous=None, lower=None, upper=None, weights=None, branch=None) -> int:
+    """Index of the solution to use, or -1: valid, within [lower, upper] (default: the description's limits
+    LOWER / UPPER) and of the named branches (branch={"elbow": "up"}). With `previous`, the nearest such set;
+    without it, the first non-singular such set, else the first one."""
+    lo = tuple(max(v, -1e300) for v in LOWER) if lower is None else lower  # a continuous joint: no limit
+    hi = tuple(min(v, 1e300) for v in UPPER) if upper is None else upper
+    sol = solutions
+    if branch:
+        unknown = sorted(set(branch) - set(BRANCHES))
+        if unknown:
+            raise InvalidInput(f"branch: unknown branch(es) {unknown}; this chain has {sorted(BRANCHES)}")
+        keep = np.array([bool(v) and all(branch_of(row)[b] == lab for b, lab in branch.items())
+                         for row, v in zip(sol.values, sol.valid, strict=True)])
+        sol = Solutions(sol.values, sol.valid & keep, sol.flags, sol.aux, sol.status, sol.reason)
+    return _runtime.select(sol, previous, lo, hi, weights, joint_kinds=JOINT_KINDS)
+
+
+# ---------------------------------------------------------------------------- command line
+CLI_EPILOG = ("Units: lengths in metres; angles (rpy, revolute joints, a revolute --free) in radians unless --deg. "
+              "A pose is xyz + rpy (6 numbers, R = Rz(y) Ry(p) Rx(r)), xyz + quaternion x y z w (7; normalised when "
+              f"its norm is within {ROTATION_TOL:g} of 1) or a 3x4 / 4x4 matrix row-major (12 / 16; projected onto "
+              f"SO(3) within {ROTATION_TOL:g} in max|R^T R - I|, else refused).")
+
+
+def _cli_joints(values, free, deg):
+    """The --joints of `fk` in radians and metres (`free` already is): all N_JOINTS, or the others with the free
+    joint from --free."""
+    kinds = [k for i, k in enumerate(JOINT_KINDS) if i != _FREE] if len(values) == N_JOINTS - 1 else JOINT_KINDS
+    q = [math.radians(v) if deg and kind == "R" else v for v, kind in zip(values, kinds, strict=False)]
+    if DESIGN_NAMES and len(q) == N_JOINTS - 1:
+        if free is None:
+            raise InvalidInput(f"joints: {len(q)} values given: give all {N_JOINTS}, or --free for {DESIGN_NAMES[0]}")
+        q.insert(_FREE, free)
+    elif DESIGN_NAMES and free is not None and len(q) == N_JOINTS and q[_FREE] != free:
+        raise InvalidInput(f"joints: {DESIGN_NAMES[0]} differs between --joints and --free: give it once (--joints "
+                           "without it, or the same value)")
+    return q
+
+
+def _cli_pose(values, deg):
+    if deg and len(values) == 6:  # xyz + rpy: the angles
+        return [*values[:3], *(math.radians(v) for v in values[3:])]
+    return list(values)
+
+
+def main(argv=None) -> int:
+    """python NAME.py ik --pose POSE [--free V] [--deg | --rad] [--json]
+    python NAME.py fk --joints Q1 ... Qn (or the others and --free V) [--deg | --rad] [--json]"""
+    import argparse
+    import json
+    import os
+    import sys
+
+    p = argparse.ArgumentParser(prog=f"{NAME}.py", description=f"{NAME}: closed-form IK / FK (generated)",
+                                epilog=CLI_EPILOG)
+    sub = p.add_subparsers(dest="verb", required=True)
+    for verb, opt, meta, what in (("ik", "--pose", "P", "every IK solution set of a pose"),
+                                  ("fk", "--joints", "Q", "the pose of joint values")):
+        s = sub.add_parser(verb, help=what, description=what, epilog=CLI_EPILOG)
+        s.add_argument(opt, nargs="+", type=float, required=True, metavar=meta,
+                       help="xyz + rpy / quaternion, or a matrix (see below)" if verb == "ik" else
+                       f"{', '.join(JOINT_NAMES)} (radians / metres unless --deg)")
+        units = s.add_mutually_exclusive_group()
+        units.add_argument("--rad", action="store_true", help="angles in and out in radians (the default)")
+        units.add_argument("--deg", action="store_true", help="angles in and out in degrees")
+        s.add_argument("--json", action="store_true", help="print one JSON object")
+        if DESIGN_NAMES:
+            s.add_argument("--free", type=float, default=None,
+                           help=f"the free joint {DESIGN_NAMES[0]} (default 0; radians unless --deg)")
+    args = p.parse_args(argv)
+    deg = args.deg
+    free = None if not DESIGN_NAMES or args.free is None else (
+        math.radians(args.free) if deg and JOINT_KINDS[_FREE] == "R" else args.free)
+    try:
+        if args.verb == "ik":
+            design = [0.0 if free is None else free] if DESIGN_NAMES else None
+            out = ik(_cli_pose(args.pose, deg), design)
+        else:
+            q = _cli_joints(args.joints, free, deg)
+            design = [q[_FREE]] if DESIGN_NAMES else None
+            out = fk(q, design)
+    except WristkinError as exc:
+        print(f"{NAME}: error: {exc}", file=sys.stderr)
+        return 2
+    try:
+        print(_cli_text(args.verb, out, design, deg) if not args.json else
+              json.dumps(_cli_json(args.verb, out, design, deg)))
+        sys.stdout.flush()
+    except BrokenPipeError:  # `python NAME.py ... | head`: the reader left; not an error of ours
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    return 0
+
+
+def _cli_rows(verb, out, design, deg):
+    rows = []
+    for k, v in enumerate(out.values):
+        if not out.valid[k]:
+            continue
+        vals = [float(x) for x in v]
+        row = {"flags": out.flag_names(k)}
+        if verb == "ik":
+            row["branches"] = branch_of(v, design)
+            row["values"] = [math.degrees(x) if deg and kind == "R" else x for x, kind in
+                             zip(vals, JOINT_KINDS, strict=True)]
+        else:
+            row["values"] = vals
+        rows.append(row)
+    return rows
+
+
+def _cli_json(verb, out, design, deg):
+    unit = "deg" if deg else "rad"
+    head = {"status": STATUS_NAMES[out.status], "reason": out.reason}
+    if verb == "ik":
+        head["columns"] = [f"{n} ({unit if k == 'R' else 'm'})" for n, k in zip(JOINT_NAMES, JOINT_KINDS, strict=True)]
+    else:
+        head["columns"] = ["r11", "r12", "r13", "px (m)", "r21", "r22", "r23", "py (m)", "r31", "r32", "r33",
+                           "pz (m)"]
+    return {**head, "solutions": _cli_rows(verb, out, design, deg)}
+
+
+def _cli_text(verb, out, design, deg):
+    unit = "deg" if deg else "rad"
+    lines = [f"{STATUS_NAMES[out.status]}: {out.reason}"]
+    rows = _cli_rows(verb, out, design, deg)
+    if verb == "ik":
+        cols = [f"{n} ({unit if k == 'R' else 'm'})" for n, k in zip(JOINT_NAMES, JOINT_KINDS, strict=True)]
+        width = max(14, *(len(c) for c in cols))
+        lines.append("  " + " ".join(f"{c:>{width}}" for c in cols) + "  branches  [flags]")
+        for r in rows:
+            extra = " ".join(f"{b}={lab}" for b, lab in r["branches"].items())
+            lines.append("  " + " ".join(f"{x:>{width}.9f}" for x in r["values"]) + (f"  {extra}" if extra else "")
+                         + (f"  [{', '.join(r['flags'])}]" if r["flags"] else ""))
+    else:
+        for r in rows:
+            m = np.array(r["values"]).reshape(3, 4)
+            lines.append("  pose of the tool in the base frame: rotation R | position p (m)")
+            lines += [f"    {a: .12f} {b: .12f} {c: .12f} | {t: .12f}" for a, b, c, t in m]
+            rpy = _cli_rpy(m[:, :3])
+            lines.append(f"    rpy ({unit}, R = Rz(y) Ry(p) Rx(r)): " + " ".join(
+                f"{math.degrees(x) if deg else x: .12f}" for x in rpy) + (
+                f"  [{', '.join(r['flags'])}]" if r["flags"] else ""))
+    return "\n".join(lines)
+
+
+def _cli_rpy(r):
+    """URDF roll, pitch, yaw of a rotation (R = Rz(y) Ry(p) Rx(r)); at pitch +-pi/2 roll is taken as 0."""
+    p = math.atan2(-r[2, 0], math.hypot(r[0, 0], r[1, 0]))
+    if math.hypot(r[0, 0], r[1, 0]) < 1e-12:
+        return 0.0, p, math.atan2(-r[0, 1], r[1, 1])
+    return math.atan2(r[2, 1], r[2, 2]), p, math.atan2(r[1, 0], r[0, 0])
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

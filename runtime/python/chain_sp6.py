@@ -1,0 +1,200 @@
+"""Subproblem 6 (two joints from two invariants): its polynomial, near-double root split and Newton.
+
+A wristkin runtime source: every user robot's generated module inlines it from the marker line on
+(derive/runtime_files.py), after the robot's constants; above the marker, what it reads from them and from the
+other sources (chain_stand_in.py: a stand-in robot), so that it is linted and tested as it is
+(tests/test_chain_runtime.py)."""
+
+from __future__ import annotations
+
+import math
+
+from chain_points import _direction
+from chain_poly import _poly_add, _poly_mul, _scale3
+from chain_rigid import _cross, _dot, _mm, _mt, _mtv, _mv, _rot, _scale, _sub
+from chain_stages import _OP_STAGES
+from chain_stand_in import (
+    DEGENERATE_EPS,
+    DOUBLE_ROOT_TOL,
+    FLAG_DOUBLE_ROOT,
+    FLAG_INDETERMINATE,
+    FLAG_SINGULAR_INVERSE,
+    SCALE,
+    _wrap,
+)
+from chain_subproblems import _sp1, _sp4
+from poly_real_roots import _POLY_FLAG_DOUBLE, _poly_real_roots
+
+# wristkin: inlined from here
+# q0 = pi (tan(q0 / 2) infinite) is a candidate of subproblem 6 when cos^2 + sin^2 of the q4 it gives is 1 within
+# this: rounding of the 2x2 solve (a root of the quartic near pi would pass a looser test and be found twice)
+SP6_AT_PI_TOL = 1e-9
+
+
+def _sp6(nv, h0, p0, h4, p4, d0, e0, g, h5):
+    """(q0, q4, flags) with n.rot(h0, -q0) p0 - n.rot(h4, q4) p4 = d0 and n.rot(h0, -q0) g - n.rot(h4, q4) h5
+    = e0 (subproblem 6: two equations, each linear in the cosines and sines of both angles). (cos q4, sin q4) is
+    affine in (cos q0, sin q0) by Cramer's rule; cos^2 + sin^2 = 1 is a quartic in tan(q0 / 2)."""
+    def coef(k, p, sign):
+        kp = _dot(k, p)
+        perp = _sub(p, _scale(k, kp))
+        return _dot(nv, perp), sign * _dot(nv, _cross(k, p)), kp * _dot(nv, k)
+    a1, b1, k1 = coef(h0, p0, -1.0)
+    c1, d1, m1 = coef(h4, p4, 1.0)
+    a2, b2, k2 = coef(h0, g, -1.0)
+    c2, d2, m2 = coef(h4, h5, 1.0)
+    # a c0 + b s0 - (c c4 + d s4) = rhs
+    e1, e2 = d0 - k1 + m1, e0 - k2 + m2
+    det = c1 * d2 - d1 * c2
+    if abs(det) <= DEGENERATE_EPS * SCALE:
+        return []
+    # c4 det = (a1 c0 + b1 s0 - e1) d2 - d1 (a2 c0 + b2 s0 - e2); s4 det = c1 (a2 c0 + b2 s0 - e2) - c2 (...1)
+    al = (-e1 * d2 + d1 * e2, a1 * d2 - d1 * a2, b1 * d2 - d1 * b2)
+    be = (-c1 * e2 + c2 * e1, c1 * a2 - c2 * a1, c1 * b2 - c2 * b1)
+    apoly = ([1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0])
+    pa = _poly_add(_poly_add(_scale3(apoly[0], al[0]), _scale3(apoly[1], al[1])), _scale3(apoly[2], al[2]))
+    pb = _poly_add(_poly_add(_scale3(apoly[0], be[0]), _scale3(apoly[1], be[1])), _scale3(apoly[2], be[2]))
+    pd = _scale3(apoly[0], det)
+    poly = _poly_add(_poly_add(_poly_mul(pa, pa), _poly_mul(pb, pb)), _poly_mul(pd, pd), -1.0)
+    roots, rflags, _status = _poly_real_roots(poly)
+    # tan(q0 / 2) = infinity is no root of the polynomial: q0 = pi is tried directly, kept only when it solves the
+    # system to rounding (else a root near pi, which the polynomial has, would be taken twice)
+    cands = [(2.0 * math.atan(r), FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE if fl & _POLY_FLAG_DOUBLE else 0, 1e-6)
+             for r, fl in zip(roots, rflags, strict=True)] + [(math.pi, 0, SP6_AT_PI_TOL)]
+    regular = []
+    for q0, fl, tol in cands:
+        c0, s0 = math.cos(q0), math.sin(q0)
+        cc = (al[0] + al[1] * c0 + al[2] * s0) / det
+        ss = (be[0] + be[1] * c0 + be[2] * s0) / det
+        if abs(math.hypot(cc, ss) - 1.0) > tol:  # the root at infinity, or a poorly resolved one
+            continue
+        q4 = math.atan2(ss, cc)
+        if not fl:  # a merged double root stays (Newton is ill-conditioned there; its split is the caller's)
+            q0, q4 = _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4)
+        regular.append((q0, q4, fl))
+    # The wrist singularity: where rot(h4, q4) h5 = +-n the second equation holds for every q0 (its quartic has a
+    # double root there, which rounding may hide), so those q4 are tried directly with q0 from the first
+    # equation alone, kept when the second holds within the double-root tolerance of subproblem 4 (the pose's
+    # axis within ~1e-6 rad of +-n); a regular root within 1e-6 of one is the same (singular) configuration and is
+    # dropped.
+    singular = []
+    t4 = _sp1(h4, h5, nv, 1.0)
+    if t4 is not None:
+        for q4 in (t4, t4 + math.pi):
+            side = _dot(nv, _mv(_rot(h4, q4), h5))
+            if abs(abs(side) - 1.0) > 1e-12:
+                continue
+            for t0, fl in _sp4(nv, h0, p0, d0 + _dot(nv, _mv(_rot(h4, q4), p4)), SCALE):
+                q0 = -t0
+                # the second equation at this q0: n . rot(h0, -q0) g must be n . R4 h5 = side (+-1)
+                dn = _dot(nv, _mtv(_rot(h0, q0), g))
+                if dn * side > 0.0 and 1.0 - dn * dn <= DOUBLE_ROOT_TOL:
+                    singular.append((q0, _wrap(q4), fl | FLAG_SINGULAR_INVERSE))
+    kept = [r for r in regular if not any(abs(_wrap(r[0] - s[0])) <= 1e-6 and abs(_wrap(r[1] - s[1])) <= 1e-6
+                                          for s in singular)]
+    return kept + singular
+
+
+# Newton steps on subproblem 6's equations from a root (quadratic convergence from a root of the quartic or of the
+# local model: 3 suffice)
+SP6_NEWTON_STEPS = 3
+
+
+def _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4, second=False):
+    """(F1, F2) of subproblem 6 without the constants, their gradients and (`second`) their second derivatives."""
+    r0, r4 = _rot(h0, -q0), _rot(h4, q4)
+    w0, wg, z4, z5 = _mv(r0, p0), _mv(r0, g), _mv(r4, p4), _mv(r4, h5)
+    f = (_dot(nv, w0) - _dot(nv, z4), _dot(nv, wg) - _dot(nv, z5))
+    jac = ((-_dot(nv, _cross(h0, w0)), -_dot(nv, _cross(h4, z4))),
+           (-_dot(nv, _cross(h0, wg)), -_dot(nv, _cross(h4, z5))))
+    if not second:
+        return f, jac, None
+    # the mixed derivatives vanish: each equation is a sum of a function of q0 and one of q4
+    hess = ((_dot(nv, _cross(h0, _cross(h0, w0))), -_dot(nv, _cross(h4, _cross(h4, z4)))),
+            (_dot(nv, _cross(h0, _cross(h0, wg))), -_dot(nv, _cross(h4, _cross(h4, z5)))))
+    return f, jac, hess
+
+
+def _sp6_split(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
+    """The two roots of subproblem 6 near (q0, q4), a merged near-double root (a double root of the quartic, or
+    the wrist singularity's candidate) that verified nothing. Along the first equation's solution curve through
+    it the second is F2(s) = C + B s + A s^2 to third order, and its two roots there, polished by Newton on both
+    equations, are the nearby solutions the quartic resolved as one: a pair ~|q4| apart is resolved by the
+    equations to eps / |q4|, by the squared quartic only to sqrt(eps). None real: []."""
+    (f1, f2), ((a, b), (c, d)), ((g0, g4), (hq0, hq4)) = _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4, True)
+    gn = math.hypot(a, b)
+    if gn <= DEGENERATE_EPS * SCALE:
+        return []
+    # onto the first equation's curve (one Newton step along its gradient), then along its tangent t; the curve
+    # bends off t by -(1/2) F1_tt s^2 / |grad F1| along the gradient, which F2 sees through its own gradient
+    r = -(f1 - d0) / gn
+    q0, q4 = q0 + r * a / gn, q4 + r * b / gn
+    t0, t4 = -b / gn, a / gn
+    qa = 0.5 * (hq0 * t0 * t0 + hq4 * t4 * t4) - 0.5 * (g0 * t0 * t0 + g4 * t4 * t4) * (c * a + d * b) / (gn * gn)
+    qb = c * t0 + d * t4
+    qc = f2 - e0
+    disc = qb * qb - 4.0 * qa * qc
+    if qa == 0.0 or disc <= 0.0:
+        return []
+    out = []
+    for sgn in (1.0, -1.0):
+        s = (-qb + sgn * math.sqrt(disc)) / (2.0 * qa)
+        x0, x4 = _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0 + s * t0, q4 + s * t4)
+        out.append((_wrap(x0), _wrap(x4), FLAG_SINGULAR_INVERSE))
+    return out
+
+
+def _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
+    """(q0, q4) after Newton steps on both equations of subproblem 6, each kept only when it lowers the residual:
+    the quartic resolves two roots ~delta apart only to ~sqrt(eps) in tan(q0 / 2), the equations to eps / delta
+    in the angles, and the decomposition's later ops need the better one near the wrist singularity."""
+    (f1, f2), jac, _ = _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4)
+    res = max(abs(f1 - d0), abs(f2 - e0))
+    for _ in range(SP6_NEWTON_STEPS):
+        (ja, jb), (jc, jd) = jac
+        dt = ja * jd - jb * jc
+        if res == 0.0 or dt == 0.0:
+            break
+        r1, r2 = f1 - d0, f2 - e0
+        n0, n4 = q0 - (jd * r1 - jb * r2) / dt, q4 - (ja * r2 - jc * r1) / dt
+        (f1, f2), jac, _ = _sp6_eval(nv, h0, p0, h4, p4, g, h5, n0, n4)
+        new = max(abs(f1 - d0), abs(f2 - e0))
+        if not new < res:
+            break
+        q0, q4, res = n0, n4, new
+    return q0, q4
+
+
+def _sp6_stage(ch, g, prev, op, x, y, q, count, go_on, family):
+    """Joints j and k of subproblem 6 (the op ("sp6", j, k, l, n)), then l about the group's axis; a merged
+    near-double root that verified nothing is split into its two roots."""
+    _, j, kk, ll, ns = op
+    nv = _direction(ch, ns)
+    h0, r0, h4, r4, h5 = ch.axes[j], ch.points[j], ch.axes[kk], ch.points[kk], ch.axes[ll]
+    rg = g[0]
+    p0, p4, d0, g5 = _sub(y, r0), _sub(x, r4), _dot(nv, r4) - _dot(nv, r0), _mv(rg, h5)  # g5: the group's axis
+
+    def sp6_set(q0, q4, f, may_split=True):
+        # the group keeps n: n^T R4 R5 = n^T R0^T Rg, so rot(h5, -q5) (R4^T n) = (R0^T Rg)^T n
+        t5 = _sp1(h5, _mtv(_rot(h4, q4), nv), _mtv(_mm(_mt(_rot(h0, q0)), rg), nv), 1.0)
+        q[j], q[kk] = q0, q4
+        before = count()
+        if t5 is not None:
+            q[ll] = -t5
+            go_on(f)
+        else:  # the wrist singularity: q5 and the group turn about one direction (a family); q5 from
+            # `previous`, else the first of FAMILY_ANGLES with a verified set (it moves the position)
+            def place(angle):
+                q[ll] = angle
+            family(f | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE, place, None if prev is None else prev[ll])
+        if count() == before and may_split and f & FLAG_SINGULAR_INVERSE:
+            # a merged near-double root (or the singularity's candidate near, not at, the singularity)
+            # that verified nothing: the two roots it merged
+            for s0, s4, fs in _sp6_split(nv, h0, p0, h4, p4, d0, 0.0, g5, h5, q0, q4):
+                sp6_set(s0, s4, (f & ~FLAG_DOUBLE_ROOT) | fs, may_split=False)
+
+    for q0, q4, f in _sp6(nv, h0, p0, h4, p4, d0, 0.0, g5, h5):
+        sp6_set(q0, q4, f)
+
+
+_OP_STAGES["sp6"] = _sp6_stage

@@ -1,0 +1,12 @@
+"""The stages of the ops whose kernels a module inlines only when its decomposition uses them (subproblem 6,
+three general axes): each such source registers its stage here, and _solve runs it by the op's kind.
+
+A wristkin runtime source: every user robot's generated module inlines it from the marker line on
+(derive/runtime_files.py), after the robot's constants; above the marker, what it reads from them and from the
+other sources (chain_stand_in.py: a stand-in robot), so that it is linted and tested as it is
+(tests/test_chain_runtime.py)."""
+
+# wristkin: inlined from here
+# kind -> stage(ch, g, prev, op, x, y, q, count, go_on, family): sets its joints in q for each root and calls
+# go_on(flags) (the rest of the plan), or family(flags, place, previous angle) for a one-parameter family
+_OP_STAGES = {}
