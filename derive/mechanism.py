@@ -36,6 +36,8 @@ class Mechanism(Protocol):
 
     def audit_numbers(self, dv: Derivation, solver: Any, audit_dir: Path) -> dict: ...
 
+    def c_shared_files(self) -> list[str]: ...
+
 
 class MechanismDefaults:
     """The optional members of a `Mechanism`, with their defaults."""
@@ -49,6 +51,11 @@ class MechanismDefaults:
     def audit_numbers(self, dv: Derivation, solver: Any, audit_dir: Path) -> dict:
         """Numeric findings for the audit beyond the derivation's own records (none by default)."""
         return {}
+
+    def c_shared_files(self) -> list[str]:
+        """Runtime sources (runtime/c/...) the mechanism's C calls as separate files written beside it (none by
+        default: wristkin_common.h and wristkin_runtime.c are every mechanism's)."""
+        return []
 
 
 @runtime_checkable

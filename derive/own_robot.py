@@ -119,7 +119,8 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
     ks = mech.kernels(dv)
     written = [write_file(out / "python" / "_wristkin_runtime.py", runtime_files.emit("python/_runtime.py",
                                                                                    header_lines())),
-               *emit_solvers(nm, mech, ks, out / "python", out / "c"), *emit_c_runtime(out / "c")]
+               *emit_solvers(nm, mech, ks, out / "python", out / "c"),
+               *emit_c_runtime(out / "c", mech.c_shared_files())]
     stage("emitted Python and C")
     if native:
         written += _extension(out, progress)

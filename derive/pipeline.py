@@ -66,11 +66,13 @@ def emit_solvers(name: str, mod: Mechanism, ks, py_dir: Path, c_dir: Path) -> li
             write_file(c_dir / f"{name}.h", render(t_h, **ctx)), write_file(c_dir / f"{name}.c", render(t_c, **ctx))]
 
 
-def emit_c_runtime(c_dir: Path) -> list[Path]:
-    """The C runtime every generated solver compiles with (wristkin_common.h, wristkin_runtime.c)."""
+def emit_c_runtime(c_dir: Path, shared=()) -> list[Path]:
+    """The C runtime every generated solver compiles with (wristkin_common.h, wristkin_runtime.c), and the shared
+    runtime sources (c/...) some mechanisms call beside it (Mechanism.c_shared_files)."""
     header = header_lines()
-    return [write_file(c_dir / name, runtime_files.emit(f"c/{name}", header))
-            for name in ("wristkin_common.h", "wristkin_runtime.c")]
+    names = ["c/wristkin_common.h", "c/wristkin_runtime.c", *(f for f in shared if f not in (
+        "c/wristkin_common.h", "c/wristkin_runtime.c"))]
+    return [write_file(c_dir / name.split("/")[-1], runtime_files.emit(name, header)) for name in names]
 
 
 def emit_casadi(name: str, mod: Mechanism, dv, ks, casadi_dir: Path, solver) -> list[Path]:
@@ -130,7 +132,8 @@ def _c_api(header: str, name: str) -> dict:
 def native_binding(out: Path, module_path: str = "wristkin._native") -> Path:
     """The CPython extension source over every mechanism whose C is in out/c (setup.py compiles it); `module_path`:
     the extension's import name (a `wristkin derive` folder's is the top-level _wristkin_native)."""
-    headers = sorted(p for p in (out / "c").glob("*.h") if p.stem not in ("wristkin_common",))
+    runtime_headers = {p.name for p in (runtime_files.RUNTIME / "c").glob("*.h")}  # copies, not mechanisms
+    headers = sorted(p for p in (out / "c").glob("*.h") if p.name not in runtime_headers)
     mechs = [_c_api(p.read_text(), p.stem) for p in headers]
     return write_file(out / "native" / "_native.c", render("c/native.c.jinja", header_lines=header_lines(), mechs=mechs,
                                                         inputs_hash=input_hash(), row_tol="WK_ROTATION_PROJECT_TOL",

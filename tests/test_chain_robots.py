@@ -220,11 +220,17 @@ def test_a_calibrated_arm_is_solved_on_ideal_axes_and_polished_on_the_true_ones(
             assert ref.pose_error(r(v), T) < 1e-10
 
 
-def test_a_tolerance_below_the_deviation_is_refused_naming_the_axes():
-    from derive.kinematics.planner import NoClosedForm
+def test_a_tolerance_below_the_deviation_leaves_the_general_6r():
+    """Below the calibrated arm's deviation no decomposition holds (the planner's refusal names the axes); the 6R
+    is then solved by elimination on its true axes, with nothing idealised."""
+    from derive.kinematics.planner import NoClosedForm, find_plan
 
+    mech = own_robot.load(_file("kr6_calibrated", "urdf"), geometry_tol=1e-9)
     with pytest.raises(NoClosedForm, match="a2/a3"):
-        own_robot.load(_file("kr6_calibrated", "urdf"), geometry_tol=1e-9).plan()
+        find_plan(mech.solver_chain(mech.chain), 1e-9)
+    plan, ideal = mech.plan()
+    assert [op["op"] for op in plan.ops] == ["general6r"] and "general 6R" in plan.strategy
+    assert np.array_equal(ideal.axes, mech.chain.axes) and np.array_equal(ideal.points, mech.chain.points)
 
 
 # ------------------------------------------------------------------------------------------------ singular and tangent
@@ -354,14 +360,33 @@ def test_the_command_writes_importable_solvers_and_an_audit(tmp_path):
     assert run.returncode == 0 and int(run.stdout) >= 1, run.stderr
 
 
-def test_the_command_refuses_a_chain_without_a_closed_form(tmp_path):
+def _skew_spec(tmp_path, kinds="RRRRRR"):
     spec = tmp_path / "skew.toml"
     spec.write_text('family = "chain"\nname = "skew"\ntitle = "six skew axes"\nconvention = "poe"\n' + "".join(
-        f'[[joint]]\nname = "j{i}"\naxis = [{math.cos(i)}, {math.sin(i)}, {0.3 * i}]\npoint = [{0.1 * i}, '
-        f'{0.2 * i * i}, {0.05 * i}]\n' for i in range(6)) + "[home]\nposition = [0.5, 0.1, 0.2]\n")
+        f'[[joint]]\nname = "j{i}"\ntype = "{"revolute" if k == "R" else "prismatic"}"\naxis = [{math.cos(i)}, '
+        f'{math.sin(i)}, {0.3 * i}]\npoint = [{0.1 * i}, {0.2 * i * i}, {0.05 * i}]\n' for i, k in enumerate(kinds))
+        + "[home]\nposition = [0.5, 0.1, 0.2]\n")
+    return spec
+
+
+def _derive_command(spec, out):
     env = {**os.environ, "PYTHONPATH": str(Path(__file__).parent.parent)}
-    done = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(spec), "--out", str(tmp_path / "o")],
+    return subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(spec), "--out", str(out)],
                           capture_output=True, text=True, env=env, check=False)
+
+
+def test_the_command_solves_six_skew_axes_by_elimination(tmp_path):
+    """No decomposition fits six skew axes: the general 6R (tests/test_general6r*.py check its sets)."""
+    done = _derive_command(_skew_spec(tmp_path), tmp_path / "o")
+    assert done.returncode == 0, done.stderr
+    text = (tmp_path / "o" / "python" / "skew.py").read_text()
+    assert "general 6R by elimination" in text and "MAX_IK = 16" in text
+
+
+def test_the_command_refuses_a_chain_without_a_closed_form(tmp_path):
+    """Skew axes with a slide among them: neither a decomposition nor the 6R elimination applies; the refusal
+    names the axes."""
+    done = _derive_command(_skew_spec(tmp_path, "RRRPRR"), tmp_path / "o")
     assert done.returncode == 1
     assert "no closed-form decomposition" in done.stderr and "j0/j1" in done.stderr
     assert "Traceback" not in done.stderr

@@ -206,19 +206,23 @@ class Labelling:
                 f"{order[1]} eliminated, {order[2 + self.hidden]} the eigenvalue's variable, {order[5]} last")
 
 
-def choose_labelling(chain: Chain, rng: np.random.Generator, poses: int = 4) -> Labelling:
-    """The labelling whose elimination stays regular at every sampled pose (the best worst case), or
-    NoDecomposition when every one is degenerate."""
-    if chain.n != 6 or any(k != "R" for k in chain.kinds):
-        raise NoDecomposition(f"the general 6R elimination needs 6 revolute joints ({chain.n} joints, kinds "
-                              f"{''.join(chain.kinds)})")
+def choose_labelling(chains, rng: np.random.Generator, poses: int = 4) -> Labelling:
+    """The labelling whose elimination stays regular at every sampled pose of every chain given (a free joint's
+    held values give several), the best worst case; NoDecomposition when every one is degenerate."""
+    chains = [chains] if isinstance(chains, Chain) else list(chains)
+    for chain in chains:
+        if chain.n != 6 or any(k != "R" for k in chain.kinds):
+            raise NoDecomposition(f"the general 6R elimination needs 6 revolute joints ({chain.n} joints, kinds "
+                                  f"{''.join(chain.kinds)})")
     g6 = numerics()
-    frames = g6.g6_z_frames(chain.axes, chain.points)
-    samples = [chain.fk(rng.uniform(-np.pi, np.pi, 6)) for _ in range(poses)]
+    cases = []
+    for chain in chains:
+        frames = g6.g6_z_frames(chain.axes, chain.points)
+        cases += [(frames, chain.home, chain.fk(rng.uniform(-np.pi, np.pi, 6))) for _ in range(poses)]
     scores = []
     for shift, rev, hidden in OPTIONS:
-        worst = min(g6.g6_regularity(g6.g6_labelled(g6.g6_loop_links(frames, chain.home, t), shift, rev)[0], hidden)
-                    for t in samples)
+        worst = min(g6.g6_regularity(g6.g6_labelled(g6.g6_loop_links(f, h, t), shift, rev)[0], hidden)
+                    for f, h, t in cases)
         scores.append((shift, rev, hidden, worst))
     best = max(scores, key=lambda s: s[3])
     if not best[3] >= REGULARITY_MIN:
@@ -226,6 +230,26 @@ def choose_labelling(chain: Chain, rng: np.random.Generator, poses: int = 4) -> 
                               f"regularity {best[3]:.1e} < {REGULARITY_MIN:g}): the 14 equations are dependent for "
                               "this geometry")
     return Labelling(best[0], best[1], best[2], best[3], tuple(scores))
+
+
+def op(labelling: Labelling) -> dict:
+    """The planner op that runs the elimination (one op solving all six joints)."""
+    return {"op": "general6r", "shift": labelling.shift, "reverse": labelling.reverse, "hidden": labelling.hidden}
+
+
+def equation_residual(chain: Chain, op_: dict, q) -> float:
+    """The op's equations at the true joints q: max |(P X - r) - Q Y| of the labelled loop (0 up to rounding)."""
+    g6 = numerics()
+    frames = g6.g6_z_frames(chain.axes, chain.points)
+    links, joints, sign = g6.g6_labelled(g6.g6_loop_links(frames, chain.home, chain.fk(q)), op_["shift"],
+                                          op_["reverse"])
+    t = [sign * q[j] for j in joints]
+    P, Q, r = g6.g6_equations(links)
+    f = [np.array([1.0, np.cos(v), np.sin(v)]) for v in t]
+    lhs = np.einsum("eabc,a,b,c->e", P, f[2], f[3], f[4]) - r
+    y = np.array([f[0][2] * f[1][2], f[0][2] * f[1][1], f[0][1] * f[1][2], f[0][1] * f[1][1], f[0][2], f[0][1],
+                  f[1][2], f[1][1]])
+    return float(np.max(np.abs(lhs - Q @ y)))
 
 
 def solve(chain: Chain, labelling: Labelling, pose: np.ndarray, tol: float = 1e-9) -> list[np.ndarray]:
@@ -244,12 +268,12 @@ def solve(chain: Chain, labelling: Labelling, pose: np.ndarray, tol: float = 1e-
     return out
 
 
-def multistart(chain: Chain, pose: np.ndarray, rng: np.random.Generator, starts: int = 200, tol: float = 1e-10):
+def multistart(chain: Chain, pose: np.ndarray, rng: np.random.Generator, starts: int = 60, tol: float = 1e-10):
     """An independent count: damped Gauss-Newton from random starts on the chain's pose error (no elimination)."""
     g6 = numerics()
     found: list[np.ndarray] = []
     for _ in range(starts):
-        q, err = g6.g6_polish(rng.uniform(-np.pi, np.pi, chain.n), chain.fk, chain.jacobian, pose, iters=60)
+        q, err = g6.g6_polish(rng.uniform(-np.pi, np.pi, chain.n), chain.fk, chain.jacobian, pose, iters=40)
         if not err <= tol:
             continue
         q = np.remainder(q + np.pi, 2 * np.pi) - np.pi
@@ -258,12 +282,10 @@ def multistart(chain: Chain, pose: np.ndarray, rng: np.random.Generator, starts:
     return found
 
 
-def steps(chain: Chain, labelling: Labelling, rng: np.random.Generator, poses: int = 6) -> list[Step]:
+def steps(chain: Chain, labelling: Labelling, rng: np.random.Generator, poses: int = 4) -> list[Step]:
     """The derivation's records: the structure (proven for every 6R), the robot's equations on its FK, the
     labelling chosen and why, and sampled poses against a multistart count."""
-    g6 = numerics()
     viol = structure_violations()
-    frames = g6.g6_z_frames(chain.axes, chain.points)
     out = [Step("g6_structure", "The 14 equations of the general 6R", "Raghavan-Roth: the line of the last joint "
                 "seen from both sides of the loop, its direction l and point p, p.p, p.l, p x l, (p.p) l - 2 (p.l) p; "
                 "reduced modulo c^2 + s^2 = 1 of every joint angle and twist (a Groebner basis in lex order)",
@@ -274,15 +296,7 @@ def steps(chain: Chain, labelling: Labelling, rng: np.random.Generator, poses: i
 
     def eq_err(r):
         q = r.uniform(-np.pi, np.pi, 6)
-        links, joints, sign = g6.g6_labelled(g6.g6_loop_links(frames, chain.home, chain.fk(q)), labelling.shift,
-                                              labelling.reverse)
-        t = [sign * q[j] for j in joints]
-        P, Q, rr = g6.g6_equations(links)
-        f = [np.array([1.0, np.cos(v), np.sin(v)]) for v in t]
-        lhs = np.einsum("eabc,a,b,c->e", P, f[2], f[3], f[4]) - rr
-        y = np.array([f[0][2] * f[1][2], f[0][2] * f[1][1], f[0][1] * f[1][2], f[0][1] * f[1][1], f[0][2],
-                      f[0][1], f[1][2], f[1][1]])
-        return float(np.max(np.abs(lhs - Q @ y)) / (1.0 + float(np.max(np.abs(P)))))
+        return equation_residual(chain, op(labelling), q) / (1.0 + float(np.max(np.abs(chain.points))) ** 3)
 
     from ..checks import numeric_predicate
 
@@ -290,7 +304,8 @@ def steps(chain: Chain, labelling: Labelling, rng: np.random.Generator, poses: i
                     "angles per joint (0, 2 pi / 3, 4 pi / 3: exact, the sides lie in the span), at run time",
                     ("g6_structure",), {"labelling": labelling.text(chain.joint_names)},
                     (numeric_predicate(eq_err, "(P X - r) = Q Y at the joints of the chain's own FK, relative to "
-                                       "max |P|", samples=40, tol=1e-12),),
+                                       "(1 + the chain's size)^3 (the equations are cubic in lengths)", samples=40,
+                                       tol=1e-12),),
                     note=f"regularity (sigma_min / sigma_max of Q and of M(0.3), worst of 4 poses) "
                          f"{labelling.regularity:.1e} >= {REGULARITY_MIN:g}; best of {len(OPTIONS)} labellings"))
     counts, missed = [], 0
@@ -306,6 +321,6 @@ def steps(chain: Chain, labelling: Labelling, rng: np.random.Generator, poses: i
                     "(A x^2 + B x + C) (det: degree 24, of which 16 at most are the arm's, the rest at x = +-i), each "
                     "polished by Gauss-Newton on the chain and verified", ("g6_equations",),
                     {"solutions per pose (elimination, multistart)": str(counts)},
-                    (Check("numeric", f"no pose of {poses} where a 200-start damped Gauss-Newton finds a solution "
+                    (Check("numeric", f"no pose of {poses} where a 60-start damped Gauss-Newton finds a solution "
                            "the elimination lacks", missed == 0, float(missed), 0.0, poses),)))
     return out

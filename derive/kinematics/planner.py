@@ -80,6 +80,8 @@ def op_branches(op: dict) -> int:
         return 4  # two equations linear in (cos, sin) of two angles: a quartic
     if op["op"] == "orient":
         return 2 if len(op["units"]) == 3 else 1
+    if op["op"] == "general6r":
+        return 16  # the general 6R has at most 16 solutions (Lee and Liang; Raghavan and Roth)
     return 1
 
 
@@ -420,6 +422,9 @@ def replay(chain: Chain, plan: Plan, q) -> list[float]:
             out.append(float(np.max(np.abs(units - rd))))
         elif kind == "group_rest":
             out.append(0.0)
+        elif kind == "general6r":
+            from .general6r import equation_residual
+            out.append(equation_residual(c, op, qv))
         elif kind == "sp6":
             n = g.direction(op["n"])
             y = app(np.linalg.inv(e[op["j"]]), y)

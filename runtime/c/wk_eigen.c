@@ -473,12 +473,12 @@ int wk_generalized_quadratic_eig(int m, const double *A, const double *B, const 
                                  wk_qep_result *out)
 {
     /* cos and sin of 0, pi/2 and the fixed angles 0.4, 1.1, 2.0, 2.6 (radians; arbitrary, no two close) */
-    static const double rot[6][2] = {{1.0, 0.0},
+    static const double rot[6][2] = { {1.0, 0.0},
                                      {0.0, 1.0},
                                      {0.92106099400288508, 0.38941834230865049},
                                      {0.45359612142557731, 0.89120736006143534},
                                      {-0.41614683654714241, 0.90929742682568170},
-                                     {-0.85688875336894723, 0.51550137182146428}};
+                                     {-0.85688875336894723, 0.51550137182146428} };
     double As[WK_QEP_MAXM * WK_QEP_MAXM], Bs[WK_QEP_MAXM * WK_QEP_MAXM], Cs[WK_QEP_MAXM * WK_QEP_MAXM];
     double a2[WK_QEP_MAXM * WK_QEP_MAXM], b2[WK_QEP_MAXM * WK_QEP_MAXM], c2[WK_QEP_MAXM * WK_QEP_MAXM];
     double lu[WK_QEP_MAXM * WK_QEP_MAXM], best_lu[WK_QEP_MAXM * WK_QEP_MAXM];

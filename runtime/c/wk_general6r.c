@@ -18,11 +18,11 @@
 
 static const double g6_grid[3] = {0.0, 2.0 * G6_PI / 3.0, 4.0 * G6_PI / 3.0};
 /* interpolation: the (1, c, s) coefficients of f(t) = c0 + c1 cos t + c2 sin t from f at the grid */
-static const double g6_binv[3][3] = {{1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0},
+static const double g6_binv[3][3] = { {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0},
                                      {2.0 / 3.0, -1.0 / 3.0, -1.0 / 3.0},
-                                     {0.0, 1.0 / G6_SQRT3, -1.0 / G6_SQRT3}};
+                                     {0.0, 1.0 / G6_SQRT3, -1.0 / G6_SQRT3} };
 /* (1 + u^2) times 1, c, s as coefficients of u^0, u^1, u^2 */
-static const double g6_half[3][3] = {{1.0, 0.0, 1.0}, {1.0, 0.0, -1.0}, {0.0, 2.0, 0.0}};
+static const double g6_half[3][3] = { {1.0, 0.0, 1.0}, {1.0, 0.0, -1.0}, {0.0, 2.0, 0.0} };
 
 static void g6_mul(const double *a, const double *b, double *o)
 {
@@ -83,7 +83,7 @@ static void g6_fourteen(const double *t, double *e)
 /* P[e][9 m3 + 3 m4 + m5] (the constant term already minus r), Q[e][k], r[e] of the labelled loop */
 static void g6_equations(double links[6][16], double P[G6_NEQ][27], double Q[G6_NEQ][G6_NY], double *r)
 {
-    static const int y_index[G6_NY][2] = {{2, 2}, {2, 1}, {1, 2}, {1, 1}, {2, 0}, {1, 0}, {0, 2}, {0, 1}};
+    static const int y_index[G6_NY][2] = { {2, 2}, {2, 1}, {1, 2}, {1, 1}, {2, 0}, {1, 0}, {0, 2}, {0, 1} };
     double vals[3][3][3][G6_NEQ], rvals[3][3][G6_NEQ], R[G6_NEQ][3][3], t[16], ta[16], tb[16], rot[16];
     double k1i[16], k2i[16], k6i[16];
     int a, b, c, e, m3, m4, m5;
@@ -396,6 +396,107 @@ static void g6_complete(const double *angles, double links[6][16], double P[G6_N
     t[5] = atan2(acc[4], acc[0]);
 }
 
+/* prod Z_i Rz(q_i) Z_i^-1 . home (t) and the geometric Jacobian (6 x 6 row-major, linear velocity first) */
+static void g6_fk(const double *frames, const double *home, const double *q, double *t, double *jac)
+{
+    double acc[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, m[16], zi[16], ax[6][3], pt[6][3];
+    int i, r;
+    for (i = 0; i < 6; ++i) {
+        const double *z = frames + 16 * i;
+        for (r = 0; r < 3; ++r) {
+            ax[i][r] = acc[4 * r] * z[2] + acc[4 * r + 1] * z[6] + acc[4 * r + 2] * z[10];
+            pt[i][r] = acc[4 * r] * z[3] + acc[4 * r + 1] * z[7] + acc[4 * r + 2] * z[11] + acc[4 * r + 3];
+        }
+        g6_mul(acc, z, acc);
+        g6_rz(q[i], m);
+        g6_mul(acc, m, acc);
+        g6_inverse(z, zi);
+        g6_mul(acc, zi, acc);
+    }
+    g6_mul(acc, home, t);
+    for (i = 0; i < 6; ++i) {
+        const double d[3] = {t[3] - pt[i][0], t[7] - pt[i][1], t[11] - pt[i][2]};
+        jac[0 * 6 + i] = ax[i][1] * d[2] - ax[i][2] * d[1];
+        jac[1 * 6 + i] = ax[i][2] * d[0] - ax[i][0] * d[2];
+        jac[2 * 6 + i] = ax[i][0] * d[1] - ax[i][1] * d[0];
+        for (r = 0; r < 3; ++r) jac[(3 + r) * 6 + i] = ax[i][r];
+    }
+}
+
+static double g6_pose_error(const double *t, const double *pose)
+{
+    double err = 0.0;
+    int i;
+    for (i = 0; i < 12; ++i) {
+        const double e = fabs(t[i] - pose[i]);
+        if (!(e <= err)) err = e;
+    }
+    return err;
+}
+
+/* Newton steps on the chain's pose error (Python's g6_refine): the eigenproblem leaves a root ~1e-9 off where
+ * roots are close; a few steps bring it to rounding, so every caller verifies the same set */
+static void g6_refine(const double *frames, const double *home, const double *pose, double *q)
+{
+    double t[16], jac[36], err;
+    int it, i, c;
+    g6_fk(frames, home, q, t, jac);
+    err = g6_pose_error(t, pose);
+    for (it = 0; it < WK_G6_REFINE_STEPS; ++it) {
+        double e[6], a[36], trial[6], t2[16], jac2[36], err2;
+        int ok = 1;
+        e[0] = pose[3] - t[3];
+        e[1] = pose[7] - t[7];
+        e[2] = pose[11] - t[11];
+        e[3] = e[4] = e[5] = 0.0;
+        for (c = 0; c < 3; ++c) { /* 1/2 sum over columns of t_c x pose_c */
+            const double u[3] = {t[c], t[4 + c], t[8 + c]}, v[3] = {pose[c], pose[4 + c], pose[8 + c]};
+            e[3] += 0.5 * (u[1] * v[2] - u[2] * v[1]);
+            e[4] += 0.5 * (u[2] * v[0] - u[0] * v[2]);
+            e[5] += 0.5 * (u[0] * v[1] - u[1] * v[0]);
+        }
+        memcpy(a, jac, sizeof a);
+        for (c = 0; c < 6 && ok; ++c) { /* Gaussian elimination with partial pivoting on J step = e */
+            int p = c, r;
+            for (r = c + 1; r < 6; ++r)
+                if (fabs(a[6 * r + c]) > fabs(a[6 * p + c])) p = r;
+            if (!(fabs(a[6 * p + c]) > 0.0)) {
+                ok = 0;
+                break;
+            }
+            for (i = 0; i < 6; ++i) {
+                const double tmp = a[6 * c + i];
+                a[6 * c + i] = a[6 * p + i];
+                a[6 * p + i] = tmp;
+            }
+            {
+                const double tmp = e[c];
+                e[c] = e[p];
+                e[p] = tmp;
+            }
+            for (r = c + 1; r < 6; ++r) {
+                const double f = a[6 * r + c] / a[6 * c + c];
+                for (i = c; i < 6; ++i) a[6 * r + i] -= f * a[6 * c + i];
+                e[r] -= f * e[c];
+            }
+        }
+        if (!ok) break;
+        for (c = 5; c >= 0; --c) {
+            double s = e[c];
+            for (i = c + 1; i < 6; ++i) s -= a[6 * c + i] * e[i];
+            e[c] = s / a[6 * c + c];
+        }
+        for (i = 0; i < 6; ++i) trial[i] = q[i] + e[i];
+        g6_fk(frames, home, trial, t2, jac2);
+        err2 = g6_pose_error(t2, pose);
+        if (!(err2 < err)) break;
+        memcpy(q, trial, sizeof trial);
+        memcpy(t, t2, sizeof t2);
+        memcpy(jac, jac2, sizeof jac2);
+        err = err2;
+    }
+}
+
 int wk_g6_solve(const double *frames, const double *home, const double *pose, int shift, int reverse, int hidden,
                 double *q, int max_out)
 {
@@ -486,6 +587,7 @@ int wk_g6_solve(const double *frames, const double *home, const double *pose, in
             angles[b] = g6_half_angle(m[c], 1);
             g6_complete(angles, links, P, &f, t);
             for (i = 0; i < 6; ++i) q[6 * n + joints[i]] = sign * t[i];
+            g6_refine(frames, home, pose, q + 6 * n);
             ++n;
         }
     }

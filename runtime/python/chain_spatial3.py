@@ -10,14 +10,16 @@ from __future__ import annotations
 import math
 
 from chain_poly import _poly_add, _poly_mul, _scale3
-from chain_rigid import _add, _apply, _compose, _cross, _dot, _scale, _screw, _sub
+from chain_rigid import _ID, _add, _apply, _compose, _cross, _dot, _mv, _norm, _scale, _screw, _sub
 from chain_stages import _OP_STAGES
 from chain_stand_in import DEGENERATE_EPS, FLAG_DOUBLE_ROOT, FLAG_INDETERMINATE, FLAG_SINGULAR_INVERSE, SCALE
 from chain_subproblems import _sp1
 from poly_real_roots import _POLY_FLAG_DOUBLE, _poly_real_roots
 
-
 # wristkin: inlined from here
+SPATIAL3_REFINE_STEPS = 2  # Newton steps on a simple root (quadratic: 1e-10 -> 1e-20, i.e. rounding)
+
+
 def _bilinear(h2, u, vs):
     """Rows of u . R(h2, q2) v_j over a = (1, cos q2, sin q2): u.R v = (h.u)(h.v) + c (u.v - (h.u)(h.v)) +
     s u.(h x v), for each v_j (columns over b = (1, cos q3, sin q3))."""
@@ -79,8 +81,41 @@ def _spatial3(ch, ja, jb, jc, x, y):
         qa = _sp1(h1, _sub(w, r1), _sub(y, r1), SCALE)
         if qa is None:
             qa, fl = 0.0, fl | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE
+        elif not fl & FLAG_DOUBLE_ROOT:
+            qa, qb, qc = _spatial3_refine(ch, ja, jb, jc, x, y, qa, qb, qc)
         out.append((qa, qb, qc, fl))
     return out
+
+
+def _spatial3_refine(ch, ja, jb, jc, x, y, qa, qb, qc):
+    """Newton steps on e_a e_b e_c x = y (Cramer's rule on the three columns h_i x (p - r_i)): the degree-8
+    polynomial's roots carry ~1e-10 of its rounding, which a wrist after them would read as a turn off its singular
+    family; two steps bring a simple root to rounding (a step is kept only while the residual shrinks)."""
+    q = [qa, qb, qc]
+    js = (ja, jb, jc)
+
+    def point(q):
+        e = _ID
+        frames = []
+        for j, v in zip(js, q, strict=True):
+            frames.append((_mv(e[0], ch.axes[j]), _apply(e, ch.points[j])))
+            e = _compose(e, _screw("R", ch.axes[j], ch.points[j], v))
+        p = _apply(e, x)
+        return p, frames, _norm(_sub(p, y))
+    p, frames, err = point(q)
+    for _ in range(SPATIAL3_REFINE_STEPS):
+        c0, c1, c2 = (_cross(h, _sub(p, r)) for h, r in frames)
+        b = _sub(y, p)
+        det = _dot(c0, _cross(c1, c2))
+        if not abs(det) > DEGENERATE_EPS * SCALE ** 3:
+            break
+        dq = (_dot(b, _cross(c1, c2)) / det, _dot(c0, _cross(b, c2)) / det, _dot(c0, _cross(c1, b)) / det)
+        trial = [v + d for v, d in zip(q, dq, strict=True)]
+        p2, frames2, err2 = point(trial)
+        if not err2 < err:
+            break
+        q, p, frames, err = trial, p2, frames2, err2
+    return q[0], q[1], q[2]
 
 
 

@@ -42,6 +42,7 @@ _G6_B = np.array([[1.0, math.cos(g), math.sin(g)] for g in _G6_GRID])
 _G6_BINV = np.linalg.inv(_G6_B)
 # (1 + u^2) times 1, c, s (c = (1 - u^2) / (1 + u^2), s = 2u / (1 + u^2)) as coefficients of u^0, u^1, u^2
 _G6_HALF = np.array([[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0]])
+G6_REFINE_STEPS = 3  # Newton steps per candidate (quadratic: 1e-9 -> 1e-18 -> rounding)
 G6_NULL_TOL = 1e-8  # singular values of M(x) up to this x the largest span its null space
 G6_REAL_TOL = 1e-6  # |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding (the polish decides)
 _G6_PHIS = (0.0, 2.0 * math.pi / 3.0, -2.0 * math.pi / 3.0, math.pi / 2.0)
@@ -262,13 +263,46 @@ def g6_labelled(links, shift: int, reverse: bool):
     return links[k:] + links[:k], joints[k:] + joints[:k], -1.0 if reverse else 1.0
 
 
+def g6_fk(frames, home, q):
+    """prod Z_i Rz(q_i) Z_i^-1 . home, and the geometric Jacobian (linear velocity of the end origin first)."""
+    t = np.eye(4)
+    axes, points = [], []
+    for z, v in zip(frames, q, strict=True):
+        axes.append(t[:3, :3] @ z[:3, 2])
+        points.append(t[:3, :3] @ z[:3, 3] + t[:3, 3])
+        t = t @ z @ g6_rz(v) @ g6_inverse(z)
+    t = t @ home
+    jac = np.array([np.concatenate([np.cross(a, t[:3, 3] - p), a]) for a, p in zip(axes, points, strict=True)]).T
+    return t, jac
+
+
+def g6_refine(frames, home, pose, q, steps=G6_REFINE_STEPS):
+    """Newton steps on the chain's pose error: the eigenproblem leaves a root ~1e-9 off where roots are close, a
+    few steps bring it to rounding, so that every caller (C, numpy) starts its verification from the same set."""
+    q = np.array(q, dtype=float)
+    t, jac = g6_fk(frames, home, q)
+    err = float(np.max(np.abs(t[:3] - pose[:3])))
+    for _ in range(steps):
+        e = np.concatenate([pose[:3, 3] - t[:3, 3], 0.5 * sum(np.cross(t[:3, i], pose[:3, i]) for i in range(3))])
+        try:
+            step = np.linalg.solve(jac, e)
+        except np.linalg.LinAlgError:
+            break
+        t2, jac2 = g6_fk(frames, home, q + step)
+        err2 = float(np.max(np.abs(t2[:3] - pose[:3])))
+        if not err2 < err:
+            break
+        q, t, jac, err = q + step, t2, jac2, err2
+    return [float(v) for v in q]
+
+
 def g6_solve(frames, home, pose, shift=0, reverse=False, hidden=0):
-    """Joint candidates q (length 6, unpolished) of the chain prod Z_i Rz(q_i) Z_i^-1 home = pose."""
+    """Joint candidates q (length 6, refined by Newton on the chain) of prod Z_i Rz(q_i) Z_i^-1 home = pose."""
     links, joints, sign = g6_labelled(g6_loop_links(frames, home, pose), shift, reverse)
     out = []
     for t in g6_candidates(links, hidden):
         q = [0.0] * 6
         for j, v in zip(joints, t, strict=True):
             q[j] = sign * v
-        out.append(q)
+        out.append(g6_refine(frames, home, pose, q))
     return out

@@ -49,16 +49,24 @@ def spec_for_file(path: Path, name=None, base=None, tip=None, free=None, geometr
     return spec
 
 
-def workable_free_joints(name: str, title: str, desc) -> list[str]:
-    """The joints that, held as the run-time parameter, leave a chain the planner decomposes."""
+def free_joint_choices(name: str, title: str, desc) -> list[tuple[tuple, str, ChainMechanism]]:
+    """Every joint that, held as the run-time parameter, leaves a chain solved in closed form, cheapest first:
+    (cost, joint name, mechanism), cost = (the general 6R elimination, branches, position in the chain)."""
     out = []
     for k, jname in enumerate(desc.chain.joint_names):
+        mech = ChainMechanism(name, title, replace(desc, free=k))
         try:
-            ChainMechanism(name, title, replace(desc, free=k)).plan()
+            plan, _ = mech.plan()
         except NoDecomposition:
             continue
-        out.append(jname)
-    return out
+        general = any(op["op"] == "general6r" for op in plan.ops)
+        out.append(((general, plan.branches, k), jname, mech))
+    return sorted(out, key=lambda c: c[0])
+
+
+def workable_free_joints(name: str, title: str, desc) -> list[str]:
+    """The joints that, held as the run-time parameter, leave a chain solved in closed form, cheapest first."""
+    return [jname for _, jname, _ in free_joint_choices(name, title, desc)]
 
 
 def from_spec(spec: Spec) -> ChainMechanism:
@@ -68,9 +76,20 @@ def from_spec(spec: Spec) -> ChainMechanism:
     if desc.chain.n <= 6 and desc.free < 0:
         return mech
     if desc.free < 0:
-        choices = workable_free_joints(head["name"], head["title"], desc)
-        raise spec.error("free", f"the joint held as a run-time parameter (the chain has {desc.chain.n} joints; a "
-                                 f"closed form solves at most 6): {_choice_text(choices)}")
+        choices = free_joint_choices(head["name"], head["title"], desc)
+        if desc.chain.n > 7 or not choices:
+            raise spec.error("free", f"the joint held as a run-time parameter (the chain has {desc.chain.n} joints; a "
+                                     f"closed form solves at most 6): "
+                                     f"{_choice_text([c[1] for c in choices])}")
+        # no --free: the cheapest choice, said in the solver's decomposition text with the others
+        (general, branches, _), jname, chosen = choices[0]
+        others = ", ".join(c[1] for c in choices[1:]) or "none"
+        how = "the general 6R elimination" if general else f"a decomposition with {branches} branches"
+        chosen.free_note = (f"free joint {jname} chosen (no --free given): the cheapest closed form ({how}); the "
+                            f"other choices that work: {others}")
+        plan, _ = chosen.plan()
+        plan.strategy = f"{plan.strategy}; {chosen.free_note}"
+        return chosen
     try:
         mech.plan()  # a free joint that leaves no decomposition: said here with the choices that work
     except NoDecomposition as exc:

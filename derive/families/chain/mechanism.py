@@ -10,12 +10,13 @@ from dataclasses import replace
 import numpy as np
 
 from ...checks import numeric_predicate
+from ...kinematics import general6r
 from ...kinematics.geometry import common_point
 from ...kinematics.planner import Geometry, NoClosedForm, Plan, find_plan, op_branches, replay
 from ...kinematics.poe import Chain, normalised, reduce_free, reverse
 from ...kinematics.subproblems import subproblem_checks
 from ...mechanism import MechanismDefaults
-from ...model import Check, Derivation, Finding, Step
+from ...model import Check, Derivation, Finding, NoDecomposition, Step
 from . import views
 from .description import Description
 from .stages import stage
@@ -34,6 +35,8 @@ class ChainMechanism(MechanismDefaults):
         self.NAME, self.title, self.desc = name, title, desc
         self._plan: Plan | None = None
         self._ideal: Chain | None = None
+        self._labelling: general6r.Labelling | None = None
+        self.free_note = ""  # how the free joint was chosen when the user gave none
 
     # ------------------------------------------------------------------------------------------ planning
     @property
@@ -60,9 +63,27 @@ class ChainMechanism(MechanismDefaults):
                         if max(replay(c, replace(plan, reversed=False), q)) > 1e-9 * scale:
                             return False
                 return True
-            self._plan = find_plan(base, self.desc.geometry_tol, holds)
+            try:
+                self._plan = find_plan(base, self.desc.geometry_tol, holds)
+            except NoClosedForm as exc:
+                self._plan = self._general_plan(base, exc)
             self._ideal = self.idealise(self._plan)
         return self._plan, self._ideal
+
+    def _general_plan(self, base: Chain, refused: NoClosedForm) -> Plan:
+        """No decomposition fits: a 6R chain (after the free joint is held) is solved by elimination, read the way
+        that keeps it regular at every held value sampled; anything else keeps the planner's refusal."""
+        if base.n != 6 or any(k != "R" for k in base.kinds):
+            raise refused
+        chains = [self.solver_chain(self.chain, v) for v in (FREE_SAMPLES if self.desc.free >= 0 else (0.0,))]
+        try:
+            labelling = general6r.choose_labelling(chains, np.random.default_rng(11))
+        except NoDecomposition as exc:
+            raise NoClosedForm(f"{refused}; {exc}") from None
+        self._labelling = labelling
+        return Plan([general6r.op(labelling)], False, "no closed-form decomposition (no three axes meet or are "
+                    "parallel where one is needed): the general 6R by elimination (Raghavan-Roth's 14 equations, "
+                    f"Manocha-Canny's eigenproblem), {labelling.text(base.joint_names)}")
 
     def idealise(self, plan: Plan) -> Chain:
         """The full chain with the relations the plan relies on made exact: parallel axes get their mean
@@ -137,7 +158,10 @@ class ChainMechanism(MechanismDefaults):
         chains = {v: self.solver_chain(ideal, v, plan.reversed) for v in rng_free}
         residuals: dict = {}  # every op's check draws the same seeded samples: each replayed once
 
-        for k, op in enumerate(plan.ops):
+        if self._labelling is not None:  # the elimination's own records (its op's equations among them)
+            for st in general6r.steps(self.solver_chain(ideal, 0.0), self._labelling, np.random.default_rng(12)):
+                dv.add(replace(st, depends_on=st.depends_on or ("decomposition",)))
+        for k, op in enumerate(plan.ops if self._labelling is None else ()):
             def err(rng, k=k):
                 v = rng_free[int(rng.integers(len(rng_free)))]
                 q = _random_joints(chains[v], rng)
@@ -168,9 +192,10 @@ class ChainMechanism(MechanismDefaults):
                     "before it; linear velocity first", ("chain",), {"columns": f"{c.n}"},
                     (numeric_predicate(jac_err, "columns equal central differences of FK (h = 1e-6)", samples=40,
                                        tol=1e-7 * max(1.0, scale)),)))
+        checked = ("every op checked on 200 sampled configurations" if self._labelling is None else
+                   "the 14 equations checked on 40 sampled configurations, the solutions against a multistart count")
         dv.findings.append(Finding("decomposition", "the description (no IK given)", plan.strategy, "clarified",
-                                   f"{len(plan.relations)} axis relation(s) within {desc.geometry_tol:g}; every op "
-                                   "checked on 200 sampled configurations"))
+                                   f"{len(plan.relations)} axis relation(s) within {desc.geometry_tol:g}; {checked}"))
         return dv
 
     def controls(self) -> str:
@@ -221,11 +246,16 @@ class ChainMechanism(MechanismDefaults):
                 "c_runtime_files": views.c_runtime_files(plan.ops),
                 "c_flags": views.c_flags(plan.ops, free, plan.reversed),
                 "py_runtime_files": views.py_runtime_files(plan.ops),
+                "c_includes": views.c_includes(plan.ops),
                 # the same data as plain numbers, for the C template
                 "c_data": {"axes": _floats(c.axes), "points": _floats(c.points), "home": _floats(c.home),
                            "ideal_axes": _floats(ideal.axes), "ideal_points": _floats(ideal.points),
                            "ideal_home": _floats(ideal.home), "base": _floats(c.base), "tool": _floats(c.tool),
                            "lower": [_c_num(v) for v in c.lower], "upper": [_c_num(v) for v in c.upper]}}
+
+    def c_shared_files(self) -> list[str]:
+        """Runtime sources (runtime/c/...) written beside the robot's C: the general 6R's, when it is one."""
+        return views.c_shared_files(self.plan()[0].ops)
 
     def casadi_functions(self, dv, kernels) -> dict:
         from .chain_casadi import chain_functions
@@ -347,6 +377,8 @@ def _plan_literal(plan: Plan) -> str:
             rows.append(f'("orient", {units}, {op["lo"]}, {op["hi"]})')
         elif k == "group_rest":
             rows.append(f'("group_rest", {op["j"]}, {_spec_literal(op["group"])})')
+        elif k == "general6r":
+            rows.append(f'("general6r", {op["shift"]}, {op["reverse"]}, {op["hidden"]})')
     return "(\n    " + ",\n    ".join(rows) + ",\n)"
 
 
@@ -400,6 +432,8 @@ def _op_text(op, names) -> str:
     if k == "orient":
         units = " ".join("R(" + "+".join(nm(j) for j in u) + ")" for u in op["units"])
         return f"{units} = R_d"
+    if k == "general6r":
+        return "all six joints from the loop's 14 equations: the real eigenvalues of a 24 x 24 companion matrix"
     return f"{nm(op['j'])} = the parallel group's sum minus the others"
 
 
@@ -424,7 +458,9 @@ def _op_rule(op, names) -> str:
             "spatial3": "three revolute axes in general position (subproblem 5 in effect): two invariants of the "
                         "first joint, bilinear in the other two; every real root of the resulting polynomial",
             "orient": "subproblem 2 on the last unit's axis, then subproblem 1 about it (fewer units: subproblem 1)",
-            "group_rest": "rotations about parallel axes add: the last one is the sum minus the others"}[op["op"]]
+            "group_rest": "rotations about parallel axes add: the last one is the sum minus the others",
+            "general6r": "Raghavan-Roth elimination, Manocha-Canny eigenproblem (derive/kinematics/general6r.py)"}[
+        op["op"]]
 
 
 def _roles(plan: Plan, ch: Chain):
@@ -437,7 +473,7 @@ def _roles(plan: Plan, ch: Chain):
         if op["op"] == "begin":
             x_home = geometry.point(op["x"])
             place_end = op["hi"] + 1
-        if op_branches(op) < 2:
+        if op_branches(op) < 2 or op["op"] == "general6r":  # the elimination's sets have no geometric names
             continue
         count += 1
         if op["op"] == "orient":

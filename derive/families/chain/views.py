@@ -37,6 +37,7 @@ def py_runtime_files(ops) -> list[str]:
     return [*(f"python/chain_{n}.py" for n in ("design", "rigid", "poe", "subproblems", "points", "stages")), *poly,
             *(["python/chain_spatial3.py"] if "spatial3" in kinds else []),
             *(["python/chain_sp6.py"] if "sp6" in kinds else []),
+            *(["python/general6r.py", "python/chain_general6r.py"] if "general6r" in kinds else []),
             *(f"python/chain_{n}.py" for n in ("solve", "verify", "api"))]
 
 
@@ -44,4 +45,17 @@ def c_flags(ops, free: int, reversed_: bool) -> dict:
     """The preprocessor switches the runtime sources read (ck_chain.c, ck_interpreter.c, ck_api.c)."""
     kinds = _kinds(ops)
     return {"CK_FREE": free, "CK_REVERSED": int(bool(reversed_)), "CK_HAS_SP6": int("sp6" in kinds),
-            "CK_HAS_SPATIAL3": int("spatial3" in kinds)}
+            "CK_HAS_SPATIAL3": int("spatial3" in kinds), "CK_HAS_GENERAL6R": int("general6r" in kinds)}
+
+
+def c_shared_files(ops) -> list[str]:
+    """Runtime sources the robot's C calls as separate files beside it (compiled once per program: their symbols
+    are extern): the general 6R's elimination and its eigen solver."""
+    if "general6r" not in _kinds(ops):
+        return []
+    return ["c/wk_eigen.h", "c/wk_eigen.c", "c/wk_general6r.h", "c/wk_general6r.c"]
+
+
+def c_includes(ops) -> list[str]:
+    """The headers of c_shared_files the robot's C includes."""
+    return [f.split("/")[-1] for f in c_shared_files(ops) if f.endswith(".h")]

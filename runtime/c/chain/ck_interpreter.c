@@ -501,6 +501,31 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         break;
     }
 #endif
+#if CK_HAS_GENERAL6R
+    case CK_GENERAL6R: { /* no decomposition: the general 6R by elimination (wk_general6r.c), every candidate */
+        double axes[18], points[18], frames[96], g4[16], cand[WK_G6_MAX_CANDIDATES * 6];
+        static const double id4[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+        int i, m, nr;
+        for (i = 0; i < 6; ++i)
+            for (m = 0; m < 3; ++m) {
+                axes[3 * i + m] = ch->axis[i][m];
+                points[3 * i + m] = ch->point[i][m];
+            }
+        wk_g6_z_frames(axes, points, frames);
+        for (i = 0; i < 3; ++i) { /* the product of exponentials as a 4 x 4 (the home frame is removed) */
+            for (m = 0; m < 3; ++m) g4[4 * i + m] = c->g.r[3 * i + m];
+            g4[4 * i + 3] = c->g.t[i];
+        }
+        g4[12] = g4[13] = g4[14] = 0.0;
+        g4[15] = 1.0;
+        nr = wk_g6_solve(frames, id4, g4, op->j, op->lo, op->k, cand, WK_G6_MAX_CANDIDATES);
+        for (i = 0; i < nr; ++i) {
+            for (m = 0; m < 6; ++m) c->q[m] = cand[6 * i + m];
+            ck_run(c, k + 1, x, y, flags);
+        }
+        break;
+    }
+#endif
     case CK_LINEAR: { /* x + sum q_i h_i = y: least squares over the slides */
         double a[3 * 3], b[3], sol[3];
         int i, r;

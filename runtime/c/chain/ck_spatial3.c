@@ -14,6 +14,71 @@ static void ck_bilinear(const double *h2, const double *u, const double (*vs)[3]
         m[2][j] = ck_dot(u, hx);
     }
 }
+/* Newton steps on e_a e_b e_c x = y (Cramer's rule on the columns h_i x (p - r_i); Python's _spatial3_refine):
+ * the degree-8 polynomial's roots carry ~1e-10 of its rounding, which a wrist after them would read as a turn off
+ * its singular family; two steps bring a simple root to rounding (a step is kept only while the residual shrinks) */
+#define CK_SPATIAL3_REFINE_STEPS 2
+static double ck_spatial3_point(const ck_chain *ch, const int *js, const double *q, const double *x,
+                                const double *y, double *p, double (*h)[3], double (*r)[3])
+{
+    ck_rt e, s;
+    double d[3];
+    int i;
+    ck_identity(&e);
+    for (i = 0; i < 3; ++i) {
+        ck_mv(e.r, ch->axis[js[i]], h[i]);
+        ck_apply(&e, ch->point[js[i]], r[i]);
+        ck_screw(0, ch->axis[js[i]], ch->point[js[i]], q[i], &s);
+        ck_compose(&e, &s, &e);
+    }
+    ck_apply(&e, x, p);
+    ck_sub(p, y, d);
+    return ck_norm(d);
+}
+
+static void ck_spatial3_refine(const ck_chain *ch, int ja, int jb, int jc, const double *x, const double *y,
+                               double *qa, double *qb, double *qc)
+{
+    const int js[3] = {ja, jb, jc};
+    double q[3] = {*qa, *qb, *qc}, p[3], h[3][3], r[3][3], err;
+    int it, i;
+    err = ck_spatial3_point(ch, js, q, x, y, p, h, r);
+    for (it = 0; it < CK_SPATIAL3_REFINE_STEPS; ++it) {
+        double c[3][3], b[3], x12[3], bx2[3], c1b[3], det, trial[3], p2[3], h2[3][3], r2[3][3], err2;
+        for (i = 0; i < 3; ++i) {
+            double d[3];
+            ck_sub(p, r[i], d);
+            ck_cross(h[i], d, c[i]);
+        }
+        ck_sub(y, p, b);
+        ck_cross(c[1], c[2], x12);
+        det = ck_dot(c[0], x12);
+        if (!(fabs(det) > CK_DEGENERATE_EPS * CK_SCALE * CK_SCALE * CK_SCALE)) break;
+        ck_cross(b, c[2], bx2);
+        ck_cross(c[1], b, c1b);
+        trial[0] = q[0] + ck_dot(b, x12) / det;
+        trial[1] = q[1] + ck_dot(c[0], bx2) / det;
+        trial[2] = q[2] + ck_dot(c[0], c1b) / det;
+        err2 = ck_spatial3_point(ch, js, trial, x, y, p2, h2, r2);
+        if (!(err2 < err)) break;
+        for (i = 0; i < 3; ++i) {
+            q[i] = trial[i];
+            p[i] = p2[i];
+        }
+        for (i = 0; i < 3; ++i) {
+            int m;
+            for (m = 0; m < 3; ++m) {
+                h[i][m] = h2[i][m];
+                r[i][m] = r2[i][m];
+            }
+        }
+        err = err2;
+    }
+    *qa = q[0];
+    *qb = q[1];
+    *qc = q[2];
+}
+
 /* (q_a, q_b, q_c, flags) with e_a e_b e_c x = y for three revolute axes in general position (the Python module's
  * _spatial3): joint a keeps the distance to its axis point and the component along its axis, two equations
  * bilinear in (1, cos q_b, sin q_b) x (1, cos q_c, sin q_c); cos^2 + sin^2 = 1 of the (cos q_c, sin q_c) they give
@@ -103,6 +168,7 @@ static int ck_spatial3(const ck_chain *ch, int ja, int jb, int jc, const double 
         fl[out] = af[i];
         if (ck_sp1(h1, w, yr, CK_SCALE, &t1)) {
             qa[out] = t1;
+            if (!(fl[out] & WK_FLAG_DOUBLE_ROOT)) ck_spatial3_refine(ch, ja, jb, jc, x, y, &qa[out], &qb[out], &qc[out]);
         } else {
             qa[out] = 0.0;
             fl[out] |= WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;

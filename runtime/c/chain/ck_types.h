@@ -13,14 +13,15 @@ typedef struct {
 } ck_chain;
 /* ------------------------------------------------------------------ the decomposition as data */
 enum { CK_BEGIN, CK_FIRST_PLANE, CK_LAST_PLANE, CK_FIRST_DIST, CK_LAST_DIST, CK_PAIR, CK_SINGLE, CK_LINEAR,
-       CK_ORIENT, CK_GROUP_REST, CK_SPATIAL3, CK_SP6 };
+       CK_ORIENT, CK_GROUP_REST, CK_SPATIAL3, CK_SP6, CK_GENERAL6R };
 /* a point x / s: where axes meet, a point on an axis, the end frame's origin; a direction n: an axis, or the
  * normal of two (slide) axes */
 enum { CK_NONE, CK_MEET, CK_ON, CK_HOME, CK_DIR, CK_CROSS };
 
 typedef struct {
     int op;
-    int j, k;          /* the op's joint(s) in the solver's chain (pair: j then k) */
+    int j, k;          /* the op's joint(s) in the solver's chain (pair: j then k; general6r: the loop's first
+                        * joint and the hidden angle, lo: read backwards) */
     int prismatic;     /* joint j is a slide */
     int spec, n_spec;  /* the op's point or direction (begin: x, plane: n, dist / pair: s) and its joints */
     int spec_js[CK_N];
