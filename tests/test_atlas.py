@@ -300,3 +300,50 @@ def test_rsr_swing_feasibility_equals_the_module_workspace():
         got = mech.feasible(d, alpha, beta)
         want = np.array([m.workspace(a, b, d) is not None for a, b in zip(alpha, beta, strict=True)])
         np.testing.assert_array_equal(got, want)
+
+
+def test_rsr_c_atlas_batch_equals_the_numpy_path():
+    """The generated C's atlas_batch (IK, leg limits, the derived atlas_rates' 1/kappa_F, conditioning and FK counts
+    in one C loop) against ik_batch / fk_batch and numpy: the same counts and the same fixed-point sums."""
+    mech = mechanism("rsr_wrist")
+    m = mech.module
+    if m.BACKEND != "c":
+        pytest.skip("the C extension is not built (WRISTKIN_BACKEND=numpy)")
+    from wristkin_atlas import sampling
+
+    rng = case_rng(2404)
+    opts = Options(threshold=0.3, tilt_max=TILT)
+    for _ in range(12):
+        lo = rng.uniform(-0.5, 1.0)
+        d = m.make_design((0.06, lo, lo + rng.uniform(0.3, 2.5), rng.uniform(0.0, 0.05), rng.uniform(0.06, 0.12)))
+        up, uj = (sampling.unit_block(TEST_SEED, s, 0, 1024, 3, False) for s in (0, 1))
+        got = mech.evaluate(d, up, uj, opts)
+        want = mech.evaluate_numpy(d, mech.poses(up, d, opts), mech.joints(uj, d), opts)
+        assert got.keys() == want.keys()
+        for k in want:
+            if k in ("li_sum", "li_best_sum"):  # fixed point: the same kernel in C and numpy, a rounding apart
+                assert abs(int(got[k]) - int(want[k])) <= 4 * max(1, got["n_sets"]), k
+            elif k == "li_min":
+                assert got[k] == pytest.approx(want[k], rel=1e-12), k
+            else:
+                np.testing.assert_array_equal(got[k], want[k], err_msg=k)
+
+
+def test_rsr_c_swing_profile_equals_the_numpy_feasibility():
+    """The generated C's max_swing (trigonometry hoisted, cross products for the arcs) against the vectorised
+    feasibility that test_rsr_swing_feasibility_equals_the_module_workspace checks against workspace()."""
+    mech = mechanism("rsr_wrist")
+    m = mech.module
+    if m.BACKEND != "c":
+        pytest.skip("the C extension is not built (WRISTKIN_BACKEND=numpy)")
+    rng = case_rng(2405)
+    for tilt in (60.0, 90.0, 180.0):
+        opts = Options(tilt_max=math.radians(tilt))
+        for _ in range(15):
+            lo = rng.uniform(-3.0, 3.0)
+            d = m.make_design((0.06, lo, lo + rng.uniform(0.3, 6.0), rng.uniform(0.0, 0.05), rng.uniform(0.06, 0.12)))
+            alpha = np.radians(np.arange(opts.swing_bins) * 360.0 / opts.swing_bins)
+            beta = np.arange(0.0, tilt + 1e-9, mech.SWING_STEP)
+            ok = mech.feasible(d, alpha[:, None], np.radians(beta)[None, :])
+            want = np.where(ok.any(axis=1), np.where(ok, beta[None, :], -np.inf).max(axis=1), 0.0)
+            np.testing.assert_array_equal(mech.swing_profile(d, opts), want)
