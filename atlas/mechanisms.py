@@ -36,6 +36,10 @@ class UnknownMechanism(ValueError):
     pass
 
 
+class UnsupportedMechanism(UnknownMechanism):
+    """A mechanism wristkin solves but the atlas has no measures for (the message says why and what to run)."""
+
+
 def _ratio(num, den):
     num, den = np.asarray(num, dtype=float), np.asarray(den, dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -452,5 +456,11 @@ def mechanism(name: str) -> Mechanism:
         mech = SerialArm(module)
         mech.key = name
         return mech
-    raise UnknownMechanism(f"the atlas has no measures for {name!r} yet (it sweeps {', '.join(ADAPTERS)} and the "
-                           "serial arms)")
+    if getattr(module, "NAME", name) == "scara_rsr":
+        raise UnsupportedMechanism(
+            "the atlas does not sweep scara_rsr: it is the SCARA arm carrying the 3-RSR wrist (7 joints, designs of "
+            "both), and its measures would be the wrist's (reachable swing workspace, 1/kappa_F, assembly modes) plus "
+            "the SCARA's reach, which the atlas has no sampling for yet. Sweep the wrist alone with `wristkin atlas "
+            "rsr_wrist --sweep ...` (same L, phi_min, phi_max, lbw_min, lbw_max) and the arm with a spec file")
+    raise UnsupportedMechanism(f"the atlas has no measures for {name!r} (it sweeps {', '.join(ADAPTERS)} and the "
+                               "serial arms)")

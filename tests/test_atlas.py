@@ -268,6 +268,8 @@ def test_spec_file_is_derived_into_out_then_swept(tmp_path):
     stamp = solver.stat().st_mtime_ns
     first = wristkin_atlas.open_atlas(tmp_path).load()
     assert np.all(first["ik_closes"].values == 1.0) and first.a3.attrs["units"] == "deg"
+    # a spec chain's conditioning: its module's jacobian per sample (no C batch in the chain family)
+    assert np.all((first["gci"].values > 0.0) & (first["gci"].values <= 1.0))
     assert cli.main(argv) == 0
     assert solver.stat().st_mtime_ns == stamp
     _same(first, wristkin_atlas.open_atlas(tmp_path).load())
@@ -347,3 +349,49 @@ def test_rsr_c_swing_profile_equals_the_numpy_feasibility():
             ok = mech.feasible(d, alpha[:, None], np.radians(beta)[None, :])
             want = np.where(ok.any(axis=1), np.where(ok, beta[None, :], -np.inf).max(axis=1), 0.0)
             np.testing.assert_array_equal(mech.swing_profile(d, opts), want)
+
+
+SERIAL_ARMS = ["puma560", "scara_wrist", "spherical_wrist", "rpp_wrist", "wrist_1dof", "p1p2p3rarb", "rarararbrb"]
+
+
+@pytest.mark.parametrize("name", SERIAL_ARMS)
+def test_serial_c_conditioning_equals_the_svd_of_the_module_jacobian(name):
+    """The generated C's atlas_conditioning (Jacobi eigenvalues of J^T J of the derived Jacobian) against numpy's
+    SVD of the module's `jacobian`: the local index sigma_min / sigma_max of diag(I / L_c, I) J agrees within the
+    Gram matrix's sqrt(eps) near a singularity (it squares the condition number), 1e-9 elsewhere."""
+    mech = mechanism(name)
+    m = mech.module
+    if m.BACKEND != "c":
+        pytest.skip("the C extension is not built (WRISTKIN_BACKEND=numpy)")
+    from wristkin_atlas import sampling
+
+    d = m.make_design(m.DESIGN_DEFAULT)
+    q = mech.joints(sampling.unit_block(TEST_SEED, 1, 0, 1024, mech.joint_dim, False), d)
+    length = mech.characteristic_length(d)
+    li = mech.local_index_numpy(d, q, length)
+    total, li_min, near = mech.conditioning(d, q, THRESHOLD)
+    assert total / 2.0**32 == pytest.approx(li.sum(), abs=len(q) * 1e-8)
+    assert li_min == pytest.approx(li.min(), abs=1e-7)
+    # a sample within sqrt(eps) of the threshold could fall either side
+    assert abs(near - int((li < THRESHOLD).sum())) <= int((abs(li - THRESHOLD) < 1e-7).sum())
+    assert np.all((li >= 0.0) & (li <= 1.0))
+
+
+def test_serial_sweep_reports_gci_and_singularity_proximity(tmp_path):
+    ds = wristkin_atlas.run_sweep("scara_wrist", ["a2=0.2:0.4:3"], tmp_path, samples=600, seed=TEST_SEED,
+                                  progress=False).load()
+    for name in ("gci", "worst_li", "near_singular"):
+        v = ds[name].values
+        assert np.all((v >= 0.0) & (v <= 1.0)), name
+        assert ds[name].attrs["units"] == "1" and ds[name].attrs["definition"]
+    assert np.all(ds["worst_li"].values <= ds["gci"].values)
+
+
+def test_scara_rsr_is_refused_with_a_typed_error_that_says_why(tmp_path, capsys):
+    from wristkin import cli
+    from wristkin_atlas.mechanisms import UnsupportedMechanism
+
+    with pytest.raises(UnsupportedMechanism, match="rsr_wrist"):
+        mechanism("scara_rsr")
+    assert cli.main(["atlas", "scara_rsr", "--sweep", "L=0.05:0.07:2", "--out", str(tmp_path)]) == 2
+    assert "SCARA" in capsys.readouterr().err
