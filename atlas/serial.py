@@ -52,7 +52,8 @@ class SerialArm(Mechanism):
             Measure("manipulability_min", unit, "smallest sampled manipulability", "max"),
             Measure("gci", "1", "global conditioning index: mean over the joint samples of the local index "
                     "sigma_min / sigma_max (1/kappa_2) of diag(I / L_c, I) J, the geometric Jacobian with its linear "
-                    "rows divided by the characteristic length L_c (the design's largest |parameter|, 1 m if none)",
+                    "rows divided by the characteristic length L_c (the design's largest absolute parameter value, 1 m "
+                    "if none)",
                     "max"),
             Measure("worst_li", "1", "worst local index: the smallest sampled sigma_min / sigma_max", "max"),
             Measure("near_singular", "1", f"fraction of joint samples whose local index is below "

@@ -186,6 +186,38 @@ def test_cli_writes_store_summary_and_report(tmp_path, capsys):
     assert (tmp_path / "best.csv").read_text().startswith("measure,")
 
 
+def _report_bytes(folder):
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*"))
+            if p.is_file() and p.suffix in (".md", ".html", ".png", ".csv")}
+
+
+@pytest.mark.parametrize("name,sweep", [("underactuated_wrist", ["alpha1=55:65:2", "beta2=40:46:2"]),
+                                        ("puma560", ["a2=0.3:0.5:2", "a3=0.0:0.1:2"])])
+def test_report_in_both_formats_names_units_definitions_and_marks_the_seed_design(tmp_path, name, sweep):
+    """report.md and a self-contained report.html: every measure with its units and definition, the seed
+    (catalogue) design named where the maps star it, the figures embedded; and the same bytes when the outputs are
+    written again from the store (deterministic: no timings, no Software metadata, a fixed dpi)."""
+    from wristkin_atlas.report import write_outputs
+
+    ds = wristkin_atlas.run_sweep(name, sweep, tmp_path, samples=200, seed=TEST_SEED, progress=False).load()
+    write_outputs(tmp_path, ds)
+    md, page = (tmp_path / "report.md").read_text(), (tmp_path / "report.html").read_text()
+    for var in ds.data_vars.values():
+        units, definition = var.attrs["units"], var.attrs["definition"]
+        assert f"| {var.name} | {units} |" in md and definition in md, var.name
+        assert f"<td>{var.name}</td><td>{units}</td>" in page, var.name
+    default = dict(zip(mechanism(name).module.DESIGN_NAMES, mechanism(name).module.DESIGN_DEFAULT, strict=True))
+    seed = ("seed design: alpha1 = 60 deg, beta2 = 43.89 deg" if name == "underactuated_wrist" else
+            f"seed design: a2 = {default['a2']:g} m, a3 = {default['a3']:g} m")
+    assert seed in md and seed in page
+    assert "figures/" not in page and page.count("data:image/png;base64,") == md.count("![")
+    first = _report_bytes(tmp_path)
+    for png in (tmp_path / "figures").glob("*.png"):
+        assert b"Software" not in png.read_bytes() and b"atplotlib" not in png.read_bytes()
+    write_outputs(tmp_path, wristkin_atlas.open_atlas(tmp_path).load())  # from the store: the same bytes
+    assert _report_bytes(tmp_path) == first
+
+
 @pytest.mark.parametrize("argv", [["nosuch", "--sweep", "a=1:2:2"], ["rsr_wrist", "--sweep", "nosuch=1:2:2"],
                                   ["rsr_wrist", "--sweep", "L=1:2"], ["rsr_wrist"]])
 def test_cli_bad_arguments_exit_2(tmp_path, argv, capsys):
