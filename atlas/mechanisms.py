@@ -136,6 +136,17 @@ class Mechanism:
         self.name = module.NAME
         self.key = module.NAME  # what mechanism() takes to make this again (a worker's task argument)
 
+    def unit_blocks(self, seed: int, block: int, samples: int, grid: bool):
+        """(pose, joint) unit samples of one block (sampling.py): what evaluate gets."""
+        from . import sampling
+
+        return (sampling.unit_block(seed, sampling.POSE_STREAM, block, samples, self.pose_dim, grid),
+                sampling.unit_block(seed, sampling.JOINT_STREAM, block, samples, self.joint_dim, grid))
+
+    def solves(self, u_pose, u_joint) -> int:
+        """Solves one evaluate of these unit samples runs (the progress bar's rate)."""
+        return len(u_pose) + len(u_joint)
+
     def partials(self) -> tuple[Partial, ...]:
         raise NotImplementedError
 
@@ -456,11 +467,11 @@ def mechanism(name: str) -> Mechanism:
         mech = SerialArm(module)
         mech.key = name
         return mech
-    if getattr(module, "NAME", name) == "scara_rsr":
-        raise UnsupportedMechanism(
-            "the atlas does not sweep scara_rsr: it is the SCARA arm carrying the 3-RSR wrist (7 joints, designs of "
-            "both), and its measures would be the wrist's (reachable swing workspace, 1/kappa_F, assembly modes) plus "
-            "the SCARA's reach, which the atlas has no sampling for yet. Sweep the wrist alone with `wristkin atlas "
-            "rsr_wrist --sweep ...` (same L, phi_min, phi_max, lbw_min, lbw_max) and the arm with a spec file")
+    from .hybrid import ScaraRsr
+
+    if ScaraRsr.fits(module):
+        mech = ScaraRsr(module)
+        mech.key = name
+        return mech
     raise UnsupportedMechanism(f"the atlas has no measures for {name!r} (it sweeps {', '.join(ADAPTERS)} and the "
                                "serial arms)")

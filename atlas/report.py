@@ -17,13 +17,15 @@ import numpy as np
 from . import html as html_mod
 from . import maps as maps_mod
 from . import seeds
+from .hybrid import ScaraRsr
 from .mechanisms import Options, RsrWrist, UnderactuatedWrist, mechanism
 from .serial import SerialArm
 from .store import design_dims
 
 MAP_MEASURES = ("reachable", "gci", "gci_best", "worst_li", "near_inverse", "near_direct", "fk_modes_mean",
                 "fk_no_assembly", "fk_near_direct", "swing_all", "swing_peak", "ik_sets_mean", "singular",
-                "near_singular", "manipulability_mean", "manipulability_min")
+                "near_singular", "manipulability_mean", "manipulability_min", "arm_assembles", "reach_max",
+                "reach_min")
 TOP = 5  # designs listed per measure
 DPI = 110  # fixed: the figures' bytes depend on nothing but the data
 
@@ -126,6 +128,8 @@ def _focus_design(mech, ds, focus: list[str] | None):
 
 def _focus_plots(plt, mech, design, options, figdir: Path) -> tuple[list[tuple[str, str]], dict | None]:
     figs = []
+    if isinstance(mech, ScaraRsr):  # the hybrid's workspace maps are its wrist's (its reach is a measure)
+        mech, design = mech.wrist, mech.wrist_design(design)
     if isinstance(mech, UnderactuatedWrist):
         mp = maps_mod.underactuated_maps(mech, design, options)
         t = mp["tilt"]

@@ -99,9 +99,7 @@ def compute_task(name: str, designs: np.ndarray, seed: int, samples: int, grid: 
     mech = mechanism(name)
     specs = mech.partials()
     out = {s.name: s.empty(len(designs)) for s in specs}
-    units = [(sampling.unit_block(seed, sampling.POSE_STREAM, b, samples, mech.pose_dim, grid),
-              sampling.unit_block(seed, sampling.JOINT_STREAM, b, samples, mech.joint_dim, grid))
-             for b in range(block_lo, block_hi)]
+    units = [mech.unit_blocks(seed, b, samples, grid) for b in range(block_lo, block_hi)]
     solves = 0
     for k, params in enumerate(designs):
         design = mech.make_design(params)
@@ -109,7 +107,7 @@ def compute_task(name: str, designs: np.ndarray, seed: int, samples: int, grid: 
             continue
         for u_pose, u_joint in units:
             part = mech.evaluate(design, u_pose, u_joint, options)
-            solves += len(u_pose) + len(u_joint)
+            solves += mech.solves(u_pose, u_joint)
             for s in specs:
                 if s.name in part:  # per-design partials (design_partials) are not per block
                     out[s.name][k] = merge(s, out[s.name][k], part[s.name])

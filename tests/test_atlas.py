@@ -419,19 +419,28 @@ def test_serial_sweep_reports_gci_and_singularity_proximity(tmp_path):
     assert np.all(ds["worst_li"].values <= ds["gci"].values)
 
 
-def test_scara_rsr_is_refused_with_a_typed_error_that_says_why(tmp_path, capsys):
-    from wristkin import cli
-    from wristkin_atlas.mechanisms import UnsupportedMechanism
-
-    with pytest.raises(UnsupportedMechanism, match="rsr_wrist"):
-        mechanism("scara_rsr")
-    assert cli.main(["atlas", "scara_rsr", "--sweep", "L=0.05:0.07:2", "--out", str(tmp_path)]) == 2
-    assert "SCARA" in capsys.readouterr().err
+def test_scara_rsr_sweep_has_its_wrist_measures_and_the_arms_reach(tmp_path):
+    """scara_rsr: the 3-RSR wrist's measures on its own design equal an rsr_wrist sweep's (the same samples), and
+    the arm's: IK closes on every FK-sampled pose, and the reach grows with the second link."""
+    kw = dict(samples=600, seed=TEST_SEED, progress=False)
+    ds = wristkin_atlas.run_sweep("scara_rsr", ["L2=0.2:0.3:2", "phi_max=70:80:2"], tmp_path / "h", **kw).load()
+    m = mechanism("scara_rsr").module
+    fixed = dict(zip(m.DESIGN_NAMES, m.DESIGN_DEFAULT, strict=True))
+    wrist = [f"{n}={fixed[n]!r}" if n not in ("phi_min", "phi_max") else f"{n}={math.degrees(fixed[n])!r}"
+             for n in ("L", "phi_min", "lbw_min", "lbw_max")]
+    w = wristkin_atlas.run_sweep("rsr_wrist", ["phi_max=70:80:2"], tmp_path / "w", designs=wrist, **kw).load()
+    for name in ("reachable", "gci", "worst_li", "near_inverse", "fk_modes_mean", "swing_all", "swing_peak"):
+        for l2 in ds.L2.values:
+            np.testing.assert_array_equal(ds[name].sel(L2=l2).values, w[name].values, err_msg=name)
+    assert np.all(ds["ik_closes"].values == 1.0) and np.all(ds["arm_assembles"].values > 0.5)
+    reach = ds["reach_max"].values
+    assert np.all(reach[1] > reach[0]) and np.all(reach <= 0.25 + 0.3 + 0.2)
+    assert ds["reach_max"].attrs["units"] == "m" and "3-RSR wrist" in ds["gci"].attrs["definition"]
 
 
 @pytest.mark.parametrize("name,sweep", [("underactuated_wrist", ["beta2=40:46:3"]),
                                         ("rsr_wrist", ["phi_min=20:30:2", "phi_max=70:80:2"]),
-                                        ("scara_wrist", ["a2=0.2:0.4:3"])])
+                                        ("scara_wrist", ["a2=0.2:0.4:3"]), ("scara_rsr", ["L2=0.2:0.3:2"])])
 def test_grid_sampling_gives_the_same_bits_for_any_chunking_and_workers(tmp_path, name, sweep):
     """--grid: a regular lattice of cell centres (side = round(N^(1/dim)), first coordinate slowest) instead of
     random samples; 2500 requested -> 14^3 = 2744 points (3 blocks) for a wrist. One task per block and design vs
