@@ -462,3 +462,19 @@ def test_grid_sampling_gives_the_same_bits_for_any_chunking_and_workers(tmp_path
     r = wristkin_atlas.run_sweep(name, sweep, tmp_path / "r", **kw).load()
     assert r.attrs["sampling"] == "random"
     assert not np.array_equal(r["gci"].values, a["gci"].values, equal_nan=True)
+
+
+def test_bench_finds_its_atlas_tables_with_the_repository_root_first_on_sys_path(monkeypatch):
+    """`make bench` died at its atlas step (AttributeError: tables): `import atlas` in bench/run.py found the
+    repository's atlas/ package, not bench/atlas.py, once bench/dh.py had put the root ahead of bench/."""
+    import importlib.util
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parent.parent
+    monkeypatch.syspath_prepend(str(root / "bench"))
+    monkeypatch.syspath_prepend(str(root))  # as bench/dh.py leaves it
+    monkeypatch.delitem(sys.modules, "atlas", raising=False)
+    spec = importlib.util.spec_from_file_location("wristkin_bench_run", root / "bench" / "run.py")
+    run = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(run)
+    assert callable(run.atlas_bench().tables)
