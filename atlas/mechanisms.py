@@ -231,25 +231,43 @@ class UnderactuatedWrist(Mechanism):
         return inverse_kappa_f(rows, g), g
 
     def evaluate(self, design, u_pose, u_joint, options):
-        m, out = self.module, {"design_ok": 1}
         # the poses do not depend on the design: mapped once per block (the task holds its blocks alive: ids stay)
         key = (id(u_pose), options.tilt_max)
         poses = self._pose_cache.get(key)
         if poses is None:
             poses = self._pose_cache.setdefault(key, self.poses(u_pose, options))
+        home = self._home_cache.get(design.params)
+        if home is None:  # once per design, not per block
+            home = self._home_cache.setdefault(design.params, self.home_mode(design))
+        joints = self.joints(u_joint, design)
+        c = getattr(self.module, "_C", None)
+        batch = getattr(c, self.module.NAME + "_atlas_home_batch", None) if c is not None else None
+        if batch is None or getattr(design, "native", None) is None:
+            return self.evaluate_numpy(design, poses, joints, home, options)
+        sums = np.zeros(ATLAS_MODES + self.module.MAX_FK + 1, dtype=np.int64)
+        li_min, lo, hi = np.full(1, np.inf), np.full(3, np.inf), np.full(3, -np.inf)
+        rc = batch(poses, joints, design.native, float(options.threshold), home.astype(np.int64), sums, li_min, lo, hi)
+        if rc != 0:  # the samples are finite and the design valid: a failure here is a defect, not a measure
+            raise RuntimeError(f"{self.module.NAME}_atlas_home_batch failed with code {rc}")
+        n_reach, n_sets, li_sum, li_best_sum, near_inv, near_dir, fk_near_dir = (int(v) for v in sums[:ATLAS_MODES])
+        return {"design_ok": 1, "n_pose": len(poses), "n_reach": n_reach, "n_sets": n_sets, "li_sum": li_sum,
+                "li_best_sum": li_best_sum, "li_min": float(li_min[0]), "near_inv": near_inv, "near_dir": near_dir,
+                "n_joint": len(joints), "fk_near_dir": fk_near_dir, "modes": sums[ATLAS_MODES:].copy(),
+                "phi_lo": lo, "phi_hi": hi}
+
+    def evaluate_numpy(self, design, poses, joints, home, options):
+        """The same sums as the C atlas_home_batch, from ik_batch / fk_batch and numpy (tests compare the two)."""
+        m, out = self.module, {"design_ok": 1}
         ik = m.ik_batch(poses, design)
         reach = ik.valid.any(axis=1)  # the conditioning is computed on reachable poses only (the cost is there)
         valid, aux = ik.valid[reach], ik.aux[reach]
         li, g = self.local_index(design, poses[reach], ik.values[reach])
         _ik_partials(out, len(poses), valid, li, aux[..., 3], aux[..., 4], options.threshold)
-        home = self._home_cache.get(design.params)
-        if home is None:  # once per design, not per block
-            home = self._home_cache.setdefault(design.params, self.home_mode(design))
         in_mode = valid & ((g[0] > 0.0) == home[0]) & ((g[1] > 0.0) == home[1]) & ((g[2] > 0.0) == home[2])
         phi = np.degrees(aux[in_mode][:, :3])
         out["phi_lo"] = phi.min(axis=0) if len(phi) else np.full(3, np.inf)
         out["phi_hi"] = phi.max(axis=0) if len(phi) else np.full(3, -np.inf)
-        fk = m.fk_batch(self.joints(u_joint, design), design)
+        fk = m.fk_batch(joints, design)
         _fk_partials(out, fk.valid, fk.aux[..., m.FK_AUX_NAMES.index("cond_direct")], m.MAX_FK, options.threshold)
         return out
 

@@ -357,8 +357,8 @@ def test_rsr_c_atlas_batch_equals_the_numpy_path():
         for k in want:
             if k in ("li_sum", "li_best_sum"):  # fixed point: the same kernel in C and numpy, a rounding apart
                 assert abs(int(got[k]) - int(want[k])) <= 4 * max(1, got["n_sets"]), k
-            elif k == "li_min":
-                assert got[k] == pytest.approx(want[k], rel=1e-12), k
+            elif k == "li_min":  # 1/kappa's absolute error is ~eps (relative eps kappa): an absolute bound
+                assert got[k] == pytest.approx(want[k], rel=0.0, abs=1e-12), k
             else:
                 np.testing.assert_array_equal(got[k], want[k], err_msg=k)
 
@@ -478,3 +478,37 @@ def test_bench_finds_its_atlas_tables_with_the_repository_root_first_on_sys_path
     run = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(run)
     assert callable(run.atlas_bench().tables)
+
+
+def test_underactuated_c_atlas_batch_equals_the_numpy_path():
+    """The generated C's atlas_home_batch (IK, the derived loop Jacobians' 1/kappa_F, conditioning, the home
+    working mode's Phi range and FK counts in one C loop) against ik_batch / fk_batch and numpy."""
+    mech = mechanism("underactuated_wrist")
+    m = mech.module
+    if m.BACKEND != "c":
+        pytest.skip("the C extension is not built (WRISTKIN_BACKEND=numpy)")
+    from wristkin_atlas import sampling
+
+    rng = case_rng(2406)
+    opts = Options(threshold=0.3, tilt_max=1.2)
+    checked = 0
+    for _ in range(10):
+        d = mech.make_design(np.radians([rng.uniform(45, 75), rng.uniform(45, 75), rng.uniform(20, 40),
+                                         rng.uniform(35, 55)]))
+        if d is None:
+            continue
+        up, uj = (sampling.unit_block(TEST_SEED, s, 0, 1024, 3, False) for s in (0, 1))
+        got = mech.evaluate(d, up, uj, opts)
+        want = mech.evaluate_numpy(d, mech.poses(up, opts), mech.joints(uj, d), mech.home_mode(d), opts)
+        assert got.keys() == want.keys()
+        for k in want:
+            if k in ("li_sum", "li_best_sum"):  # fixed point: two derivations of the same J, a rounding apart
+                assert abs(int(got[k]) - int(want[k])) <= 4 * max(1, got["n_sets"]), k
+            elif k == "li_min":  # 1/kappa's absolute error is ~eps (relative eps kappa): an absolute bound
+                assert got[k] == pytest.approx(want[k], rel=0.0, abs=1e-12), k
+            elif k in ("phi_lo", "phi_hi"):  # the same IK values; a set with g_i within rounding of 0 could flip
+                np.testing.assert_allclose(got[k], want[k], atol=1e-9, err_msg=k)
+            else:
+                np.testing.assert_array_equal(got[k], want[k], err_msg=k)
+        checked += 1
+    assert checked >= 5
