@@ -133,15 +133,15 @@ def tables(quick: bool = False, measured: dict | None = None) -> str:
                  f"{two['compute']:.2f} s, the faster of the runs; identical results: "
                  f"{'yes' if r['same_bits'] else 'NO'}; 1-min load average around the runs: {loads}) | "
                  f"{one['compute'] / two['compute']:.2f}x | >= 1.7x |")
-    cpu_scaling = 2 * one["chunk_cpu_mean"] / two["chunk_cpu_mean"] if two["chunk_cpu_mean"] else 0.0
+    cpu_ratio = one["chunk_cpu_mean"] / two["chunk_cpu_mean"] if two["chunk_cpu_mean"] else 0.0
     share1 = one["chunk_cpu_total"] / one["compute"]
     share2 = two["chunk_cpu_total"] / two["compute"]
     lines.append(f"| where the time went: CPU per chunk {1e3 * one['chunk_cpu_mean']:.1f} ms (1 worker) vs "
                  f"{1e3 * two['chunk_cpu_mean']:.1f} ms (2 workers), wall per chunk {1e3 * one['chunk_mean']:.1f} ms "
                  f"vs {1e3 * two['chunk_mean']:.1f} ms; chunk CPU / compute wall {share1:.2f} of 1 core vs "
                  f"{share2:.2f} of 2 (a chunk's CPU cost unchanged by a second worker, its wall time longer: the "
-                 "cores went to other jobs) | CPU-time scaling "
-                 f"{cpu_scaling:.2f}x of 2x | - |")
+                 "cores went to other jobs) | CPU per chunk alone / with 2 workers "
+                 f"{cpu_ratio:.2f} (1: no contention inside the atlas) | - |")
     n = r["big_designs"] * r["big_samples"] * 2
     lines.append(f"| seed-000 sweep, {r['big_designs']:,} designs x {r['big_samples']:,} pose + "
                  f"{r['big_samples']:,} joint samples ({n:,} solves) on 2 workers | wall {big['wall']:.1f} s "
