@@ -112,13 +112,28 @@ def measure(quick: bool = False) -> dict:
     n_designs = math.prod(int(a.rsplit(":", 1)[1]) for a in big_axes)
     return {"per_core": per_core, "one": one, "two": two, "same_bits": same, "scaling_loads": loads, "big": big,
             "big_designs": n_designs,
-            "big_samples": 1000, "cpus": os.cpu_count(), "load": os.getloadavg()}
+            "big_samples": 1000, "cpus": os.cpu_count(), "load": os.getloadavg(), "cpu_model": _cpu_model()}
+
+
+def _cpu_model() -> str:
+    """The CPU's model name (Linux /proc/cpuinfo; the platform's processor string elsewhere)."""
+    import platform
+
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown CPU"
 
 
 def tables(quick: bool = False, measured: dict | None = None) -> str:
     r = measured or measure(quick)
     lines = ["Design atlas (issue 24), measured in this run (the machine is shared with other jobs: load average "
-             + ", ".join(f"{x:.1f}" for x in r["load"]) + f" on {r['cpus']} CPUs, so wall times are noisy):", "",
+             + ", ".join(f"{x:.1f}" for x in r["load"]) + f" on {r['cpus']} CPUs ({r['cpu_model']}), so wall times "
+             "are noisy):", "",
              "| atlas measure | value | goal |", "|---|---|---|"]
     for pc in r["per_core"]:
         extra = (f"; without its per-design swing profile ({1e3 * pc['per_design']:.1f} ms per design, "
