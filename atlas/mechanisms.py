@@ -325,7 +325,7 @@ class RsrWrist(Mechanism):
         rows = (tuple(o[3:6]), tuple(o[6:9]), tuple(o[9:12]))
         return inverse_kappa_f(rows, g), g
 
-    SWING_STEP = 0.5  # deg: the swing grid of the exact swing profile (a design costs ~2 ms: 72 x 181 attitudes)
+    SWING_STEP = 0.5  # deg: the swing grid of the exact swing profile (72 x 181 attitudes: ~0.05 ms in C, ~1 ms numpy)
 
     def feasible(self, design, alpha, beta) -> np.ndarray:
         """Whether some centre distance reaches attitude (alpha, beta) (arrays, rad) with every leg within its
