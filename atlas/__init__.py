@@ -5,8 +5,10 @@ its workspace with the generated C batch solvers, on Dask, into a labelled Zarr 
 
 Needs the `atlas` extra (dask, distributed, xarray, zarr): pip install 'wristkin[atlas]'. One job per module:
 sweep (the design grid), sampling (the seeded workspace sample), conditioning (1/kappa of batched 3x3 Jacobians),
-partials (exact, order-independent reductions), mechanisms (what is measured per mechanism), runner (Dask, the
-resumable store), store (the xarray/Zarr dataset), report (tables, maps, Markdown), seeds (the seeds' claims), cli.
+partials (exact, order-independent reductions), mechanisms (what is measured per mechanism: the parallel wrists),
+serial (the serial arms), runner (Dask, the resumable store), store (the xarray/Zarr dataset), maps (workspace and
+singularity maps of one design), report (tables, figures, Markdown), html (the self-contained HTML report), seeds
+(the seeds' claims), cli.
 """
 
 from __future__ import annotations

@@ -61,3 +61,40 @@ def rsr_maps(mech, design, options, n_alpha: int = 361, n_beta: int = 241, n_lbw
     swing = np.array([beta[r].max() if r.any() else 0.0 for r in reach])
     return {"swing": {"alpha": alpha, "beta": beta, "best_li": np.where(reach, best, 0.0).T, "reach": reach.T,
                       "max_swing": swing, "beta_step": beta[1] - beta[0], "alpha_step": alpha[1] - alpha[0]}}
+
+
+OTHER_JOINTS = 0.6  # the unit-cube coordinate of the joints a serial map holds fixed
+
+
+def serial_maps(mech, design, options, n: int = 121) -> dict:
+    """Conditioning map of a serial arm: the local index sigma_min / sigma_max of diag(I / L_c, I) J over two
+    joints (the 2nd and 3rd where the arm has three or more: the first turns the whole arm and leaves the index
+    unchanged), on an n x n grid of their sampled ranges, the other joints at 60 % of theirs (revolute 36 deg:
+    a generic value; 0 is often a wrist singularity, which would blacken the whole map). One joint: a line."""
+    dim = mech.joint_dim
+    axes = (1, 2) if dim >= 3 else ((0, 1) if dim == 2 else (0,))
+    grid = (np.arange(n) + 0.5) / n
+    if len(axes) == 2:
+        g0, g1 = np.meshgrid(grid, grid, indexing="xy")
+        u = np.full((g0.size, dim), OTHER_JOINTS)
+        u[:, axes[0]], u[:, axes[1]] = g0.ravel(), g1.ravel()
+    else:
+        u = np.full((n, dim), OTHER_JOINTS)
+        u[:, axes[0]] = grid
+    q = mech.joints(u, design)
+    li = mech.local_index_numpy(design, q, mech.characteristic_length(design))
+
+    def label(i):
+        unit = "deg" if mech.module.JOINT_KINDS[i] == "R" else "m"
+        return f"{mech.module.JOINT_NAMES[i]} ({unit})"
+
+    def values(i):  # the grid's joint values along axis i (the same mapping as the samples)
+        line = np.full((n, dim), OTHER_JOINTS)
+        line[:, i] = grid
+        col = mech.joints(line, design)[:, i]
+        return np.degrees(col) if mech.module.JOINT_KINDS[i] == "R" else col
+
+    if len(axes) == 2:
+        return {"x": values(axes[0]), "y": values(axes[1]), "li": li.reshape(n, n), "xlabel": label(axes[0]),
+                "ylabel": label(axes[1])}
+    return {"x": values(axes[0]), "y": None, "li": li, "xlabel": label(axes[0]), "ylabel": None}

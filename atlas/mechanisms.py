@@ -29,8 +29,15 @@ class Options:
     swing_bins: int = 72  # azimuth bins of the 3-RSR swing measures (5 deg)
 
 
+ATLAS_MODES = 7  # the generated C's WK_ATLAS_MODES: the sums before the FK mode histogram (wristkin_common.h)
+
+
 class UnknownMechanism(ValueError):
     pass
+
+
+class UnsupportedMechanism(UnknownMechanism):
+    """A mechanism wristkin solves but the atlas has no measures for (the message says why and what to run)."""
 
 
 def _ratio(num, den):
@@ -129,6 +136,17 @@ class Mechanism:
         self.name = module.NAME
         self.key = module.NAME  # what mechanism() takes to make this again (a worker's task argument)
 
+    def unit_blocks(self, seed: int, block: int, samples: int, grid: bool):
+        """(pose, joint) unit samples of one block (sampling.py): what evaluate gets."""
+        from . import sampling
+
+        return (sampling.unit_block(seed, sampling.POSE_STREAM, block, samples, self.pose_dim, grid),
+                sampling.unit_block(seed, sampling.JOINT_STREAM, block, samples, self.joint_dim, grid))
+
+    def solves(self, u_pose, u_joint) -> int:
+        """Solves one evaluate of these unit samples runs (the progress bar's rate)."""
+        return len(u_pose) + len(u_joint)
+
     def partials(self) -> tuple[Partial, ...]:
         raise NotImplementedError
 
@@ -213,25 +231,43 @@ class UnderactuatedWrist(Mechanism):
         return inverse_kappa_f(rows, g), g
 
     def evaluate(self, design, u_pose, u_joint, options):
-        m, out = self.module, {"design_ok": 1}
         # the poses do not depend on the design: mapped once per block (the task holds its blocks alive: ids stay)
         key = (id(u_pose), options.tilt_max)
         poses = self._pose_cache.get(key)
         if poses is None:
             poses = self._pose_cache.setdefault(key, self.poses(u_pose, options))
+        home = self._home_cache.get(design.params)
+        if home is None:  # once per design, not per block
+            home = self._home_cache.setdefault(design.params, self.home_mode(design))
+        joints = self.joints(u_joint, design)
+        c = getattr(self.module, "_C", None)
+        batch = getattr(c, self.module.NAME + "_atlas_home_batch", None) if c is not None else None
+        if batch is None or getattr(design, "native", None) is None:
+            return self.evaluate_numpy(design, poses, joints, home, options)
+        sums = np.zeros(ATLAS_MODES + self.module.MAX_FK + 1, dtype=np.int64)
+        li_min, lo, hi = np.full(1, np.inf), np.full(3, np.inf), np.full(3, -np.inf)
+        rc = batch(poses, joints, design.native, float(options.threshold), home.astype(np.int64), sums, li_min, lo, hi)
+        if rc != 0:  # the samples are finite and the design valid: a failure here is a defect, not a measure
+            raise RuntimeError(f"{self.module.NAME}_atlas_home_batch failed with code {rc}")
+        n_reach, n_sets, li_sum, li_best_sum, near_inv, near_dir, fk_near_dir = (int(v) for v in sums[:ATLAS_MODES])
+        return {"design_ok": 1, "n_pose": len(poses), "n_reach": n_reach, "n_sets": n_sets, "li_sum": li_sum,
+                "li_best_sum": li_best_sum, "li_min": float(li_min[0]), "near_inv": near_inv, "near_dir": near_dir,
+                "n_joint": len(joints), "fk_near_dir": fk_near_dir, "modes": sums[ATLAS_MODES:].copy(),
+                "phi_lo": lo, "phi_hi": hi}
+
+    def evaluate_numpy(self, design, poses, joints, home, options):
+        """The same sums as the C atlas_home_batch, from ik_batch / fk_batch and numpy (tests compare the two)."""
+        m, out = self.module, {"design_ok": 1}
         ik = m.ik_batch(poses, design)
         reach = ik.valid.any(axis=1)  # the conditioning is computed on reachable poses only (the cost is there)
         valid, aux = ik.valid[reach], ik.aux[reach]
         li, g = self.local_index(design, poses[reach], ik.values[reach])
         _ik_partials(out, len(poses), valid, li, aux[..., 3], aux[..., 4], options.threshold)
-        home = self._home_cache.get(design.params)
-        if home is None:  # once per design, not per block
-            home = self._home_cache.setdefault(design.params, self.home_mode(design))
         in_mode = valid & ((g[0] > 0.0) == home[0]) & ((g[1] > 0.0) == home[1]) & ((g[2] > 0.0) == home[2])
         phi = np.degrees(aux[in_mode][:, :3])
         out["phi_lo"] = phi.min(axis=0) if len(phi) else np.full(3, np.inf)
         out["phi_hi"] = phi.max(axis=0) if len(phi) else np.full(3, -np.inf)
-        fk = m.fk_batch(self.joints(u_joint, design), design)
+        fk = m.fk_batch(joints, design)
         _fk_partials(out, fk.valid, fk.aux[..., m.FK_AUX_NAMES.index("cond_direct")], m.MAX_FK, options.threshold)
         return out
 
@@ -279,23 +315,17 @@ class RsrWrist(Mechanism):
     def local_index(self, design, poses, values):
         """1/kappa_F of J (v -> phi_dot) with v = (sin(beta) alpha_dot, beta_dot, l_bw_dot / L): the platform
         normal's velocity on the unit sphere and the centre distance in link lengths, so J is dimensionless and
-        free of the azimuth's representation singularity at beta = 0. Leg i: f_i = A_i cos phi + B sin phi -
-        l_bw / (2 L) = 0 with A_i = sin(beta/2) sin(alpha - a_i), B = cos(beta/2) (the module's _k_ik_coeffs);
-        g_i = df_i/dphi_i, x_i = -(df_i/dalpha / sin beta, df_i/dbeta, df_i/d(l_bw/L))."""
-        alpha, beta = poses[:, 0:1], poses[:, 1:2]
-        sh, ch = np.sin(0.5 * beta), np.cos(0.5 * beta)
+        free of the azimuth's representation singularity at beta = 0. J = diag(1/g) X from the module's derived
+        `atlas_rates` kernel (g phi_dot = X v; the C batch path evaluates the same kernel)."""
         vals = np.where(np.isfinite(values), values, 0.0)
-        rows, g = [], []
-        for i, a_i in enumerate(self.module.LEG_ANGLES):
-            c, s = np.cos(vals[..., i]), np.sin(vals[..., i])
-            sa, ca = np.sin(alpha - a_i), np.cos(alpha - a_i)
-            g.append(-sh * sa * s + ch * c)
-            d_alpha = ca * c / (2.0 * ch)  # sin(beta/2) cos(alpha - a_i) cos(phi) / sin(beta)
-            d_beta = 0.5 * ch * sa * c - 0.5 * sh * s
-            rows.append((-d_alpha, -d_beta, np.full_like(c, 0.5)))
+        pose = (poses[:, 0:1], poses[:, 1:2], poses[:, 2:3])
+        o = self.module._kv_atlas_rates(tuple(vals[..., i] for i in range(3)), pose, design.params)
+        o = [np.broadcast_to(np.asarray(v, dtype=float), vals.shape[:-1]) for v in o]
+        g = o[0:3]
+        rows = (tuple(o[3:6]), tuple(o[6:9]), tuple(o[9:12]))
         return inverse_kappa_f(rows, g), g
 
-    SWING_STEP = 0.5  # deg: the swing grid of the exact swing profile (a design costs ~2 ms: 72 x 181 attitudes)
+    SWING_STEP = 0.5  # deg: the swing grid of the exact swing profile (72 x 181 attitudes: ~0.05 ms in C, ~1 ms numpy)
 
     def feasible(self, design, alpha, beta) -> np.ndarray:
         """Whether some centre distance reaches attitude (alpha, beta) (arrays, rad) with every leg within its
@@ -327,6 +357,13 @@ class RsrWrist(Mechanism):
         (feasibility need not be monotone in beta: the largest feasible grid value)."""
         alpha = np.radians(np.arange(options.swing_bins) * 360.0 / options.swing_bins)
         beta = np.arange(0.0, math.degrees(options.tilt_max) + 1e-9, self.SWING_STEP)
+        c = getattr(self.module, "_C", None)
+        if c is not None and getattr(design, "native", None) is not None:  # C: from the top, the module's workspace
+            index = np.empty(len(alpha), dtype=np.int64)
+            rc = getattr(c, self.module.NAME + "_max_swing")(alpha, np.radians(beta), design.native, index)
+            if rc != 0:
+                raise RuntimeError(f"{self.module.NAME}_max_swing failed with code {rc}")
+            return np.where(index >= 0, beta[np.maximum(index, 0)], 0.0)
         ok = self.feasible(design, alpha[:, None], np.radians(beta)[None, :])
         return np.where(ok.any(axis=1), np.where(ok, beta[None, :], -np.inf).max(axis=1), 0.0)
 
@@ -334,10 +371,34 @@ class RsrWrist(Mechanism):
         """Per design (not per sample): the exact swing profile, once per design (the first sample chunk)."""
         return {"swing_bins": self.swing_profile(design, options)}
 
+    def native_batch(self, design):
+        """The generated C's atlas_batch (IK, leg limits, local index, conditioning and FK counts of a block in one
+        C loop, GIL released), or None where C does not run (WRISTKIN_BACKEND=numpy): then evaluate's numpy path."""
+        c = getattr(self.module, "_C", None)
+        if c is None or getattr(design, "native", None) is None:
+            return None
+        return getattr(c, self.module.NAME + "_atlas_batch", None)
+
     def evaluate(self, design, u_pose, u_joint, options):
+        poses = self.poses(u_pose, design, options)
+        joints = self.joints(u_joint, design)
+        batch = self.native_batch(design)
+        if batch is None:
+            return self.evaluate_numpy(design, poses, joints, options)
+        sums = np.zeros(ATLAS_MODES + self.module.MAX_FK + 1, dtype=np.int64)
+        li_min = np.full(1, np.inf)
+        rc = batch(poses, joints, design.native, float(options.threshold), sums, li_min)
+        if rc != 0:  # the samples are finite and the design valid: a failure here is a defect, not a measure
+            raise RuntimeError(f"{self.module.NAME}_atlas_batch failed with code {rc}")
+        n_reach, n_sets, li_sum, li_best_sum, near_inv, near_dir, fk_near_dir = (int(v) for v in sums[:ATLAS_MODES])
+        return {"design_ok": 1, "n_pose": len(poses), "n_reach": n_reach, "n_sets": n_sets, "li_sum": li_sum,
+                "li_best_sum": li_best_sum, "li_min": float(li_min[0]), "near_inv": near_inv, "near_dir": near_dir,
+                "n_joint": len(joints), "fk_near_dir": fk_near_dir, "modes": sums[ATLAS_MODES:].copy()}
+
+    def evaluate_numpy(self, design, poses, joints, options):
+        """The same sums as the C atlas_batch, from ik_batch / fk_batch and numpy (tests compare the two)."""
         m, out = self.module, {"design_ok": 1}
         lo, hi = design.params[1], design.params[2]
-        poses = self.poses(u_pose, design, options)
         ik = m.ik_batch(poses, design)
         # leg limits: phi within the arc [lo, hi]. The values lie in (-pi, pi] (NaN where no set: False below), so
         # off = phi - lo (lo wrapped) lies in (-2 pi, 2 pi] and the arc is off in [0, hi - lo] or off <= hi - lo -
@@ -354,7 +415,7 @@ class RsrWrist(Mechanism):
         li[rows, sets] = self.local_index(design, poses[reach][rows], ik.values[reach][rows, sets][:, None, :])[0][:, 0]
         aux = ik.aux[reach]
         _ik_partials(out, len(poses), valid[reach], li, aux[..., 1], aux[..., 2], options.threshold)
-        fk = m.fk_batch(self.joints(u_joint, design), design)
+        fk = m.fk_batch(joints, design)
         _fk_partials(out, fk.valid, fk.aux[..., m.FK_AUX_NAMES.index("cond_direct")], m.MAX_FK, options.threshold)
         return out
 
@@ -424,5 +485,11 @@ def mechanism(name: str) -> Mechanism:
         mech = SerialArm(module)
         mech.key = name
         return mech
-    raise UnknownMechanism(f"the atlas has no measures for {name!r} yet (it sweeps {', '.join(ADAPTERS)} and the "
-                           "serial arms)")
+    from .hybrid import ScaraRsr
+
+    if ScaraRsr.fits(module):
+        mech = ScaraRsr(module)
+        mech.key = name
+        return mech
+    raise UnsupportedMechanism(f"the atlas has no measures for {name!r} (it sweeps {', '.join(ADAPTERS)} and the "
+                               "serial arms)")

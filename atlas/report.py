@@ -1,6 +1,9 @@
 """The atlas's outputs beside the store: best.csv (the best designs per measure), figures/*.png (measure maps
 over two design parameters with the catalogue (seed) design marked; workspace and singularity maps of the focus
-design) and report.md, which shows them with the measures' definitions and the seeds' claims checked."""
+design), report.md, which shows them with the measures' definitions and the seeds' claims checked, and
+report.html, the same report in one self-contained file (figures embedded as base64 PNG). Deterministic bytes: the
+same store gives the same files (matplotlib's Agg with a fixed dpi and no Software metadata; the report states no
+timings, which stay in the store's attrs)."""
 
 from __future__ import annotations
 
@@ -11,15 +14,25 @@ from pathlib import Path
 
 import numpy as np
 
+from . import html as html_mod
 from . import maps as maps_mod
 from . import seeds
+from .hybrid import ScaraRsr
 from .mechanisms import Options, RsrWrist, UnderactuatedWrist, mechanism
+from .serial import SerialArm
 from .store import design_dims
 
 MAP_MEASURES = ("reachable", "gci", "gci_best", "worst_li", "near_inverse", "near_direct", "fk_modes_mean",
                 "fk_no_assembly", "fk_near_direct", "swing_all", "swing_peak", "ik_sets_mean", "singular",
-                "manipulability_mean", "manipulability_min")
+                "near_singular", "manipulability_mean", "manipulability_min", "arm_assembles", "reach_max",
+                "reach_min")
 TOP = 5  # designs listed per measure
+DPI = 110  # fixed: the figures' bytes depend on nothing but the data
+
+
+def _save(fig, path: Path) -> None:
+    """PNG without the Software tag (matplotlib's version: the bytes would change with it); Agg writes no date."""
+    fig.savefig(path, dpi=DPI, metadata={"Software": None})
 
 
 def _scalar_measures(ds):
@@ -93,7 +106,7 @@ def _plot_measure(plt, ds, name, default, path: Path):
     title = name + (" at " + ", ".join(f"{k} = {float(v):g}" for k, v in rest.items()) if rest else "")
     ax.set_title(title, fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    _save(fig, path)
     plt.close(fig)
 
 
@@ -115,6 +128,8 @@ def _focus_design(mech, ds, focus: list[str] | None):
 
 def _focus_plots(plt, mech, design, options, figdir: Path) -> tuple[list[tuple[str, str]], dict | None]:
     figs = []
+    if isinstance(mech, ScaraRsr):  # the hybrid's workspace maps are its wrist's (its reach is a measure)
+        mech, design = mech.wrist, mech.wrist_design(design)
     if isinstance(mech, UnderactuatedWrist):
         mp = maps_mod.underactuated_maps(mech, design, options)
         t = mp["tilt"]
@@ -127,7 +142,7 @@ def _focus_plots(plt, mech, design, options, figdir: Path) -> tuple[list[tuple[s
         fig.colorbar(m1, ax=axes[1], label="real FK assembly modes")
         axes[1].set(xlabel=f["xlabel"], ylabel=f["ylabel"], title=f"assembly modes at theta3 = {f['theta3']:.2f} deg")
         fig.tight_layout()
-        fig.savefig(figdir / "focus_workspace.png", dpi=110)
+        _save(fig, figdir / "focus_workspace.png")
         plt.close(fig)
         figs.append(("focus_workspace.png", "Focus design. Left: the orientation workspace over pure tilts (zero "
                      "torsion, R = Rz(psi) Rx(theta) Rz(-psi)), coloured by the best IK set's 1/kappa_F (black: "
@@ -150,13 +165,41 @@ def _focus_plots(plt, mech, design, options, figdir: Path) -> tuple[list[tuple[s
         axes[1].plot(*seeds.SEED002_SWING_AT, marker="*", ms=12, mfc="w", mec="k", ls="none")
         axes[1].set(xlabel="azimuth alpha (deg)", ylabel="max reachable swing (deg)", title="maximum swing")
         fig.tight_layout()
-        fig.savefig(figdir / "focus_workspace.png", dpi=110)
+        _save(fig, figdir / "focus_workspace.png")
         plt.close(fig)
         figs.append(("focus_workspace.png", "Focus design. Left: reachable swing workspace over (azimuth, swing), "
                      "some l_bw in [lbw_min, lbw_max] with every leg within its limits, coloured by the best "
                      "1/kappa_F. Right: the maximum reachable swing per azimuth, with the seed's claims."))
         return figs, mp
+    if isinstance(mech, SerialArm):
+        mp = maps_mod.serial_maps(mech, design, options)
+        fig, ax = plt.subplots(figsize=(5.6, 4.2))
+        if mp["y"] is None:
+            ax.plot(mp["x"], mp["li"])
+            ax.set(xlabel=mp["xlabel"], ylabel="local index sigma_min / sigma_max")
+        else:
+            mesh = ax.pcolormesh(mp["x"], mp["y"], mp["li"], shading="nearest", cmap="magma", vmin=0.0)
+            fig.colorbar(mesh, ax=ax, label="local index sigma_min / sigma_max")
+            ax.contour(mp["x"], mp["y"], mp["li"], levels=[options.threshold], colors="c", linewidths=0.8)
+            ax.set(xlabel=mp["xlabel"], ylabel=mp["ylabel"])
+        ax.set_title("conditioning over two joints (the others at 60 % of their range)", fontsize=9)
+        fig.tight_layout()
+        _save(fig, figdir / "focus_workspace.png")
+        plt.close(fig)
+        figs.append(("focus_workspace.png", "Focus design: the local index sigma_min / sigma_max of diag(I / L_c, I) "
+                     f"J over {mp['xlabel']} and {mp['ylabel'] or 'nothing else'} (the other joints at 60 % of their "
+                     "sampled range: revolute 36 deg, a generic value; 0 is often a wrist singularity); black is a "
+                     "singularity, the cyan line the threshold "
+                     f"{options.threshold:g} below which a sample counts as near-singular."))
     return figs, None
+
+
+def _canonical_order(ds):
+    """The measures in the mechanism's own order (a store read back lists them alphabetically): the summary and the
+    report are the same bytes whether they are written from the sweep's result or from the store."""
+    order = [m.name for m in mechanism(ds.attrs["mechanism"]).measures(Options(threshold=float(ds.attrs["threshold"])))]
+    names = [n for n in order if n in ds.data_vars] + sorted(n for n in ds.data_vars if n not in order)
+    return ds[names]
 
 
 def write_outputs(out, ds, focus: list[str] | None = None, report: bool = True) -> list[Path]:
@@ -167,11 +210,18 @@ def write_outputs(out, ds, focus: list[str] | None = None, report: bool = True) 
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
+    ds = _canonical_order(ds)
     rows = best_rows(ds)
     _write_csv(out / "best.csv", rows)
     paths = [out / "atlas.zarr", out / "best.csv"]
     if not report:
         return paths
+    # the figures' bytes: a fixed hash salt (SVG ids; PNG has none), no date, a fixed dpi (_save)
+    with matplotlib.rc_context({"svg.hashsalt": "wristkin-atlas", "savefig.dpi": DPI}):
+        return paths + _write_report(plt, out, ds, rows, focus)
+
+
+def _write_report(plt, out: Path, ds, rows, focus) -> list[Path]:
     mech = mechanism(ds.attrs["mechanism"])
     options = Options(threshold=float(ds.attrs["threshold"]), tilt_max=math.radians(float(ds.attrs["tilt_max_deg"])))
     default = json.loads(ds.attrs["design_default"])
@@ -188,8 +238,9 @@ def write_outputs(out, ds, focus: list[str] | None = None, report: bool = True) 
               seeds.rsr_claims(mech, ds, maps) if isinstance(mech, RsrWrist) else [])
     text = _markdown(ds, rows, measure_figs, focus_figs, focus_values, claims)
     (out / "report.md").write_text(text)
-    paths += [out / "report.md", figdir]
-    return paths
+    title = f"Design atlas: {ds.attrs.get('name', ds.attrs['mechanism'])}"
+    (out / "report.html").write_text(html_mod.render(text, out, title))
+    return [out / "report.md", out / "report.html", figdir]
 
 
 def _fmt(v) -> str:
@@ -205,10 +256,15 @@ def _fixed_text(fixed: str) -> str:
         return str(fixed)
     return ", ".join(f"{k} = {v:.12g}" for k, v in values.items()) if isinstance(values, dict) else str(fixed)
 
+def _seed_text(ds, dims) -> str:
+    """The catalogue (seed) design at the maps' axes, as the star marks it."""
+    default = json.loads(ds.attrs["design_default"])
+    return "seed design: " + ", ".join(f"{d} = {default[d]:.6g} {ds[d].attrs.get('units', '')}".rstrip()
+                                       for d in dims[:2] if d in default)
+
+
 def _markdown(ds, rows, measure_figs, focus_figs, focus_values, claims) -> str:
     dims = list(design_dims(ds))
-    timing = json.loads(ds.attrs["timing"])
-    secs = [s for s in timing["task_seconds"] if s == s]
     n_designs = int(np.prod([ds.sizes[d] for d in dims]))
     lines = [f"# Design atlas: {ds.attrs.get('name', ds.attrs['mechanism'])}", "",
              f"{n_designs} designs ("
@@ -218,9 +274,8 @@ def _markdown(ds, rows, measure_figs, focus_figs, focus_values, claims) -> str:
              f"({ds.attrs['sampling']}, seed {ds.attrs['seed']}; platform tilt up to {ds.attrs['tilt_max_deg']:g} "
              f"deg; near-singular threshold {ds.attrs['threshold']:g}). Fixed parameters: "
              f"{_fixed_text(ds.attrs['fixed_design'])}. Solvers: wristkin {ds.attrs['wristkin_version']} (inputs "
-             f"{ds.attrs['inputs_hash']}, backend {ds.attrs['backend']}). "
-             f"{len(secs)} chunks, {sum(secs):.1f} s of worker time (mean {np.mean(secs) if secs else 0:.3f} s per "
-             "chunk).", "",
+             f"{ds.attrs['inputs_hash']}, backend {ds.attrs['backend']}). The run's timing per chunk is in the "
+             "store's `timing` attribute (not here: the report's bytes depend on the numbers only).", "",
              "Open the numbers with `wristkin_atlas.open_atlas(DIR)` (xarray; `atlas.zarr`); best designs per "
              "measure: `best.csv`. Units: angles in degrees, lengths in metres, fractions and indices "
              "dimensionless. 1/kappa_F is the Frobenius-norm local conditioning index (docs/atlas.md).", "",
@@ -241,8 +296,9 @@ def _markdown(ds, rows, measure_figs, focus_figs, focus_values, claims) -> str:
     lines += ["", "## Where the seeds' claims stand", ""] + (claims or ["- (no seed claims for this mechanism)"])
     lines += ["", "## Measure maps", "",
               "Each map spans the first two swept parameters (any others at the catalogue design's value); the star "
-              "marks the catalogue (seed) design; white cells are designs make_design rejects (or, for a ratio, "
-              "designs with nothing to average: no reachable sampled pose).", ""]
+              "marks the catalogue (seed) design, **" + _seed_text(ds, dims) + "**; white cells are designs "
+              "make_design rejects (or, for a ratio, designs with nothing to average: no reachable sampled pose).",
+              ""]
     for name in measure_figs:
         lines += [f"### {name}", "", f"{ds[name].attrs.get('definition', '')}", "",
                   f"![{name}](figures/map_{name}.png)", ""]

@@ -21,7 +21,7 @@ from .mechanisms import Options, mechanism
 from .partials import merge, reduce_axis
 from .sweep import Sweep, parse_sweep
 
-FORMAT = 2  # of partials.zarr: a store written under another format is not resumed
+FORMAT = 3  # of partials.zarr: a store written under another format is not resumed
 TARGET_TASK_SOLVES = 65536  # solves per task by default: ~0.1-0.5 s of C work, far above Dask's per-task cost
 
 
@@ -91,16 +91,15 @@ def _warm(name: str) -> None:
 
 
 def compute_task(name: str, designs: np.ndarray, seed: int, samples: int, grid: bool, options: Options,
-                 block_lo: int, block_hi: int) -> tuple[dict, float, int]:
+                 block_lo: int, block_hi: int) -> tuple[dict, float, int, float]:
     """Partial results of `designs` (k, n_params) over sample blocks [block_lo, block_hi): (partials, seconds of
-    this task, solves). Runs on a worker; the C batch calls release the GIL."""
-    t0 = time.perf_counter()
+    this task, solves, CPU seconds of its thread). Runs on a worker; the C batch calls release the GIL. The CPU
+    time tells a task slowed by other jobs on the machine (wall > CPU) from one that does more work."""
+    t0, c0 = time.perf_counter(), time.thread_time()
     mech = mechanism(name)
     specs = mech.partials()
     out = {s.name: s.empty(len(designs)) for s in specs}
-    units = [(sampling.unit_block(seed, sampling.POSE_STREAM, b, samples, mech.pose_dim, grid),
-              sampling.unit_block(seed, sampling.JOINT_STREAM, b, samples, mech.joint_dim, grid))
-             for b in range(block_lo, block_hi)]
+    units = [mech.unit_blocks(seed, b, samples, grid) for b in range(block_lo, block_hi)]
     solves = 0
     for k, params in enumerate(designs):
         design = mech.make_design(params)
@@ -108,7 +107,7 @@ def compute_task(name: str, designs: np.ndarray, seed: int, samples: int, grid: 
             continue
         for u_pose, u_joint in units:
             part = mech.evaluate(design, u_pose, u_joint, options)
-            solves += len(u_pose) + len(u_joint)
+            solves += mech.solves(u_pose, u_joint)
             for s in specs:
                 if s.name in part:  # per-design partials (design_partials) are not per block
                     out[s.name][k] = merge(s, out[s.name][k], part[s.name])
@@ -116,7 +115,7 @@ def compute_task(name: str, designs: np.ndarray, seed: int, samples: int, grid: 
         if block_lo == 0 and hasattr(mech, "design_partials"):  # per-design measures: in the first sample chunk
             for name, value in mech.design_partials(design, options).items():
                 out[name][k] = value
-    return out, time.perf_counter() - t0, solves
+    return out, time.perf_counter() - t0, solves, time.thread_time() - c0
 
 
 # ---------------------------------------------------------------------------- the partials store
@@ -168,8 +167,8 @@ def _open_partials(path: Path, plan: Plan, mech, overwrite: bool):
     width = sum(n for _, _, n in _layout(mech.partials()))
     group.create_array("packed", shape=(size, s_chunks, width), chunks=(plan.design_chunk, 1, width),
                        dtype=np.int64, fill_value=0)
-    group.create_array("done", shape=(plan.n_design_chunks, s_chunks), chunks=(plan.n_design_chunks, s_chunks),
-                       dtype=bool, fill_value=False)
+    # a task's seconds, NaN until it is stored: one small write per finished task marks it done (a separate done
+    # flag was a second read-modify-write of the same chunk, ~1 ms of the client's CPU per task)
     group.create_array("seconds", shape=(plan.n_design_chunks, s_chunks), chunks=(plan.n_design_chunks, s_chunks),
                        dtype=np.float64, fill_value=np.nan)
     return group
@@ -212,11 +211,16 @@ def _client(workers: int | None, scheduler: str | None):
     if scheduler:
         client = Client(scheduler)
         return client, client.close
-    if workers:
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0")
-    else:
-        cluster = LocalCluster(n_workers=1, threads_per_worker=os.cpu_count() or 1, processes=False,
-                               dashboard_address=":0")
+    import dask
+
+    # the clusters the atlas starts: no dashboard, and no statistical profiler in the workers (a thread that takes
+    # the GIL every 10 ms to sample the stack: CPU a 2-core machine's second worker needs)
+    with dask.config.set({"distributed.worker.profile.enabled": False}):
+        if workers:
+            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+        else:
+            cluster = LocalCluster(n_workers=1, threads_per_worker=os.cpu_count() or 1, processes=False,
+                                   dashboard_address=None)
     client = Client(cluster)
 
     def close():
@@ -240,7 +244,7 @@ def run_sweep(mechanism_name: str, sweeps: list[str], out: str | Path, designs: 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     group = _open_partials(out / "partials.zarr", plan, mech, overwrite)
-    done = np.asarray(group["done"][...])
+    done = np.isfinite(np.asarray(group["seconds"][...]))
     todo = [(i, j) for i, j in plan.tasks() if not done[i, j]]
     if max_tasks is not None:
         todo = todo[:max_tasks]
@@ -260,19 +264,20 @@ def run_sweep(mechanism_name: str, sweeps: list[str], out: str | Path, designs: 
                 futures[fut] = (i, j, d0, d1)
             specs = mech.partials()
             t_compute = time.perf_counter()
+            cpu = []
             for fut in as_completed(futures):
                 i, j, d0, d1 = futures.pop(fut)
-                part, secs, solves = fut.result()
+                part, secs, solves, cpu_secs = fut.result()
+                cpu.append(cpu_secs)
                 group["packed"][d0:d1, j] = pack(specs, part)
-                group["seconds"][i, j] = secs
-                group["done"][i, j] = True  # after the data: a task counts as stored only once it is
+                group["seconds"][i, j] = secs  # after the data: a task counts as stored only once it is
                 done[i, j] = True
                 bar.step(solves)
             compute_wall = time.perf_counter() - t_compute
         finally:
             close()
     else:
-        compute_wall = 0.0
+        compute_wall, cpu = 0.0, []
     wall = time.perf_counter() - t0
     if not done.all():
         return None
@@ -282,6 +287,6 @@ def run_sweep(mechanism_name: str, sweeps: list[str], out: str | Path, designs: 
     totals = {s.name: reduce_axis(s, stored[s.name], 1) for s in mech.partials()}
     measures = mech.finalize(totals, plan.options)
     timing = {"wall_seconds_this_run": wall, "compute_seconds_this_run": compute_wall,
-              "tasks_this_run": len(todo), "tasks": int(done.size),
+              "tasks_this_run": len(todo), "tasks": int(done.size), "task_cpu_seconds_this_run": cpu,
               "task_seconds": np.asarray(group["seconds"][...]).ravel().tolist()}
     return write_dataset(out / "atlas.zarr", plan, mech, measures, timing)

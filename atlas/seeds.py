@@ -95,7 +95,7 @@ def evaluate_design(mech, ds, values: dict) -> dict:
     angles = set(angle_names(mech.module))
     params = np.array([[math.radians(fixed[n]) if n in angles else fixed[n] for n in mech.module.DESIGN_NAMES]])
     n_blocks = sampling.blocks(ident["samples"], mech.joint_dim, ident["grid"])
-    part, _, _ = compute_task(mech.key, params, ident["seed"], ident["samples"], ident["grid"], opts, 0, n_blocks)
+    part, *_ = compute_task(mech.key, params, ident["seed"], ident["samples"], ident["grid"], opts, 0, n_blocks)
     return {k: v[0] for k, v in mech.finalize(part, opts).items()}
 
 

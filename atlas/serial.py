@@ -1,8 +1,10 @@
-"""Serial arms in the atlas (DH chains and the finite-screw robots): joint-space samples, FK of each (C batch),
-then IK of that pose (C batch): how many IK branches each sampled pose has, whether IK closes on it, and the
-manipulability sqrt(det J^T J) the generated FK reports. A conditioning index needs the whole Jacobian per
-sample; the generated C has it only as a scalar call (no batch), so the serial atlas reports manipulability and
-the solvers' singular flags instead of 1/kappa (docs/atlas.md)."""
+"""Serial arms in the atlas (DH chains, the finite-screw robots, spec / URDF chains): joint-space samples, FK of
+each (C batch), then IK of that pose (C batch): how many IK branches each sampled pose has, whether IK closes on
+it, the manipulability sqrt(det J^T J) the generated FK reports, and the conditioning of the derived geometric
+Jacobian: the local index sigma_min / sigma_max of diag(I / L_c, I) J (linear rows over a characteristic length, so
+it is dimensionless), its mean (GCI), its worst value and the fraction of samples below the threshold
+(singularity proximity). The catalogue arms compute it in their generated C (atlas_conditioning, GIL released); a
+spec / URDF chain's module has no such batch, so its Jacobian comes from its `jacobian` per sample and numpy's SVD."""
 
 from __future__ import annotations
 
@@ -11,7 +13,7 @@ import math
 import numpy as np
 
 from .mechanisms import Measure, Mechanism, _ratio
-from .partials import MIN, SUM, Partial
+from .partials import FIXED, MIN, SUM, Partial, fixed_sum
 
 
 def is_serial(module) -> bool:
@@ -31,7 +33,8 @@ class SerialArm(Mechanism):
     def partials(self):
         return (Partial("design_ok", SUM), Partial("n_joint", SUM), Partial("ik_closes", SUM),
                 Partial("sets", SUM, (self.module.MAX_IK + 1,)), Partial("singular", SUM),
-                Partial("manip_sum", SUM), Partial("manip_min", MIN))
+                Partial("manip_sum", SUM), Partial("manip_min", MIN), Partial("li_sum", SUM),
+                Partial("li_min", MIN), Partial("near_singular", SUM))
 
     def measures(self, options):
         kinds = self.module.JOINT_KINDS
@@ -47,7 +50,50 @@ class SerialArm(Mechanism):
             Measure("manipulability_mean", unit, "mean of sqrt(det J^T J) over the joint samples (units: metres "
                     "to the power of the Jacobian's linear rank; compare designs of one robot only)", "max"),
             Measure("manipulability_min", unit, "smallest sampled manipulability", "max"),
+            Measure("gci", "1", "global conditioning index: mean over the joint samples of the local index "
+                    "sigma_min / sigma_max (1/kappa_2) of diag(I / L_c, I) J, the geometric Jacobian with its linear "
+                    "rows divided by the characteristic length L_c (the design's largest absolute parameter value, 1 m "
+                    "if none)",
+                    "max"),
+            Measure("worst_li", "1", "worst local index: the smallest sampled sigma_min / sigma_max", "max"),
+            Measure("near_singular", "1", f"fraction of joint samples whose local index is below "
+                    f"{options.threshold:g} (singularity proximity)", "min"),
         ]
+
+    def characteristic_length(self, design) -> float:
+        """L_c: the design's largest |value| that is not a free joint (the prismatic stroke too), 1 when none."""
+        m = self.module
+        params = tuple(np.ravel(getattr(design, "params", ())))
+        lengths = [abs(v) for n, v in zip(m.DESIGN_NAMES, params, strict=False)
+                   if n not in m.JOINT_NAMES and np.isfinite(v)]
+        return max(lengths) if lengths and max(lengths) > 0 else 1.0
+
+    def conditioning(self, design, q, threshold) -> tuple[int, float, int]:
+        """(fixed-point sum, min, count below threshold) of the local index over the joint samples q."""
+        m, length = self.module, self.characteristic_length(design)
+        c = getattr(m, "_C", None)
+        batch = getattr(c, m.NAME + "_atlas_conditioning", None) if c is not None else None
+        if batch is not None and getattr(design, "native", None) is not None:
+            sums, li_min = np.zeros(2, dtype=np.int64), np.full(1, np.inf)
+            rc = batch(np.ascontiguousarray(q, dtype=float), design.native, float(length), float(threshold), sums,
+                       li_min)
+            if rc != 0:
+                raise RuntimeError(f"{m.NAME}_atlas_conditioning failed with code {rc}")
+            return int(sums[0]), float(li_min[0]), int(sums[1])
+        li = self.local_index_numpy(design, q, length)
+        return fixed_sum(li), float(li.min()) if li.size else np.inf, int((li < threshold).sum())
+
+    def local_index_numpy(self, design, q, length) -> np.ndarray:
+        """sigma_min / sigma_max of diag(I / L_c, I) J per sample, J from the module's `jacobian` (the derived
+        Jacobian; one call per sample) and numpy's SVD: the path of a module without the C batch."""
+        if len(q) == 0:
+            return np.empty(0)
+        jac = np.array([self.module.jacobian(row, design) for row in q], dtype=float)
+        jac[:, :3, :] /= length
+        sv = np.linalg.svd(jac, compute_uv=False)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(sv[:, 0] > 0.0, sv[:, -1] / np.where(sv[:, 0] > 0.0, sv[:, 0], 1.0), 0.0)
+        return np.clip(ratio, 0.0, 1.0)
 
     def joints(self, u, design):
         """Joint samples: within the module's LOWER / UPPER where it has finite ones (a derived arm), else
@@ -83,7 +129,9 @@ class SerialArm(Mechanism):
         ik = m.ik_batch(poses[ok], design)
         count = ik.valid.sum(axis=1)
         manip = fk.aux[ok, 0, 0]
-        return {"design_ok": 1, "n_joint": len(q), "ik_closes": int((count > 0).sum()),
+        li_sum, li_min, near = self.conditioning(design, q, options.threshold)
+        return {"li_sum": li_sum, "li_min": li_min, "near_singular": near, "design_ok": 1, "n_joint": len(q),
+                "ik_closes": int((count > 0).sum()),
                 "sets": np.bincount(count, minlength=m.MAX_IK + 1).astype(np.int64),
                 "singular": int(((fk.flags[:, 0] & m.FLAG_SINGULAR_INVERSE) != 0).sum()),
                 # manipulability has units: summed exactly as an integer of 2^-32 of its unit (designs of metres)
@@ -97,7 +145,10 @@ class SerialArm(Mechanism):
         out = {"ik_closes": _ratio(p["ik_closes"], n), "ik_sets": _ratio(sets, n[:, None]),
                "ik_sets_mean": _ratio(sets @ np.arange(sets.shape[1], dtype=float), n),
                "singular": _ratio(p["singular"], n), "manipulability_mean": _ratio(p["manip_sum"] / 2.0**32, n),
-               "manipulability_min": np.where(np.isfinite(p["manip_min"]), p["manip_min"], np.nan)}
+               "manipulability_min": np.where(np.isfinite(p["manip_min"]), p["manip_min"], np.nan),
+               "gci": _ratio(p["li_sum"] / FIXED, n),
+               "worst_li": np.where(np.isfinite(p["li_min"]), p["li_min"], np.nan),
+               "near_singular": _ratio(p["near_singular"], n)}
         for k, v in out.items():
             out[k] = np.where(ok.reshape((-1,) + (1,) * (v.ndim - 1)), v, np.nan)
         return out

@@ -126,7 +126,9 @@ def _c_api(header: str, name: str) -> dict:
     def has(fn: str) -> bool:
         return f"wk_{name}_{fn}(" in header
     return {"name": name, "pose12": f"#define WK_{name.upper()}_N_POSE 12" in header, "ik_near": has("ik_near"),
-            "jacobian": has("jacobian"), "fk_matrix": has("fk_matrix"), "frames": has("design_set_frames")}
+            "jacobian": has("jacobian"), "fk_matrix": has("fk_matrix"), "frames": has("design_set_frames"),
+            "atlas": has("atlas_batch"), "atlas_conditioning": has("atlas_conditioning"),
+            "atlas_home": has("atlas_home_batch")}
 
 
 def native_binding(out: Path, module_path: str = "wristkin._native") -> Path:

@@ -91,6 +91,24 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bit
 int wk_select(int max_sets, int n, const int *valid, const unsigned *flags, const double *values, const int *revolute,
               const double *previous, const double *lower, const double *upper, const double *weights);
 
+/* The local conditioning index 1/kappa_F of the 3 x 3 J = diag(1/g) X (row i: x_i / g_i; x row-major), with
+ * kappa_F = ||J||_F ||J^-1||_F / 3 the Frobenius condition number the design atlas averages into the global
+ * conditioning index (Gosselin & Angeles 1991): in [0, 1], 1 where J is a multiple of a rotation, 0 at a singularity
+ * (a g_i = 0: inverse; det X = 0: direct). Closed form, no division by g_i (wristkin_atlas/conditioning.py). */
+double wk_inverse_kappa_f(const double x[9], const double g[3]);
+
+/* The design atlas's per-block sums (docs/atlas.md), in this order in an int64 array: values in [0, 1] are summed
+ * as round(v 2^32) (exact and order-independent whatever the chunking); the FK mode histogram follows. */
+#define WK_ATLAS_N_REACH 0      /* sampled poses with an IK set within the limits */
+#define WK_ATLAS_N_SETS 1       /* such IK sets */
+#define WK_ATLAS_LI_SUM 2       /* their 1/kappa_F, fixed point */
+#define WK_ATLAS_LI_BEST_SUM 3  /* per reachable pose, its best set's 1/kappa_F, fixed point */
+#define WK_ATLAS_NEAR_INVERSE 4 /* sets with cond_inverse < threshold */
+#define WK_ATLAS_NEAR_DIRECT 5  /* sets with cond_direct < threshold */
+#define WK_ATLAS_FK_NEAR_DIRECT 6 /* joint samples with an assembly mode whose cond_direct < threshold */
+#define WK_ATLAS_MODES 7        /* then MAX_FK + 1 counts: joint samples by their number of real assembly modes */
+#define WK_ATLAS_FIXED 4294967296.0 /* 2^32 */
+
 #ifdef __cplusplus
 }
 #endif

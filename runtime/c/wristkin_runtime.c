@@ -120,6 +120,39 @@ int wk_all_finite(const double *v, int n)
     return 1;
 }
 
+static double wk_dot3(const double *a, const double *b)
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void wk_cross3(const double *a, const double *b, double *c)
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* With P = g1 g2 g3, c_i = x_j x x_k ((i, j, k) cyclic) and D = det X:
+ * 1/kappa_F = 3 |D P| / (sqrt(sum_i |x_i|^2 (g_j g_k)^2) sqrt(sum_i |c_i|^2 g_i^2)): J^-1 = X^-1 diag(g) has
+ * columns c_i g_i / D, J has rows x_i / g_i; both norms multiplied out so no g_i or D divides. 0 when the
+ * denominator vanishes; rounding can put an isotropic J a few ulps above 1, clamped. */
+double wk_inverse_kappa_f(const double x[9], const double g[3])
+{
+    const double g12 = g[0] * g[1], g23 = g[1] * g[2], g31 = g[2] * g[0];
+    double c[9], det, n_j, n_adj, den, num, out;
+    wk_cross3(x + 3, x + 6, c);
+    wk_cross3(x + 6, x, c + 3);
+    wk_cross3(x, x + 3, c + 6);
+    det = wk_dot3(x, c);
+    n_j = wk_dot3(x, x) * (g23 * g23) + wk_dot3(x + 3, x + 3) * (g31 * g31) + wk_dot3(x + 6, x + 6) * (g12 * g12);
+    n_adj = wk_dot3(c, c) * g[0] * g[0] + wk_dot3(c + 3, c + 3) * g[1] * g[1] + wk_dot3(c + 6, c + 6) * g[2] * g[2];
+    den = sqrt(n_j) * sqrt(n_adj);
+    num = 3.0 * fabs(det * g[0] * g[1] * g[2]);
+    if (!(den > 0.0)) return 0.0;
+    out = num / den;
+    return out < 1.0 ? out : 1.0;
+}
+
 /* Newton's polar iteration X <- (X + X^-T) / 2 converges quadratically from a deviation of 1e-6: two steps reach
  * rounding level; four are run. */
 int wk_input_rotation(const double *p, double r[9], double *deviation)

@@ -73,6 +73,25 @@ static void wrist(void)
     EXPECT(wk_rsr_wrist_gamma_from_azimuth(0.7, 0.5, &g) == WK_OK);
     EXPECT(wk_rsr_wrist_azimuth_from_gamma(g, 0.5, &a) == WK_OK && fabs(a - 0.7) < 1e-12);
     EXPECT(wk_rsr_wrist_azimuth_from_gamma(g, 1.5707963267948966, &a) == WK_ERR_RANGE);
+    { /* the design atlas's block sums and swing profile */
+        int64_t sums[WK_ATLAS_MODES + WK_RSR_WRIST_MAX_FK + 1] = {0}, index[72];
+        double li_min = HUGE_VAL, joints[12], alpha[72], beta[181];
+        for (i = 0; i < 12; ++i) joints[i] = urand(0.4, 1.3);
+        EXPECT(wk_rsr_wrist_design_init(params, &d) == WK_OK);
+        EXPECT(wk_rsr_wrist_atlas_batch(4, poses, 4, joints, &d, 0.1, sums, &li_min) == WK_OK);
+        EXPECT(sums[WK_ATLAS_MODES] + sums[WK_ATLAS_MODES + 1] == 4 && sums[WK_ATLAS_N_REACH] <= 4);
+        EXPECT(sums[WK_ATLAS_N_SETS] == 0 || (li_min >= 0.0 && li_min <= 1.0));
+        EXPECT(wk_rsr_wrist_atlas_batch(0, NULL, 0, NULL, NULL, 0.1, sums, &li_min) == WK_OK);
+        EXPECT(wk_rsr_wrist_atlas_batch(1, NULL, 0, NULL, NULL, 0.1, sums, &li_min) == WK_ERR_NULL);
+        EXPECT(wk_rsr_wrist_atlas_batch(1, bad, 0, NULL, NULL, 0.1, sums, &li_min) == WK_ERR_NONFINITE);
+        for (i = 0; i < 72; ++i) alpha[i] = 0.08726646259971647 * i;
+        for (i = 0; i < 181; ++i) beta[i] = 0.008726646259971647 * i;
+        EXPECT(wk_rsr_wrist_max_swing(&d, 72, alpha, 181, beta, index) == WK_OK);
+        for (i = 0; i < 72; ++i) EXPECT(index[i] >= -1 && index[i] < 181);
+        EXPECT(wk_rsr_wrist_max_swing(&d, 72, alpha, 5000, NULL, index) == WK_ERR_NULL);
+        EXPECT(wk_rsr_wrist_max_swing(&d, 1, alpha, 5000, beta, index) == WK_ERR_RANGE);
+        EXPECT(wk_rsr_wrist_max_swing(&d, 1, bad, 181, beta, index) == WK_ERR_NONFINITE);
+    }
 }
 
 static void hybrid(void)

@@ -34,6 +34,17 @@ int main(void)
     checksum += FN(MECH, _ik_batch)(3, poses, NULL, ikb);
     checksum += FN(MECH, _ik)(NULL, NULL, &ik) + FN(MECH, _fk)(NULL, NULL, &fk) + FN(MECH, _ik)(poses, NULL, NULL);
     checksum += FN(MECH, _ik_batch)(0, NULL, NULL, NULL) + FN(MECH, _design_init)(NULL, NULL);
+    { /* the design atlas's conditioning batch: a valid batch, then NULL, a bad length and NaN joints */
+        int64_t sums[2] = {0, 0};
+        double li_min = HUGE_VAL;
+        if (FN(MECH, _atlas_conditioning)(3, rows, NULL, 0.5, 0.1, sums, &li_min) != WK_OK) return 1;
+        if (!(li_min >= 0.0 && li_min <= 1.0) || sums[1] < 0 || sums[1] > 3) return 1;
+        if (FN(MECH, _atlas_conditioning)(1, NULL, NULL, 0.5, 0.1, sums, &li_min) != WK_ERR_NULL) return 1;
+        if (FN(MECH, _atlas_conditioning)(1, rows, NULL, 0.0, 0.1, sums, &li_min) != WK_ERR_RANGE) return 1;
+        rows[0] = NAN;
+        if (FN(MECH, _atlas_conditioning)(1, rows, NULL, 0.5, 0.1, sums, &li_min) != WK_ERR_NONFINITE) return 1;
+        checksum += (long)sums[1];
+    }
     printf("checksum %ld\n", checksum);
     return 0;
 }

@@ -34,6 +34,23 @@ int main(void)
     checksum += wk_underactuated_wrist_ik_batch(4, rows, &d, ikb) + wk_underactuated_wrist_fk_batch(4, rows, &d, fkb);
     checksum += wk_underactuated_wrist_ik(NULL, &d, &ik) + wk_underactuated_wrist_ik(v, &d, NULL);
     checksum += wk_underactuated_wrist_fk(NULL, NULL, &fk) + wk_underactuated_wrist_ik_batch(0, NULL, NULL, NULL);
+    { /* the design atlas's block sums: a valid block, then NULL and non-finite input */
+        int64_t sums[WK_ATLAS_MODES + WK_UNDERACTUATED_WRIST_MAX_FK + 1] = {0};
+        const int64_t home[3] = {1, 0, 1};
+        double li_min = HUGE_VAL, lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+        const double bad[3] = {NAN, 0.1, 0.2};
+        if (wk_underactuated_wrist_atlas_home_batch(4, rows, 4, rows, &d, 0.1, home, sums, &li_min, lo, hi) != WK_OK)
+            return 1;
+        for (i = 0; i <= WK_UNDERACTUATED_WRIST_MAX_FK; ++i) checksum += (long)sums[WK_ATLAS_MODES + i];
+        if (checksum < 0 || sums[WK_ATLAS_N_REACH] > 4 || (sums[WK_ATLAS_N_SETS] && !(li_min >= 0.0 && li_min <= 1.0)))
+            return 1;
+        if (wk_underactuated_wrist_atlas_home_batch(1, NULL, 0, NULL, &d, 0.1, home, sums, &li_min, lo, hi) !=
+            WK_ERR_NULL)
+            return 1;
+        if (wk_underactuated_wrist_atlas_home_batch(1, bad, 0, NULL, &d, 0.1, home, sums, &li_min, lo, hi) !=
+            WK_ERR_NONFINITE)
+            return 1;
+    }
     {
         const double bad[4] = {NAN, 1.0, 0.5, 0.5};
         const double noclosure[4] = {0.2, 0.2, 1.5, 0.1};

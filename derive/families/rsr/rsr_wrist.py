@@ -14,7 +14,7 @@ import math
 import numpy as np
 import sympy as sp
 
-from ...checks import numeric_identity, numeric_predicate, sampler, symbolic_identity
+from ...checks import Check, numeric_identity, numeric_predicate, sampler, symbolic_identity
 from ...model import Derivation, Finding, Step
 from ...report_numbers import measured
 from . import rsr_geometry as g
@@ -22,7 +22,7 @@ from .rsr_geometry import ALPHA, BETA, LBW, PHI, L, max_gamma_difference, seed_f
 
 # name, title, source and the default design come from the spec (catalogue/rsr_wrist.toml)
 FAMILY = "rsr"
-VECTORISED_KERNELS = ()
+VECTORISED_KERNELS = ("atlas_rates",)  # the atlas's numpy path (no C extension)
 DERIVE_SECONDS = 5  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
 DERIVE_GROUP = "rsr"  # the hybrid builds on this derivation (cached per process): one process for both
 TEMPLATES = ("python/rsr_wrist.py.jinja", "c/rsr_wrist.h.jinja", "c/rsr_wrist.c.jinja")
@@ -335,6 +335,26 @@ def _rates(dv: Derivation) -> None:
         ("leg_equations",), {"Jq": jq, "Jx": jx},
         (numeric_predicate(rate_error, "Jq^-1 Jx v equals finite differences of the closed-form IK",
                            samples=60, tol=1e-7),)))
+    _atlas_rates(dv, jq, jx)
+
+
+def _atlas_rates(dv: Derivation, jq, jx) -> None:
+    """The rates on the design atlas's velocity v = (sin beta alpha_dot, beta_dot, l_bw_dot / L) (docs/atlas.md):
+    the platform normal's velocity on the unit sphere and the centre distance in link lengths, so the Jacobian is
+    dimensionless and free of the azimuth's representation singularity at beta = 0. Jx's alpha column carries
+    sin(beta/2); dividing it by sin(beta) = 2 sin(beta/2) cos(beta/2) cancels exactly (finite at beta = 0)."""
+    half = 2 * sp.sin(BETA / 2) * sp.cos(BETA / 2)
+    rows = sp.Matrix(3, 3, lambda i, j: sp.cancel(jx[i, 0] / half) if j == 0 else jx[i, j] * (L if j == 2 else 1))
+    dv.exports["atlas_rates"] = (jq, rows)
+    dv.add(Step(
+        "atlas_rates", "Rate Jacobian of the design atlas",
+        "Jq phi_dot = X v with v = (sin beta alpha_dot, beta_dot, l_bw_dot / L): X = Jx diag(1 / sin beta, 1, L), "
+        "the sin(beta/2) of Jx's alpha column cancelled against sin beta = 2 sin(beta/2) cos(beta/2), so X is "
+        "finite at beta = 0 (the atlas's local index 1/kappa_F(Jq^-1 X), docs/atlas.md)",
+        ("jacobians",), {"X": rows},
+        (symbolic_identity(rows * sp.diag(sp.sin(BETA), 1, 1 / L), jx, "X diag(sin beta, 1, 1/L) = Jx"),
+         Check("symbolic", "X's alpha column has no sin(beta/2) left (no 0/0 at beta = 0)",
+               not any(r.has(sp.sin(BETA / 2)) for r in rows[:, 0])))))
 
 
 # ------------------------------------------------------------------------------------------------- findings
@@ -397,6 +417,7 @@ def kernels(dv: Derivation):
     nvec = dv.exports["plane_N"]
     pts = dv.exports["leg_points"]
     jq, jx = dv.exports["jacobians"]
+    xa = dv.exports["atlas_rates"][1]
     nx, ny, nz, h = sp.symbols("nx ny nz h", real=True)
     plane = ("plane", (nx, ny, nz, h))
     nn = sp.Matrix([nx, ny, nz])
@@ -423,6 +444,10 @@ def kernels(dv: Derivation):
                "(alpha, beta, l_bw)_dot.", (q, pose, design),
                tuple((f"jq{i}", jq[i]) for i in range(3)) +
                tuple((f"jx{i}{j}", jx[i, j]) for i in range(3) for j in range(3))),
+        Kernel("atlas_rates", "The design atlas's rates: Jq (3) and X (3x3 row-major) with Jq phi_dot = X v, "
+               "v = (sin beta alpha_dot, beta_dot, l_bw_dot / L); finite at beta = 0.", (q, pose, design),
+               tuple((f"g{i}", jq[i]) for i in range(3)) +
+               tuple((f"x{i}{j}", xa[i, j]) for i in range(3) for j in range(3))),
     ]
 
 

@@ -264,7 +264,7 @@ def kernels(dv: Derivation):
                     [rwvars[8], rwvars[9], rwvars[10], rwvars[11]], [0, 0, 0, 1]])
     composed = dv.exports["T_s"] * t_c() * tw
     offset = dv.exports["offset"]
-    unused = ("jacobians", "geometric_jacobian")  # the hybrid's own Jacobian is below
+    unused = ("jacobians", "geometric_jacobian", "atlas_rates")  # the hybrid's own Jacobian is below
     wrist = [k for k in rsr_wrist.kernels(rsr_wrist.derive_cached()) if k.name not in unused]
     return wrist + [
         Kernel("fk_compose", "T = T_s T_c T_w: the 12 entries of [R | p] from the SCARA joints and the wrist pose.",
