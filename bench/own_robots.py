@@ -174,8 +174,9 @@ def c_loop(out: Path, name: str, poses, free_value) -> float | None:
     src = out / "c" / "bench_main.c"
     src.write_text(BENCH_C.replace("NAME", name))
     exe = out / "c" / "bench"
-    cmd = ["gcc", *C_FLAGS, "-D_POSIX_C_SOURCE=199309L", "-o", str(exe), str(src), str(out / "c" / f"{name}.c"),
-           str(out / "c" / "wristkin_runtime.c"), f"-I{out / 'c'}", "-lm"]
+    # the robot's C and every runtime file written beside it (wristkin_runtime.c; the general 6R's wk_*.c)
+    others = sorted(str(f) for f in (out / "c").glob("*.c") if f.name != src.name)
+    cmd = ["gcc", *C_FLAGS, "-D_POSIX_C_SOURCE=199309L", "-o", str(exe), str(src), *others, f"-I{out / 'c'}", "-lm"]
     if subprocess.run(cmd, capture_output=True, check=False).returncode != 0:
         return None
     data = out / "c" / "poses.bin"
