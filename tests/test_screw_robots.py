@@ -361,4 +361,6 @@ def test_a_double_root_pushed_apart_upstream_is_one_set_in_c_and_numpy():
         assert flags[near[0]] & mod.FLAG_DOUBLE_ROOT
         # within the pose's resolution along the fold: sqrt(rounding / curvature) ~ 1e-6, half the pushed-apart span
         assert ref.distance(robot, FOLD_JOINTS, values[near[0]]) < 2e-6
-        assert ref.pose_error(robot, values[near[0]], T) < 1e-14
+        # a set like any other: within IK_VERIFY_TOL of the pose on the reference's product (the pair it stands for
+        # fits to 1e-15..4e-13 depending on the kernels' rounding of theta4, theta5)
+        assert ref.pose_error(robot, values[near[0]], T) < mod.IK_VERIFY_TOL
