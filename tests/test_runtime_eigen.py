@@ -590,6 +590,26 @@ def test_null_vector_zero_nonfinite_and_sizes(lib):
     assert lib.wk_null_vector(0, big, out, out) == ERR_INPUT
 
 
+def test_iteration_caps_return_no_convergence_not_a_loop():
+    """The caps, made tiny at compile time (the only reason they are overridable): QR with a budget of 0
+    iterations and Jacobi with 1 sweep must give up with WK_EIG_ERR_NOCONV, outputs zeroed, and the quadratic
+    must pass the QR's code on."""
+    so = cbuild.load(cbuild.compile_shared([SOURCE], [RUNTIME_C], name="wk_eigen_caps",
+                                           extra_flags=["-DWK_EIG_ITMAX=0", "-DWK_NULL_SWEEPS=1"]))
+    so.wk_eig_real.argtypes = [ctypes.c_int, _DP, _DP, _DP, _DP]
+    so.wk_generalized_quadratic_eig.argtypes = [ctypes.c_int, _DP, _DP, _DP, ctypes.c_double,
+                                                ctypes.POINTER(QepResult)]
+    so.wk_null_vector.argtypes = [ctypes.c_int, _DP, _DP, _DP]
+    rng = case_rng(9400)
+    rc, ours, _, _ = eig(so, rng.standard_normal((8, 8)))
+    assert rc == ERR_NOCONV and not ours.any()
+    rc, res = qep(so, *(rng.standard_normal((4, 4)) for _ in range(3)))
+    assert rc == ERR_NOCONV and res.n_real == res.n_complex == res.n_infinite == 0
+    assert null_vector(so, rng.standard_normal((6, 6)))[0] == ERR_NOCONV
+    # already triangular: nothing to iterate, so even a zero budget succeeds
+    assert eig(so, np.triu(rng.standard_normal((8, 8))))[0] == OK
+
+
 # ------------------------------------------------------------------------------ under the sanitizers
 def _sanitizer_available() -> bool:
     probe = subprocess.run([cbuild.compiler(), "-fsanitize=address,undefined", "-x", "c", "-", "-o", "/dev/null"],

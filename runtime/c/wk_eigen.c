@@ -14,10 +14,15 @@
 #include <math.h>
 
 #define WK_EIG_EPS DBL_EPSILON
+#ifndef WK_NULL_SWEEPS /* Jacobi sweeps allowed; overridable only for the test of the no-convergence path */
+#define WK_NULL_SWEEPS 60
+#endif
 /* QR iterations allowed: 30 per eigenvalue, as one budget of 30 n for the whole matrix (EISPACK's hqr): a
  * defective eigenvalue converges only linearly (a Jordan block of 6: ~40 iterations for the first deflation,
  * then the rest of the block follows quickly), so a per-window cap of 30 would give up on matrices LAPACK solves */
+#ifndef WK_EIG_ITMAX /* overridable only so that a test can reach the no-convergence path */
 #define WK_EIG_ITMAX 30
+#endif
 
 static int wk_eig_finite(int count, const double *x)
 {
@@ -145,7 +150,8 @@ static void wk_eig_2x2(double p, double q, double r, double s, double *e1, doubl
     double h = 0.5 * (p - s), bc = q * r, disc = h * h + bc;
     *im = 0.0;
     if (disc >= 0.0) {
-        /* z = h + sign(h) sqrt(disc) has no cancellation; the other root from the product (e1 e2 = ps - qr) */
+        /* z = h + sign(h) sqrt(disc) has no cancellation, the second root comes from the product e1 e2 = ps - qr;
+         * s + z itself may cancel (a root small next to |p| + |s|): normwise accurate, as LAPACK's dlanv2 */
         double z = h + copysign(sqrt(disc), h);
         *e1 = s + z;
         *e2 = (z != 0.0) ? s - bc / z : s;
@@ -663,7 +669,7 @@ int wk_null_vector(int m, const double *M, double *v, double *rel)
         W[i] = ldexp(M[i], -e);
         V[i] = (i % (m + 1) == 0) ? 1.0 : 0.0;
     }
-    for (sweep = 0; sweep < 60 && rotated; ++sweep) {
+    for (sweep = 0; sweep < WK_NULL_SWEEPS && rotated; ++sweep) {
         rotated = 0;
         for (p = 0; p < m - 1; ++p)
             for (q = p + 1; q < m; ++q) {

@@ -85,7 +85,7 @@ int wk_generalized_quadratic_eig(int m, const double *A, const double *B, const 
 /* A unit vector v (m entries) minimising |M v| for the m x m row-major M (one-sided Jacobi SVD).
  * rel (may be NULL): rel[0] = sigma_min / sigma_max (how nearly M v = 0), rel[1] = sigma_2 / sigma_max with
  * sigma_2 the second smallest singular value (v is determined to about m eps / (rel[1] - rel[0]) radians);
- * M = 0 gives v = e_1 and rel = {0, 0}; m = 1 gives rel[1] = 1. */
+ * m = 1 gives v = (1) and rel[1] = 1; M = 0 (m >= 2) gives v = e_1 and rel = {0, 0}. */
 int wk_null_vector(int m, const double *M, double *v, double *rel);
 
 #ifdef __cplusplus
