@@ -511,6 +511,30 @@ def test_qep_double_root_comes_back_real_and_a_clear_complex_pair_does_not(lib):
             assert_qep_ok(A, B, C, rc, res, what=f"m={m} c0={c0}")
 
 
+def test_qep_is_invariant_under_exact_power_of_two_scalings(lib):
+    """x = 2^-k x' (A 2^2k, B 2^k, C) and an overall 2^j on all three are absorbed by the exact parameter and
+    coefficient scalings: the same internal problem, so the roots come back scaled bit for bit. Only the
+    classification is absolute in x (tol is an angle of theta = 2 atan x): at k = 600 every root is within
+    2^-600 of 0, so the complex pairs come back as flagged real doubles at their real parts. Before the
+    scalings were applied in one step, A 2^1200 flushed C to zero first and every root came back 0."""
+    rng = case_rng(9254)
+    for m in (1, 5, 12):
+        A, B, C = (rng.standard_normal((m, m)) for _ in range(3))
+        rc, base = qep(lib, A, B, C)
+        assert rc == OK
+        for k, j in ((3, 0), (11, 0), (-3, 0), (-9, 0), (0, 900), (0, -1000), (5, -400), (600, -600), (700, -900)):
+            rc, res = qep(lib, np.ldexp(A, 2 * k + j), np.ldexp(B, k + j), np.ldexp(C, j))
+            assert rc == OK and res.n_infinite == base.n_infinite, (m, k, j)
+            plain = [np.ldexp(x, k) for x, f in _reals(res) if not f]
+            flagged = [np.ldexp(x, k) for x, f in _reals(res) if f]
+            assert plain == list(base.real[:base.n_real]), (m, k, j)
+            if k < 100:
+                assert not flagged and [np.ldexp(y, k) for y in res.complex_im[:res.n_complex]] == \
+                    list(base.complex_im[:base.n_complex]), (m, k, j)
+            else:
+                assert sorted(flagged) == sorted(base.complex_re[:base.n_complex]) and res.n_complex == 0
+
+
 def test_qep_refuses_bad_input_and_singular_pencils(lib):
     rng = case_rng(9253)
     A, B, C = (rng.standard_normal((4, 4)) for _ in range(3))

@@ -33,6 +33,15 @@ static int wk_eig_finite(int count, const double *x)
     return 1;
 }
 
+static int wk_eig_all_zero(int count, const double *x)
+{
+    int i;
+    for (i = 0; i < count; ++i)
+        if (x[i] != 0.0)
+            return 0;
+    return 1;
+}
+
 /* The exponent e with max|x| in [2^(e-1), 2^e) (0 when all are zero): scaling by 2^-e is exact and brings the
  * largest entry near 1, so nothing below overflows or loses precision in the subnormal range. */
 static int wk_eig_exponent(int count, const double *x)
@@ -474,8 +483,8 @@ static void wk_qep_sort(int k, double *x, unsigned *f)
  * A and C has rcond < 2^-10, e.g. both singular) the one whose leading coefficient s^2 M(x = -c/s) has the
  * largest reciprocal condition (a later one only if at least twice that of the earlier ones).
  * A rotation keeps the three coefficients' norms comparable (an orthogonal change of the homogeneous
- * variables), so it costs no accuracy, unlike a general Moebius map. Before that, x = g mu with g =
- * 2^round(log2 sqrt(||C|| / ||A||)) (Fan, Lin & Van Dooren's scaling, rounded to a power of 2 so exact) makes
+ * variables), so it costs no accuracy, unlike a general Moebius map. Before that, x = g mu with g = a power
+ * of 2 near sqrt(||C|| / ||A||) (Fan, Lin & Van Dooren's scaling, rounded so that it is exact) makes
  * ||A|| ~ ||C||, which is what makes the companion linearisation's backward error comparable to the
  * polynomial's. The pencil is reported singular when even the best rcond is below 64 m eps: then
  * det M(x) vanishes (numerically) at all six points, which a regular 12 x 12 problem with 24 eigenvalues does
@@ -506,7 +515,7 @@ int wk_generalized_quadratic_eig(int m, const double *A, const double *B, const 
     double wr[2 * WK_QEP_MAXM], wi[2 * WK_QEP_MAXM], work[WK_EIG_WORK(2 * WK_QEP_MAXM)];
     int piv[WK_QEP_MAXM], best_piv[WK_QEP_MAXM];
     double na, nb, nc, g = 1.0, best = -1.0, c, s;
-    int i, j, k, n2 = 2 * m, mm = m * m, eg = 0, en, best_k = 0, rc;
+    int i, j, k, n2 = 2 * m, mm = m * m, eg = 0, best_k = 0, rc;
     if (!out)
         return WK_EIG_ERR_INPUT;
     out->n_real = out->n_complex = out->n_infinite = 0;
@@ -519,45 +528,35 @@ int wk_generalized_quadratic_eig(int m, const double *A, const double *B, const 
         return WK_EIG_ERR_INPUT;
     if (tol <= 0.0)
         tol = WK_QEP_TOL_DEFAULT;
-    /* exact power-of-two scalings: first everything to max entry ~ 1, then x = g mu */
+    /* exact power-of-two scalings, applied in one step so that nothing underflows on the way: x = g mu with
+     * g^2 ~ max|C| / max|A| (the exponents of the largest entries, within a factor m of the norms' ratio),
+     * then all three coefficients by the one power of two that brings the largest entry near 1 */
     {
-        int ea = wk_eig_exponent(mm, A), eb = wk_eig_exponent(mm, B), ec = wk_eig_exponent(mm, C);
-        en = ea > eb ? ea : eb;
-        en = en > ec ? en : ec;
-    }
-    for (i = 0; i < mm; ++i) {
-        As[i] = ldexp(A[i], -en);
-        Bs[i] = ldexp(B[i], -en);
-        Cs[i] = ldexp(C[i], -en);
+        int ea = wk_eig_exponent(mm, A), eb = wk_eig_exponent(mm, B), ec = wk_eig_exponent(mm, C), e3;
+        int za = wk_eig_all_zero(mm, A), zc = wk_eig_all_zero(mm, C);
+        eg = (za || zc) ? 0 : ec - ea;
+        eg = eg >= 0 ? eg / 2 : -((1 - eg) / 2); /* floor(eg / 2): the same rounding at every scale */
+        if (eg > 1000) /* g itself representable; products with it are formed only below 2 / tol */
+            eg = 1000;
+        if (eg < -1000)
+            eg = -1000;
+        g = ldexp(1.0, eg);
+        e3 = za ? -2000 : ea + 2 * eg;
+        if (!wk_eig_all_zero(mm, B) && eb + eg > e3)
+            e3 = eb + eg;
+        if (!zc && ec > e3)
+            e3 = ec;
+        if (e3 == -2000)
+            e3 = 0;
+        for (i = 0; i < mm; ++i) {
+            As[i] = ldexp(A[i], 2 * eg - e3);
+            Bs[i] = ldexp(B[i], eg - e3);
+            Cs[i] = ldexp(C[i], -e3);
+        }
     }
     na = wk_qep_norm1(m, As);
     nb = wk_qep_norm1(m, Bs);
     nc = wk_qep_norm1(m, Cs);
-    if (na > 0.0 && nc > 0.0) {
-        int e2;
-        (void)frexp(nc / na, &e2); /* nc / na in [2^(e2-1), 2^e2): g^2 ~ that */
-        eg = e2 / 2;
-        if (eg > 200)
-            eg = 200;
-        if (eg < -200)
-            eg = -200;
-        g = ldexp(1.0, eg);
-        for (i = 0; i < mm; ++i) {
-            As[i] = ldexp(As[i], 2 * eg);
-            Bs[i] = ldexp(Bs[i], eg);
-        }
-        /* and back to max entry ~ 1 */
-        {
-            int ea = wk_eig_exponent(mm, As), eb = wk_eig_exponent(mm, Bs), ec = wk_eig_exponent(mm, Cs);
-            int e3 = ea > eb ? ea : eb;
-            e3 = e3 > ec ? e3 : ec;
-            for (i = 0; i < mm; ++i) {
-                As[i] = ldexp(As[i], -e3);
-                Bs[i] = ldexp(Bs[i], -e3);
-                Cs[i] = ldexp(Cs[i], -e3);
-            }
-        }
-    }
     if (na == 0.0 && nb == 0.0 && nc == 0.0)
         return WK_EIG_ERR_SINGULAR; /* all three zero */
     for (k = 0; k < 6; ++k) {
@@ -629,8 +628,8 @@ int wk_generalized_quadratic_eig(int m, const double *A, const double *B, const 
             /* x = g (c y + s) / (c - s y) with y = yr + i yi: numerator (c yr + s) + i c yi, denominator
              * (c - s yr) - i s yi; the division as (num * conj(den)) / |den|^2, entries ~ 1 so no overflow */
             double nr = c * wr[k] + s, ni = c * wi[k], dr = c - s * wr[k], di = -s * wi[k];
-            double d2 = dr * dr + di * di, n2abs = nr * nr + ni * ni;
-            if (d2 * 4.0 <= tol * tol * g * g * n2abs) {
+            double d2 = dr * dr + di * di;
+            if (2.0 * sqrt(d2) <= tol * g * sqrt(nr * nr + ni * ni)) { /* g, not g^2: that may overflow */
                 out->n_infinite += 2;
             } else {
                 double xr = g * (nr * dr + ni * di) / d2, xi = g * (ni * dr - nr * di) / d2;
