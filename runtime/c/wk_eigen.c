@@ -652,8 +652,10 @@ int wk_generalized_quadratic_eig(int m, const double *A, const double *B, const 
 /* Hestenes' one-sided Jacobi: rotate pairs of columns of W = M (scaled to max entry ~ 1) until all are
  * mutually orthogonal to working precision (|w_p . w_q| <= eps |w_p| |w_q|), accumulating the rotations in V;
  * then W = U Sigma and the column norms are the singular values, V's columns the right singular vectors.
- * Small singular values come out with high relative accuracy, so sigma_min / sigma_max is meaningful even
- * far below eps. At most 60 sweeps (quadratic convergence makes ~10 the norm for m = 24). */
+ * v is taken from V (accumulated rotations, orthogonal to working precision), not from a normalised column
+ * of W, which for sigma ~ 0 would be rounding noise. Each sigma is within ~ c m eps sigma_max (relatively
+ * accurate when M is a well-conditioned matrix times a column scaling: Demmel & Veselic). At most 60 sweeps
+ * (quadratic convergence: ~6-8 at m = 12, ~20 us on the bench machine). */
 int wk_null_vector(int m, const double *M, double *v, double *rel)
 {
     double W[WK_NULL_MAXM * WK_NULL_MAXM], V[WK_NULL_MAXM * WK_NULL_MAXM], sig[WK_NULL_MAXM];
