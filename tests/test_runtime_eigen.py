@@ -57,6 +57,8 @@ def lib():
     so.wk_generalized_quadratic_eig.restype = ctypes.c_int
     so.wk_null_vector.argtypes = [ctypes.c_int, _DP, _DP, _DP]
     so.wk_null_vector.restype = ctypes.c_int
+    so.wk_null_vector_lu.argtypes = [ctypes.c_int, _DP, _DP, ctypes.POINTER(ctypes.c_double)]
+    so.wk_null_vector_lu.restype = ctypes.c_int
     return so
 
 
@@ -557,6 +559,15 @@ def test_qep_refuses_bad_input_and_singular_pencils(lib):
 
 
 # ------------------------------------------------------------------------------ null vectors
+def null_vector_lu(lib, M):
+    M = np.ascontiguousarray(M, dtype=float)
+    m = M.shape[0]
+    v, resid = np.full(m + 2, 7.25), ctypes.c_double(-1.0)
+    rc = lib.wk_null_vector_lu(m, M, v, ctypes.byref(resid))
+    assert list(v[m:]) == [7.25, 7.25]
+    return rc, v[:m], resid.value
+
+
 @pytest.mark.parametrize("m", range(1, 25))
 def test_null_vector_against_svd(lib, m):
     rng = case_rng(9300 + m)
@@ -602,7 +613,53 @@ def test_null_vector_of_the_quadratic_at_its_eigenvalues(lib):
             assert rel[1] > 1e3 * rel[0]  # a simple eigenvalue: a one-dimensional null space
 
 
+def test_null_vector_lu_at_the_quadratic_eigenvalues_equals_the_svd_one(lib):
+    """The cheap route (complete-pivoting LU + inverse iteration) where the 6R back-substitution needs it: at
+    every real root the same vector as the Jacobi SVD's, to its determination c m eps / gap, and a residual
+    no worse than the SVD's plus rounding."""
+    rng = case_rng(9331)
+    for m in (3, 6, 12):
+        for _ in range(4):
+            A, B, C = (rng.standard_normal((m, m)) for _ in range(3))
+            rc, res = qep(lib, A, B, C)
+            assert rc == OK
+            for x, f in _reals(res):
+                if f:
+                    continue  # a double root: a two-dimensional null space is wk_null_vector's case
+                M = A * x * x + B * x + C
+                rc, v, resid = null_vector_lu(lib, M)
+                rcj, vj, rel = null_vector(lib, M)
+                assert rc == OK and rcj == OK
+                fro = np.linalg.norm(M)
+                assert abs(np.linalg.norm(v) - 1) <= C_BACK * m * EPS
+                assert abs(resid - np.linalg.norm(M @ v) / fro) <= C_BACK * m * EPS
+                assert np.linalg.norm(M @ v) <= 4 * np.linalg.norm(M @ vj) + C_BACK * m * EPS * fro
+                gap = rel[1] - rel[0]
+                assert min(np.linalg.norm(v - vj), np.linalg.norm(v + vj)) <= 4 * C_BACK * m * EPS / gap
+
+
+@pytest.mark.parametrize("m", range(1, 25))
+def test_null_vector_lu_on_rank_deficient_matrices(lib, m):
+    rng = case_rng(9332 + m)
+    for _ in range(4):
+        u, s, vh = np.linalg.svd(rng.standard_normal((m, m)))
+        s[-1] = 0.0
+        M = (u * s) @ vh
+        rc, v, resid = null_vector_lu(lib, M)
+        assert rc == OK and abs(np.linalg.norm(v) - 1) <= C_BACK * m * EPS
+        assert np.linalg.norm(M @ v) <= C_BACK * m * EPS * np.linalg.norm(M) + 1e-300
+        if m > 1:  # the null vector is determined: gap = s[-2] / s[0]
+            gap = s[-2] / s[0]
+            assert min(np.linalg.norm(v - vh[-1]), np.linalg.norm(v + vh[-1])) <= 4 * C_BACK * m * EPS / gap
+
+
 def test_null_vector_zero_nonfinite_and_sizes(lib):
+    rc, v, resid = null_vector_lu(lib, np.zeros((4, 4)))
+    assert rc == OK and list(v) == [1, 0, 0, 0] and resid == 0.0
+    bad = np.eye(3)
+    bad[1, 1] = math.inf
+    assert null_vector_lu(lib, bad)[0] == ERR_INPUT
+    assert lib.wk_null_vector_lu(25, np.zeros(625), np.zeros(30), None) == ERR_INPUT
     rc, v, rel = null_vector(lib, np.zeros((5, 5)))
     assert rc == OK and list(v) == [1, 0, 0, 0, 0] and list(rel) == [0, 0]
     M = np.ones((3, 3))
