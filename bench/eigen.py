@@ -1,10 +1,11 @@
 """The runtime eigensolver (runtime/c/wk_eigen.c, issue 23) against numpy/scipy: printed, not asserted.
 
 Rows, one run, same machine: wk_eig_real on random 24 x 24 matrices, the quadratic eigenproblem (m = 12: a
-24 x 24 companion form after choosing its leading coefficient) and wk_null_vector (12 x 12), each in a C loop
-(bench/bench_eigen.c, gcc -O2, the project's strict flags); numpy.linalg.eigvals on a 24 x 24 matrix,
-numpy's route to the same quadratic eigenvalues (solve for the companion block row + eigvals), scipy's QZ on
-the 2m x 2m pencil, and numpy.linalg.svd of a 12 x 12, each called from Python (best of 5, warm-up first).
+24 x 24 companion form after choosing its leading coefficient) and wk_null_vector / wk_null_vector_lu
+(12 x 12), each in a C loop (bench/bench_eigen.c, gcc -O2, the project's strict flags); numpy.linalg.eigvals
+on a 24 x 24 matrix, numpy's route to the same quadratic eigenvalues (solve for the companion block row +
+eigvals), scipy's QZ on the 2m x 2m pencil, and numpy.linalg.svd of a 12 x 12, each called from Python (best
+of 5, warm-up first).
 
 Runs alone:  .venv/bin/python bench/eigen.py [--quick]
 """
@@ -86,8 +87,9 @@ def main() -> None:
     print(f"| quadratic eigenproblem, m = 12 | {c['qep_m12_ns'] / 1e3:.1f} us | "
           f"{py['numpy_companion_m12_ns'] / 1e3:.1f} us (solve + eigvals), "
           f"{py['scipy_qz_m12_ns'] / 1e3:.1f} us (scipy QZ on the pencil) |")
-    print(f"| null vector, 12 x 12 | {c['null_vector_m12_ns'] / 1e3:.1f} us | "
+    print(f"| null vector, 12 x 12 (Jacobi SVD) | {c['null_vector_m12_ns'] / 1e3:.1f} us | "
           f"{py['numpy_svd_m12_ns'] / 1e3:.1f} us (numpy.linalg.svd) |")
+    print(f"| null vector, 12 x 12 (LU + inverse iteration) | {c['null_vector_lu_m12_ns'] / 1e3:.1f} us | |")
     print(f"C loop: {c['fails']} failures, {c['mean_real_roots_m12']:.2f} real roots per random m = 12 problem")
 
 

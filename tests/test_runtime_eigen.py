@@ -57,6 +57,8 @@ def lib():
     so.wk_generalized_quadratic_eig.restype = ctypes.c_int
     so.wk_null_vector.argtypes = [ctypes.c_int, _DP, _DP, _DP]
     so.wk_null_vector.restype = ctypes.c_int
+    so.wk_null_vector_lu.argtypes = [ctypes.c_int, _DP, _DP, ctypes.POINTER(ctypes.c_double)]
+    so.wk_null_vector_lu.restype = ctypes.c_int
     return so
 
 
@@ -454,10 +456,13 @@ def test_qep_singular_constant_coefficient_gives_zero_root(lib, m):
         C[:rank_drop, :] = 0.0  # rank_drop roots at exactly x = 0
         rc, res = qep(lib, A, B, C)
         assert_qep_ok(A, B, C, rc, res, what=f"m={m} drop={rank_drop}")
-        # a semisimple root at 0: each copy within the backward error (relative to the scaled coefficients)
-        zeros = [2 if f else 1 for x, f in _reals(res)
-                 if abs(x) <= C_BACK * 2 * m * EPS / res.rcond * _param_scale(A, B, C)[0] * 10]
-        assert sum(zeros) == rank_drop, list(res.real[:res.n_real])
+        # a semisimple root at 0 of multiplicity k = rank_drop: each copy within the backward error times its
+        # sensitivity n_max / sigma_min(Y^H B Z), Y, Z the left/right null spaces of C = M(0) (Tisseur 2000)
+        u, _, vh = np.linalg.svd(C)
+        d = np.linalg.svd(u[:, -rank_drop:].T @ B @ vh[-rank_drop:].T, compute_uv=False)[-1]
+        limit = 4 * C_BACK * 2 * m * EPS * res.growth * _param_scale(A, B, C)[1] / d
+        zeros = [2 if f else 1 for x, f in _reals(res) if abs(x) <= limit]
+        assert sum(zeros) == rank_drop, (list(res.real[:res.n_real]), limit)
 
 
 def test_qep_both_singular_uses_a_rotation(lib):
@@ -511,6 +516,30 @@ def test_qep_double_root_comes_back_real_and_a_clear_complex_pair_does_not(lib):
             assert_qep_ok(A, B, C, rc, res, what=f"m={m} c0={c0}")
 
 
+def test_qep_is_invariant_under_exact_power_of_two_scalings(lib):
+    """x = 2^-k x' (A 2^2k, B 2^k, C) and an overall 2^j on all three are absorbed by the exact parameter and
+    coefficient scalings: the same internal problem, so the roots come back scaled bit for bit. Only the
+    classification is absolute in x (tol is an angle of theta = 2 atan x): at k = 600 every root is within
+    2^-600 of 0, so the complex pairs come back as flagged real doubles at their real parts. Before the
+    scalings were applied in one step, A 2^1200 flushed C to zero first and every root came back 0."""
+    rng = case_rng(9254)
+    for m in (1, 5, 12):
+        A, B, C = (rng.standard_normal((m, m)) for _ in range(3))
+        rc, base = qep(lib, A, B, C)
+        assert rc == OK
+        for k, j in ((3, 0), (11, 0), (-3, 0), (-9, 0), (0, 900), (0, -1000), (5, -400), (600, -600), (700, -900)):
+            rc, res = qep(lib, np.ldexp(A, 2 * k + j), np.ldexp(B, k + j), np.ldexp(C, j))
+            assert rc == OK and res.n_infinite == base.n_infinite, (m, k, j)
+            plain = [np.ldexp(x, k) for x, f in _reals(res) if not f]
+            flagged = [np.ldexp(x, k) for x, f in _reals(res) if f]
+            assert plain == list(base.real[:base.n_real]), (m, k, j)
+            if k < 100:
+                assert not flagged and [np.ldexp(y, k) for y in res.complex_im[:res.n_complex]] == \
+                    list(base.complex_im[:base.n_complex]), (m, k, j)
+            else:
+                assert sorted(flagged) == sorted(base.complex_re[:base.n_complex]) and res.n_complex == 0
+
+
 def test_qep_refuses_bad_input_and_singular_pencils(lib):
     rng = case_rng(9253)
     A, B, C = (rng.standard_normal((4, 4)) for _ in range(3))
@@ -533,6 +562,15 @@ def test_qep_refuses_bad_input_and_singular_pencils(lib):
 
 
 # ------------------------------------------------------------------------------ null vectors
+def null_vector_lu(lib, M):
+    M = np.ascontiguousarray(M, dtype=float)
+    m = M.shape[0]
+    v, resid = np.full(m + 2, 7.25), ctypes.c_double(-1.0)
+    rc = lib.wk_null_vector_lu(m, M, v, ctypes.byref(resid))
+    assert list(v[m:]) == [7.25, 7.25]
+    return rc, v[:m], resid.value
+
+
 @pytest.mark.parametrize("m", range(1, 25))
 def test_null_vector_against_svd(lib, m):
     rng = case_rng(9300 + m)
@@ -578,7 +616,53 @@ def test_null_vector_of_the_quadratic_at_its_eigenvalues(lib):
             assert rel[1] > 1e3 * rel[0]  # a simple eigenvalue: a one-dimensional null space
 
 
+def test_null_vector_lu_at_the_quadratic_eigenvalues_equals_the_svd_one(lib):
+    """The cheap route (complete-pivoting LU + inverse iteration) where the 6R back-substitution needs it: at
+    every real root the same vector as the Jacobi SVD's, to its determination c m eps / gap, and a residual
+    no worse than the SVD's plus rounding."""
+    rng = case_rng(9331)
+    for m in (3, 6, 12):
+        for _ in range(4):
+            A, B, C = (rng.standard_normal((m, m)) for _ in range(3))
+            rc, res = qep(lib, A, B, C)
+            assert rc == OK
+            for x, f in _reals(res):
+                if f:
+                    continue  # a double root: a two-dimensional null space is wk_null_vector's case
+                M = A * x * x + B * x + C
+                rc, v, resid = null_vector_lu(lib, M)
+                rcj, vj, rel = null_vector(lib, M)
+                assert rc == OK and rcj == OK
+                fro = np.linalg.norm(M)
+                assert abs(np.linalg.norm(v) - 1) <= C_BACK * m * EPS
+                assert abs(resid - np.linalg.norm(M @ v) / fro) <= C_BACK * m * EPS
+                assert np.linalg.norm(M @ v) <= 4 * np.linalg.norm(M @ vj) + C_BACK * m * EPS * fro
+                gap = rel[1] - rel[0]
+                assert min(np.linalg.norm(v - vj), np.linalg.norm(v + vj)) <= 4 * C_BACK * m * EPS / gap
+
+
+@pytest.mark.parametrize("m", range(1, 25))
+def test_null_vector_lu_on_rank_deficient_matrices(lib, m):
+    rng = case_rng(9332 + m)
+    for _ in range(4):
+        u, s, vh = np.linalg.svd(rng.standard_normal((m, m)))
+        s[-1] = 0.0
+        M = (u * s) @ vh
+        rc, v, resid = null_vector_lu(lib, M)
+        assert rc == OK and abs(np.linalg.norm(v) - 1) <= C_BACK * m * EPS
+        assert np.linalg.norm(M @ v) <= C_BACK * m * EPS * np.linalg.norm(M) + 1e-300
+        if m > 1:  # the null vector is determined: gap = s[-2] / s[0]
+            gap = s[-2] / s[0]
+            assert min(np.linalg.norm(v - vh[-1]), np.linalg.norm(v + vh[-1])) <= 4 * C_BACK * m * EPS / gap
+
+
 def test_null_vector_zero_nonfinite_and_sizes(lib):
+    rc, v, resid = null_vector_lu(lib, np.zeros((4, 4)))
+    assert rc == OK and list(v) == [1, 0, 0, 0] and resid == 0.0
+    bad = np.eye(3)
+    bad[1, 1] = math.inf
+    assert null_vector_lu(lib, bad)[0] == ERR_INPUT
+    assert lib.wk_null_vector_lu(25, np.zeros(625), np.zeros(30), None) == ERR_INPUT
     rc, v, rel = null_vector(lib, np.zeros((5, 5)))
     assert rc == OK and list(v) == [1, 0, 0, 0, 0] and list(rel) == [0, 0]
     M = np.ones((3, 3))
@@ -588,6 +672,26 @@ def test_null_vector_zero_nonfinite_and_sizes(lib):
     out = np.zeros(30)
     assert lib.wk_null_vector(25, big, out, out) == ERR_INPUT
     assert lib.wk_null_vector(0, big, out, out) == ERR_INPUT
+
+
+def test_iteration_caps_return_no_convergence_not_a_loop():
+    """The caps, made tiny at compile time (the only reason they are overridable): QR with a budget of 0
+    iterations and Jacobi with 1 sweep must give up with WK_EIG_ERR_NOCONV, outputs zeroed, and the quadratic
+    must pass the QR's code on."""
+    so = cbuild.load(cbuild.compile_shared([SOURCE], [RUNTIME_C], name="wk_eigen_caps",
+                                           extra_flags=["-DWK_EIG_ITMAX=0", "-DWK_NULL_SWEEPS=1"]))
+    so.wk_eig_real.argtypes = [ctypes.c_int, _DP, _DP, _DP, _DP]
+    so.wk_generalized_quadratic_eig.argtypes = [ctypes.c_int, _DP, _DP, _DP, ctypes.c_double,
+                                                ctypes.POINTER(QepResult)]
+    so.wk_null_vector.argtypes = [ctypes.c_int, _DP, _DP, _DP]
+    rng = case_rng(9400)
+    rc, ours, _, _ = eig(so, rng.standard_normal((8, 8)))
+    assert rc == ERR_NOCONV and not ours.any()
+    rc, res = qep(so, *(rng.standard_normal((4, 4)) for _ in range(3)))
+    assert rc == ERR_NOCONV and res.n_real == res.n_complex == res.n_infinite == 0
+    assert null_vector(so, rng.standard_normal((6, 6)))[0] == ERR_NOCONV
+    # already triangular: nothing to iterate, so even a zero budget succeeds
+    assert eig(so, np.triu(rng.standard_normal((8, 8))))[0] == OK
 
 
 # ------------------------------------------------------------------------------ under the sanitizers

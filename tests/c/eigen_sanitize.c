@@ -154,8 +154,17 @@ int main(int argc, char **argv)
             if (fabs(nv - 1.0) > 64.0 * n * 2.220446049250313e-16) FAIL("null m=%d kind=%d: |v| = %g", n, kind, nv);
             if (!(rel[0] >= 0.0 && rel[0] <= rel[1] && rel[1] <= 1.0)) FAIL("null m=%d kind=%d: rel", n, kind);
             if (kind == 2 && n > 1 && rel[0] > 1e-13) FAIL("null m=%d: rank-deficient, rel %g", n, rel[0]);
+            for (i = 0; i < PAD; ++i) v[n + i] = CANARY;
+            rc = wk_null_vector_lu(n, M, v, rel);
+            if (rc != WK_EIG_OK) FAIL("null_lu m=%d kind=%d: rc %d", n, kind, rc);
+            for (i = 0; i < PAD; ++i)
+                if (v[n + i] != CANARY) FAIL("null_lu m=%d: canary overwritten", n);
+            for (nv = 0.0, i = 0; i < n; ++i) nv += v[i] * v[i];
+            if (fabs(nv - 1.0) > 64.0 * n * 2.220446049250313e-16) FAIL("null_lu m=%d kind=%d: |v| = %g", n, kind, nv);
+            if (kind == 2 && n > 1 && rel[0] > 1e-13) FAIL("null_lu m=%d: rank-deficient, resid %g", n, rel[0]);
             M[0] = INFINITY;
             if (wk_null_vector(n, M, v, NULL) != WK_EIG_ERR_INPUT) FAIL("null m=%d: inf not refused", n);
+            if (wk_null_vector_lu(n, M, v, NULL) != WK_EIG_ERR_INPUT) FAIL("null_lu m=%d: inf not refused", n);
         }
     if (wk_null_vector(25, M, v, rel) != WK_EIG_ERR_INPUT || wk_null_vector(0, M, v, rel) != WK_EIG_ERR_INPUT ||
         wk_null_vector(3, M, NULL, rel) != WK_EIG_ERR_INPUT)
