@@ -87,15 +87,15 @@ def _sweep(sweeps: list[str], samples: int, workers: int, design_chunk: int | No
 
 def _scaling(quick: bool) -> tuple[dict, dict, list]:
     """1 worker and 2 workers on the same sweep, alternated, the faster of two runs each (the machine is shared:
-    the other jobs' load changes between runs). Many chunks of ~0.05 s: the last chunk's tail, when one worker
-    idles, is a small part of the run, and a task's fixed cost (Dask's scheduling, the client's store write, ~2-3
-    ms) a small part of a chunk. The load average is read around each run."""
+    the other jobs' load changes between runs). The atlas's default chunking: 16 chunks of ~0.18 s here, so a
+    task's fixed cost (Dask's scheduling, the client's store write, ~2-3 ms, on the cores the workers use) is a
+    small part of a chunk and each worker gets 8. The load average is read around each run."""
     scale = ["alpha1=50:70:8", "beta2=35:55:8"] if quick else ["alpha1=50:70:16", "beta2=35:55:16"]
     runs, loads = {1: [], 2: []}, []
     for _ in range(1 if quick else 2):
         for workers in (1, 2):
             before = os.getloadavg()[0]
-            runs[workers].append(_sweep(scale, 4000, workers, design_chunk=4))
+            runs[workers].append(_sweep(scale, 4000, workers))  # the atlas's own chunking (TARGET_TASK_SOLVES)
             loads.append((workers, before, os.getloadavg()[0]))
     one, two = (min(runs[w], key=lambda r: r["compute"]) for w in (1, 2))
     return one, two, loads
