@@ -106,7 +106,7 @@ def test_the_run_time_equations_are_the_symbolic_ones():
         pose = chain.fk(rng.uniform(-math.pi, math.pi, 6))
         f = np.linalg.inv(dh.base) @ pose @ np.linalg.inv(dh.end)
         # the DH loop: Rz(t1) K1 ... Rz(t5) K5 Rz(t6) K6 = I with K_i = Tz Tx Rx of link i, K6 = F^-1
-        links = [dh_link(dh, i) for i in range(5)] + [np.linalg.inv(f)]
+        links = [dh.constant_link(i) for i in range(5)] + [np.linalg.inv(f)]
         P, Q, r = G6.g6_equations(links)
         lp = (*f[:3, 2], *f[:3, 3])
         np.testing.assert_allclose(Q, np.array(fq(*lp), float), atol=1e-12)
@@ -118,14 +118,8 @@ def test_the_run_time_equations_are_the_symbolic_ones():
         for k3 in range(3):
             for col, (a, b) in enumerate(parts):
                 np.testing.assert_allclose(P[:, k3, idx[a], idx[b]], el.P[k3, :, col], atol=1e-12)
-
-
-def dh_link(dh, i):
-    t = np.eye(4)
-    ca, sa = math.cos(dh.alpha[i]), math.sin(dh.alpha[i])
-    t[:3, :3] = [[1, 0, 0], [0, ca, -sa], [0, sa, ca]]
-    t[:3, 3] = [dh.a[i], 0.0, dh.d[i]]
-    return t
+        # the derivation's own check of the same (an audit step), within its stated tolerance
+        assert g6.symbolic_mismatch(chain, rng) <= 1e-12
 
 
 def test_dh_frames_reproduce_the_chain():
@@ -208,7 +202,7 @@ def clib():
 
 
 def _c_solve(clib, chain, labelling, pose):
-    """The C candidates, polished and verified as the Python's are (derive/kinematics/general6r.solve)."""
+    """The C candidates, verified and merged as the Python's are (derive/kinematics/general6r.solve)."""
     frames = np.zeros((6, 16))
     clib.wk_g6_z_frames(np.ascontiguousarray(chain.axes, dtype=float),
                         np.ascontiguousarray(chain.points, dtype=float), frames)
@@ -217,9 +211,8 @@ def _c_solve(clib, chain, labelling, pose):
                          labelling.shift, int(labelling.reverse), labelling.hidden, out, 64)
     assert n >= 0
     sols: list = []
-    for q in out[:n]:
-        q, err = G6.g6_polish(q, chain.fk, chain.jacobian, pose)
-        if err <= 1e-9 and all(_distance(q, s) > 1e-6 for s in sols):
+    for q in out[:n]:  # refined by Newton steps in C already: verified, not polished again
+        if np.max(np.abs(chain.fk(q) - pose)) <= 1e-9 and all(_distance(q, s) > 1e-6 for s in sols):
             sols.append(ref.wrap_angle(q))
     return sols
 

@@ -32,6 +32,10 @@ class DHChain:
     def link(self, i: int, theta: float) -> np.ndarray:
         return dh_matrix(theta, self.d[i], self.a[i], self.alpha[i])
 
+    def constant_link(self, i: int) -> np.ndarray:
+        """Tz(d_i) Tx(a_i) Rx(alpha_i): link i after its turn (A_i = Rz(theta) . this)."""
+        return dh_matrix(0.0, self.d[i], self.a[i], self.alpha[i])
+
     def fk(self, q) -> np.ndarray:
         t = self.base.copy()
         for i, v in enumerate(q):

@@ -33,7 +33,7 @@ from sympy import QQ, lex, ring
 
 from .. import runtime_files
 from ..model import Check, NoDecomposition, Step
-from .dh_frames import DHChain
+from .dh_frames import DHChain, dh_from_chain
 from .poe import Chain
 
 X_NAMES = ("s4*s5", "s4*c5", "c4*s5", "c4*c5", "s4", "c4", "s5", "c5", "1")
@@ -252,34 +252,61 @@ def equation_residual(chain: Chain, op_: dict, q) -> float:
     return float(np.max(np.abs(lhs - Q @ y)))
 
 
+def _wrapped(q) -> np.ndarray:
+    return np.remainder(np.asarray(q, dtype=float) + np.pi, 2 * np.pi) - np.pi
+
+
+def _new(q, found, tol=1e-6) -> bool:
+    return all(np.max(np.abs(_wrapped(q - s))) > tol for s in found)
+
+
 def solve(chain: Chain, labelling: Labelling, pose: np.ndarray, tol: float = 1e-9) -> list[np.ndarray]:
-    """Every solution the generated solvers return for the pose of chain.fk (the same numerics): candidates,
-    polished, verified to `tol`, merged within 1e-6."""
+    """Every solution the generated solvers return for the pose of chain.fk (the same numerics: candidates refined
+    on the chain), verified to `tol`, merged within 1e-6."""
     g6 = numerics()
     frames = g6.g6_z_frames(chain.axes, chain.points)
     out: list[np.ndarray] = []
     for q in g6.g6_solve(frames, chain.home, pose, labelling.shift, labelling.reverse, labelling.hidden):
-        q, err = g6.g6_polish(q, chain.fk, chain.jacobian, pose)
-        if not err <= tol:
-            continue
-        q = np.array([float(np.remainder(v + np.pi, 2 * np.pi) - np.pi) for v in q])
-        if all(np.max(np.abs(np.remainder(q - s + np.pi, 2 * np.pi) - np.pi)) > 1e-6 for s in out):
+        q = _wrapped(q)
+        if np.max(np.abs(chain.fk(q) - pose)) <= tol and _new(q, out):
             out.append(q)
     return out
 
 
 def multistart(chain: Chain, pose: np.ndarray, rng: np.random.Generator, starts: int = 60, tol: float = 1e-10):
-    """An independent count: damped Gauss-Newton from random starts on the chain's pose error (no elimination)."""
+    """An independent count: Newton steps on the chain's pose error from random starts (no elimination)."""
     g6 = numerics()
+    frames = g6.g6_z_frames(chain.axes, chain.points)
     found: list[np.ndarray] = []
     for _ in range(starts):
-        q, err = g6.g6_polish(rng.uniform(-np.pi, np.pi, chain.n), chain.fk, chain.jacobian, pose, iters=40)
-        if not err <= tol:
-            continue
-        q = np.remainder(q + np.pi, 2 * np.pi) - np.pi
-        if all(np.max(np.abs(np.remainder(q - s + np.pi, 2 * np.pi) - np.pi)) > 1e-6 for s in found):
+        q = _wrapped(g6.g6_refine(frames, chain.home, pose, rng.uniform(-np.pi, np.pi, chain.n), steps=40))
+        if np.max(np.abs(chain.fk(q) - pose)) <= tol and _new(q, found):
             found.append(q)
     return found
+
+
+def symbolic_mismatch(chain: Chain, rng: np.random.Generator, poses: int = 3) -> float:
+    """The largest difference, relative to max |P|, between the coefficients the solvers interpolate at run time
+    (three angles per joint, runtime/python/general6r.py) and the general symbolic equations specialised to the
+    robot's DH constants, on the loop read in DH frames at sampled poses: the derivation checking the numerics."""
+    g6 = numerics()
+    dh = dh_from_chain(chain)
+    el = derive_elimination(dh)
+    fq, fr = sp.lambdify(POSE_LP, el.Q, "numpy"), sp.lambdify(POSE_LP, el.r, "numpy")
+    # X's monomials as (1, c, s) indices of theta4 and theta5, from their exponents (c4, s4, c5, s5)
+    x_index = [(1 if c4 else 2 if s4 else 0, 1 if c5 else 2 if s5 else 0) for c4, s4, c5, s5 in _X_EXP]
+    worst = 0.0
+    for _ in range(poses):
+        f = np.linalg.inv(dh.base) @ chain.fk(rng.uniform(-np.pi, np.pi, 6)) @ np.linalg.inv(dh.end)
+        P, Q, r = g6.g6_equations([dh.constant_link(i) for i in range(5)] + [np.linalg.inv(f)])
+        lp = (*f[:3, 2], *f[:3, 3])
+        scale = 1.0 + float(np.max(np.abs(P)))
+        worst = max(worst, float(np.max(np.abs(Q - np.array(fq(*lp), float)))) / scale,
+                    float(np.max(np.abs(r - np.array(fr(*lp), float).ravel()))) / scale)
+        for k3 in range(3):
+            for col, (a, b) in enumerate(x_index):
+                worst = max(worst, float(np.max(np.abs(P[:, k3, a, b] - el.P[k3, :, col]))) / scale)
+    return worst
 
 
 def steps(chain: Chain, labelling: Labelling, rng: np.random.Generator, poses: int = 4) -> list[Step]:
@@ -308,19 +335,25 @@ def steps(chain: Chain, labelling: Labelling, rng: np.random.Generator, poses: i
                                        tol=1e-12),),
                     note=f"regularity (sigma_min / sigma_max of Q and of M(0.3), worst of 4 poses) "
                          f"{labelling.regularity:.1e} >= {REGULARITY_MIN:g}; best of {len(OPTIONS)} labellings"))
+    mismatch = symbolic_mismatch(chain, rng)
+    out.append(Step("g6_symbolic", "The run-time coefficients are the symbolic ones", "the general equations of "
+                    "g6_structure with the robot's DH constants substituted (exact 0 and +-1 kept), against the "
+                    "interpolated P, Q, r of the same loop read in DH frames", ("g6_structure", "g6_equations"),
+                    {"DH frames": "dh_frames.dh_from_chain (common normals of neighbouring axes)"},
+                    (Check("numeric", "max |interpolated - symbolic| over P, Q, r at 3 sampled poses, relative to "
+                           "1 + max |P|", mismatch <= 1e-12, mismatch, 1e-12, 3),)))
     counts, missed = [], 0
     for _ in range(poses):
         q = rng.uniform(-np.pi, np.pi, 6)
         pose = chain.fk(q)
         sols = solve(chain, labelling, pose)
         ref = multistart(chain, pose, rng)
-        missed += sum(1 for x in ref if all(np.max(np.abs(np.remainder(x - s + np.pi, 2 * np.pi) - np.pi)) > 1e-5
-                                            for s in sols))
+        missed += sum(1 for x in ref if _new(x, sols, 1e-5))
         counts.append((len(sols), len(ref)))
     out.append(Step("g6_solutions", "Every real solution", "the real eigenvalues of the 24 x 24 companion matrix of "
                     "(A x^2 + B x + C) (det: degree 24, of which 16 at most are the arm's, the rest at x = +-i), each "
-                    "polished by Gauss-Newton on the chain and verified", ("g6_equations",),
+                    "refined by Newton steps on the chain and verified", ("g6_equations",),
                     {"solutions per pose (elimination, multistart)": str(counts)},
-                    (Check("numeric", f"no pose of {poses} where a 60-start damped Gauss-Newton finds a solution "
+                    (Check("numeric", f"no pose of {poses} where Newton steps from 60 random starts find a solution "
                            "the elimination lacks", missed == 0, float(missed), 0.0, poses),)))
     return out

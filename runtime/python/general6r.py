@@ -22,7 +22,8 @@ is written phi + 2 atan(x); the other two by their half-angle tangents u, v. Eac
 polynomial of degree 2 in u, so the six equations and their u multiples are (A x^2 + B x + C) m = 0 over the 12
 monomials m = u^i v^j (i <= 3, j <= 2). The real eigenvalues x give the hidden angle, the null vector of
 M(x) the other two, the least-squares Y the angles t1, t2 (its entries include (c1, s1) and (c2, s2)), and the
-loop what turns t6. Each candidate is then polished on the chain and verified by the caller.
+loop what turns t6. Each candidate is refined by Newton steps on the chain (g6_refine) and verified by the
+caller.
 
 The source generated Python modules inline (from the marker line on; derive/runtime_files.py), linted and tested
 here as it is (tests/test_general6r.py).
@@ -44,7 +45,7 @@ _G6_BINV = np.linalg.inv(_G6_B)
 _G6_HALF = np.array([[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0]])
 G6_REFINE_STEPS = 3  # Newton steps per candidate (quadratic: 1e-9 -> 1e-18 -> rounding)
 G6_NULL_TOL = 1e-8  # singular values of M(x) up to this x the largest span its null space
-G6_REAL_TOL = 1e-6  # |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding (the polish decides)
+G6_REAL_TOL = 1e-6  # |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding (verification decides)
 _G6_PHIS = (0.0, 2.0 * math.pi / 3.0, -2.0 * math.pi / 3.0, math.pi / 2.0)
 
 
@@ -208,26 +209,6 @@ def _g6_complete(angles, links, P, Q, r):
     f = g6_rz(t1) @ k1 @ g6_rz(t2) @ k2 @ g6_rz(t3) @ k3 @ g6_rz(t4) @ k4 @ g6_rz(t5) @ k5
     r6 = g6_inverse(f) @ g6_inverse(k6)
     return [t1, t2, t3, t4, t5, math.atan2(r6[1, 0], r6[0, 0])]
-
-
-def g6_polish(q, fk, jacobian, target, iters=8):
-    """Gauss-Newton on the pose error (position, then half the sum of column cross products): the
-    elimination's roots carry the eigenproblem's conditioning (1e-9 where roots are close); a few steps bring a
-    candidate to rounding. fk(q) -> 4x4, jacobian(q) -> 6 x n geometric. Returns (q, max |fk(q) - target|)."""
-    q = np.array(q, dtype=float)
-    t = fk(q)
-    err = float(np.max(np.abs(t[:3] - target[:3])))
-    for _ in range(iters):
-        e = np.concatenate([target[:3, 3] - t[:3, 3],
-                            0.5 * sum(np.cross(t[:3, i], target[:3, i]) for i in range(3))])
-        step = np.linalg.lstsq(jacobian(q), e, rcond=None)[0]
-        trial = q + step
-        t2 = fk(trial)
-        err2 = float(np.max(np.abs(t2[:3] - target[:3])))
-        if not err2 < err:
-            break
-        q, t, err = trial, t2, err2
-    return q, err
 
 
 def g6_z_frames(axes, points) -> list[np.ndarray]:
