@@ -36,14 +36,13 @@ from ..model import Check, NoDecomposition, Step
 from .dh_frames import DHChain, dh_from_chain
 from .poe import Chain
 
-X_NAMES = ("s4*s5", "s4*c5", "c4*s5", "c4*c5", "s4", "c4", "s5", "c5", "1")
-Y_NAMES = ("s1*s2", "s1*c2", "c1*s2", "c1*c2", "s1", "c1", "s2", "c2")
 EQUATION_NAMES = ("l_x", "l_y", "l_z", "p_x", "p_y", "p_z", "p.p", "p.l", "(p x l)_x", "(p x l)_y", "(p x l)_z",
                   "((p.p) l - 2 (p.l) p)_x", "((p.p) l - 2 (p.l) p)_y", "((p.p) l - 2 (p.l) p)_z")
 POSE_LP = sp.symbols("lx ly lz px py pz", real=True)
 EXACT_ZERO = 1e-15  # a DH constant this close to 0, 1 or -1 is the geometry's exact value (meeting, right angle)
 
-# exponents of X's and Y's monomials in (c, s) of joints (4, 5) and (1, 2)
+# exponents of X = (s4 s5, s4 c5, c4 s5, c4 c5, s4, c4, s5, c5, 1) in (c4, s4, c5, s5) and of
+# Y = (s1 s2, s1 c2, c1 s2, c1 c2, s1, c1, s2, c2) in (c1, s1, c2, s2)
 _X_EXP = ((0, 1, 0, 1), (0, 1, 1, 0), (1, 0, 0, 1), (1, 0, 1, 0), (0, 1, 0, 0), (1, 0, 0, 0), (0, 0, 0, 1),
           (0, 0, 1, 0), (0, 0, 0, 0))
 _Y_EXP = ((0, 1, 0, 1), (0, 1, 1, 0), (1, 0, 0, 1), (1, 0, 1, 0), (0, 1, 0, 0), (1, 0, 0, 0), (0, 0, 0, 1),
