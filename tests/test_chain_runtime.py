@@ -56,6 +56,8 @@ def lib():
                         extra_flags=[f"-DWKT_SOURCES={h}"])
     L = load(so)
     L.wkt_trig.argtypes = [ctypes.c_double] * 3 + [D, U]
+    L.wkt_root_amplification.argtypes = [ctypes.c_int, D, U, ctypes.c_double]
+    L.wkt_root_amplification.restype = ctypes.c_double
     L.wkt_sp1.argtypes = [D, D, D, D]
     L.wkt_sp2.argtypes = [D, D, D, D, ctypes.c_int, D, IP, D, U]
     L.wkt_sp3.argtypes = [D, D, D, ctypes.c_double, D, U]
@@ -128,6 +130,25 @@ def test_sp2_returns_both_angle_pairs_of_two_rotations_meeting(lib):
         for i in range(n):
             assert np.allclose(_rot(k1, t1[i]) @ p1, _rot(k2, t2[i]) @ p2, atol=1e-9)
         assert min(_angle_gap(t1[i], a) + _angle_gap(t2[i], b) for i in range(n)) < 1e-7
+
+
+def test_root_amplification_is_the_roots_sensitivity(lib, py):
+    """A trig stage's roots phi +- w move by du / |sin w| for a change du of u = cos w (finite differences of acos
+    agree to 1e-3 relative); a double root within the band counts 1 / sqrt(DOUBLE_ROOT_TOL); never below the
+    outer value. C and Python (chain_subproblems._root_amplification) agree."""
+    f = (ctypes.c_uint * 2)(0, 0)
+    for w in (1.0, 0.1, 1e-2, 1e-3):
+        t = np.array([0.3 + w, 0.3 - w])
+        du = 1e-4 * w * w  # its second-order term ~1e-4 relative, its rounding eps / du <= 2e-6
+        sens = abs(math.acos(math.cos(w) - du) - w) / du
+        amp = lib.wkt_root_amplification(2, _p(t), f, 1.0)
+        assert math.isclose(amp, max(1.0, sens), rel_tol=1e-3), (w, amp, sens)
+        assert amp == py.sub._root_amplification([(t[0], 0), (t[1], 0)], 1.0)
+        assert lib.wkt_root_amplification(2, _p(t), f, 1e9) == 1e9
+    double = (ctypes.c_uint * 2)(FLAG_DOUBLE_ROOT, 0)
+    assert math.isclose(lib.wkt_root_amplification(1, _p(np.zeros(2)), double, 1.0), 1e6)  # the harness: 1e-12
+    # the stand-in robot's band (closed-form stages): 32 eps
+    assert math.isclose(py.sub._root_amplification([(0.0, FLAG_DOUBLE_ROOT)], 1.0), 1 / math.sqrt(32 * 2.0**-52))
 
 
 def test_sp3_and_sp4_roots_keep_the_distance_and_the_height(lib):

@@ -18,15 +18,17 @@ from chain_rigid import _add, _apply, _cross, _dot, _inverse, _mm, _mtv, _mv, _n
 from chain_stages import _OP_STAGES
 from chain_stand_in import (
     _PLAN,
+    DEGENERATE_EPS,
     DOUBLE_ROOT_TOL,
     FAMILY_ANGLES,
     FLAG_DOUBLE_ROOT,
     FLAG_INDETERMINATE,
     FLAG_SINGULAR_INVERSE,
+    ON_AXIS_TOL,
     SCALE,
     TANGENT_TOL,
 )
-from chain_subproblems import _perpendicular, _sp1, _sp2, _sp3, _sp4
+from chain_subproblems import _perpendicular, _root_amplification, _sp1, _sp2, _sp3, _sp4
 
 
 # wristkin: inlined from here
@@ -60,6 +62,10 @@ def _solve(ch, g, prev, accept):
     stored = [0]
     reached = [False]
     noise = [1.0]  # 1 / g of the near-singular orientation the current candidate went through (STAGE_NOISE)
+    # how much its trig stages amplified the input's rounding (_root_amplification): the orientation's family band
+    # (its rotation is read through every joint before it; a position pair or single joint reads a point the pose
+    # gives to rounding, so their on-axis bands stay at ON_AXIS_TOL)
+    amp = [1.0]
     probe, hits = [False], [0]  # a family's existence probed: candidates verified, not stored
 
     def count():
@@ -135,6 +141,8 @@ def _solve(ch, g, prev, accept):
                 roots = [(-t, f) for t, f in _sp4(nv, h, _sub(y, r), _dot(nv, _sub(x, r)), SCALE, noise[0])]
             else:  # n . rot(h, q)(x - r) = n . (y - r)
                 roots = _sp4(nv, h, _sub(x, r), _dot(nv, _sub(y, r)), SCALE, noise[0])
+            outer = amp[0]
+            amp[0] = _root_amplification(roots, outer)
             for t, f in roots:
                 q[j] = t
                 e = _screw("R", h, r, t)
@@ -142,6 +150,7 @@ def _solve(ch, g, prev, accept):
                     run(k + 1, x, _apply(_inverse(e), y), flags | f)
                 else:
                     run(k + 1, _apply(e, x), y, flags | f)
+            amp[0] = outer
         elif kind in ("first_dist", "last_dist"):
             _, j, jk, ss = op
             s = _point(ch, ss)
@@ -167,6 +176,8 @@ def _solve(ch, g, prev, accept):
                         run(k + 1, _add(x, _scale(h, v)), y, flags | f)
                 return
             roots = _sp3(h, _sub(moving, r), _sub(s, r), d, SCALE, noise[0])
+            outer = amp[0]
+            amp[0] = _root_amplification(roots, outer)
             for t, f in roots:
                 t = -t if first else t
                 q[j] = t
@@ -175,6 +186,7 @@ def _solve(ch, g, prev, accept):
                     run(k + 1, x, _apply(_inverse(e), y), flags | f)
                 else:
                     run(k + 1, _apply(e, x), y, flags | f)
+            amp[0] = outer
         elif kind == "pair":  # rot_j rot_k (x - s) = y - s
             _, j, kk, ss = op
             s = _point(ch, ss)
@@ -194,7 +206,9 @@ def _solve(ch, g, prev, accept):
                 q[j] = _dot(h, _sub(y, x))
                 run(k + 1, x, y, flags)
                 return
-            t = _sp1(h, _sub(x, r), _sub(y, r), SCALE)
+            # x or y on the axis (a shoulder family) at ON_AXIS_TOL of the chain's size: the pose fixes q to eps / its
+            # offset from the axis, so a wrist centre 6e-14 of the size off the shoulder axis still has its regular sets
+            t = _sp1(h, _sub(x, r), _sub(y, r), SCALE * (ON_AXIS_TOL / DEGENERATE_EPS))
             if t is None:
                 q[j] = prev[j] if prev is not None else 0.0
                 run(k + 1, x, y, flags | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE)
@@ -218,7 +232,7 @@ def _solve(ch, g, prev, accept):
             before_op = count()
             if len(units) == 3:
                 v = u[2]
-                sols = _sp2(_mv(rd, v), u[0], v, u[1], 1.0)
+                sols = _sp2(_mv(rd, v), u[0], v, u[1], 1.0, amp=amp[0])
             elif len(units) == 2:
                 t1 = _sp1(u[0], u[1], _mv(rd, u[1]), 1.0)
                 sols = [(None if t1 is None else -t1, 0.0, 0)]
@@ -249,7 +263,7 @@ def _solve(ch, g, prev, accept):
             if len(units) == 3 and count() == before_op:
                 # near (not at) the singular family the merged root is a family that verifies nothing: its two
                 # roots are two sets with every angle defined
-                for t1, t2, f in _sp2(_mv(rd, v), u[0], v, u[1], 1.0, split=True):
+                for t1, t2, f in _sp2(_mv(rd, v), u[0], v, u[1], 1.0, split=True, amp=amp[0]):
                     _orient_set(units, _orient_rest(u, rd, t1, t2))
                     outer = noise[0]
                     noise[0] = max(outer, 1.0 / max(_norm(_cross(u[0], _mv(_rot(u[1], t2), v))), 1e-300))

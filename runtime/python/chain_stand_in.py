@@ -68,7 +68,7 @@ BRANCHES = {"elbow": ["up", "down"], "shoulder": ["front", "back"], "wrist": ["n
 # |u| of acos(u) may exceed 1 by TANGENT_TOL (a pose at the reach boundary); 1 - u^2 at or below
 # DOUBLE_ROOT_TOL is one double root, reported once and flagged
 TANGENT_TOL = 1e-9
-DOUBLE_ROOT_TOL = 1e-12
+DOUBLE_ROOT_TOL = 32 * 2.220446049250313e-16
 # A stage after a near-singular orientation (the family's middle angle g = |sin| small but resolved: two regular
 # sets) reads points placed through angles fixed only to eps / g each (their sum or difference is well conditioned),
 # moved by that times a lever of about the chain's size: its u carries ~ eps / g (measured: 1e-9 at g = 1e-7 on a
@@ -85,7 +85,8 @@ DEGENERATE_EPS = 1e-12  # a subproblem's coefficient norm (relative to SCALE) be
 # subproblem 2's two roots within this (g relative to |p|: |sin| of a wrist's middle angle) are one, the singular
 # family: the stages before an orientation (the degree-8 polynomial, subproblem 6's Newton steps) leave ~1e-12 in
 # its rotation, which a tighter threshold would split into two "regular" sets of a singular pose
-FAMILY_TOL = 1e-10
+FAMILY_TOL = 64 * 2.220446049250313e-16
+ON_AXIS_TOL = 64 * 2.220446049250313e-16
 # a singular orientation family's free angle when no `previous` is given: the first of these (every degree, nearest
 # to 0 first) for which the rest of the decomposition has a verified solution (with a parallel group the position
 # depends on it, and only an interval of angles reaches the pose); the search stops at the first success
@@ -96,6 +97,7 @@ POLISH_STEPS = 8  # Gauss-Newton steps on the true chain (near-special geometry,
 POLISH_TOL = 1e-12 * max(1.0, SCALE)
 GEOMETRY_TOL = 1e-06  # the planner's tolerance on parallel / intersecting axes
 GEOMETRY_DEVIATION = 2.7755575615628914e-17  # largest deviation of the true axes from the ideal ones used
+CALIBRATED = False  # the true axes off the ideal ones by more than rounding: candidates are compensated
 
 # The chain at q = 0, base frame: axis, a point on it (revolute), end frame M. _IDEAL_*: the same with the
 # relations the decomposition relies on made exact (equal to the true data when they already were).

@@ -17,6 +17,7 @@ from chain_stand_in import (
     FLAG_DOUBLE_ROOT,
     FLAG_INDETERMINATE,
     FLAG_SINGULAR_INVERSE,
+    ON_AXIS_TOL,
     STAGE_NOISE,
     TANGENT_TOL,
 )
@@ -29,8 +30,8 @@ def _trig(a, b, c, scale, noise=1.0):
     equation one representative t = 0 (flagged indeterminate). `noise`: 1 / g of an upstream near-singular
     orientation (STAGE_NOISE), else 1."""
     r = math.hypot(a, b)
-    if r <= DEGENERATE_EPS * scale:
-        return [(0.0, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE)] if abs(c) <= DEGENERATE_EPS * scale else []
+    if r <= ON_AXIS_TOL * scale:
+        return [(0.0, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE)] if abs(c) <= ON_AXIS_TOL * scale else []
     u = c / r
     if not abs(u) <= 1.0 + max(TANGENT_TOL, STAGE_NOISE * noise):
         return []
@@ -84,12 +85,25 @@ def _sp2_height2(p1, k1, p2, k2, c, a1, a2, den, scale):
     return (den * n - e * e) / (den * den), size * (math.sqrt(n) + abs(e)) / den
 
 
-def _sp2(p1, k1, p2, k2, scale, split=False):
+def _root_amplification(roots, outer):
+    """How much a trig stage's two roots amplify the rounding of its inputs: 1 / |sin w| for roots phi +- w (a
+    root moves by du / |sin w| for a change du of u = cos w), at least `outer` (the stages before); a double root
+    within the band: 1 / sqrt(DOUBLE_ROOT_TOL)."""
+    if len(roots) == 2:
+        return max(outer, 1.0 / max(abs(math.sin(0.5 * (roots[0][0] - roots[1][0]))), 1e-300))
+    if len(roots) == 1 and roots[0][1] & FLAG_DOUBLE_ROOT:
+        return max(outer, 1.0 / math.sqrt(DOUBLE_ROOT_TOL))
+    return outer
+
+
+def _sp2(p1, k1, p2, k2, scale, split=False, amp=1.0):
     """(t1, t2, flags) with rot(k1, t1) p1 = rot(k2, t2) p2, k1 not parallel to k2: the common vector w has
     k1.w = k1.p1, k2.w = k2.p2 and |w| = |p1|. t1 is None when p1 lies on k1 (any t1: a singular family).
     Within DOUBLE_ROOT_TOL the two roots are one (rounding of g^2 at an exact double root would split it by
     sqrt(eps)); `split`: only the two roots of such a near-double root, for a caller whose merged root verified
-    nothing (a pose near, not at, a singular family: the merged w lies on k1, the true ones do not)."""
+    nothing (a pose near, not at, a singular family: the merged w lies on k1, the true ones do not). `amp`: how
+    much the stages before amplified the input's rounding (_root_amplification): the bands grow with it (a
+    shoulder angle 0.008 rad from its tangent left 1.2e-13 in g at an exact wrist singularity)."""
     c = _dot(k1, k2)
     a1, a2 = _dot(k1, p1), _dot(k2, p2)
     den = 1.0 - c * c
@@ -104,7 +118,8 @@ def _sp2(p1, k1, p2, k2, scale, split=False):
         return []
     # one double root where g^2 is within DOUBLE_ROOT_TOL of what rounding leaves in it: near a singular family g^2
     # is resolved far below scale2 (two regular sets, q5 = +-s), down to FAMILY_TOL
-    near = g2 <= DOUBLE_ROOT_TOL * res2 or g2 <= FAMILY_TOL * FAMILY_TOL * scale2
+    family = FAMILY_TOL * amp
+    near = g2 <= DOUBLE_ROOT_TOL * amp * res2 or g2 <= family * family * scale2
     if split and not (near and g2 > 0.0):
         return []
     if near and not split:
@@ -113,8 +128,11 @@ def _sp2(p1, k1, p2, k2, scale, split=False):
         g = math.sqrt(g2)
         ws, flag = [_add(base, _scale(kk, g)), _add(base, _scale(kk, -g))], FLAG_SINGULAR_INVERSE if split else 0
     out = []
+    axis_scale = scale * (family / DEGENERATE_EPS)
     for w in ws:
-        t1, t2 = _sp1(k1, p1, w, scale), _sp1(k2, p2, w, scale)
+        # p1 on the axis k1 (the family) at FAMILY_TOL, as g above: sp1's own DEGENERATE_EPS band would call a
+        # wrist with |sin| between them a family (the generating set was lost at |sin q5| = 1e-12)
+        t1, t2 = _sp1(k1, p1, w, axis_scale), _sp1(k2, p2, w, axis_scale)
         if t2 is None or (split and t1 is None):
             continue
         out.append((t1, t2, flag if t1 is not None else flag | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE))

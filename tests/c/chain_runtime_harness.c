@@ -20,7 +20,8 @@
 #define CK_SINGULAR_EPS 1e-6
 #define CK_SCALE 1.0
 #define CK_DEGENERATE_EPS 1e-12
-#define CK_FAMILY_TOL 1e-10
+#define CK_FAMILY_TOL 1e-10 /* the bands of a robot with a polynomial stage (views.stage_tolerances) */
+#define CK_ON_AXIS_TOL 1e-12
 #define CK_POLISH_STEPS 8
 #define CK_POLISH_TOL (1e-12 * (CK_SCALE > 1.0 ? CK_SCALE : 1.0))
 #define CK_SAME_TOL 1e-9
@@ -64,6 +65,7 @@ void wkt_transpose(const double *r, double *o);
 int wkt_sp6_split(const double *n, const double *h0, const double *p0, const double *h4, const double *p4, double d0,
                   const double *g, const double *h5, double q0, double q4, double *s0, double *s4);
 void wkt_meet_point(const double *axes, const double *points, int spec, int j0, int j1, double *o);
+double wkt_root_amplification(int nr, const double *t, const unsigned *f, double outer);
 int wkt_sp1(const double *k, const double *p, const double *q, double *t);
 int wkt_sp2(const double *p1, const double *k1, const double *p2, const double *k2, int split, double *t1, int *has1,
             double *t2, unsigned *f);
@@ -89,6 +91,11 @@ int wkt_trig(double a, double b, double c, double *t, unsigned *f)
     return ck_trig(a, b, c, 1.0, 1.0, t, f);
 }
 
+double wkt_root_amplification(int nr, const double *t, const unsigned *f, double outer)
+{
+    return ck_root_amplification(nr, t, f, outer);
+}
+
 int wkt_sp1(const double *k, const double *p, const double *q, double *t)
 {
     return ck_sp1(k, p, q, CK_SCALE, t);
@@ -97,7 +104,7 @@ int wkt_sp1(const double *k, const double *p, const double *q, double *t)
 int wkt_sp2(const double *p1, const double *k1, const double *p2, const double *k2, int split, double *t1, int *has1,
             double *t2, unsigned *f)
 {
-    return ck_sp2(p1, k1, p2, k2, CK_SCALE, split, t1, has1, t2, f);
+    return ck_sp2(p1, k1, p2, k2, CK_SCALE, split, 1.0, t1, has1, t2, f);
 }
 
 int wkt_sp3(const double *k, const double *p1, const double *p2, double d, double *t, unsigned *f)

@@ -17,11 +17,15 @@ from ...kinematics.poe import Chain, normalised, reduce_free, reverse
 from ...kinematics.subproblems import subproblem_checks
 from ...mechanism import MechanismDefaults
 from ...model import Check, Derivation, Finding, NoDecomposition, Step
+from ...tolerances import TOLERANCES
 from . import views
 from .description import Description
 from .stages import stage
 
 FREE_SAMPLES = (0.0, 0.7, -1.9, 2.6)  # values of a free joint the decomposition must hold at
+# true axes off the ideal ones by more than this (rounding of a description's angles is ~1e-16): a calibrated robot,
+# whose candidates the emitted solver compensates when their polish fails (chain_api._compensated)
+CALIBRATED_DEVIATION = 1e-13
 
 
 class ChainMechanism(MechanismDefaults):
@@ -232,6 +236,9 @@ class ChainMechanism(MechanismDefaults):
                 "strategy": plan.strategy, "controls": self.controls(), "branch_names": branch_names,
                 "scale": repr(self.scale()), "geometry_tol": repr(self.desc.geometry_tol),
                 "geometry_deviation": repr(self.deviation()),
+                "calibrated": self.deviation() > CALIBRATED_DEVIATION,
+                "tangent_tol": repr(max(float(TOLERANCES["stage_tangent"]),
+                                        8.0 * self.deviation() / min(1.0, self.scale()))),
                 "axes": _vectors(c.axes), "points": _vectors(c.points), "home": _matrix(c.home),
                 "ideal_axes": _vectors(ideal.axes), "ideal_points": _vectors(ideal.points),
                 "ideal_home": _matrix(ideal.home), "base": _matrix(c.base), "tool_frame": _matrix(c.tool),
@@ -244,7 +251,8 @@ class ChainMechanism(MechanismDefaults):
                 "has_poly": any(op["op"] in ("spatial3", "sp6") for op in plan.ops),
                 "c_plan_rows": views.c_plan_rows([stage(i, op) for i, op in enumerate(plan.ops)], solver.joint_names),
                 "c_runtime_files": views.c_runtime_files(plan.ops),
-                "c_flags": views.c_flags(plan.ops, free, plan.reversed),
+                "c_flags": views.c_flags(plan.ops, free, plan.reversed, self.deviation() > CALIBRATED_DEVIATION),
+                **views.stage_tolerances(plan.ops),
                 "py_runtime_files": views.py_runtime_files(plan.ops),
                 "c_includes": views.c_includes(plan.ops),
                 # the same data as plain numbers, for the C template

@@ -41,11 +41,24 @@ def py_runtime_files(ops) -> list[str]:
             *(f"python/chain_{n}.py" for n in ("solve", "verify", "api"))]
 
 
-def c_flags(ops, free: int, reversed_: bool) -> dict:
+def c_flags(ops, free: int, reversed_: bool, calibrated: bool = False) -> dict:
     """The preprocessor switches the runtime sources read (ck_chain.c, ck_interpreter.c, ck_api.c)."""
     kinds = _kinds(ops)
-    return {"CK_FREE": free, "CK_REVERSED": int(bool(reversed_)), "CK_HAS_SP6": int("sp6" in kinds),
+    return {"CK_FREE": free, "CK_REVERSED": int(bool(reversed_)), "CK_CALIBRATED": int(bool(calibrated)),
+            "CK_HAS_SP6": int("sp6" in kinds),
             "CK_HAS_SPATIAL3": int("spatial3" in kinds), "CK_HAS_GENERAL6R": int("general6r" in kinds)}
+
+
+def stage_tolerances(ops) -> dict:
+    """The bands of the closed-form stages (the Python template's comments say why each holds), as literals.
+    After closed-form stages the stage inputs carry rounding: a double root at 32 eps of u (roots ~1e-7 apart
+    separate), a family (subproblem 2's g, a point on a joint's axis, a vanishing trig equation) at 64 eps of |sin|
+    or of the chain's size. After a polynomial stage (spatial3, subproblem 6, the general 6R: its roots carry
+    ~1e-12) the wider bands that keep its noise from splitting a singular pose into two "regular" sets."""
+    if _kinds(ops) & {"spatial3", "sp6", "general6r"}:
+        return {"double_root_tol": "1e-12", "family_tol": "1e-10", "on_axis_tol": "1e-12"}
+    return {"double_root_tol": "32 * 2.220446049250313e-16", "family_tol": "64 * 2.220446049250313e-16",
+            "on_axis_tol": "64 * 2.220446049250313e-16"}
 
 
 def c_shared_files(ops) -> list[str]:

@@ -267,7 +267,9 @@ static int ck_api_ik_near(const double pose_in[12], const ck_design *design, con
     c.projected = deviation > 0.0 ? WK_FLAG_PROJECTED : 0u;
     c.indeterminate = 0;
     c.noise = 1.0;
+    c.amp = 1.0;
     c.probe = c.hits = 0;
+    c.raw = 0;
     c.out = out;
     for (j = 0; j < CK_N; ++j) c.q[j] = c.theta[j] = 0.0;
     for (k = 0; k < CK_N_OPS; ++k) ck_point(&ideal, &ck_plan[k], c.spec[k]);

@@ -14,7 +14,11 @@ typedef struct {
     unsigned projected;
     int indeterminate;
     double noise;            /* 1 / g of the near-singular orientation the current candidate went through, else 1 */
+    double amp;              /* how much its trig stages amplified the input's rounding (ck_root_amplification): the
+                              * orientation's family band (Python's amp) */
     int probe;               /* a family's existence probed: candidates verified and counted in hits, not stored */
+    int raw;                 /* a calibrated robot's compensation (ck_compensated): candidates checked on the ideal
+                              * chain only */
     int hits;
     double q[CK_N];
     double theta[CK_N];      /* the angle of a parallel group (orient), by its first joint */
@@ -121,6 +125,72 @@ static double ck_orient_noise(const double *const *u, double t2, double outer)
     return g > outer ? g : outer;
 }
 
+#if CK_CALIBRATED
+static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned flags);
+
+/* A candidate of the compensation's solve: stored when the ideal chain reaches its target (Python's take) */
+static void ck_raw_candidate(ck_ctx *c)
+{
+    ck_ik_solutions *out = c->out;
+    double qc[CK_N], full[CK_N];
+    ck_rt t;
+    int i, k;
+    if (out->count >= CK_MAX_IK) return;
+    for (i = 0; i < c->ideal->n; ++i) qc[i] = c->ideal->prismatic[i] ? c->q[i] : ck_wrap(c->q[i]);
+    ck_fk_chain(c->ideal, qc, &t);
+    if (!(ck_frame_error(&t, &c->target) <= CK_IK_VERIFY_TOL)) return;
+    ck_full_joints(c, qc, full);
+    for (k = 0; k < out->count; ++k)
+        if (ck_same(full, out->values[k])) return;
+    for (i = 0; i < CK_N; ++i) out->values[k][i] = full[i];
+    out->valid[k] = 1;
+    out->count = k + 1;
+}
+
+/* A calibrated robot's candidate whose polish failed (near a singularity the ideal geometry's answer is ~1e-7 /
+ * sigma_min off, outside Gauss-Newton's reach): replaced by the ideal chain's solution, nearest qc, of the pose it
+ * must reach for the true chain to reach the target at the same joints, target E(qc) with E = F_true(qc)^-1
+ * F_ideal(qc) (Python's _compensated). 1 when qc was replaced. */
+static int ck_compensated(const ck_ctx *c, double *qc)
+{
+    ck_ctx r = *c;
+    ck_ik_solutions raw;
+    ck_rt ti, tt, e;
+    double full[CK_N], best = INFINITY, zero[3] = {0.0, 0.0, 0.0};
+    int i, k, pick = -1;
+    ck_fk_chain(c->ideal, qc, &ti);
+    ck_fk_chain(c->truth, qc, &tt);
+    ck_inverse(&tt, &e);
+    ck_compose(&e, &ti, &e);
+    ck_compose(&c->target, &e, &r.target);
+    ck_inverse(&c->ideal->home, &r.g);
+    ck_compose(&r.target, &r.g, &r.g);
+    r.raw = 1;
+    r.probe = r.hits = 0;
+    r.noise = r.amp = 1.0;
+    raw.count = 0;
+    r.out = &raw;
+    for (i = 0; i < CK_N; ++i) r.q[i] = r.theta[i] = 0.0;
+    ck_run(&r, 0, zero, zero, 0u);
+    ck_full_joints(c, qc, full);
+    for (k = 0; k < raw.count; ++k) {
+        double gap = 0.0;
+        for (i = 0; i < CK_N; ++i) {
+            const double d = ck_revolute[i] ? fabs(ck_wrap(raw.values[k][i] - full[i]))
+                                            : fabs(raw.values[k][i] - full[i]);
+            if (d > gap) gap = d;
+        }
+        if (gap < best) {
+            best = gap;
+            pick = k;
+        }
+    }
+    if (pick < 0) return 0;
+    for (i = 0; i < c->truth->n; ++i) qc[i] = raw.values[pick][c->truth->index[i]];
+    return 1;
+}
+#endif
+
 /* A candidate of the plan: verified (and polished) on the true chain, deduplicated, flagged, stored. */
 static void ck_candidate(ck_ctx *c, unsigned flags)
 {
@@ -129,12 +199,22 @@ static void ck_candidate(ck_ctx *c, unsigned flags)
     double qc[CK_N], full[CK_N], jac[6 * CK_N], err;
     ck_rt t;
     int i, k;
+#if CK_CALIBRATED
+    if (c->raw) {
+        ck_raw_candidate(c);
+        return;
+    }
+#endif
     if (out->count >= CK_MAX_IK) return;
     for (i = 0; i < ch->n; ++i) qc[i] = ch->prismatic[i] ? c->q[i] : ck_wrap(c->q[i]);
     ck_jacobian_chain(ch, qc, jac, &t); /* the FK and the Jacobian share their screws */
     err = ck_frame_error(&t, &c->target);
     if (err > CK_IK_VERIFY_TOL) {
         err = ck_polish(ch, qc, &c->target);
+#if CK_CALIBRATED
+        if (!(err <= CK_IK_VERIFY_TOL) && ck_compensated(c, qc)) /* once per candidate: no retry loop */
+            err = ck_polish(ch, qc, &c->target);
+#endif
         ck_jacobian_chain(ch, qc, jac, NULL);
     }
     if (!(err <= CK_IK_VERIFY_TOL)) return;
@@ -321,7 +401,7 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
     case CK_LAST_PLANE: {
         const int first = op->op == CK_FIRST_PLANE, j = op->j;
         const double *nv = c->spec[k], *h = ch->axis[j], *r = ch->point[j];
-        double d[3], d2[3], moved[3], t[2];
+        double d[3], d2[3], moved[3], t[2], outer;
         unsigned f[2];
         int nr, i;
         if (op->prismatic) {
@@ -351,6 +431,8 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
             ck_sub(y, r, d2);
             nr = ck_sp4(nv, h, d, ck_dot(nv, d2), CK_SCALE, c->noise, t, f);
         }
+        outer = c->amp;
+        c->amp = ck_root_amplification(nr, t, f, outer);
         for (i = 0; i < nr; ++i) {
             ck_rt e;
             c->q[j] = t[i];
@@ -364,6 +446,7 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
                 ck_run(c, k + 1, moved, y, flags | f[i]);
             }
         }
+        c->amp = outer;
         break;
     }
     case CK_FIRST_DIST:
@@ -371,7 +454,7 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         const int first = op->op == CK_FIRST_DIST, j = op->j;
         const double *s = c->spec[k], *h = ch->axis[j], *r = ch->point[j];
         const double *moving = first ? y : x, *other = first ? x : y;
-        double d3[3], ms[3], sr[3], mr[3], moved[3], dist, t[2];
+        double d3[3], ms[3], sr[3], mr[3], moved[3], dist, t[2], outer;
         unsigned f[2];
         int nr, i;
         ck_sub(other, s, d3);
@@ -410,6 +493,8 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         ck_sub(moving, r, mr);
         ck_sub(s, r, sr);
         nr = ck_sp3(h, mr, sr, dist, CK_SCALE, c->noise, t, f);
+        outer = c->amp;
+        c->amp = ck_root_amplification(nr, t, f, outer);
         for (i = 0; i < nr; ++i) {
             ck_rt e;
             const double tt = first ? -t[i] : t[i];
@@ -424,6 +509,7 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
                 ck_run(c, k + 1, moved, y, flags | f[i]);
             }
         }
+        c->amp = outer;
         break;
     }
     case CK_PAIR: { /* rot_j rot_k (x - s) = y - s */
@@ -436,7 +522,7 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         ck_sub(x, s, xs);
         for (split = 0; split < 2; ++split) { /* a near-double root's two roots when its merged one verified nothing */
             if (split && ck_count(c) > before) break;
-            nr = ck_sp2(ys, ch->axis[op->j], xs, ch->axis[op->k], CK_SCALE, split, t1, has1, t2, f);
+            nr = ck_sp2(ys, ch->axis[op->j], xs, ch->axis[op->k], CK_SCALE, split, 1.0, t1, has1, t2, f);
             for (i = 0; i < nr; ++i) {
                 c->q[op->j] = has1[i] ? -t1[i] : (c->prev ? c->prev[op->j] : 0.0);
                 c->q[op->k] = t2[i];
@@ -457,7 +543,8 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         }
         ck_sub(x, r, xr);
         ck_sub(y, r, yr);
-        if (!ck_sp1(h, xr, yr, CK_SCALE, &t)) {
+        /* on the axis (a shoulder family) at CK_ON_AXIS_TOL of the chain's size (Python's "single" op) */
+        if (!ck_sp1(h, xr, yr, CK_SCALE * (CK_ON_AXIS_TOL / CK_DEGENERATE_EPS), &t)) {
             c->q[j] = c->prev ? c->prev[j] : 0.0;
             ck_run(c, k + 1, x, y, flags | WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE);
         } else {
@@ -549,7 +636,7 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         for (i = 0; i < nu; ++i) u[i] = ch->axis[op->units[i][0]];
         if (nu == 3) {
             ck_mv(gp.r, u[2], rv);
-            ns = ck_sp2(rv, u[0], u[2], u[1], 1.0, 0, t1, has1, t2, f);
+            ns = ck_sp2(rv, u[0], u[2], u[1], 1.0, 0, c->amp, t1, has1, t2, f);
         } else if (nu == 2) {
             double a = 0.0;
             ck_mv(gp.r, u[1], rv);
@@ -597,7 +684,7 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         if (nu == 3 && ck_count(c) == before_op) {
             /* near (not at) the singular family the merged root is a family that verifies nothing: its two roots
              * are two sets with every angle defined */
-            ns = ck_sp2(rv, u[0], u[2], u[1], 1.0, 1, t1, has1, t2, f);
+            ns = ck_sp2(rv, u[0], u[2], u[1], 1.0, 1, c->amp, t1, has1, t2, f);
             for (i = 0; i < ns; ++i) {
                 double angles[3];
                 const double outer = c->noise;

@@ -10,8 +10,8 @@ static int ck_trig(double a, double b, double c, double scale, double noise, dou
     const double tangent = fmax(CK_TANGENT_TOL, CK_STAGE_NOISE * noise);
     const double dbl = fmax(CK_DOUBLE_ROOT_TOL, 2.0 * CK_STAGE_NOISE * noise);
     double u, phi, w;
-    if (r <= CK_DEGENERATE_EPS * scale) {
-        if (fabs(c) <= CK_DEGENERATE_EPS * scale) {
+    if (r <= CK_ON_AXIS_TOL * scale) {
+        if (fabs(c) <= CK_ON_AXIS_TOL * scale) {
             t[0] = 0.0;
             f[0] = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
             return 1;
@@ -98,12 +98,28 @@ static double ck_sp2_height2(const double *p1, const double *k1, const double *p
     return (den * n - e * e) / (den * den);
 }
 
+/* How much a trig stage's nr roots t amplify the rounding of its inputs: 1 / |sin w| for roots phi +- w, a double
+ * root 1 / sqrt(CK_DOUBLE_ROOT_TOL), at least `outer` (Python's _root_amplification) */
+static double ck_root_amplification(int nr, const double *t, const unsigned *f, double outer)
+{
+    double a = outer;
+    if (nr == 2) {
+        const double s = fabs(sin(0.5 * (t[0] - t[1])));
+        a = 1.0 / (s > 1e-300 ? s : 1e-300);
+    } else if (nr == 1 && (f[0] & WK_FLAG_DOUBLE_ROOT)) {
+        a = 1.0 / sqrt(CK_DOUBLE_ROOT_TOL);
+    }
+    return a > outer ? a : outer;
+}
+
 /* (t1, t2, flags) with rot(k1, t1) p1 = rot(k2, t2) p2, k1 not parallel to k2 (at most 2). has1[i] = 0 when p1
- * lies on k1 (any t1: a singular family, returned once). */
+ * lies on k1 (any t1: a singular family, returned once). `amp`: the stages before's amplification of the input's
+ * rounding (ck_root_amplification): the bands grow with it (Python's _sp2). */
 static int ck_sp2(const double *p1, const double *k1, const double *p2, const double *k2, double scale, int split,
-                  double *t1, int *has1, double *t2, unsigned *f)
+                  double amp, double *t1, int *has1, double *t2, unsigned *f)
 {
     const double c = ck_dot(k1, k2), a1 = ck_dot(k1, p1), a2 = ck_dot(k2, p2), den = 1.0 - c * c;
+    const double family = CK_FAMILY_TOL * amp, axis_scale = scale * (family / CK_DEGENERATE_EPS);
     double alpha, beta, kk[3], base[3], tmp[3], ws[2][3], g2, scale2, res2;
     unsigned flag;
     int nw, i, near, out = 0;
@@ -120,7 +136,7 @@ static int ck_sp2(const double *p1, const double *k1, const double *p2, const do
     /* one double root where g^2 is within CK_DOUBLE_ROOT_TOL of what rounding leaves in it (Python's _sp2) */
     /* `split`: only the two roots of a near-double root (see Python's _sp2), for a caller whose merged root
        verified nothing */
-    near = g2 <= CK_DOUBLE_ROOT_TOL * res2 || g2 <= CK_FAMILY_TOL * CK_FAMILY_TOL * scale2;
+    near = g2 <= CK_DOUBLE_ROOT_TOL * amp * res2 || g2 <= family * family * scale2;
     if (split && !(near && g2 > 0.0)) return 0;
     if (!split && near) {
         ws[0][0] = base[0];
@@ -139,8 +155,9 @@ static int ck_sp2(const double *p1, const double *k1, const double *p2, const do
     }
     for (i = 0; i < nw; ++i) {
         double a = 0.0, b = 0.0;
-        const int ok1 = ck_sp1(k1, p1, ws[i], scale, &a);
-        if (!ck_sp1(k2, p2, ws[i], scale, &b) || (split && !ok1)) continue;
+        /* p1 on the axis k1 (the family) at CK_FAMILY_TOL, as g above (Python's _sp2) */
+        const int ok1 = ck_sp1(k1, p1, ws[i], axis_scale, &a);
+        if (!ck_sp1(k2, p2, ws[i], axis_scale, &b) || (split && !ok1)) continue;
         t1[out] = ok1 ? a : 0.0;
         has1[out] = ok1;
         t2[out] = b;
