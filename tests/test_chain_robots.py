@@ -220,6 +220,21 @@ def test_a_calibrated_arm_is_solved_on_ideal_axes_and_polished_on_the_true_ones(
             assert ref.pose_error(r(v), T) < 1e-10
 
 
+def test_a_held_joint_that_leaves_a_self_motion_is_refused_and_never_picked():
+    """The iiwa14 with its elbow a4 held: the spherical shoulder turns the arm about the shoulder-wrist line and the
+    spherical wrist undoes it, so every reachable pose has infinitely many solutions. Was: a solver emitted whose
+    decomposition (a general 3R for the wrist centre) reported every such pose unreachable (20 of 20 generating
+    poses). Now refused with the reason, and not among the choices listed or picked without --free."""
+    from derive.families.chain import workable_free_joints
+    from derive.model import NoDecomposition
+
+    with pytest.raises(NoDecomposition, match="self-motion"):
+        own_robot.load(_file("iiwa14", "urdf"), free="a4").plan()
+    mech = own_robot.load(_file("iiwa14", "urdf"))
+    choices = workable_free_joints(mech.NAME, mech.title, mech.desc)
+    assert "a4" not in choices and {"a1", "a3", "a5", "a7"} <= set(choices)
+
+
 def test_a_tolerance_below_the_deviation_leaves_the_general_6r():
     """Below the calibrated arm's deviation no decomposition holds (the planner's refusal names the axes); the 6R
     is then solved by elimination on its true axes, with nothing idealised."""

@@ -26,6 +26,9 @@ FREE_SAMPLES = (0.0, 0.7, -1.9, 2.6)  # values of a free joint the decomposition
 # true axes off the ideal ones by more than this (rounding of a description's angles is ~1e-16): a calibrated robot,
 # whose candidates the emitted solver compensates when their polish fails (chain_api._compensated)
 CALIBRATED_DEVIATION = 1e-13
+# the held six joints' Jacobian at or below this (sigma_min / sigma_max) at every sampled configuration: a
+# self-motion (rank < 6 everywhere; rounding leaves ~1e-16, a regular arm's random configurations ~1e-2)
+SELF_MOTION_RATIO = 1e-9
 
 
 class ChainMechanism(MechanismDefaults):
@@ -56,6 +59,7 @@ class ChainMechanism(MechanismDefaults):
         if self._plan is None:
             base = self.solver_chain(self.chain)
             scale = self.scale()
+            self._refuse_self_motion()
 
             def holds(_c, plan):
                 ideal = self.idealise(plan)
@@ -73,6 +77,28 @@ class ChainMechanism(MechanismDefaults):
                 self._plan = self._general_plan(base, exc)
             self._ideal = self.idealise(self._plan)
         return self._plan, self._ideal
+
+    def _refuse_self_motion(self) -> None:
+        """Holding the free joint can leave the other six a self-motion (the iiwa's elbow a4 held: its spherical
+        shoulder turns the arm about the shoulder-wrist line and its spherical wrist undoes the turn): the held
+        chain's Jacobian has rank < 6 at every configuration, every reachable pose has infinitely many solutions,
+        and a decomposition that reads it as six joints finds none (the solver said "unreachable" for every pose).
+        Refused here, so that a 7-joint arm without --free never picks it and lists the choices that work."""
+        if self.desc.free < 0 or self.chain.n != 7:
+            return
+        rng = np.random.default_rng(5)
+        ratios = []
+        for v in FREE_SAMPLES[1:]:  # held values away from 0, where a joint may line up with another
+            c = self.solver_chain(self.chain, v)
+            for _ in range(4):
+                s = np.linalg.svd(c.jacobian(_random_joints(c, rng)), compute_uv=False)
+                ratios.append(s[-1] / s[0])
+        if max(ratios) <= SELF_MOTION_RATIO:
+            name = self.chain.joint_names[self.desc.free]
+            raise NoClosedForm(f"holding {name} leaves the other six joints a self-motion: their Jacobian has rank < 6 "
+                               f"at every configuration (sigma_min / sigma_max <= {max(ratios):.1e} at "
+                               f"{len(ratios)} random ones), so every reachable pose has infinitely many solutions; "
+                               "hold another joint")
 
     def _general_plan(self, base: Chain, refused: NoClosedForm) -> Plan:
         """No decomposition fits: a 6R chain (after the free joint is held) is solved by elimination, read the way
