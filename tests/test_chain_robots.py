@@ -700,6 +700,31 @@ def test_panda_sets_meet_their_reported_residual_on_the_modules_own_fk(free, tmp
     assert checked >= 300
 
 
+def test_panda_with_joint2_held_is_solved_away_from_its_self_motion(tmp_path):
+    """Franka Panda with joint2 held: at joint2 = 0 or pi joints 1 and 3 line up (a self-motion: every pose has
+    infinitely many solutions). Was: planned at the held value 0 only, so refused for every value ("no closed-form
+    decomposition", joint1/joint3 collinear). Now planned at the sampled values away from those (the general 6R),
+    the generating joints found at other values, and ik at joint2 within GEOMETRY_TOL of 0 or pi refused with
+    InvalidDesign in C (WK_ERR_DESIGN, worded by the numpy path) and on numpy (it said "unreachable")."""
+    own_robot.derive(_file("panda", "dh"), tmp_path, name="panda_j2", free="joint2", progress=lambda _: None)
+    m = own_robot.import_solver(tmp_path, "panda_j2")
+    py = own_robot.import_solver(tmp_path, "panda_j2", backend="numpy")
+    assert m.BACKEND == "c" and m._DEGENERATE_HELD == (0.0, math.pi)
+    rng = case_rng(35)
+    for i in range(12):
+        q = rng.uniform(-math.pi, math.pi, 7)
+        if i < 4:
+            q[1] = (0.0, math.pi, 5e-7, -math.pi + 5e-7)[i]
+            for mod in (m, py):
+                with pytest.raises(mod.InvalidDesign, match="self-motion"):
+                    mod.ik(mod.fk_matrix(q, [q[1]]), [q[1]])
+            continue
+        T = m.fk_matrix(q, [q[1]])
+        for mod in (m, py):
+            s = mod.ik(T, [q[1]])
+            assert min(_gap(v, q, mod.JOINT_KINDS) for v in s.values[s.valid]) < 1e-6, (i, s.reason)
+
+
 # ------------------------------------------------------------------------------------------------ near-singular wrists
 def _backends(robot, fmt):
     """(C or numpy module of the format, its numpy path as a function of (T, previous))."""

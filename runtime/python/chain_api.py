@@ -23,6 +23,7 @@ from chain_stand_in import (
     _C_IK,
     _C_IK_BATCH,
     _C_JACOBIAN,
+    _DEGENERATE_HELD,
     _FK_RESULT,
     _FREE,
     _HOME,
@@ -40,6 +41,7 @@ from chain_stand_in import (
     FLAG_INDETERMINATE,
     FLAG_PROJECTED,
     FLAG_SINGULAR_INVERSE,
+    GEOMETRY_TOL,
     IK_VERIFY_TOL,
     JOINT_KINDS,
     JOINT_NAMES,
@@ -56,6 +58,7 @@ from chain_stand_in import (
     STATUS_UNREACHABLE,
     UPPER,
     BatchSolutions,
+    InvalidDesign,
     InvalidInput,
     Solutions,
     WristkinError,
@@ -304,6 +307,11 @@ def _ik_numpy(pose, d, previous):
     """ik on the numpy path (also what words the reason of an answer from C that needs one)."""
     target, dev = _pose(pose)
     prev = None if previous is None else _joints(previous, "previous")
+    for v in _DEGENERATE_HELD:
+        if abs(_wrap(d.params[0] - v)) <= GEOMETRY_TOL:
+            raise InvalidDesign(f"{JOINT_NAMES[_FREE]} = {d.params[0]!r} (held): within {GEOMETRY_TOL:g} of {v!r}, "
+                                "where the other six joints are a self-motion (two of them line up), so every pose "
+                                "has infinitely many solutions; hold it further from that value")
     base, tool = _frames(d)
     g_chain = _compose(_compose(_inverse(base), target), _inverse(tool))  # the chain's end frame
     ideal, true = _solver_chains(d)

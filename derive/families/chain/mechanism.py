@@ -43,6 +43,7 @@ class ChainMechanism(MechanismDefaults):
         self._plan: Plan | None = None
         self._ideal: Chain | None = None
         self._labelling: general6r.Labelling | None = None
+        self._degenerate: tuple[float, ...] | None = None
         self.free_note = ""  # how the free joint was chosen when the user gave none
 
     # ------------------------------------------------------------------------------------------ planning
@@ -57,14 +58,15 @@ class ChainMechanism(MechanismDefaults):
     def plan(self) -> tuple[Plan, Chain]:
         """The decomposition and the ideal chain it runs on (cached)."""
         if self._plan is None:
-            base = self.solver_chain(self.chain)
-            scale = self.scale()
             self._refuse_self_motion()
+            samples = self._held_samples()
+            base = self.solver_chain(self.chain, samples[0])
+            scale = self.scale()
 
             def holds(_c, plan):
                 ideal = self.idealise(plan)
                 rng = np.random.default_rng(7)
-                for v in (FREE_SAMPLES if self.desc.free >= 0 else (0.0,)):
+                for v in samples:
                     c = self.solver_chain(ideal, v, plan.reversed)
                     for _ in range(20):
                         q = _random_joints(c, rng)
@@ -78,6 +80,62 @@ class ChainMechanism(MechanismDefaults):
             self._ideal = self.idealise(self._plan)
         return self._plan, self._ideal
 
+    def _held_samples(self) -> tuple[float, ...]:
+        """The free joint's values the decomposition is planned at and must hold at: FREE_SAMPLES, without a value
+        at which the held chain is a self-motion (the Panda's joint2 or the iiwa's a2 at 0 line up the joints on
+        either side: an isolated held value with infinitely many solutions per pose, which planned the arm as
+        degenerate for every value and refused it)."""
+        if self.desc.free < 0:
+            return (0.0,)
+        return tuple(v for v in FREE_SAMPLES if self._self_motion_ratio([v], 2) > SELF_MOTION_RATIO)
+
+    def degenerate_held(self) -> tuple[float, ...]:
+        """The free joint's values (in (-pi, pi]) at which the held chain is a self-motion (two joints on either side
+        line up: the Panda's joint2 at 0): the largest sigma_min / sigma_max over two random configurations, scanned
+        on a 720-point grid and each local minimum below 1e-2 refined by golden section; kept when it reaches
+        SELF_MOTION_RATIO. The emitted IK refuses these values (InvalidDesign / WK_ERR_DESIGN): every pose there
+        has infinitely many solutions."""
+        if self.desc.free < 0 or self.chain.n != 7:
+            return ()
+        if self._degenerate is None:
+            def ratio(v):
+                return self._self_motion_ratio([v], 2)
+            grid = np.linspace(-math.pi, math.pi, 720, endpoint=False)
+            vals = [ratio(v) for v in grid]
+            found = []
+            step = grid[1] - grid[0]
+            for i in range(len(grid)):  # cyclic: -pi is pi
+                before, after = vals[i - 1], vals[(i + 1) % len(grid)]
+                if not (vals[i] <= before and vals[i] < after and vals[i] < 1e-2):
+                    continue
+                lo, hi = grid[i] - step, grid[i] + step
+                g = (math.sqrt(5.0) - 1.0) / 2.0
+                for _ in range(80):  # golden section: the bracket shrinks to ~1e-17
+                    a, b = hi - g * (hi - lo), lo + g * (hi - lo)
+                    if ratio(a) < ratio(b):
+                        hi = b
+                    else:
+                        lo = a
+                v = math.remainder(0.5 * (lo + hi), 2.0 * math.pi)
+                for exact in (0.0, math.pi, -math.pi, 0.5 * math.pi, -0.5 * math.pi):
+                    if abs(v - exact) <= 1e-7 and ratio(exact) <= SELF_MOTION_RATIO:
+                        v = exact  # the value a description's zero convention gives
+                if ratio(v) <= SELF_MOTION_RATIO:
+                    found.append(math.pi if v == -math.pi else float(v))
+            self._degenerate = tuple(sorted(set(found)))
+        return self._degenerate
+
+    def _self_motion_ratio(self, values, per_value: int) -> float:
+        """The largest sigma_min / sigma_max of the held chain's Jacobian at random configurations."""
+        rng = np.random.default_rng(5)
+        ratios = []
+        for v in values:
+            c = self.solver_chain(self.chain, v)
+            for _ in range(per_value):
+                s = np.linalg.svd(c.jacobian(_random_joints(c, rng)), compute_uv=False)
+                ratios.append(s[-1] / s[0])
+        return max(ratios)
+
     def _refuse_self_motion(self) -> None:
         """Holding the free joint can leave the other six a self-motion (the iiwa's elbow a4 held: its spherical
         shoulder turns the arm about the shoulder-wrist line and its spherical wrist undoes the turn): the held
@@ -86,26 +144,20 @@ class ChainMechanism(MechanismDefaults):
         Refused here, so that a 7-joint arm without --free never picks it and lists the choices that work."""
         if self.desc.free < 0 or self.chain.n != 7:
             return
-        rng = np.random.default_rng(5)
-        ratios = []
-        for v in FREE_SAMPLES[1:]:  # held values away from 0, where a joint may line up with another
-            c = self.solver_chain(self.chain, v)
-            for _ in range(4):
-                s = np.linalg.svd(c.jacobian(_random_joints(c, rng)), compute_uv=False)
-                ratios.append(s[-1] / s[0])
-        if max(ratios) <= SELF_MOTION_RATIO:
+        ratio = self._self_motion_ratio(FREE_SAMPLES[1:], 4)  # held values away from 0, where joints may line up
+        if ratio <= SELF_MOTION_RATIO:
             name = self.chain.joint_names[self.desc.free]
             raise NoClosedForm(f"holding {name} leaves the other six joints a self-motion: their Jacobian has rank < 6 "
-                               f"at every configuration (sigma_min / sigma_max <= {max(ratios):.1e} at "
-                               f"{len(ratios)} random ones), so every reachable pose has infinitely many solutions; "
-                               "hold another joint")
+                               f"at every configuration (sigma_min / sigma_max <= {ratio:.1e} at "
+                               f"{4 * (len(FREE_SAMPLES) - 1)} random ones), so every reachable pose has infinitely "
+                               "many solutions; hold another joint")
 
     def _general_plan(self, base: Chain, refused: NoClosedForm) -> Plan:
         """No decomposition fits: a 6R chain (after the free joint is held) is solved by elimination, read the way
         that keeps it regular at every held value sampled; anything else keeps the planner's refusal."""
         if base.n != 6 or any(k != "R" for k in base.kinds):
             raise refused
-        chains = [self.solver_chain(self.chain, v) for v in (FREE_SAMPLES if self.desc.free >= 0 else (0.0,))]
+        chains = [self.solver_chain(self.chain, v) for v in self._held_samples()]
         try:
             labelling = general6r.choose_labelling(chains, np.random.default_rng(11))
         except NoDecomposition as exc:
@@ -184,12 +236,13 @@ class ChainMechanism(MechanismDefaults):
         dv.add(Step("decomposition", "Decomposition found from the axes", plan.strategy, ("axes",),
                     {"ops": " -> ".join(_op_text(op, names) for op in plan.ops), "branches (max IK sets)":
                      str(plan.branches), "controls": self.controls()}, ()))
-        rng_free = (FREE_SAMPLES if desc.free >= 0 else (0.0,))
+        rng_free = self._held_samples()
         chains = {v: self.solver_chain(ideal, v, plan.reversed) for v in rng_free}
         residuals: dict = {}  # every op's check draws the same seeded samples: each replayed once
 
         if self._labelling is not None:  # the elimination's own records (its op's equations among them)
-            for st in general6r.steps(self.solver_chain(ideal, 0.0), self._labelling, np.random.default_rng(12)):
+            for st in general6r.steps(self.solver_chain(ideal, rng_free[0]), self._labelling,
+                                      np.random.default_rng(12)):
                 dv.add(replace(st, depends_on=st.depends_on or ("decomposition",)))
         for k, op in enumerate(plan.ops if self._labelling is None else ()):
             def err(rng, k=k):
@@ -263,6 +316,7 @@ class ChainMechanism(MechanismDefaults):
                 "scale": repr(self.scale()), "geometry_tol": repr(self.desc.geometry_tol),
                 "geometry_deviation": repr(self.deviation()),
                 "calibrated": self.deviation() > CALIBRATED_DEVIATION,
+                "degenerate_held": repr(self.degenerate_held()),
                 "tangent_tol": repr(max(float(TOLERANCES["stage_tangent"]),
                                         8.0 * self.deviation() / min(1.0, self.scale()))),
                 "axes": _vectors(c.axes), "points": _vectors(c.points), "home": _matrix(c.home),
@@ -277,7 +331,8 @@ class ChainMechanism(MechanismDefaults):
                 "has_poly": any(op["op"] in ("spatial3", "sp6") for op in plan.ops),
                 "c_plan_rows": views.c_plan_rows([stage(i, op) for i, op in enumerate(plan.ops)], solver.joint_names),
                 "c_runtime_files": views.c_runtime_files(plan.ops),
-                "c_flags": views.c_flags(plan.ops, free, plan.reversed, self.deviation() > CALIBRATED_DEVIATION),
+                "c_flags": views.c_flags(plan.ops, free, plan.reversed, self.deviation() > CALIBRATED_DEVIATION,
+                                         self.degenerate_held(), self.desc.geometry_tol),
                 **views.stage_tolerances(plan.ops),
                 "py_runtime_files": views.py_runtime_files(plan.ops),
                 "c_includes": views.c_includes(plan.ops),

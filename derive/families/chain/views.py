@@ -41,10 +41,14 @@ def py_runtime_files(ops) -> list[str]:
             *(f"python/chain_{n}.py" for n in ("solve", "verify", "api"))]
 
 
-def c_flags(ops, free: int, reversed_: bool, calibrated: bool = False) -> dict:
+def c_flags(ops, free: int, reversed_: bool, calibrated: bool = False, degenerate_held=(),
+            geometry_tol: float = 1e-6) -> dict:
     """The preprocessor switches the runtime sources read (ck_chain.c, ck_interpreter.c, ck_api.c)."""
     kinds = _kinds(ops)
-    return {"CK_FREE": free, "CK_REVERSED": int(bool(reversed_)), "CK_CALIBRATED": int(bool(calibrated)),
+    held = {"CK_DEGENERATE_HELD": "{" + ", ".join(repr(float(v)) for v in degenerate_held) + "}"} \
+        if degenerate_held else {}
+    return {**held, "CK_N_DEGENERATE_HELD": len(degenerate_held), "CK_GEOMETRY_TOL": repr(float(geometry_tol)),
+            "CK_FREE": free, "CK_REVERSED": int(bool(reversed_)), "CK_CALIBRATED": int(bool(calibrated)),
             "CK_HAS_SP6": int("sp6" in kinds),
             "CK_HAS_SPATIAL3": int("spatial3" in kinds), "CK_HAS_GENERAL6R": int("general6r" in kinds)}
 

@@ -222,6 +222,17 @@ static int ck_api_ik_near(const double pose_in[12], const ck_design *design, con
         out->status = WK_ERR_RANGE;
         return WK_ERR_RANGE;
     }
+#if CK_FREE >= 0 && CK_N_DEGENERATE_HELD > 0
+    { /* a held value where the other six joints are a self-motion: every pose has infinitely many solutions
+         (Python's _DEGENERATE_HELD) */
+        static const double held[] = CK_DEGENERATE_HELD;
+        for (k = 0; k < CK_N_DEGENERATE_HELD; ++k)
+            if (fabs(ck_wrap(d->params[0] - held[k])) <= CK_GEOMETRY_TOL) {
+                out->status = WK_ERR_DESIGN;
+                return WK_ERR_DESIGN;
+            }
+    }
+#endif
     for (j = 0; j < 3; ++j) {
         target.r[3 * j] = rot[3 * j];
         target.r[3 * j + 1] = rot[3 * j + 1];
