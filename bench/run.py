@@ -423,6 +423,11 @@ def main(argv=None) -> int:
     print()
     g6_text = general6r.report(20 if args.quick else 100)
     print(g6_text)
+    import near_singular  # bench/near_singular.py: own robots near their singularities (issue 22), same run
+
+    print()
+    near_text = near_singular.report()
+    print(near_text)
     goal_rows = goals(rows, dh_measured, regen)
     machine_line = (f"Machine: {machine['cpu']} ({machine['cpus']} CPUs), Python {machine['python']}, "
                     f"{machine['gcc']}, numpy {machine['numpy']} (BLAS threads: "
@@ -431,7 +436,7 @@ def main(argv=None) -> int:
     summary = "\n\n".join([machine_line, "Goals (issue 13), measured in this run:", goals_table(goal_rows),
                             "Underactuated wrist (paper design), per call; ratio = time / generated C loop:",
                             table(rows, base), "\n".join(f"- {r['name']}: {r['note']}" for r in rows if r.get("note")),
-                            dh_text, rsr_text, screws_text, atlas_text, own_text, real_text, g6_text])
+                            dh_text, rsr_text, screws_text, atlas_text, own_text, real_text, g6_text, near_text])
     print("\n" + goals_table(goal_rows))
     if args.readme:
         write_readme(summary)
