@@ -369,6 +369,32 @@ def test_near_the_wrist_singularity_c_equals_python(solvers, name):
         _assert_same(py, s, c.ik(pose), f"{name} near-singular {i}", tol=tol)
 
 
+def test_an_offset_wrist_near_its_singularity_with_a_straight_elbow_is_reachable(solvers):
+    """ur_off at |sin q5| = 3e-6 with the elbow 9.4e-5 rad from straight (case 13 of the test above at
+    WRISTKIN_TEST_SEED=525886). Was: unreachable in C and numpy: subproblem 6's q4 carries eps / |sin q5| and the
+    group angle read after it eps / |sin q5|^2, so the elbow's u landed 1.3e-7 beyond its tangent band (widened
+    only by 1 / g). Now the stages after subproblem 6 widen their bands by 1 / g^2, and a root those bands merged
+    that the stage's own band separates is run as those two first: a set within the conditioning of the generating
+    joints is returned, C equal to Python."""
+    py, c = solvers["ur_off"]
+    q = np.array([-0.8258674979657927, -0.013617302541742315, 9.381435177457931e-05, -2.5568302335404667, 3e-06,
+                  2.5443378636647154])
+    pose = py.fk_matrix(q)
+    s = py.ik(pose)
+    assert s.count >= 1, s.reason
+    # both singularities at once: sigma_min of J is ~3e-10 here, so a set reproducing the pose to its residual r
+    # lies within ~r / sigma_min of the generating joints along J's near-null vector (x4 for the max-entry to
+    # 2-norm), the pose determining them no better (a set 2.4e-14 off the pose is 9e-5 rad off in the elbow)
+    sigma_min = np.linalg.svd(py.jacobian(q), compute_uv=False)[-1]
+    rounding = 64 * np.finfo(float).eps * max(1.0, py.SCALE)
+    gaps = [(_gap(s.values[k], q, py.JOINT_KINDS), s.aux[k, 0]) for k in np.flatnonzero(s.valid)]
+    assert min(gap - 4 * (res + rounding) / sigma_min for gap, res in gaps) <= 1e-9, (gaps, sigma_min)
+
+    def tol(k, residual_c):
+        return max(1e-9, 4 * (s.aux[k, 0] + residual_c + rounding) / sigma_min)
+    _assert_same(py, s, c.ik(pose), "ur_off straight elbow", tol=tol)
+
+
 @pytest.mark.parametrize("name", ("puma_t", "ur_t", "ur_off"))
 def test_previous_changes_no_set_near_the_wrist_singularity(solvers, name):
     """|q5| from 1e-9 to 1e-6: ik(pose) and ik(pose, previous=q) return the same sets, flags and status, in Python and

@@ -101,6 +101,20 @@ def _solve(ch, g, prev, accept):
             if count() > before:
                 break
 
+    def _with_split(roots_at, go):
+        """A trig stage's roots at the noise-widened band, then, when that band merged two roots into one that
+        verified nothing, the two roots at the stage's own band: the noise estimate may be generous (it stands
+        for the worst rounding upstream) without losing two real roots it merged (one extra stage solve at most).
+        A merged root that verifies stands for both: there the pose fixes the joints only to about its residual
+        over sigma_min of J."""
+        before = count()
+        roots = roots_at(noise[0])
+        go(roots)
+        if noise[0] > 1.0 and count() == before and len(roots) == 1 and roots[0][1] & FLAG_DOUBLE_ROOT:
+            split = roots_at(1.0)
+            if len(split) == 2:
+                go(split)
+
     def _orient_set(units, angles):
         for un, ang in zip(units, angles, strict=True):
             if len(un) == 1:
@@ -137,20 +151,23 @@ def _solve(ch, g, prev, accept):
                 else:
                     run(k + 1, _add(x, _scale(h, v)), y, flags)
                 return
-            if kind == "first_plane":  # n . rot(h, -q)(y - r) = n . (x - r)
-                roots = [(-t, f) for t, f in _sp4(nv, h, _sub(y, r), _dot(nv, _sub(x, r)), SCALE, noise[0])]
-            else:  # n . rot(h, q)(x - r) = n . (y - r)
-                roots = _sp4(nv, h, _sub(x, r), _dot(nv, _sub(y, r)), SCALE, noise[0])
-            outer = amp[0]
-            amp[0] = _root_amplification(roots, outer)
-            for t, f in roots:
-                q[j] = t
-                e = _screw("R", h, r, t)
-                if kind == "first_plane":
-                    run(k + 1, x, _apply(_inverse(e), y), flags | f)
-                else:
-                    run(k + 1, _apply(e, x), y, flags | f)
-            amp[0] = outer
+            def plane_roots(band):
+                if kind == "first_plane":  # n . rot(h, -q)(y - r) = n . (x - r)
+                    return [(-t, f) for t, f in _sp4(nv, h, _sub(y, r), _dot(nv, _sub(x, r)), SCALE, band)]
+                return _sp4(nv, h, _sub(x, r), _dot(nv, _sub(y, r)), SCALE, band)  # n . rot(h, q)(x - r) = n . (y - r)
+
+            def plane_run(roots):
+                outer = amp[0]
+                amp[0] = _root_amplification(roots, outer)
+                for t, f in roots:
+                    q[j] = t
+                    e = _screw("R", h, r, t)
+                    if kind == "first_plane":
+                        run(k + 1, x, _apply(_inverse(e), y), flags | f)
+                    else:
+                        run(k + 1, _apply(e, x), y, flags | f)
+                amp[0] = outer
+            _with_split(plane_roots, plane_run)
         elif kind in ("first_dist", "last_dist"):
             _, j, jk, ss = op
             s = _point(ch, ss)
@@ -175,18 +192,19 @@ def _solve(ch, g, prev, accept):
                     else:
                         run(k + 1, _add(x, _scale(h, v)), y, flags | f)
                 return
-            roots = _sp3(h, _sub(moving, r), _sub(s, r), d, SCALE, noise[0])
-            outer = amp[0]
-            amp[0] = _root_amplification(roots, outer)
-            for t, f in roots:
-                t = -t if first else t
-                q[j] = t
-                e = _screw("R", h, r, t)
-                if first:
-                    run(k + 1, x, _apply(_inverse(e), y), flags | f)
-                else:
-                    run(k + 1, _apply(e, x), y, flags | f)
-            amp[0] = outer
+            def dist_run(roots):
+                outer = amp[0]
+                amp[0] = _root_amplification(roots, outer)
+                for t, f in roots:
+                    t = -t if first else t
+                    q[j] = t
+                    e = _screw("R", h, r, t)
+                    if first:
+                        run(k + 1, x, _apply(_inverse(e), y), flags | f)
+                    else:
+                        run(k + 1, _apply(e, x), y, flags | f)
+                amp[0] = outer
+            _with_split(lambda band: _sp3(h, _sub(moving, r), _sub(s, r), d, SCALE, band), dist_run)
         elif kind == "pair":  # rot_j rot_k (x - s) = y - s
             _, j, kk, ss = op
             s = _point(ch, ss)
@@ -195,7 +213,7 @@ def _solve(ch, g, prev, accept):
             for split in (False, True):  # a near-double root's two roots when its merged one verified nothing
                 if split and count() > before:
                     break
-                for t1, t2, f in _sp2(*args, split=split):
+                for t1, t2, f in _sp2(*args, split=split, family_tol=ON_AXIS_TOL):
                     q[j] = (prev[j] if prev is not None else 0.0) if t1 is None else -t1
                     q[kk] = t2
                     run(k + 1, x, y, flags | f)
@@ -216,7 +234,12 @@ def _solve(ch, g, prev, accept):
                 q[j] = t
                 run(k + 1, x, y, flags)
         elif kind in _OP_STAGES:  # an op whose kernels the module inlines only when its plan uses them
-            _OP_STAGES[kind](ch, g, prev, op, x, y, q, count, lambda f: run(k + 1, x, y, flags | f),
+            def go_on(f, stage_noise=1.0, k=k, x=x, y=y, flags=flags):
+                outer = noise[0]
+                noise[0] = max(outer, stage_noise)
+                run(k + 1, x, y, flags | f)
+                noise[0] = outer
+            _OP_STAGES[kind](ch, g, prev, op, x, y, q, count, go_on,
                              lambda f, place, angle: run_family(k, x, y, flags | f, place, angle))
         elif kind == "linear":
             _, js = op

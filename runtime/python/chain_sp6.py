@@ -11,7 +11,7 @@ import math
 
 from chain_points import _direction
 from chain_poly import _poly_add, _poly_mul, _scale3
-from chain_rigid import _cross, _dot, _mm, _mt, _mtv, _mv, _rot, _scale, _sub
+from chain_rigid import _cross, _dot, _mm, _mt, _mtv, _mv, _norm, _rot, _scale, _sub
 from chain_stages import _OP_STAGES
 from chain_stand_in import (
     DEGENERATE_EPS,
@@ -176,12 +176,17 @@ def _sp6_stage(ch, g, prev, op, x, y, q, count, go_on, family):
 
     def sp6_set(q0, q4, f, may_split=True):
         # the group keeps n: n^T R4 R5 = n^T R0^T Rg, so rot(h5, -q5) (R4^T n) = (R0^T Rg)^T n
-        t5 = _sp1(h5, _mtv(_rot(h4, q4), nv), _mtv(_mm(_mt(_rot(h0, q0)), rg), nv), 1.0)
+        a = _mtv(_rot(h4, q4), nv)
+        t5 = _sp1(h5, a, _mtv(_mm(_mt(_rot(h0, q0)), rg), nv), 1.0)
         q[j], q[kk] = q0, q4
         before = count()
         if t5 is not None:
             q[ll] = -t5
-            go_on(f)
+            # near the wrist singularity (a = R4^T n near h5, g = |h5 x a|) q4 carries eps / g and q5, read from a's
+            # small part off h5, eps / g^2: the later stages' bands grow by 1 / g^2 (was: an elbow 9.4e-5 rad from
+            # straight behind |sin q5| = 3e-6 saw u 1.3e-7 beyond its band, and the pose was called unreachable)
+            g_rel = _norm(_cross(h5, a))
+            go_on(f, 1.0 / max(g_rel * g_rel, 1e-300))
         else:  # the wrist singularity: q5 and the group turn about one direction (a family); q5 from
             # `previous`, else the first of FAMILY_ANGLES with a verified set (it moves the position)
             def place(angle):

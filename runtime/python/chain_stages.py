@@ -8,5 +8,7 @@ other sources (chain_stand_in.py: a stand-in robot), so that it is linted and te
 
 # wristkin: inlined from here
 # kind -> stage(ch, g, prev, op, x, y, q, count, go_on, family): sets its joints in q for each root and calls
-# go_on(flags) (the rest of the plan), or family(flags, place, previous angle) for a one-parameter family
+# go_on(flags, noise=1.0) (the rest of the plan; noise: how much the stage's root amplified the input's rounding,
+# which widens the later stages' tangent and double-root bands, STAGE_NOISE), or family(flags, place, previous
+# angle) for a one-parameter family
 _OP_STAGES = {}

@@ -96,14 +96,16 @@ def _root_amplification(roots, outer):
     return outer
 
 
-def _sp2(p1, k1, p2, k2, scale, split=False, amp=1.0):
+def _sp2(p1, k1, p2, k2, scale, split=False, amp=1.0, family_tol=FAMILY_TOL):
     """(t1, t2, flags) with rot(k1, t1) p1 = rot(k2, t2) p2, k1 not parallel to k2: the common vector w has
     k1.w = k1.p1, k2.w = k2.p2 and |w| = |p1|. t1 is None when p1 lies on k1 (any t1: a singular family).
     Within DOUBLE_ROOT_TOL the two roots are one (rounding of g^2 at an exact double root would split it by
     sqrt(eps)); `split`: only the two roots of such a near-double root, for a caller whose merged root verified
     nothing (a pose near, not at, a singular family: the merged w lies on k1, the true ones do not). `amp`: how
     much the stages before amplified the input's rounding (_root_amplification): the bands grow with it (a
-    shoulder angle 0.008 rad from its tangent left 1.2e-13 in g at an exact wrist singularity)."""
+    shoulder angle 0.008 rad from its tangent left 1.2e-13 in g at an exact wrist singularity). `family_tol`: the
+    family band on g and on p1's distance from k1, relative: FAMILY_TOL for a rotation's unit vectors, ON_AXIS_TOL
+    for points the pose places (a position pair)."""
     c = _dot(k1, k2)
     a1, a2 = _dot(k1, p1), _dot(k2, p2)
     den = 1.0 - c * c
@@ -118,7 +120,7 @@ def _sp2(p1, k1, p2, k2, scale, split=False, amp=1.0):
         return []
     # one double root where g^2 is within DOUBLE_ROOT_TOL of what rounding leaves in it: near a singular family g^2
     # is resolved far below scale2 (two regular sets, q5 = +-s), down to FAMILY_TOL
-    family = FAMILY_TOL * amp
+    family = family_tol * amp
     near = g2 <= DOUBLE_ROOT_TOL * amp * res2 or g2 <= family * family * scale2
     if split and not (near and g2 > 0.0):
         return []

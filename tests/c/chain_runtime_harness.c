@@ -104,7 +104,7 @@ int wkt_sp1(const double *k, const double *p, const double *q, double *t)
 int wkt_sp2(const double *p1, const double *k1, const double *p2, const double *k2, int split, double *t1, int *has1,
             double *t2, unsigned *f)
 {
-    return ck_sp2(p1, k1, p2, k2, CK_SCALE, split, 1.0, t1, has1, t2, f);
+    return ck_sp2(p1, k1, p2, k2, CK_SCALE, split, 1.0, CK_FAMILY_TOL, t1, has1, t2, f);
 }
 
 int wkt_sp3(const double *k, const double *p1, const double *p2, double d, double *t, unsigned *f)

@@ -255,6 +255,19 @@ static int ck_count(const ck_ctx *c)
     return c->probe ? c->hits : c->out->count;
 }
 
+/* The bands a trig stage runs its roots at, in order (Python's _with_split): the noise-widened one; where that merged
+ * two roots into one (wide: 1 root flagged double) that the stage's own band separates (own: 2 roots), that band
+ * next, run only when the merged root verified nothing. Returns the number of passes. */
+static int ck_stage_bands(const ck_ctx *c, int nr_wide, const unsigned *f_wide, int nr_own, double *bands)
+{
+    bands[0] = c->noise;
+    if (c->noise > 1.0 && nr_wide == 1 && (f_wide[0] & WK_FLAG_DOUBLE_ROOT) && nr_own == 2) {
+        bands[1] = 1.0;
+        return 2;
+    }
+    return 1;
+}
+
 /* gp = (product of the joints before lo)^-1 g (product of the joints after hi)^-1 */
 static void ck_reduced(const ck_ctx *c, int lo, int hi, ck_rt *gp)
 {
@@ -352,8 +365,16 @@ static void ck_sp6_set(ck_ctx *c, int k, const double *x, const double *y, unsig
     c->q[in->j0] = q0;
     c->q[in->j4] = q4;
     if (ck_sp1(h5, a, b, 1.0, &t5)) {
+        /* near the wrist singularity q5 carries eps / g^2 (g = |h5 x R4^T n|): the later stages' bands grow by
+         * 1 / g^2 (Python's sp6_set) */
+        const double outer = c->noise;
+        double cr[3], g2;
+        ck_cross(h5, a, cr);
+        g2 = ck_dot(cr, cr);
         c->q[in->j5] = -t5;
+        c->noise = fmax(outer, 1.0 / fmax(g2, 1e-300));
         ck_run(c, k + 1, x, y, flags | f);
+        c->noise = outer;
     } else {
         /* the wrist singularity: joint j5 and the group turn about one direction (a family); its angle from
          * `previous` or the grid (ck_run_family: it moves the position) */
@@ -401,7 +422,9 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
     case CK_LAST_PLANE: {
         const int first = op->op == CK_FIRST_PLANE, j = op->j;
         const double *nv = c->spec[k], *h = ch->axis[j], *r = ch->point[j];
-        double d[3], d2[3], moved[3], t[2], outer;
+        double d[3], d2[3], moved[3], t[2], t2[2], outer, bands[2];
+        unsigned f2[2];
+        int pass, npass, before;
         unsigned f[2];
         int nr, i;
         if (op->prismatic) {
@@ -424,29 +447,35 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         if (first) { /* n . rot(h, -q)(y - r) = n . (x - r) */
             ck_sub(y, r, d);
             ck_sub(x, r, d2);
-            nr = ck_sp4(nv, h, d, ck_dot(nv, d2), CK_SCALE, c->noise, t, f);
-            for (i = 0; i < nr; ++i) t[i] = -t[i];
         } else { /* n . rot(h, q)(x - r) = n . (y - r) */
             ck_sub(x, r, d);
             ck_sub(y, r, d2);
-            nr = ck_sp4(nv, h, d, ck_dot(nv, d2), CK_SCALE, c->noise, t, f);
         }
-        outer = c->amp;
-        c->amp = ck_root_amplification(nr, t, f, outer);
-        for (i = 0; i < nr; ++i) {
-            ck_rt e;
-            c->q[j] = t[i];
-            ck_screw(0, h, r, t[i], &e);
-            if (first) {
-                ck_inverse(&e, &e);
-                ck_apply(&e, y, moved);
-                ck_run(c, k + 1, x, moved, flags | f[i]);
-            } else {
-                ck_apply(&e, x, moved);
-                ck_run(c, k + 1, moved, y, flags | f[i]);
+        before = ck_count(c);
+        nr = ck_sp4(nv, h, d, ck_dot(nv, d2), CK_SCALE, c->noise, t, f);
+        npass = ck_stage_bands(c, nr, f, c->noise > 1.0 ? ck_sp4(nv, h, d, ck_dot(nv, d2), CK_SCALE, 1.0, t2, f2) : 0,
+                               bands);
+        for (pass = 0; pass < npass && !(pass && ck_count(c) > before); ++pass) {
+            nr = ck_sp4(nv, h, d, ck_dot(nv, d2), CK_SCALE, bands[pass], t, f);
+            if (first)
+                for (i = 0; i < nr; ++i) t[i] = -t[i];
+            outer = c->amp;
+            c->amp = ck_root_amplification(nr, t, f, outer);
+            for (i = 0; i < nr; ++i) {
+                ck_rt e;
+                c->q[j] = t[i];
+                ck_screw(0, h, r, t[i], &e);
+                if (first) {
+                    ck_inverse(&e, &e);
+                    ck_apply(&e, y, moved);
+                    ck_run(c, k + 1, x, moved, flags | f[i]);
+                } else {
+                    ck_apply(&e, x, moved);
+                    ck_run(c, k + 1, moved, y, flags | f[i]);
+                }
             }
+            c->amp = outer;
         }
-        c->amp = outer;
         break;
     }
     case CK_FIRST_DIST:
@@ -454,7 +483,9 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         const int first = op->op == CK_FIRST_DIST, j = op->j;
         const double *s = c->spec[k], *h = ch->axis[j], *r = ch->point[j];
         const double *moving = first ? y : x, *other = first ? x : y;
-        double d3[3], ms[3], sr[3], mr[3], moved[3], dist, t[2], outer;
+        double d3[3], ms[3], sr[3], mr[3], moved[3], dist, t[2], t2[2], outer, bands[2];
+        unsigned f2[2];
+        int pass, npass, before;
         unsigned f[2];
         int nr, i;
         ck_sub(other, s, d3);
@@ -492,24 +523,29 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         }
         ck_sub(moving, r, mr);
         ck_sub(s, r, sr);
+        before = ck_count(c);
         nr = ck_sp3(h, mr, sr, dist, CK_SCALE, c->noise, t, f);
-        outer = c->amp;
-        c->amp = ck_root_amplification(nr, t, f, outer);
-        for (i = 0; i < nr; ++i) {
-            ck_rt e;
-            const double tt = first ? -t[i] : t[i];
-            c->q[j] = tt;
-            ck_screw(0, h, r, tt, &e);
-            if (first) {
-                ck_inverse(&e, &e);
-                ck_apply(&e, y, moved);
-                ck_run(c, k + 1, x, moved, flags | f[i]);
-            } else {
-                ck_apply(&e, x, moved);
-                ck_run(c, k + 1, moved, y, flags | f[i]);
+        npass = ck_stage_bands(c, nr, f, c->noise > 1.0 ? ck_sp3(h, mr, sr, dist, CK_SCALE, 1.0, t2, f2) : 0, bands);
+        for (pass = 0; pass < npass && !(pass && ck_count(c) > before); ++pass) {
+            nr = ck_sp3(h, mr, sr, dist, CK_SCALE, bands[pass], t, f);
+            outer = c->amp;
+            c->amp = ck_root_amplification(nr, t, f, outer);
+            for (i = 0; i < nr; ++i) {
+                ck_rt e;
+                const double tt = first ? -t[i] : t[i];
+                c->q[j] = tt;
+                ck_screw(0, h, r, tt, &e);
+                if (first) {
+                    ck_inverse(&e, &e);
+                    ck_apply(&e, y, moved);
+                    ck_run(c, k + 1, x, moved, flags | f[i]);
+                } else {
+                    ck_apply(&e, x, moved);
+                    ck_run(c, k + 1, moved, y, flags | f[i]);
+                }
             }
+            c->amp = outer;
         }
-        c->amp = outer;
         break;
     }
     case CK_PAIR: { /* rot_j rot_k (x - s) = y - s */
@@ -522,7 +558,8 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         ck_sub(x, s, xs);
         for (split = 0; split < 2; ++split) { /* a near-double root's two roots when its merged one verified nothing */
             if (split && ck_count(c) > before) break;
-            nr = ck_sp2(ys, ch->axis[op->j], xs, ch->axis[op->k], CK_SCALE, split, 1.0, t1, has1, t2, f);
+            nr = ck_sp2(ys, ch->axis[op->j], xs, ch->axis[op->k], CK_SCALE, split, 1.0, CK_ON_AXIS_TOL, t1, has1, t2,
+                        f);
             for (i = 0; i < nr; ++i) {
                 c->q[op->j] = has1[i] ? -t1[i] : (c->prev ? c->prev[op->j] : 0.0);
                 c->q[op->k] = t2[i];
@@ -636,7 +673,7 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         for (i = 0; i < nu; ++i) u[i] = ch->axis[op->units[i][0]];
         if (nu == 3) {
             ck_mv(gp.r, u[2], rv);
-            ns = ck_sp2(rv, u[0], u[2], u[1], 1.0, 0, c->amp, t1, has1, t2, f);
+            ns = ck_sp2(rv, u[0], u[2], u[1], 1.0, 0, c->amp, CK_FAMILY_TOL, t1, has1, t2, f);
         } else if (nu == 2) {
             double a = 0.0;
             ck_mv(gp.r, u[1], rv);
@@ -684,7 +721,7 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         if (nu == 3 && ck_count(c) == before_op) {
             /* near (not at) the singular family the merged root is a family that verifies nothing: its two roots
              * are two sets with every angle defined */
-            ns = ck_sp2(rv, u[0], u[2], u[1], 1.0, 1, c->amp, t1, has1, t2, f);
+            ns = ck_sp2(rv, u[0], u[2], u[1], 1.0, 1, c->amp, CK_FAMILY_TOL, t1, has1, t2, f);
             for (i = 0; i < ns; ++i) {
                 double angles[3];
                 const double outer = c->noise;

@@ -114,12 +114,13 @@ static double ck_root_amplification(int nr, const double *t, const unsigned *f, 
 
 /* (t1, t2, flags) with rot(k1, t1) p1 = rot(k2, t2) p2, k1 not parallel to k2 (at most 2). has1[i] = 0 when p1
  * lies on k1 (any t1: a singular family, returned once). `amp`: the stages before's amplification of the input's
- * rounding (ck_root_amplification): the bands grow with it (Python's _sp2). */
+ * rounding (ck_root_amplification): the bands grow with it; `family_tol`: CK_FAMILY_TOL for a rotation's unit
+ * vectors, CK_ON_AXIS_TOL for a position pair (Python's _sp2). */
 static int ck_sp2(const double *p1, const double *k1, const double *p2, const double *k2, double scale, int split,
-                  double amp, double *t1, int *has1, double *t2, unsigned *f)
+                  double amp, double family_tol, double *t1, int *has1, double *t2, unsigned *f)
 {
     const double c = ck_dot(k1, k2), a1 = ck_dot(k1, p1), a2 = ck_dot(k2, p2), den = 1.0 - c * c;
-    const double family = CK_FAMILY_TOL * amp, axis_scale = scale * (family / CK_DEGENERATE_EPS);
+    const double family = family_tol * amp, axis_scale = scale * (family / CK_DEGENERATE_EPS);
     double alpha, beta, kk[3], base[3], tmp[3], ws[2][3], g2, scale2, res2;
     unsigned flag;
     int nw, i, near, out = 0;
