@@ -29,7 +29,7 @@ from ...identities import screws
 from ...identities.frames import skew
 from ...lower import Kernel
 from ...model import Check, Derivation, Finding, Step
-from ..serial import dh_serial
+from ..serial import dh_serial, views
 from ..serial.dh_serial import POSE_SYMBOLS, Stage
 
 DESIGN_NONZERO_TOL = 1e-9  # a squared norm / determinant of the design at or below this is degenerate
@@ -378,11 +378,11 @@ def kernels_spec(spec: ScrewSpec, dv: Derivation) -> list[Kernel]:
 
 
 def context_spec(spec: ScrewSpec) -> dict:
-    return {"name": spec.name, "title": spec.title, "joint_names": [str(q) for q in spec.joints],
+    return views.serial_views({"name": spec.name, "title": spec.title, "joint_names": [str(q) for q in spec.joints],
             "joint_kinds": list(spec.kinds), "design_names": [str(d) for d in spec.design],
             "design_values": [repr(float(v)) for v in spec.design_default], "n_joints": len(spec.joints),
             "max_ik": 2 ** sum(st.branches - 1 for st in spec.stages), "stages": dh_serial.stage_view(spec),
             "fold_bits": dh_serial.fold_bits(spec),
             "upper": spec.name.upper(), "design_default": [repr(float(v)) for v in spec.design_default],
             "design_checks": [{"kind": c.kind, "tol": repr(c.tol), "what": c.what} for c in spec.design_checks],
-            "image_checks": [w for w, _ in spec.image_checks]}
+            "image_checks": [w for w, _ in spec.image_checks]})

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from ...mechanism import MechanismDefaults
-from . import dh_serial
+from . import dh_serial, views
 
 
 class SerialMechanism(MechanismDefaults):
@@ -42,7 +42,7 @@ class SerialMechanism(MechanismDefaults):
         sp_ = self.spec
         n = len(sp_.joints)
         n_combos = 2 ** sum(st.branches - 1 for st in sp_.stages)
-        return {"name": self.NAME, "title": sp_.title, "joint_names": [str(q) for q in sp_.joints],
+        return views.serial_views({"name": self.NAME, "title": sp_.title, "joint_names": [str(q) for q in sp_.joints],
                 "joint_kinds": list(sp_.kinds), "design_names": [str(d) for d in sp_.design],
                 "design_values": [repr(float(v)) for v in sp_.design_default], "n_joints": n,
                 "max_ik": n_combos, "stages": dh_serial.stage_view(sp_),
@@ -50,7 +50,7 @@ class SerialMechanism(MechanismDefaults):
                 "mirror_keeps_fk": dh_serial.mirror_keeps_fk(sp_, next(k for k in ks if k.name == "fk_cs")),
                 "design_default": [repr(float(v)) for v in sp_.design_default],
                 # DH design values are link lengths and offsets: each is 0 or at least DESIGN_SCALE_MIN
-                "lengths_floor": True}
+                "lengths_floor": True})
 
     def audit_numbers(self, dv, solver, audit_dir) -> dict:
         """Seeded round trips through the generated solver (counts only: byte-stable across machines)."""
