@@ -20,7 +20,7 @@ from cbuild import BUILD_DIR, RUNTIME_C, compile_shared, load
 from seeding import case_rng
 
 from derive import runtime_files
-from derive.families.serial.views import C_RUNTIME_AFTER_STAGES, C_RUNTIME_FILES, PY_RUNTIME_FILES
+from derive.serial_core.views import C_RUNTIME_AFTER_STAGES, C_RUNTIME_FILES, PY_RUNTIME_FILES
 
 ROOT = Path(__file__).resolve().parent.parent
 GEN_C = ROOT / "generated" / "c"

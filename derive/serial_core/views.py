@@ -78,7 +78,7 @@ def serial_views(ctx: dict) -> dict:
     image_checks = ctx.get("image_checks", [])
     has_design_kernel, has_image_kernel = "design_checks" in ctx, "image_checks" in ctx
     # an odd set's FK check is its even neighbour's when the wrist mirror keeps fk_cs bit for bit (proven on the
-    # kernel: dh_serial.mirror_keeps_fk) and the wrist takes the lowest bit
+    # kernel: stages.mirror_keeps_fk) and the wrist takes the lowest bit
     reuse = bool(ctx.get("mirror_keeps_fk")) and bool(wrist) and wrist[0]["bit"] == 0
     c_flags = {
         "SR_N_STAGES": len(stages),
