@@ -31,9 +31,10 @@ static double sr_clamp1(double x)
     return x > 1.0 ? 1.0 : (x < -1.0 ? -1.0 : x);
 }
 
-/* Joint j from A cos q + B sin q + C = 0 (out = A, B, C): q = atan2(B, A) + sgn acos(-C / sqrt(A^2 + B^2)) */
-static int sr_trig_linear(const double *out, int j, double sgn, double *q, double *c, double *s, const double *prev,
-                          unsigned *f)
+/* Joint j from A cos q + B sin q + C = 0 (out = A, B, C): q = atan2(B, A) + sgn acos(-C / sqrt(A^2 + B^2)).
+ * inline: each stage of this kind calls it with its own constant joint and bit, as straight-line code would */
+static inline int sr_trig_linear(const double *out, int j, double sgn, double *q, double *c, double *s,
+                                 const double *prev, unsigned *f)
 {
     const double r = sqrt(out[0] * out[0] + out[1] * out[1]);
     double u, sg, ca, sa;
