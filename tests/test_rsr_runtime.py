@@ -1,0 +1,132 @@
+"""The 3-RSR core shared by the 3-RSR wrist and the SCARA hybrid (runtime/python/rsr_legs.py,
+runtime/c/rsr/rsr_legs.c) tested as it is: the Python source imported with rsr_stand_in (the catalogue wrist's
+tolerances and derived kernels), the C source compiled strictly after the wrist's generated prelude, on cases
+whose answer is known by construction (leg roots that satisfy their equations and contain the generating joints,
+the mirror plane of the generating joints, a workspace interval holding the generating l_bw), C and Python on the
+same inputs, and both generated wrists carrying the sources verbatim."""
+
+from __future__ import annotations
+
+import ctypes
+import hashlib
+import math
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from cbuild import BUILD_DIR, RUNTIME_C, compile_shared, load
+from seeding import case_rng
+
+from derive import runtime_files
+
+ROOT = Path(__file__).resolve().parent.parent
+GEN_C = ROOT / "generated" / "c"
+D = ctypes.POINTER(ctypes.c_double)
+U = ctypes.POINTER(ctypes.c_uint)
+W = (0.06, 0.4363323129985824, 1.3089969389957472, 0.02, 0.11)  # the catalogue wrist's design (L, limits)
+
+
+def _p(a):
+    return np.ascontiguousarray(a, dtype=float).ctypes.data_as(D)
+
+
+@pytest.fixture(scope="module")
+def py():
+    sys.path.insert(0, str(ROOT / "runtime" / "python"))
+    try:
+        import rsr_legs
+    finally:
+        sys.path.remove(str(ROOT / "runtime" / "python"))
+    return rsr_legs
+
+
+@pytest.fixture(scope="module")
+def lib():
+    text = (GEN_C / "rsr_wrist.c").read_text()
+    source = runtime_files.inline("c/rsr/rsr_legs.c")
+    prelude = text[:text.index(source)]
+    kernels = re.findall(r"static void (rsr_k_\w+)\(", prelude)
+    assert len(kernels) >= 4
+    inc = BUILD_DIR / "rsr_runtime"
+    inc.mkdir(parents=True, exist_ok=True)
+    (inc / "rsr_prelude.h").write_text(prelude)
+    (inc / "rsr_kernels.h").write_text("void (*const wkt_rsr_kernels[])(void) = {\n" + ",\n".join(
+        f"    (void (*)(void)){k}" for k in kernels) + "\n};\n")  # void (*)(void): the generic function type
+    h = hashlib.sha256((source + prelude).encode()).hexdigest()[:16]
+    so = compile_shared([ROOT / "tests" / "c" / "rsr_runtime_harness.c", RUNTIME_C], [inc, GEN_C], "rsr_runtime",
+                        extra_flags=[f"-DWKT_SOURCES={h}"])
+    L = load(so)
+    L.wkt_rsr_legs.argtypes = [D, D, D, U, D]
+    L.wkt_rsr_plane.argtypes = [D, D, D, D]
+    L.wkt_rsr_pose_of_plane.argtypes = [D, D]
+    L.wkt_rsr_workspace.argtypes = [ctypes.c_double, ctypes.c_double, D, D]
+    L.wkt_rsr_leg_cond_inverse.argtypes = [D, D, D]
+    L.wkt_rsr_leg_cond_inverse.restype = ctypes.c_double
+    L.wkt_rsr_design_ok.argtypes = [D]
+    return L
+
+
+def _poses(py, rng, n):
+    """(joints, pose) pairs: the pose of the mirror plane of random joints within the wrist's joint limits, whose
+    l_bw is within its limits too (the workspace then holds it)."""
+    out = []
+    while len(out) < n:
+        q = rng.uniform(W[1], W[2], 3)
+        plane = py._plane(tuple(q), W)
+        if plane is None:
+            continue
+        pose, _, _ = py._pose_of_plane(plane[0])
+        if W[3] <= pose[2] <= W[4]:
+            out.append((q, pose))
+    return out
+
+
+def test_python_legs_contain_the_generating_joints_and_c_agrees(py, lib):
+    rng = case_rng(2250)
+    for q, pose in _poses(py, rng, 40):
+        roots, flags, conds, reason = py._legs(pose, W)
+        assert all(r is not None for r in roots), reason
+        a1, a2, a3, b, c = py._k_ik_coeffs(pose, W)
+        for i, (a, pair) in enumerate(zip((a1, a2, a3), roots, strict=True)):
+            for phi, cp, sp_, res in pair:
+                assert abs(a * cp + b * sp_ - c) <= 1e-14 and res <= 1e-14
+                assert abs(cp - math.cos(phi)) <= 1e-15 and abs(sp_ - math.sin(phi)) <= 1e-15
+            assert min(abs(math.remainder(phi - q[i], 2 * math.pi)) for phi, *_ in pair) <= 1e-9
+        leg, cflags, cond = np.zeros(24), np.zeros(3, np.uint32), ctypes.c_double()
+        assert lib.wkt_rsr_legs(_p(pose), _p(W), leg.ctypes.data_as(D), cflags.ctypes.data_as(U), ctypes.byref(cond))
+        assert np.allclose(leg.reshape(3, 2, 4), np.array(roots), rtol=0, atol=1e-14)
+        assert list(cflags) == flags and abs(cond.value - min(conds)) <= 1e-15
+
+
+def test_plane_pose_and_conditioning_in_python_and_c(py, lib):
+    rng = case_rng(2251)
+    for q, pose in _poses(py, rng, 30):
+        plane, cond = py._plane(tuple(q), W)
+        cplane, ccond = np.zeros(4), ctypes.c_double()
+        assert lib.wkt_rsr_plane(_p(q), _p(W), cplane.ctypes.data_as(D), ctypes.byref(ccond)) == 1
+        assert np.allclose(cplane, plane, rtol=0, atol=1e-15) and abs(ccond.value - cond) <= 1e-15
+        cpose = np.zeros(3)
+        lib.wkt_rsr_pose_of_plane(_p(plane), cpose.ctypes.data_as(D))
+        assert np.allclose(cpose, pose, rtol=0, atol=1e-15)
+        ci = py._leg_cond_inverse(tuple(q), pose, W)
+        assert 0.0 <= ci <= 1.0 and abs(lib.wkt_rsr_leg_cond_inverse(_p(q), _p(pose), _p(W)) - ci) <= 1e-15
+        span = py._workspace(pose[0], pose[1], W)
+        assert span is not None and span[0] - 1e-12 <= pose[2] <= span[1] + 1e-12
+        cspan = np.zeros(2)
+        assert lib.wkt_rsr_workspace(pose[0], pose[1], _p(W), cspan.ctypes.data_as(D)) == 1
+        assert np.allclose(cspan, span, rtol=0, atol=1e-15)
+
+
+def test_design_rule_is_the_same_in_python_and_c(py, lib):
+    for w in (W, (0.0, *W[1:]), (1e7, *W[1:]), (W[0], 1.0, 0.5, *W[3:]), (W[0], W[1], W[2], 0.05, 0.02),
+              (W[0], W[1], W[2], 0.0, 3 * W[0])):
+        assert (py._wrist_design_error(w) is None) == bool(lib.wkt_rsr_design_ok(_p(w))), w
+
+
+def test_both_generated_wrists_carry_the_sources():
+    for name in ("rsr_wrist", "scara_rsr"):
+        assert runtime_files.inline("python/rsr_legs.py") in (ROOT / "generated" / "python" / "wristkin" /
+                                                              f"{name}.py").read_text()
+        assert runtime_files.inline("c/rsr/rsr_legs.c") in (GEN_C / f"{name}.c").read_text()
