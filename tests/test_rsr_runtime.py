@@ -1,9 +1,10 @@
 """The 3-RSR core shared by the 3-RSR wrist and the SCARA hybrid (runtime/python/rsr_legs.py,
-runtime/c/rsr/rsr_legs.c) tested as it is: the Python source imported with rsr_stand_in (the catalogue wrist's
-tolerances and derived kernels), the C source compiled strictly after the wrist's generated prelude, on cases
-whose answer is known by construction (leg roots that satisfy their equations and contain the generating joints,
-the mirror plane of the generating joints, a workspace interval holding the generating l_bw), C and Python on the
-same inputs, and both generated wrists carrying the sources verbatim."""
+runtime/c/rsr/rsr_legs.c) and the wrist's verbs (rsr_wrist_api.py / .c) tested as they are: the Python sources
+imported with rsr_stand_in (the catalogue wrist's tolerances and derived kernels), the C sources compiled strictly
+after the wrist's generated prelude, on cases whose answer is known by construction (leg roots that satisfy their
+equations and contain the generating joints, the mirror plane of the generating joints, a workspace interval
+holding the generating l_bw, IK of FK holding the joints), C and Python on the same inputs, and the generated
+wrists carrying the sources verbatim."""
 
 from __future__ import annotations
 
@@ -37,24 +38,28 @@ def py():
     sys.path.insert(0, str(ROOT / "runtime" / "python"))
     try:
         import rsr_legs
+        import rsr_wrist_api
     finally:
         sys.path.remove(str(ROOT / "runtime" / "python"))
+    rsr_legs.api = rsr_wrist_api
     return rsr_legs
 
 
 @pytest.fixture(scope="module")
 def lib():
     text = (GEN_C / "rsr_wrist.c").read_text()
-    source = runtime_files.inline("c/rsr/rsr_legs.c")
+    source, api = runtime_files.inline("c/rsr/rsr_legs.c"), runtime_files.inline("c/rsr/rsr_wrist_api.c")
     prelude = text[:text.index(source)]
+    between = text[text.index(source) + len(source):text.index(api)]
     kernels = re.findall(r"static void (rsr_k_\w+)\(", prelude)
     assert len(kernels) >= 4
     inc = BUILD_DIR / "rsr_runtime"
     inc.mkdir(parents=True, exist_ok=True)
     (inc / "rsr_prelude.h").write_text(prelude)
+    (inc / "rsr_between.h").write_text(between)
     (inc / "rsr_kernels.h").write_text("void (*const wkt_rsr_kernels[])(void) = {\n" + ",\n".join(
         f"    (void (*)(void)){k}" for k in kernels) + "\n};\n")  # void (*)(void): the generic function type
-    h = hashlib.sha256((source + prelude).encode()).hexdigest()[:16]
+    h = hashlib.sha256((source + api + prelude + between).encode()).hexdigest()[:16]
     so = compile_shared([ROOT / "tests" / "c" / "rsr_runtime_harness.c", RUNTIME_C], [inc, GEN_C], "rsr_runtime",
                         extra_flags=[f"-DWKT_SOURCES={h}"])
     L = load(so)
@@ -65,6 +70,9 @@ def lib():
     L.wkt_rsr_leg_cond_inverse.argtypes = [D, D, D]
     L.wkt_rsr_leg_cond_inverse.restype = ctypes.c_double
     L.wkt_rsr_design_ok.argtypes = [D]
+    for verb in ("ik", "fk"):
+        getattr(L, f"wkt_rsr_{verb}").argtypes = [D, ctypes.c_void_p, ctypes.c_void_p]
+    L.wkt_rsr_design_init.argtypes = [D, ctypes.c_void_p]
     return L
 
 
@@ -125,8 +133,44 @@ def test_design_rule_is_the_same_in_python_and_c(py, lib):
         assert (py._wrist_design_error(w) is None) == bool(lib.wkt_rsr_design_ok(_p(w))), w
 
 
+def _solutions(n, width, naux):
+    class S(ctypes.Structure):
+        _fields_ = [("count", ctypes.c_int), ("status", ctypes.c_int), ("valid", ctypes.c_int * n),
+                    ("flags", ctypes.c_uint * n), ("values", (ctypes.c_double * width) * n),
+                    ("aux", (ctypes.c_double * naux) * n)]
+    return S
+
+
+def test_the_verbs_in_python_and_c_return_the_generating_joints_alike(py, lib):
+    """The wrist's verbs (rsr_wrist_api): FK of random joints, then IK of that pose holds the joints; C gives
+    Python's sets, flags, aux and status (one algorithm in both)."""
+    api = py.api
+    design = api.make_design(W)
+    cd = ctypes.create_string_buffer(8 * 5)
+    assert lib.wkt_rsr_design_init(_p(W), cd) == 0
+    ik_s, fk_s = _solutions(api.MAX_IK, 3, len(api.IK_AUX_NAMES)), _solutions(1, 3, len(api.FK_AUX_NAMES))
+    rng = case_rng(2252)
+    for q, pose in _poses(py, rng, 30):
+        f = api.fk(q, design)
+        cf = fk_s()
+        assert lib.wkt_rsr_fk(_p(q), cd, ctypes.byref(cf)) == 0 and cf.status == f.status
+        assert np.allclose(np.array(cf.values)[0], f.values[0], rtol=0, atol=1e-15)
+        assert np.allclose(np.array(cf.values)[0], pose, rtol=0, atol=1e-13)
+        s = api.ik(pose, design)
+        assert min(np.max(np.abs(np.remainder(v - q + math.pi, 2 * math.pi) - math.pi))
+                   for v in s.values[s.valid]) <= 1e-9
+        ci = ik_s()
+        assert lib.wkt_rsr_ik(_p(pose), cd, ctypes.byref(ci)) == 0 and ci.status == s.status
+        assert [bool(v) for v in ci.valid] == list(s.valid) and list(ci.flags) == list(s.flags)
+        assert np.allclose(np.array(ci.values)[s.valid], s.values[s.valid], rtol=0, atol=1e-15)
+        assert np.allclose(np.array(ci.aux)[s.valid], s.aux[s.valid], rtol=0, atol=1e-15)
+
+
 def test_both_generated_wrists_carry_the_sources():
     for name in ("rsr_wrist", "scara_rsr"):
         assert runtime_files.inline("python/rsr_legs.py") in (ROOT / "generated" / "python" / "wristkin" /
                                                               f"{name}.py").read_text()
         assert runtime_files.inline("c/rsr/rsr_legs.c") in (GEN_C / f"{name}.c").read_text()
+    assert runtime_files.inline("python/rsr_wrist_api.py") in (ROOT / "generated" / "python" / "wristkin" /
+                                                             "rsr_wrist.py").read_text()
+    assert runtime_files.inline("c/rsr/rsr_wrist_api.c") in (GEN_C / "rsr_wrist.c").read_text()
