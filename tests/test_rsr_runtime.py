@@ -45,24 +45,29 @@ def py():
     return rsr_legs
 
 
-@pytest.fixture(scope="module")
-def lib():
-    text = (GEN_C / "rsr_wrist.c").read_text()
-    source, api = runtime_files.inline("c/rsr/rsr_legs.c"), runtime_files.inline("c/rsr/rsr_wrist_api.c")
+def _build(name, api_source, harness):
+    """The harness of `name`'s sources: its generated C cut before the core (prelude) and between the core and the
+    verbs (the default design), the prelude's kernels referenced by name."""
+    text = (GEN_C / f"{name}.c").read_text()
+    source, api = runtime_files.inline("c/rsr/rsr_legs.c"), runtime_files.inline(api_source)
     prelude = text[:text.index(source)]
     between = text[text.index(source) + len(source):text.index(api)]
     kernels = re.findall(r"static void (rsr_k_\w+)\(", prelude)
     assert len(kernels) >= 4
-    inc = BUILD_DIR / "rsr_runtime"
+    inc = BUILD_DIR / f"rsr_runtime_{name}"
     inc.mkdir(parents=True, exist_ok=True)
     (inc / "rsr_prelude.h").write_text(prelude)
     (inc / "rsr_between.h").write_text(between)
     (inc / "rsr_kernels.h").write_text("void (*const wkt_rsr_kernels[])(void) = {\n" + ",\n".join(
         f"    (void (*)(void)){k}" for k in kernels) + "\n};\n")  # void (*)(void): the generic function type
     h = hashlib.sha256((source + api + prelude + between).encode()).hexdigest()[:16]
-    so = compile_shared([ROOT / "tests" / "c" / "rsr_runtime_harness.c", RUNTIME_C], [inc, GEN_C], "rsr_runtime",
-                        extra_flags=[f"-DWKT_SOURCES={h}"])
-    L = load(so)
+    return load(compile_shared([ROOT / "tests" / "c" / harness, RUNTIME_C], [inc, GEN_C], f"rsr_runtime_{name}",
+                               extra_flags=[f"-DWKT_SOURCES={h}"]))
+
+
+@pytest.fixture(scope="module")
+def lib():
+    L = _build("rsr_wrist", "c/rsr/rsr_wrist_api.c", "rsr_runtime_harness.c")
     L.wkt_rsr_legs.argtypes = [D, D, D, U, D]
     L.wkt_rsr_plane.argtypes = [D, D, D, D]
     L.wkt_rsr_pose_of_plane.argtypes = [D, D]
@@ -166,6 +171,44 @@ def test_the_verbs_in_python_and_c_return_the_generating_joints_alike(py, lib):
         assert np.allclose(np.array(ci.aux)[s.valid], s.aux[s.valid], rtol=0, atol=1e-15)
 
 
+def test_the_hybrid_in_python_and_c_returns_the_generating_joints_alike():
+    """The SCARA + 3-RSR hybrid's verbs (scara_rsr_api, with scara_stand_in): IK of FK holds the generating joints;
+    C (its source compiled strictly after the hybrid's generated prelude) equals Python on sets, flags and status."""
+    sys.path.insert(0, str(ROOT / "runtime" / "python"))
+    try:
+        import scara_rsr_api as api
+    finally:
+        sys.path.remove(str(ROOT / "runtime" / "python"))
+    L = _build("scara_rsr", "c/rsr/scara_rsr_api.c", "scara_runtime_harness.c")
+    for verb in ("ik", "fk"):
+        getattr(L, f"wkt_hy_{verb}").argtypes = [D, ctypes.c_void_p, ctypes.c_void_p]
+    L.wkt_hy_design_init.argtypes = [D, ctypes.c_void_p]
+    design = api.make_design(None)
+    cd = ctypes.create_string_buffer(8 * len(design.params))
+    assert L.wkt_hy_design_init(_p(design.params), cd) == 0
+    ik_s, fk_s = _solutions(api.MAX_IK, api.N_JOINTS, len(api.IK_AUX_NAMES)), _solutions(1, 13, len(api.FK_AUX_NAMES))
+    rng = case_rng(2253)
+    lo, hi = design.params[5], design.params[6]
+    kinds = np.array(api.JOINT_KINDS)
+    for _ in range(30):
+        q = np.array([*rng.uniform(-3, 3, 2), rng.uniform(-0.1, 0.1), rng.uniform(-3, 3), *rng.uniform(lo, hi, 3)])
+        f = api.fk(q, design)
+        cf = fk_s()
+        assert L.wkt_hy_fk(_p(q), cd, ctypes.byref(cf)) == 0 and cf.status == f.status
+        if f.status != 0:
+            continue
+        assert np.allclose(np.array(cf.values)[0], f.values[0], rtol=0, atol=1e-15)
+        pose = f.values[0]
+        s = api.ik(pose, design)
+        gaps = [np.where(kinds == "R", np.remainder(v - q + math.pi, 2 * math.pi) - math.pi, v - q)
+                for v in s.values[s.valid]]
+        assert min(float(np.max(np.abs(g))) for g in gaps) <= 1e-9
+        ci = ik_s()
+        assert L.wkt_hy_ik(_p(pose), cd, ctypes.byref(ci)) == 0 and ci.status == s.status
+        assert [bool(v) for v in ci.valid] == list(s.valid) and list(ci.flags) == list(s.flags)
+        assert np.allclose(np.array(ci.values)[s.valid], s.values[s.valid], rtol=0, atol=1e-12)
+
+
 def test_both_generated_wrists_carry_the_sources():
     for name in ("rsr_wrist", "scara_rsr"):
         assert runtime_files.inline("python/rsr_legs.py") in (ROOT / "generated" / "python" / "wristkin" /
@@ -174,3 +217,6 @@ def test_both_generated_wrists_carry_the_sources():
     assert runtime_files.inline("python/rsr_wrist_api.py") in (ROOT / "generated" / "python" / "wristkin" /
                                                              "rsr_wrist.py").read_text()
     assert runtime_files.inline("c/rsr/rsr_wrist_api.c") in (GEN_C / "rsr_wrist.c").read_text()
+    assert runtime_files.inline("python/scara_rsr_api.py") in (ROOT / "generated" / "python" / "wristkin" /
+                                                             "scara_rsr.py").read_text()
+    assert runtime_files.inline("c/rsr/scara_rsr_api.c") in (GEN_C / "scara_rsr.c").read_text()
