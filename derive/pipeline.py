@@ -125,10 +125,19 @@ def _c_api(header: str, name: str) -> dict:
     """What the C binding needs to know of a mechanism, read from its generated header (its API, not its family)."""
     def has(fn: str) -> bool:
         return f"wk_{name}_{fn}(" in header
-    return {"name": name, "pose12": f"#define WK_{name.upper()}_N_POSE 12" in header, "ik_near": has("ik_near"),
-            "jacobian": has("jacobian"), "fk_matrix": has("fk_matrix"), "frames": has("design_set_frames"),
-            "atlas": has("atlas_batch"), "atlas_conditioning": has("atlas_conditioning"),
-            "atlas_home": has("atlas_home_batch")}
+    api = {"name": name, "pose12": f"#define WK_{name.upper()}_N_POSE 12" in header, "ik_near": has("ik_near"),
+           "jacobian": has("jacobian"), "fk_matrix": has("fk_matrix"), "frames": has("design_set_frames"),
+           "atlas": has("atlas_batch"), "atlas_conditioning": has("atlas_conditioning"),
+           "atlas_home": has("atlas_home_batch")}
+    # the extension's functions for it, in its method table's order
+    optional = [("jacobian", ["jacobian"]), ("fk_matrix", ["fk_matrix"]), ("atlas", ["atlas_batch", "max_swing"]),
+                ("atlas_conditioning", ["atlas_conditioning"]), ("atlas_home", ["atlas_home_batch"])]
+    return {**api, "methods": ["design", "ik", "fk", "ik_batch", "fk_batch"] +
+            [f for key, fs in optional if api[key] for f in fs]}
+
+
+# the binding's hand-written helpers (compiled and tested as they are: tests/test_native_helpers.py)
+NATIVE_RUNTIME_FILES = ("c/native/wkn_inputs.c", "c/native/wkn_results.c")
 
 
 def native_binding(out: Path, module_path: str = "wristkin._native") -> Path:
@@ -139,6 +148,7 @@ def native_binding(out: Path, module_path: str = "wristkin._native") -> Path:
     mechs = [_c_api(p.read_text(), p.stem) for p in headers]
     return write_file(out / "native" / "_native.c", render("c/native.c.jinja", header_lines=header_lines(), mechs=mechs,
                                                         inputs_hash=input_hash(), row_tol="WK_ROTATION_PROJECT_TOL",
+                                                        runtime_sources=NATIVE_RUNTIME_FILES,
                                                         module_path=module_path))
 
 

@@ -20,6 +20,7 @@ from derive.identities.dh import (
     hrot_x,
     trans,
 )
+from derive.serial_core import stages
 
 
 def test_link_transforms_equal_their_closed_forms():
@@ -60,7 +61,7 @@ def test_modified_dh_chain_equals_standard_chain():
 
 def test_mirrored_wrist_set_has_its_base_sets_fk_bit_for_bit():
     """The C solver reuses an even IK set's FK check for the odd set that mirrors its wrist (q4 + pi, -q5, q6 + pi),
-    on the strength of dh_serial.mirror_keeps_fk: every temporary of fk_cs unchanged or exactly negated by the flip.
+    on the strength of stages.mirror_keeps_fk: every temporary of fk_cs unchanged or exactly negated by the flip.
     The proof holds for the spherical wrist and fails for a flip that is no symmetry (q5 left alone); and the
     generated fk_cs kernels of the three wrist-stage chains give bit-identical poses for mirrored random sets."""
     import importlib
@@ -68,17 +69,17 @@ def test_mirrored_wrist_set_has_its_base_sets_fk_bit_for_bit():
     mech = registry()["spherical_wrist"]
     spec = mech.spec
     fk_cs = next(k for k in mech.kernels(mech.derive()) if k.name == "fk_cs")
-    assert dh_serial.mirror_keeps_fk(spec, fk_cs)
+    assert stages.mirror_keeps_fk(spec, fk_cs)
     wrist = next(st for st in spec.stages if st.kind == "wrist")
-    cs, ss = dh_serial._cs_symbols(spec)
+    cs, ss = stages.cs_symbols(spec)
     j4, j5, j6 = wrist.joints
     from derive.lower import cse_kernel
 
     temps, reduced = cse_kernel(fk_cs)
     known, wrong = {}, {cs[j4], ss[j4], cs[j6], ss[j6]}
     for sym, e in temps:
-        known[sym] = dh_serial._flip_parity(sp.sympify(e), wrong, known)
-    assert any(dh_serial._flip_parity(e, wrong, known) != 0 for e in reduced)
+        known[sym] = stages.flip_parity(sp.sympify(e), wrong, known)
+    assert any(stages.flip_parity(e, wrong, known) != 0 for e in reduced)
 
     rng = case_rng(5)
     for name in ("spherical_wrist", "rpp_wrist", "puma560"):

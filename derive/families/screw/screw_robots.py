@@ -15,8 +15,8 @@ import sympy as sp
 
 from ...identities.frames import rodrigues
 from ...identities.screws import JointAxis
-from ..serial.dh_serial import P_POSE, R_POSE, Stage
-from ..serial.mechanism import SerialMechanism
+from ...serial_core.mechanism import SerialArm
+from ...serial_core.stages import P_POSE, R_POSE, Stage
 from . import screw_seed
 from .screw_serial import DESIGN_NONZERO_TOL, DESIGN_UNIT_TOL, DesignCheck, ScrewSpec
 
@@ -142,7 +142,7 @@ def rarararbrb(name: str, title: str, source: str, default: tuple[float, ...], s
 STRUCTURES = {"P1P2P3RaRb": ("PPPRR", (), p1p2p3rarb), "RaRaRaRbRb": ("RRRRR", ((0, 1, 2), (3, 4)), rarararbrb)}
 
 
-class ScrewMechanism(SerialMechanism):
+class ScrewMechanism(SerialArm):
     """A ScrewSpec rendered through the serial-chain templates (same API as the DH chains)."""
 
     DERIVE_SECONDS = 6
@@ -168,7 +168,7 @@ class ScrewMechanism(SerialMechanism):
         Jacobian by CasADi's AD: linear rows d p / d q, angular rows vee(d R / d q_k R^T) (tested equal)."""
         import casadi as ca
 
-        from ..serial.serial_casadi import serial_functions
+        from ...serial_core.casadi_functions import serial_functions
 
         name = self.NAME
         fns = serial_functions(name, kernels)

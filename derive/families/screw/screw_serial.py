@@ -29,8 +29,8 @@ from ...identities import screws
 from ...identities.frames import skew
 from ...lower import Kernel
 from ...model import Check, Derivation, Finding, Step
-from ..serial import dh_serial
-from ..serial.dh_serial import POSE_SYMBOLS, Stage
+from ...serial_core import stages, views
+from ...serial_core.stages import POSE_SYMBOLS, Stage
 
 DESIGN_NONZERO_TOL = 1e-9  # a squared norm / determinant of the design at or below this is degenerate
 DESIGN_UNIT_TOL = 1e-9  # | |s|^2 - 1 | above this: a direction is not a unit vector
@@ -355,7 +355,7 @@ def _ik_steps(dv: Derivation, spec: ScrewSpec, f_t) -> None:
             return abs(vals[0] - qv)
         claim = {"trig_linear": "A cos q + B sin q + C = 0 on the FK", "rotation2d": "(u, v) = Rot(q)(u0, v0) on "
                  "the FK", "value": "q = expression on the FK"}[st.kind]
-        result = dict(zip(dh_serial._stage_output_names(st), st.exprs, strict=True))
+        result = dict(zip(stages.stage_output_names(st), st.exprs, strict=True))
         dv.add(Step(f"ik_stage{k}", f"IK stage {k}: {st.title}", st.rule,
                     ("fk",) + tuple(f"ik_stage{j}" for j in range(1, k)), result,
                     (numeric_predicate(err, claim + " (random robots and joints)", samples=200, tol=1e-9),)))
@@ -366,7 +366,7 @@ def _ik_steps(dv: Derivation, spec: ScrewSpec, f_t) -> None:
 
 # ------------------------------------------------------------------------------------------ kernels
 def kernels_spec(spec: ScrewSpec, dv: Derivation) -> list[Kernel]:
-    ks = dh_serial.kernels_spec(spec, dv)  # fk, fk_cs, jacobian, stage<k>: the serial templates' kernel set
+    ks = stages.serial_kernels(spec, dv)  # fk, fk_cs, jacobian, stage<k>: the serial templates' kernel set
     dp = ("dp", spec.design)
     ks.append(Kernel("design_check", "Design conditions (see DESIGN_CHECKS).", (dp,),
                      tuple((f"d{i}", c.expr) for i, c in enumerate(spec.design_checks))))
@@ -378,11 +378,11 @@ def kernels_spec(spec: ScrewSpec, dv: Derivation) -> list[Kernel]:
 
 
 def context_spec(spec: ScrewSpec) -> dict:
-    return {"name": spec.name, "title": spec.title, "joint_names": [str(q) for q in spec.joints],
+    return views.serial_views({"name": spec.name, "title": spec.title, "joint_names": [str(q) for q in spec.joints],
             "joint_kinds": list(spec.kinds), "design_names": [str(d) for d in spec.design],
             "design_values": [repr(float(v)) for v in spec.design_default], "n_joints": len(spec.joints),
-            "max_ik": 2 ** sum(st.branches - 1 for st in spec.stages), "stages": dh_serial.stage_view(spec),
-            "fold_bits": dh_serial.fold_bits(spec),
+            "max_ik": 2 ** sum(st.branches - 1 for st in spec.stages), "stages": stages.stage_view(spec),
+            "fold_bits": stages.fold_bits(spec),
             "upper": spec.name.upper(), "design_default": [repr(float(v)) for v in spec.design_default],
             "design_checks": [{"kind": c.kind, "tol": repr(c.tol), "what": c.what} for c in spec.design_checks],
-            "image_checks": [w for w, _ in spec.image_checks]}
+            "image_checks": [w for w, _ in spec.image_checks]})

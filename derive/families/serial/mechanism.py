@@ -1,56 +1,37 @@
 """The serial family's mechanism: a SerialSpec (read from a spec file by dh_spec) behind the pipeline's
-interface; the finite-screw family renders through the same templates by subclassing it."""
+interface, on the serial arms' base (derive/serial_core/mechanism.py) the finite-screw family shares."""
 
 from __future__ import annotations
 
 import math
 
-from ...mechanism import MechanismDefaults
+from ...serial_core import stages, views
+from ...serial_core.mechanism import SerialArm
 from . import dh_serial
 
 
-class SerialMechanism(MechanismDefaults):
-    """A SerialSpec behind the interface the pipeline expects (derive/families/__init__.py)."""
-
-    TEMPLATES = ("python/serial.py.jinja", "c/serial.h.jinja", "c/serial.c.jinja")
-    VECTORISED_KERNELS = ("fk",)
-    DERIVE_SECONDS = 5  # a scheduling hint for parallel regeneration (from_spec sets a DH chain's own)
-
-    def __init__(self, name: str, build):
-        self.NAME = name
-        self._spec, self._build = None, build
-
-    @property
-    def spec(self):
-        """The spec with its IK stages, built on first use (symbolic work that reading a catalogue should not
-        pay: the spec's fields were validated when it was read)."""
-        if self._spec is None:
-            self._spec = self._build()
-        return self._spec
+class SerialMechanism(SerialArm):
+    """A DH chain's SerialSpec behind the interface the pipeline expects (derive/families/__init__.py)."""
 
     def derive(self):
         return dh_serial.derive_spec(self.spec)
 
     def kernels(self, dv):
-        return dh_serial.kernels_spec(self.spec, dv)
-
-    def casadi_functions(self, dv, kernels) -> dict:
-        from .serial_casadi import serial_functions
-        return serial_functions(self.NAME, kernels)
+        return stages.serial_kernels(self.spec, dv)
 
     def extra_context(self, ks) -> dict:
         sp_ = self.spec
         n = len(sp_.joints)
         n_combos = 2 ** sum(st.branches - 1 for st in sp_.stages)
-        return {"name": self.NAME, "title": sp_.title, "joint_names": [str(q) for q in sp_.joints],
+        return views.serial_views({"name": self.NAME, "title": sp_.title, "joint_names": [str(q) for q in sp_.joints],
                 "joint_kinds": list(sp_.kinds), "design_names": [str(d) for d in sp_.design],
                 "design_values": [repr(float(v)) for v in sp_.design_default], "n_joints": n,
-                "max_ik": n_combos, "stages": dh_serial.stage_view(sp_),
-                "fold_bits": dh_serial.fold_bits(sp_), "upper": self.NAME.upper(),
-                "mirror_keeps_fk": dh_serial.mirror_keeps_fk(sp_, next(k for k in ks if k.name == "fk_cs")),
+                "max_ik": n_combos, "stages": stages.stage_view(sp_),
+                "fold_bits": stages.fold_bits(sp_), "upper": self.NAME.upper(),
+                "mirror_keeps_fk": stages.mirror_keeps_fk(sp_, next(k for k in ks if k.name == "fk_cs")),
                 "design_default": [repr(float(v)) for v in sp_.design_default],
                 # DH design values are link lengths and offsets: each is 0 or at least DESIGN_SCALE_MIN
-                "lengths_floor": True}
+                "lengths_floor": True})
 
     def audit_numbers(self, dv, solver, audit_dir) -> dict:
         """Seeded round trips through the generated solver (counts only: byte-stable across machines)."""

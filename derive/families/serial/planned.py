@@ -18,7 +18,8 @@ import sympy as sp
 from ...identities.dh import chain as dh_chain
 from ...kinematics.planner import NoClosedForm, find_plan
 from ...kinematics.poe import Chain
-from .dh_serial import P_POSE, R_POSE, Stage, wrist_stage
+from ...serial_core.stages import P_POSE, R_POSE, Stage
+from .dh_serial import wrist_stage
 
 SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient"}
 

@@ -18,6 +18,12 @@ from . import underactuated_wrist as uw
 SPEC_FIELDS = ("design", "seed")
 SOURCE_SUFFIXES = ()
 SEEDS = ("000",)
+# the hand-written numerics the generated files inline (runtime/python/uw_*.py, runtime/c/underactuated_wrist/),
+# in the order their definitions need: compiled, linted and tested as they are (tests/test_uw_runtime.py)
+PY_RUNTIME_FILES = tuple(f"python/uw_{part}.py" for part in ("design", "orientation", "ik", "fk_modes", "fk",
+                                                             "fk_batch", "select", "rates"))
+C_RUNTIME_FILES = tuple(f"c/underactuated_wrist/uw_{part}.c" for part in ("geometry", "design", "ik", "fk_modes", "fk",
+                                                                          "select", "rates", "atlas"))
 
 
 class SphericalParallelWrist(MechanismDefaults):
@@ -41,7 +47,8 @@ class SphericalParallelWrist(MechanismDefaults):
     def extra_context(self, ks) -> dict:
         return {"name": self.NAME, "upper": self.NAME.upper(), **uw.extra_context(ks, self.DESIGN_DEFAULT_DEG),
                 "design_default": [repr(math.radians(v)) for v in self.DESIGN_DEFAULT_DEG],
-                "n_design_constants": len(self.DESIGN_CONSTANTS)}
+                "n_design_constants": len(self.DESIGN_CONSTANTS), "py_runtime_files": PY_RUNTIME_FILES,
+                "c_runtime_files": C_RUNTIME_FILES}
 
     def casadi_functions(self, dv, ks) -> dict:
         return uw.casadi_functions(dv, ks)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import casadi as ca
 
-from ...casadi_export import _elems, _kernel_sx
+from ..casadi_export import _elems, _kernel_sx
 
 
 def serial_functions(name: str, kernels) -> dict[str, ca.Function]:

@@ -1,0 +1,156 @@
+"""The serial-arm layer the serial families share (the catalogue's DH chains, derive/families/serial, and the
+finite-screw chains' serial view, derive/families/screw): the pose symbols, an IK stage and its kernels
+(FK, FK from cos/sin, geometric Jacobian, one kernel per stage), the stage tree's view for the templates and
+the proof that the wrist mirror keeps the FK check. Not a family: families import it, never each other."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy as sp
+
+from ..model import Derivation
+
+POSE = sp.Matrix(3, 4, sp.symbols("r00 r01 r02 px r10 r11 r12 py r20 r21 r22 pz", real=True))
+POSE_SYMBOLS = tuple(POSE)  # row-major [R | p]
+R_POSE = POSE[:, :3]
+P_POSE = POSE[:, 3]
+
+
+@dataclass(frozen=True)
+class Stage:
+    kind: str  # trig_linear | rotation2d | value | wrist
+    joints: tuple[int, ...]
+    exprs: tuple  # trig_linear (A, B, C); rotation2d (u, v, u0, v0); value (q,); wrist (3x3 M as 9 entries)
+    title: str
+    rule: str
+    signs: tuple[int, ...] = ()  # wrist: (e0, e1, e2, e3, k00@0, k10@0, k00@pi, k10@pi)
+    wrist_rotation: sp.Matrix | None = None  # wrist: R(q4) R(q5) R(q6) of the three wrist rows
+    wrist_joints: tuple = ()
+
+    @property
+    def branches(self) -> int:
+        return 2 if self.kind in ("trig_linear", "wrist") else 1
+
+
+def stage_output_names(st: Stage) -> list[str]:
+    return {"trig_linear": ["A", "B", "C"], "rotation2d": ["u", "v", "u0", "v0"], "value": ["q"],
+            "wrist": [f"m{i}{j}" for i in range(3) for j in range(3)]}[st.kind]
+
+
+def cs_symbols(spec):
+    cs = tuple(sp.Symbol(f"c{i + 1}", real=True) for i in range(len(spec.joints)))
+    ss = tuple(sp.Symbol(f"s{i + 1}", real=True) for i in range(len(spec.joints)))
+    return cs, ss
+
+
+def on_cs(expr, spec):
+    """cos/sin of revolute joints -> c_i, s_i symbols (the IK carries them algebraically, no trig)."""
+    cs, ss = cs_symbols(spec)
+    rep = {}
+    for i, (q, k) in enumerate(zip(spec.joints, spec.kinds, strict=True)):
+        if k == "R":
+            rep[sp.cos(q)] = cs[i]
+            rep[sp.sin(q)] = ss[i]
+    out = sp.expand_trig(sp.sympify(expr)).xreplace(rep)
+    left = {f for f in out.atoms(sp.cos, sp.sin) if f.free_symbols & set(spec.joints)}
+    if left:
+        raise ValueError(f"{spec.name}: joint trig left after substitution: {left}")
+    return out
+
+
+def serial_kernels(spec, dv: Derivation):
+    from ..lower import Kernel
+
+    q = ("q", spec.joints)
+    dp = ("dp", spec.design)
+    pose = ("pose", POSE_SYMBOLS)
+    cs, ss = cs_symbols(spec)
+    T = dv.exports["T"]
+    T_raw = dv.exports["frames"][-1]
+    J = dv.exports["jacobian"]
+    ks = [Kernel("fk", "Pose [R | p] (row-major 3x4) of the end frame.", (q, dp),
+                 tuple((str(s), T[i // 4, i % 4]) for i, s in enumerate(POSE_SYMBOLS))),
+          Kernel("fk_cs", "The same pose from (cos, sin) of the revolute joints (used to verify IK sets).",
+                 (q, ("c", cs), ("s", ss), dp),
+                 tuple((str(s), on_cs(T_raw[i // 4, i % 4], spec)) for i, s in enumerate(POSE_SYMBOLS))),
+          Kernel("jacobian", "Geometric Jacobian (6 x n, row-major; linear velocity rows first).", (q, dp),
+                 tuple((f"j{r}{c}", J[r, c]) for r in range(6) for c in range(len(spec.joints))))]
+    for k, st in enumerate(spec.stages, start=1):
+        ks.append(Kernel(f"stage{k}", f"IK stage {k} ({st.kind}): {st.title}", (pose, q, ("c", cs), ("s", ss), dp),
+                         tuple(zip(stage_output_names(st), (on_cs(e, spec) for e in st.exprs), strict=True))))
+    return ks
+
+
+def stage_view(spec) -> list[dict]:
+    """What the templates need to emit the solution tree.
+
+    The first branching stage takes the highest bit of the set index, so consecutive sets share their
+    prefix and a stage is recomputed only when its prefix (key = k >> shift) changes.
+    """
+    total = sum(st.branches - 1 for st in spec.stages)
+    out, used = [], 0
+    for k, st in enumerate(spec.stages, start=1):
+        used += st.branches - 1
+        shift = total - used
+        view = {"index": k, "kind": st.kind, "joints": list(st.joints), "branches": st.branches,
+                "bit": shift if st.branches == 2 else None, "shift": shift}
+        if st.kind == "wrist":
+            view["signs"] = list(st.signs)
+            view["joint_kinds"] = [spec.kinds[j] for j in st.joints]
+        else:
+            view["joint_kind"] = spec.kinds[st.joints[0]]
+        out.append(view)
+    return out
+
+
+def fold_bits(spec) -> list[int]:
+    """The set-index bits of the two-root (trig_linear) stages: sets differing in one of them are a pair that the
+    runtime merges when the pose cannot tell them apart (a double root)."""
+    return [v["bit"] for v in stage_view(spec) if v["kind"] == "trig_linear"]
+
+
+def flip_parity(e, flipped: set, known: dict):
+    """0 when e is unchanged, 1 when it is exactly negated, once the symbols in `flipped` are negated; None when
+    neither holds. Exact in IEEE arithmetic term by term: a product with a negated factor, a sum of negated terms and
+    an integer power of a negated base are the negated (or the same) rounded values, so parity holds for every
+    sub-expression the printed code evaluates (and for a fused multiply-add of them)."""
+    if e.is_Symbol:
+        return known.get(e, 1 if e in flipped else 0)
+    if e.is_Number:
+        return 0
+    if e.is_Mul or e.is_Pow:
+        parts = e.args if e.is_Mul else (e.base,)
+        ps = [flip_parity(a, flipped, known) for a in parts]
+        if None in ps:
+            return None
+        if e.is_Pow:
+            return (ps[0] * int(e.exp)) % 2 if e.exp.is_Integer else (None if ps[0] else 0)
+        return sum(ps) % 2
+    if e.is_Add:
+        ps = {flip_parity(a, flipped, known) for a in e.args}
+        return ps.pop() if len(ps) == 1 and None not in ps else None
+    return 0 if all(flip_parity(a, flipped, known) == 0 for a in e.args) else None
+
+
+def mirror_keeps_fk(spec, fk_cs_kernel) -> bool:
+    """Whether the wrist's mirrored set (q4 + pi, -q5, q6 + pi: cos and sin of q4, q6 and sin q5 negated) gives
+    bit for bit the FK of its base set in the generated fk_cs kernel: every CSE temporary of the kernel, as printed,
+    is unchanged or exactly negated under the flip and every output unchanged. Then the base set's verification is
+    the mirror's, and the C solver reuses it."""
+    from ..lower import cse_kernel
+
+    wrist = [st for st in spec.stages if st.kind == "wrist"]
+    if not wrist:
+        return False
+    cs, ss = cs_symbols(spec)
+    j4, j5, j6 = wrist[0].joints
+    flipped = {cs[j4], ss[j4], ss[j5], cs[j6], ss[j6]}
+    temps, reduced = cse_kernel(fk_cs_kernel)
+    known: dict = {}
+    for sym, e in temps:
+        p = flip_parity(sp.sympify(e), flipped, known)
+        if p is None:
+            return False
+        known[sym] = p
+    return all(flip_parity(e, flipped, known) == 0 for e in reduced)

@@ -1,0 +1,125 @@
+"""Typed views the serial arm's thin templates render (templates/{python,c}/serial.*.jinja): every choice that
+depends on the chain (which solver a stage calls, with which joints and branch bit; which optional checks the
+chain has; whether the odd sets may reuse the even sets' FK check) is made here, once, and the templates print
+the result. The solvers themselves are runtime sources (runtime/python/serial_*.py, runtime/c/serial/sr_*.c)."""
+
+from __future__ import annotations
+
+PY_RUNTIME_FILES = tuple(f"python/serial_{part}.py" for part in ("input", "fk", "stages", "verify", "ik"))
+# the C sources before the stage functions (which call sr_stages.c) and the one after them (which runs them)
+C_RUNTIME_FILES = tuple(f"c/serial/sr_{part}.c" for part in ("input", "fk", "stages", "verify"))
+C_RUNTIME_AFTER_STAGES = ("c/serial/sr_ik.c",)
+
+
+def _tuple(xs) -> str:
+    return "(" + "".join(f"{x}, " for x in xs) + ")"
+
+
+def py_stage_body(st: dict) -> list[str]:
+    """The body of the generated `_solve_stage<k>(k, pose, q, c, s, dp, prev)`: the stage's kernel, then the
+    runtime solver of its kind with its joints and branch bit. Returns (ok, flags)."""
+    out = f"_k_stage{st['index']}(pose, q, c, s, dp)"
+    j = st["joints"][0]
+    if st["kind"] == "trig_linear":
+        return [f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev)"]
+    if st["kind"] == "rotation2d":
+        return [f"return _rotation2d({out}, {j}, q, c, s, prev)"]
+    if st["kind"] == "value":
+        return [f"return _revolute_value({out}, {j}, q, c, s)" if st["joint_kind"] == "R" else
+                f"return _prismatic_value({out}, {j}, q)"]
+    if st["kind"] == "wrist":
+        joints, signs = "(" + ", ".join(map(str, st["joints"])) + ")", "(" + ", ".join(map(str, st["signs"])) + ")"
+        mirror = ["if k & 1:  # the second branch mirrors the first (set k - 1's prefix)",
+                  f"    return _wrist_mirror({joints}, q, c, s)"] if st["bit"] == 0 else []
+        return mirror + [f"return _wrist({out}, _sign(k, {st['bit']}), {signs}, {joints}, q, c, s, dp)"]
+    raise ValueError(f"stage kind {st['kind']!r}")
+
+
+def c_stage_body(st: dict) -> list[str]:
+    """The body of the generated `sr_solve_stage<k>`: as py_stage_body, on the C runtime's solvers."""
+    size = {"trig_linear": 3, "rotation2d": 4, "value": 1, "wrist": 9}[st["kind"]]
+    call = f"sr_k_stage{st['index']}(pose, q, c, s, dp, out);"
+    j = st["joints"][0]
+    head = [f"double out[{size}];", "(void)k;", "(void)prev; /* a family's representative (trig_linear, "
+            "rotation2d stages) */", "*f = 0u;"]
+    if st["kind"] == "trig_linear":
+        return head + [call, f"return sr_trig_linear(out, {j}, sr_sign(k, {st['bit']}), q, c, s, prev, f);"]
+    if st["kind"] == "rotation2d":
+        return head + [call, f"return sr_rotation2d(out, {j}, q, c, s, prev, f);"]
+    if st["kind"] == "value":
+        return head + [call, f"return sr_revolute_value(out, {j}, q, c, s);" if st["joint_kind"] == "R" else
+                       f"return sr_prismatic_value(out, {j}, q, c, s);"]
+    if st["kind"] == "wrist":
+        joints = ", ".join(map(str, st["joints"]))
+        signs = ", ".join(f"{v}.0" for v in st["signs"])
+        body = [f"static const int joints[3] = {{ {joints} }};",
+                f"static const double signs[8] = {{ {signs} }};"] + head
+        if st["bit"] == 0:
+            body += ["if ((k & 1) == 1) return sr_wrist_mirror(joints, q, c, s, f); /* set k - 1's prefix */"]
+        return body + [call, f"return sr_wrist(out, sr_sign(k, {st['bit']}), signs, joints, q, c, s, dp, f);"]
+    raise ValueError(f"stage kind {st['kind']!r}")
+
+
+def _py_tuple(items: list[str]) -> str:
+    """A tuple literal: one line for up to 8 items, else rows of 9 (a screw chain's axes: 30 design values)."""
+    if len(items) <= 8:
+        return "(" + "".join(f"{x}, " for x in items) + ")"
+    rows = [items[i:i + 9] for i in range(0, len(items), 9)]
+    return "(\n" + "".join("    " + ", ".join(r) + ",\n" for r in rows) + ")"
+
+
+def serial_views(ctx: dict) -> dict:
+    """The template context of a serial arm (the family's extra_context or the finite-screw chains') with the
+    views added: stage bodies, the optional checks normalised (empty where the chain has none), the wrist stage
+    (-1 without one) and the C switches."""
+    stages = ctx["stages"]
+    wrist = [st for st in stages if st["kind"] == "wrist"]
+    design_checks = ctx.get("design_checks", [])
+    image_checks = ctx.get("image_checks", [])
+    has_design_kernel, has_image_kernel = "design_checks" in ctx, "image_checks" in ctx
+    # an odd set's FK check is its even neighbour's when the wrist mirror keeps fk_cs bit for bit (proven on the
+    # kernel: stages.mirror_keeps_fk) and the wrist takes the lowest bit
+    reuse = bool(ctx.get("mirror_keeps_fk")) and bool(wrist) and wrist[0]["bit"] == 0
+    c_flags = {
+        "SR_N_STAGES": len(stages),
+        "SR_WRIST_STAGE": wrist[0]["index"] - 1 if wrist else -1,
+        "SR_WRIST_J4": wrist[0]["joints"][0] if wrist else -1,
+        "SR_WRIST_J5": wrist[0]["joints"][1] if wrist else -1,
+        "SR_WRIST_J6": wrist[0]["joints"][2] if wrist else -1,
+        "SR_HAS_PRISMATIC": int("P" in ctx["joint_kinds"]),
+        "SR_HAS_TRIG_LINEAR": int(any(st["kind"] == "trig_linear" for st in stages)),
+        "SR_HAS_FAMILY_STAGE": int(any(st["kind"] in ("trig_linear", "rotation2d") for st in stages)),
+        "SR_HAS_ROTATION2D": int(any(st["kind"] == "rotation2d" for st in stages)),
+        "SR_HAS_REVOLUTE_VALUE": int(any(st["kind"] == "value" and st["joint_kind"] == "R" for st in stages)),
+        "SR_HAS_PRISMATIC_VALUE": int(any(st["kind"] == "value" and st["joint_kind"] != "R" for st in stages)),
+        "SR_HAS_WRIST_MIRROR": int(bool(wrist) and wrist[0]["bit"] == 0),
+        "SR_REUSE_MIRROR_CHECK": int(reuse),
+        "SR_N_FOLD_BITS": len(ctx["fold_bits"]),
+        "SR_LENGTHS_FLOOR": int(bool(ctx.get("lengths_floor"))),
+        "SR_N_DESIGN_CHECKS": len(design_checks) if has_design_kernel else 0,
+        "SR_N_IMAGE_CHECKS": len(image_checks) if has_image_kernel else 0,
+    }
+    # the chain's tables the C sources read (only those it has: C99 has no empty arrays)
+    c_tables = []
+    if ctx["fold_bits"]:
+        bits = ", ".join(map(str, ctx["fold_bits"]))
+        c_tables.append(f"static const int sr_fold_bits[SR_N_FOLD_BITS] = {{ {bits} }};")
+    if c_flags["SR_N_DESIGN_CHECKS"]:
+        zero = ", ".join("1" if c["kind"] == "zero" else "0" for c in design_checks)
+        c_tables += ["/* design conditions (Python DESIGN_CHECKS): 1 = |v| <= tol required, 0 = |v| > tol required */",
+                     f"static const int sr_check_zero[SR_N_DESIGN_CHECKS] = {{ {zero} }};",
+                     f"static const double sr_check_tol[SR_N_DESIGN_CHECKS] = "
+                     f"{{ {', '.join(c['tol'] for c in design_checks)} }};"]
+    names = [f'"{n}"' for n in ctx["design_names"]]
+    return {**ctx, "design_names_literal": _py_tuple(names), "design_default_literal": _py_tuple(ctx["design_values"]),
+            "design_checks": design_checks, "image_checks": image_checks,
+            "lengths_floor": bool(ctx.get("lengths_floor")),
+            "design_check_kernel": "_k_design_check" if has_design_kernel else "None",
+            "image_check_kernel": "_k_image_check" if has_image_kernel else "None",
+            "py_stages": [{"index": st["index"], "shift": st["shift"], "body": py_stage_body(st)} for st in stages],
+            "c_stages": [{"index": st["index"], "shift": st["shift"], "body": c_stage_body(st)} for st in stages],
+            "wrist_stage": c_flags["SR_WRIST_STAGE"],
+            "wrist_joints": [wrist[0]["joints"][0], wrist[0]["joints"][2]] if wrist else [],
+            "revolute": [1 if k == "R" else 0 for k in ctx["joint_kinds"]], "c_flags": c_flags, "c_tables": c_tables,
+            "py_runtime_files": PY_RUNTIME_FILES,
+            "c_runtime_files": C_RUNTIME_FILES, "c_runtime_after_stages": C_RUNTIME_AFTER_STAGES}

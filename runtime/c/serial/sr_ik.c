@@ -1,0 +1,190 @@
+/* A serial arm's inverse kinematics: the stage tree run over every branch word, each candidate verified by FK
+ * (polished where a tangent root left it sqrt(eps) off), families placed near previous, indistinct pairs merged;
+ * and selection.
+ * (a wristkin runtime source, inlined whole into every serial arm's generated C after its SR_* constants and
+ * switches, the sr_design / sr_ik_solutions / sr_fk_solutions types, its derived kernels sr_k_* and stage
+ * functions; derive/runtime_files.py, derive/families/serial/views.py, tests/test_serial_runtime.py) */
+static int sr_api_ik_near(const double pose_in[12], const sr_design *design, const double *previous,
+                          sr_ik_solutions *out)
+{
+    const sr_design *d = sr_design_or_default(design);
+    double q[SR_N], c[SR_N], s[SR_N], pose[12], rot[9], deviation = 0.0;
+    long key[SR_N_STAGES];
+    int stage_ok[SR_N_STAGES];
+    unsigned stage_flags[SR_N_STAGES], projected;
+    double prev_w[SR_N];
+    const double *prev = NULL;
+    int k, j, indeterminate = 0;
+#if SR_REUSE_MIRROR_CHECK
+    double base_err = -1.0; /* the FK check of the last even set, when it passed unpolished */
+#endif
+    if (!out) return WK_ERR_NULL;
+    out->count = 0;
+    for (k = 0; k < SR_MAX_IK; ++k) {
+        out->valid[k] = 0;
+        out->flags[k] = 0u;
+        out->aux[k][0] = NAN;
+        for (j = 0; j < SR_N; ++j) out->values[k][j] = NAN;
+    }
+    if (!pose_in) {
+        out->status = WK_ERR_NULL;
+        return WK_ERR_NULL;
+    }
+    if (!wk_all_finite(pose_in, 12) || (previous && !wk_all_finite(previous, SR_N))) {
+        out->status = WK_ERR_NONFINITE;
+        return WK_ERR_NONFINITE;
+    }
+    /* the rotation within WK_ROTATION_PROJECT_TOL of SO(3) (projected), the translation within SR_LENGTH_MAX */
+    if (!wk_input_rotation(pose_in, rot, &deviation) || !(fabs(pose_in[3]) <= SR_LENGTH_MAX) ||
+        !(fabs(pose_in[7]) <= SR_LENGTH_MAX) || !(fabs(pose_in[11]) <= SR_LENGTH_MAX)) {
+        out->status = WK_ERR_RANGE;
+        return WK_ERR_RANGE;
+    }
+    for (j = 0; j < 3; ++j) {
+        pose[4 * j] = rot[3 * j];
+        pose[4 * j + 1] = rot[3 * j + 1];
+        pose[4 * j + 2] = rot[3 * j + 2];
+        pose[4 * j + 3] = pose_in[4 * j + 3];
+    }
+    projected = deviation > 0.0 ? WK_FLAG_PROJECTED : 0u;
+    if (previous) { /* wrapped as the joints are: a family's representative is taken from it */
+        for (j = 0; j < SR_N; ++j) prev_w[j] = sr_revolute[j] ? wk_wrap(previous[j]) : previous[j];
+        prev = prev_w;
+    }
+#if SR_N_IMAGE_CHECKS > 0
+    {
+        /* a < 6-DOF chain reaches only its image: residuals above SR_IK_VERIFY_TOL -> unreachable */
+        double e[SR_N_IMAGE_CHECKS];
+        sr_k_image_check(pose, d->params, e);
+        for (j = 0; j < SR_N_IMAGE_CHECKS; ++j)
+            if (!(fabs(e[j]) <= SR_IK_VERIFY_TOL)) {
+                out->status = WK_STATUS_UNREACHABLE;
+                return WK_OK;
+            }
+    }
+#endif
+    for (j = 0; j < SR_N_STAGES; ++j) {
+        key[j] = -1;
+        stage_ok[j] = 0;
+        stage_flags[j] = 0u;
+    }
+    for (j = 0; j < SR_N; ++j) {
+        q[j] = 0.0;
+        c[j] = 1.0;
+        s[j] = 0.0;
+    }
+    for (k = 0; k < SR_MAX_IK; ++k) {
+        double t[12], err = 0.0;
+        unsigned f = 0u;
+        int alive = 1;
+        /* the stages (sr_run_stages, printed per chain): each recomputed only when its branch prefix changes */
+        alive = sr_run_stages(k, pose, q, c, s, d->params, prev, key, stage_ok, stage_flags, &f);
+#if SR_REUSE_MIRROR_CHECK
+        if ((k & 1) == 0) base_err = -1.0;
+#endif
+        if (!alive) continue;
+#if SR_REUSE_MIRROR_CHECK
+        /* An odd set mirrors the wrist of the even set before it, and its fk_cs is that set's bit for bit: every
+           temporary of the kernel is unchanged or exactly negated by the flip (proven on the kernel when it was
+           generated, dh_serial.mirror_keeps_fk). So the even set's check is the odd one's, unless it was polished. */
+        if ((k & 1) == 1 && base_err >= 0.0) {
+            err = base_err;
+        } else {
+            sr_k_fk_cs(q, c, s, d->params, t);
+            for (j = 0; j < 12; ++j) {
+                const double e = fabs(t[j] - pose[j]);
+                if (!(e <= err)) err = e; /* inline max that lets a NaN through, so it fails the check */
+            }
+            if ((k & 1) == 0 && err <= SR_IK_VERIFY_TOL) base_err = err;
+        }
+#else
+        sr_k_fk_cs(q, c, s, d->params, t);
+        for (j = 0; j < 12; ++j) {
+            const double e = fabs(t[j] - pose[j]);
+            if (!(e <= err)) err = e; /* inline max that lets a NaN through, so it fails the check */
+        }
+#endif
+        for (j = 0; j < SR_N; ++j) out->values[k][j] = q[j];
+        if (!(err <= SR_IK_VERIFY_TOL)) {
+            /* a tangent root leaves a sqrt(eps) error downstream: polish a copy of the set */
+            err = sr_polish(out->values[k], pose, d->params);
+            for (j = 0; j < SR_N; ++j)
+                if (sr_revolute[j]) out->values[k][j] = wk_wrap(out->values[k][j]);
+        }
+#if SR_HAS_PRISMATIC
+        if (!(err <= SR_IK_VERIFY_TOL) || !sr_prismatic_in_range(out->values[k])) {
+#else
+        if (!(err <= SR_IK_VERIFY_TOL)) {
+#endif
+            for (j = 0; j < SR_N; ++j) out->values[k][j] = NAN;
+            continue;
+        }
+#if SR_WRIST_STAGE >= 0
+        if (previous && (stage_flags[SR_WRIST_STAGE] & WK_FLAG_INDETERMINATE)) {
+            /* the wrist's own family (|sin theta5| <= the exact tolerance), not another stage's: above it the sets
+               are regular and `previous` must not move them */
+            double moved[SR_N], e6[6];
+            for (j = 0; j < SR_N; ++j) moved[j] = out->values[k][j];
+            sr_nearest_member(moved, previous, d->params);
+            {
+                const double err_moved = sr_pose_error(moved, pose, d->params, e6);
+                if (err_moved <= SR_IK_VERIFY_TOL) { /* exact in theory; confirmed */
+                    for (j = 0; j < SR_N; ++j) out->values[k][j] = moved[j];
+                    err = err_moved;
+                }
+            }
+        }
+#endif
+        out->aux[k][0] = err;
+        out->valid[k] = 1;
+        out->flags[k] = f | projected;
+        if (f & WK_FLAG_INDETERMINATE) indeterminate = 1;
+        ++out->count;
+    }
+#if SR_N_FOLD_BITS > 0
+    {
+        /* a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when) */
+        sr_fit fit;
+        double scale = fabs(pose[3]);
+        if (fabs(pose[7]) > scale) scale = fabs(pose[7]);
+        if (fabs(pose[11]) > scale) scale = fabs(pose[11]);
+        fit.pose = pose;
+        fit.dp = d->params;
+        out->count -= wk_merge_indistinct(SR_MAX_IK, SR_N, sr_revolute, sr_fold_bits, SR_N_FOLD_BITS,
+                                          &out->values[0][0],
+                                          out->valid, out->flags, &out->aux[0][0], SR_N_IK_AUX,
+                                          sr_refit, &fit, scale);
+    }
+#endif
+    out->status = out->count == 0 ? WK_STATUS_UNREACHABLE : (indeterminate ? WK_STATUS_INDETERMINATE : WK_STATUS_OK);
+    return WK_OK;
+}
+
+static int sr_api_ik(const double pose[12], const sr_design *design, sr_ik_solutions *out)
+{
+    return sr_api_ik_near(pose, design, NULL, out);
+}
+
+static int sr_api_ik_batch(size_t n, const double *poses, const sr_design *design,
+                           sr_ik_solutions *out)
+{
+    size_t r;
+    int first = WK_OK;
+    if (n == 0) return WK_OK;
+    if (!poses || !out) return WK_ERR_NULL;
+    for (r = 0; r < n; ++r) {
+        const int rc = sr_api_ik(poses + 12 * r, design, out + r);
+        if (rc != WK_OK && first == WK_OK) first = rc;
+    }
+    return first;
+}
+
+static int sr_api_select_ik(const sr_ik_solutions *s, const double *previous, const double *lower,
+                            const double *upper)
+{
+    /* the contract of every select (the runtime's wk_select): with previous, the nearest valid set within limits
+       (a singular flag is information, not a reason to jump); without it the first regular one, else the first */
+    if (!s) return -1;
+    return wk_select(SR_MAX_IK, SR_N, s->valid, s->flags, &s->values[0][0], sr_revolute, previous, lower,
+                     upper, NULL);
+}

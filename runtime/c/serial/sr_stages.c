@@ -1,0 +1,208 @@
+/* A serial arm's IK stage solvers: each solves its joints and their (cos, sin) algebraically from the stage
+ * kernel's coefficients (out), so no stage after the first needs trigonometry, and the FK check (fk_cs) needs none
+ * either. The generated sr_solve_stage<k> call them with the stage's joints and branch bit; each returns 1 when
+ * the stage has a root on this branch (flags in *f), else 0.
+ * (a wristkin runtime source, inlined whole into every serial arm's generated C after its SR_* constants and
+ * switches, the sr_design / sr_ik_solutions / sr_fk_solutions types, its derived kernels sr_k_* and stage
+ * functions; derive/runtime_files.py, derive/families/serial/views.py, tests/test_serial_runtime.py) */
+#if SR_HAS_TRIG_LINEAR || SR_WRIST_STAGE >= 0
+/* the root a two-root stage takes in set k: +1 when bit `bit` of k is 0 (the +acos root, the first wrist branch) */
+static double sr_sign(int k, int bit)
+{
+    return ((k >> bit) & 1) == 0 ? 1.0 : -1.0;
+}
+#endif
+
+#if SR_HAS_FAMILY_STAGE
+/* A stage whose equation vanishes (a one-parameter family in joint j): its representative, previous's value when
+ * given (the member nearest it), else 0 (Python's _family_member) */
+static void sr_family_member(int j, double *q, double *c, double *s, const double *prev)
+{
+    const double v = prev ? prev[j] : 0.0;
+    q[j] = v;
+    c[j] = v == 0.0 ? 1.0 : cos(v);
+    s[j] = v == 0.0 ? 0.0 : sin(v);
+}
+#endif
+
+#if SR_HAS_TRIG_LINEAR
+static double sr_clamp1(double x)
+{
+    return x > 1.0 ? 1.0 : (x < -1.0 ? -1.0 : x);
+}
+
+/* Joint j from A cos q + B sin q + C = 0 (out = A, B, C): q = atan2(B, A) + sgn acos(-C / sqrt(A^2 + B^2)).
+ * inline: each stage of this kind calls it with its own constant joint and bit, as straight-line code would */
+static inline int sr_trig_linear(const double *out, int j, double sgn, double *q, double *c, double *s,
+                                 const double *prev, unsigned *f)
+{
+    const double r = sqrt(out[0] * out[0] + out[1] * out[1]);
+    double u, sg, ca, sa;
+    if (r <= SR_DEGENERATE_EPS) {
+        /* |C| within sqrt(SR_DOUBLE_ROOT_TOL): an upstream double root's residue (see Python); the FK check decides */
+        if (fabs(out[2]) > sqrt(SR_DOUBLE_ROOT_TOL) || sgn < 0.0) return 0;
+        sr_family_member(j, q, c, s, prev); /* one-parameter family: its representative */
+        *f = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
+        return 1;
+    }
+    u = -out[2] / r;
+    if (!(fabs(u) <= 1.0 + SR_TANGENT_TOL)) return 0;
+    u = sr_clamp1(u);
+    sg = sqrt(1.0 - u * u);
+    if (sg <= sqrt(SR_DOUBLE_ROOT_TOL)) {
+        if (sgn < 0.0) return 0; /* a double root is one solution: reported once, by the + branch */
+        *f = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
+    }
+    /* q = atan2(B, A) + sgn acos(u): its cos and sin follow from (A, B, u) */
+    ca = out[0] / r;
+    sa = out[1] / r;
+    c[j] = ca * u - sgn * sa * sg;
+    s[j] = sa * u + sgn * ca * sg;
+    q[j] = atan2(s[j], c[j]);
+    return 1;
+}
+#endif
+
+#if SR_HAS_ROTATION2D
+/* Joint j as the angle from (u0, v0) to (u, v) (out = u, v, u0, v0); a family where either vanishes */
+static int sr_rotation2d(const double *out, int j, double *q, double *c, double *s, const double *prev, unsigned *f)
+{
+    const double nu = sqrt(out[0] * out[0] + out[1] * out[1]), n0 = sqrt(out[2] * out[2] + out[3] * out[3]);
+    if (n0 <= SR_DEGENERATE_EPS || nu <= SR_DEGENERATE_EPS) {
+        sr_family_member(j, q, c, s, prev);
+        *f = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
+    } else {
+        const double cu = out[0] / nu, su = out[1] / nu, c0 = out[2] / n0, s0 = out[3] / n0;
+        c[j] = cu * c0 + su * s0;
+        s[j] = su * c0 - cu * s0;
+        q[j] = atan2(s[j], c[j]);
+    }
+    return 1;
+}
+#endif
+
+#if SR_HAS_REVOLUTE_VALUE
+/* a revolute joint j given directly (out = q_j), wrapped */
+static int sr_revolute_value(const double *out, int j, double *q, double *c, double *s)
+{
+    q[j] = wk_wrap(out[0]);
+    c[j] = cos(q[j]);
+    s[j] = sin(q[j]);
+    return 1;
+}
+#endif
+
+#if SR_HAS_PRISMATIC_VALUE
+/* a prismatic joint j given directly (out = q_j) */
+static int sr_prismatic_value(const double *out, int j, double *q, double *c, double *s)
+{
+    (void)c;
+    (void)s;
+    q[j] = out[0];
+    return 1;
+}
+#endif
+
+#if SR_WRIST_STAGE >= 0
+/* +1 when turning q4 by a moves the end frame as turning q6 by a does at theta5 = 0 (up) or pi (down), else
+ * -1: the axes coincide there, so q6 + sigma q4 is what the pose defines (probed on the chain's own FK). */
+static double sr_wrist_sigma(int up, const double *dp, const int *w)
+{
+    double qa[SR_N], qb[SR_N], ta[12], tb[12], scale = 1.0, diff = 0.0;
+    int j;
+    for (j = 0; j < SR_N; ++j) qa[j] = qb[j] = 0.0;
+    qa[w[1]] = qb[w[1]] = up ? 0.0 : SR_PI;
+    qa[w[0]] = 0.5;
+    qb[w[2]] = 0.5;
+    sr_k_fk(qa, dp, ta);
+    sr_k_fk(qb, dp, tb);
+    for (j = 0; j < SR_N_PARAMS; ++j)
+        if (fabs(dp[j]) + 1.0 > scale) scale = fabs(dp[j]) + 1.0;
+    for (j = 0; j < 12; ++j)
+        if (fabs(ta[j] - tb[j]) > diff) diff = fabs(ta[j] - tb[j]);
+    return diff <= 1e-9 * scale ? 1.0 : -1.0;
+}
+
+#if SR_HAS_WRIST_MIRROR
+/* The second wrist branch mirrors the first, computed for the same prefix at set k - 1 (the wrist is the last
+ * branching stage): q5 -> -q5, q4 -> q4 + pi, q6 -> q6 + pi. At the singularity the first branch already holds the
+ * whole family, so this one is a duplicate. */
+static int sr_wrist_mirror(const int *w, double *q, double *c, double *s, unsigned *f)
+{
+    if (fabs(s[w[1]]) <= SR_WRIST_EXACT_TOL) return 0;
+    if (fabs(s[w[1]]) <= SR_SINGULAR_EPS) *f = WK_FLAG_SINGULAR_INVERSE;
+    q[w[1]] = -q[w[1]];
+    s[w[1]] = -s[w[1]];
+    q[w[0]] = q[w[0]] > 0.0 ? q[w[0]] - SR_PI : q[w[0]] + SR_PI;
+    c[w[0]] = -c[w[0]];
+    s[w[0]] = -s[w[0]];
+    q[w[2]] = q[w[2]] > 0.0 ? q[w[2]] - SR_PI : q[w[2]] + SR_PI;
+    c[w[2]] = -c[w[2]];
+    s[w[2]] = -s[w[2]];
+    return 1;
+}
+#endif
+
+/* The spherical wrist (q4, q5, q6 = w[0..2]) from the entries of its rotation (out, 9), branch sgn; e: the DH
+ * twists' signs of those entries (e0..e3) and of the singular family's (k00, k10 at theta5 = 0, then pi). */
+static int sr_wrist(const double *out, double sgn, const double *e, const int *w, double *q, double *c, double *s,
+                    const double *dp, unsigned *f)
+{
+    const double s5 = sgn * sqrt(out[2] * out[2] + out[5] * out[5]), c5 = e[0] * out[8];
+    double x, y, n;
+    if (fabs(s5) <= SR_SINGULAR_EPS) *f = WK_FLAG_SINGULAR_INVERSE;
+    if (fabs(s5) > SR_WRIST_EXACT_TOL && fabs(s5) <= SR_SINGULAR_EPS) {
+        /* near the singularity q6 = phi - sigma q4, phi from the well-conditioned entries (see Python) */
+        const int up = c5 >= 0.0;
+        const double k00 = up ? e[4] : e[6], k10 = up ? e[5] : e[7];
+        n = sqrt(s5 * s5 + c5 * c5);
+        c[w[1]] = c5 / n;
+        s[w[1]] = s5 / n;
+        q[w[1]] = atan2(s5, c5);
+        x = e[1] * sgn * out[2];
+        y = e[1] * sgn * out[5];
+        n = sqrt(x * x + y * y);
+        c[w[0]] = x / n;
+        s[w[0]] = y / n;
+        q[w[0]] = atan2(y, x);
+        q[w[2]] = wk_wrap(atan2(k10 * out[3], k00 * out[0]) - sr_wrist_sigma(up, dp, w) * q[w[0]]);
+        c[w[2]] = cos(q[w[2]]);
+        s[w[2]] = sin(q[w[2]]);
+        return 1;
+    }
+    if (fabs(s5) <= SR_WRIST_EXACT_TOL) {
+        /* wrist singularity: q4 := 0 (moved to previous's q4 by ik_near), q6 carries q4 +/- q6 */
+        const int up = c5 >= 0.0;
+        const double k00 = up ? e[4] : e[6], k10 = up ? e[5] : e[7];
+        if (sgn < 0.0) return 0;
+        q[w[0]] = 0.0;
+        c[w[0]] = 1.0;
+        s[w[0]] = 0.0;
+        q[w[1]] = up ? 0.0 : SR_PI;
+        c[w[1]] = up ? 1.0 : -1.0;
+        s[w[1]] = 0.0;
+        x = k00 * out[0];
+        y = k10 * out[3];
+        *f = WK_FLAG_SINGULAR_INVERSE | WK_FLAG_INDETERMINATE;
+    } else {
+        n = sqrt(s5 * s5 + c5 * c5);
+        c[w[1]] = c5 / n;
+        s[w[1]] = s5 / n;
+        q[w[1]] = atan2(s5, c5);
+        x = e[1] * sgn * out[2];
+        y = e[1] * sgn * out[5];
+        n = sqrt(x * x + y * y);
+        c[w[0]] = x / n;
+        s[w[0]] = y / n;
+        q[w[0]] = atan2(y, x);
+        x = e[2] * sgn * out[6];
+        y = e[3] * sgn * out[7];
+    }
+    n = sqrt(x * x + y * y);
+    if (n <= SR_DEGENERATE_EPS) return 0;
+    c[w[2]] = x / n;
+    s[w[2]] = y / n;
+    q[w[2]] = atan2(y, x);
+    return 1;
+}
+#endif

@@ -1,0 +1,97 @@
+/* A serial arm's checks of an IK set on its FK: the pose error, the damped Gauss-Newton polish and refit, and the
+ * member of the wrist's singular family nearest a previous set.
+ * (a wristkin runtime source, inlined whole into every serial arm's generated C after its SR_* constants and
+ * switches, the sr_design / sr_ik_solutions / sr_fk_solutions types, its derived kernels sr_k_* and stage
+ * functions; derive/runtime_files.py, derive/families/serial/views.py, tests/test_serial_runtime.py) */
+/* max |FK(q) - pose| and the twist error (position, then 1/2 sum of column cross products) */
+static double sr_pose_error(const double *q, const double *pose, const double *dp, double *e)
+{
+    double t[12], err = 0.0;
+    int i;
+    sr_k_fk(q, dp, t);
+    for (i = 0; i < 12; ++i) {
+        const double e = fabs(t[i] - pose[i]);
+        if (!(e <= err)) err = e;
+    }
+    e[0] = pose[3] - t[3];
+    e[1] = pose[7] - t[7];
+    e[2] = pose[11] - t[11];
+    e[3] = e[4] = e[5] = 0.0;
+    for (i = 0; i < 3; ++i) {
+        const double a0 = t[i], a1 = t[4 + i], a2 = t[8 + i], b0 = pose[i], b1 = pose[4 + i], b2 = pose[8 + i];
+        e[3] += 0.5 * (a1 * b2 - a2 * b1);
+        e[4] += 0.5 * (a2 * b0 - a0 * b2);
+        e[5] += 0.5 * (a0 * b1 - a1 * b0);
+    }
+    return err;
+}
+
+/* Damped Gauss-Newton on the pose error: removes the sqrt(eps) error a tangent root passes downstream. */
+/* One damped Gauss-Newton step from q (pose error e, residual err), no longer than max_step in any joint: the new
+ * residual with q and e moved, or err with both unchanged when the step is refused (singular, too long) or does not
+ * help */
+static double sr_gn_step(double *q, const double *pose, const double *dp, double *e, double err, double max_step)
+{
+    double jac[6 * SR_N], dq[SR_N], trial[SR_N], e2[6], err2;
+    int j;
+    sr_k_jacobian(q, dp, jac);
+    if (!wk_normal_solve(jac, SR_N, e, 1e-12, dq)) return err;
+    for (j = 0; j < SR_N; ++j) {
+        if (!(fabs(dq[j]) <= max_step)) return err;
+        trial[j] = q[j] + dq[j];
+    }
+    err2 = sr_pose_error(trial, pose, dp, e2);
+    if (!(err2 < err)) return err;
+    for (j = 0; j < SR_N; ++j) q[j] = trial[j];
+    for (j = 0; j < 6; ++j) e[j] = e2[j];
+    return err2;
+}
+
+static double sr_polish(double *q, const double *pose, const double *dp)
+{
+    double e[6], err = sr_pose_error(q, pose, dp, e);
+    int it;
+    for (it = 0; it < 6 && err > SR_IK_VERIFY_TOL; ++it) {
+        const double err2 = sr_gn_step(q, pose, dp, e, err, HUGE_VAL);
+        if (!(err2 < err)) break;
+        err = err2;
+    }
+    return err;
+}
+
+#if SR_N_FOLD_BITS > 0
+/* the pose and design a set is fitted to (wk_merge_indistinct's refit) */
+typedef struct {
+    const double *pose;
+    const double *dp;
+} sr_fit;
+
+/* the residual after at most one damped Gauss-Newton step no longer than max_step in any joint */
+static double sr_refit(double *q, double max_step, const void *ctx)
+{
+    const sr_fit *fit = (const sr_fit *)ctx;
+    double e[6];
+    const double err = sr_pose_error(q, fit->pose, fit->dp, e);
+    const double err2 = sr_gn_step(q, fit->pose, fit->dp, e, err, max_step);
+    int j;
+    if (err2 < err)
+        for (j = 0; j < SR_N; ++j)
+            if (sr_revolute[j]) q[j] = wk_wrap(q[j]);
+    return err2;
+}
+#endif
+
+#if SR_WRIST_STAGE >= 0
+/* The member of the wrist family (q4 + t, q6 - sigma t) whose q4 is previous's q4; sigma from the Jacobian's
+ * wrist columns (their axes coincide at the singularity). */
+static void sr_nearest_member(double *q, const double *previous, const double *dp)
+{
+    double jac[6 * SR_N], dot = 0.0, t;
+    int i;
+    sr_k_jacobian(q, dp, jac);
+    for (i = 3; i < 6; ++i) dot += jac[i * SR_N + SR_WRIST_J4] * jac[i * SR_N + SR_WRIST_J6];
+    t = wk_wrap(wk_wrap(previous[SR_WRIST_J4]) - q[SR_WRIST_J4]);
+    q[SR_WRIST_J4] = wk_wrap(q[SR_WRIST_J4] + t);
+    q[SR_WRIST_J6] = wk_wrap(q[SR_WRIST_J6] - (dot >= 0.0 ? 1.0 : -1.0) * t);
+}
+#endif

@@ -1,0 +1,144 @@
+"""A serial arm's inverse kinematics: the stage tree run over every branch word, each candidate verified by FK
+(polished where a tangent root left it sqrt(eps) off), families placed near `previous`, indistinct pairs
+merged.
+
+A wristkin runtime source: every serial arm's generated module (the catalogue's DH chains, the finite-screw chains'
+serial view) inlines it from the marker line on (derive/runtime_files.py), after its constants, derived kernels
+and stage functions; above the marker, what it reads from them and from the other sources (serial_stand_in.py:
+the PUMA-560), so that it is linted and tested as it is (tests/test_serial_runtime.py)."""
+
+from __future__ import annotations
+
+import _runtime
+import numpy as np
+from serial_input import _HAS_PRISMATIC, _JOINT_SHAPE, _POSE_SHAPES, _REVOLUTE, _design, _joints, _pose
+from serial_stand_in import (
+    _C_IK,
+    _C_IK_BATCH,
+    _FOLD_BITS,
+    _IK_RESULT,
+    _IMAGE_CHECK,
+    _STAGES,
+    _WRIST_STAGE,
+    FLAG_INDETERMINATE,
+    FLAG_PROJECTED,
+    IK_VERIFY_TOL,
+    IMAGE_CHECKS,
+    JOINT_KINDS,
+    LENGTH_MAX,
+    MAX_IK,
+    N_JOINTS,
+    STATUS_INDETERMINATE,
+    STATUS_OK,
+    STATUS_UNREACHABLE,
+    BatchSolutions,
+    InvalidInput,
+    Solutions,
+    _array,
+    _k_fk,
+    _k_fk_cs,
+    _projected_note,
+    _stack,
+)
+from serial_verify import _nearest_member, _polish, _refit
+
+
+# wristkin: inlined from here
+def ik(pose, design=None, previous=None) -> Solutions:
+    """Every IK solution (at most MAX_IK), each verified by FK against the pose. A one-parameter family (the wrist
+    at |sin theta5| <= WRIST_EXACT_TOL, or a stage whose equation vanishes) is returned once: its member nearest
+    `previous` when given (previous's q4, or previous's value of that stage's joint), else the one at 0.
+    `previous` changes nothing else: not the regular sets, not the status."""
+    d = _design(design)
+    if d.native is not None:
+        prev = None if previous is None else _runtime.c_floats(previous, _JOINT_SHAPE)
+        if prev is not None or previous is None:
+            sol = _C_IK(pose, d.native, prev, _IK_RESULT)
+            if sol.__class__ is not Solutions:  # a conversion, or words
+                sol = _runtime.c_explained(sol, _C_IK, pose, _POSE_SHAPES, (d.native, prev, _IK_RESULT),
+                                           _ik_numpy, (pose, d, previous))
+            if sol is not None:
+                return sol
+    return _ik_numpy(pose, d, previous)
+
+
+def _ik_numpy(pose, d, previous):
+    """ik on the numpy path (also what words the reason of an answer from C that needs one)."""
+    p, dev = _pose(pose)
+    prev = None if previous is None else _joints(previous, "previous")  # places a family's representative
+    values = np.full((MAX_IK, N_JOINTS), np.nan)
+    aux = np.full((MAX_IK, 1), np.nan)
+    valid = np.zeros(MAX_IK, dtype=bool)
+    flags = np.zeros(MAX_IK, dtype=np.int64)
+    if _IMAGE_CHECK is not None:
+        for e, what in zip(_IMAGE_CHECK(p, d.params), IMAGE_CHECKS, strict=True):
+            if not abs(e) <= IK_VERIFY_TOL:  # a < 6-DOF chain reaches only its image
+                return Solutions(values, valid, flags, aux, STATUS_UNREACHABLE,
+                                 f"pose not reachable: outside the chain's image, {what} = {e:.3g} "
+                                 f"(tolerance IK_VERIFY_TOL = {IK_VERIFY_TOL:g})")
+    q, c, s = [0.0] * N_JOINTS, [1.0] * N_JOINTS, [0.0] * N_JOINTS
+    key = [-1] * len(_STAGES)
+    state = [(False, 0)] * len(_STAGES)
+    unreachable = beyond = 0
+    for k in range(MAX_IK):
+        f, alive = 0, True
+        for i, (solve, shift) in enumerate(_STAGES):
+            if k >> shift != key[i]:  # a stage is recomputed only when its branch prefix changes
+                key[i] = k >> shift
+                state[i] = solve(k, p, q, c, s, d.params, prev)
+            alive, fl = state[i]
+            f |= fl
+            if not alive:
+                break
+        if not alive:
+            unreachable += 1
+            continue
+        err = max(abs(x - y) for x, y in zip(_k_fk_cs(q, c, s, d.params), p, strict=True))
+        qk = list(q)
+        if err > IK_VERIFY_TOL:  # a tangent root leaves a sqrt(eps) error downstream: polish a copy
+            qk, err = _polish(qk, p, d.params)
+        if not err <= IK_VERIFY_TOL:
+            continue
+        if _HAS_PRISMATIC and not all(abs(x) <= LENGTH_MAX
+                                      for x, kind in zip(qk, JOINT_KINDS, strict=True) if kind == "P"):
+            beyond += 1  # a set fk would reject: IK returns only what FK accepts
+            continue
+        if _WRIST_STAGE >= 0 and prev is not None and state[_WRIST_STAGE][1] & FLAG_INDETERMINATE:
+            # the wrist's own family (|sin theta5| <= WRIST_EXACT_TOL), not another stage's: above that threshold
+            # the sets are regular and `previous` must not move them (it moved theta4 by 3 rad at 1e-12)
+            moved = _nearest_member(qk, prev, d.params)
+            err_moved = max(abs(x - y) for x, y in zip(_k_fk(moved, d.params), p, strict=True))
+            if err_moved <= IK_VERIFY_TOL:  # exact in theory; confirmed
+                qk, err = moved, err_moved
+        values[k], aux[k], valid[k], flags[k] = qk, err, True, f | (FLAG_PROJECTED if dev else 0)
+    if _FOLD_BITS:
+        # a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when)
+        _runtime.merge_indistinct(values, valid, flags, aux, _FOLD_BITS, _REVOLUTE,
+                                  lambda x, step: _refit(x, p, d.params, step),
+                                  max(abs(p[3]), abs(p[7]), abs(p[11])))
+    reasons = [f"{unreachable} of {MAX_IK} branch words have a stage with no real solution"] if unreachable else []
+    if beyond:
+        reasons.append(f"{beyond} set(s) need a prismatic joint beyond LENGTH_MAX = {LENGTH_MAX:g} m (fk rejects them)")
+    note = _projected_note(dev)
+    if valid.any():
+        status = STATUS_INDETERMINATE if np.any(flags & FLAG_INDETERMINATE) else STATUS_OK
+        return Solutions(values, valid, flags, aux, status, "; ".join([f"{int(valid.sum())} solution(s)"] +
+                                                                      ([note] if note else [])))
+    return Solutions(values, valid, flags, aux, STATUS_UNREACHABLE,
+                     "pose not reachable: " + ("; ".join(reasons) or "no branch passes the FK check") +
+                     (f"; {note}" if note else ""))
+
+
+def ik_batch(poses, design=None) -> BatchSolutions:
+    """IK over a stack of poses: shape (N, 4, 4), (N, 3, 4), or (N, 12) / (N, 16) rows (what fk_batch returns)."""
+    a = _array(poses, "poses")
+    if not (a.ndim == 3 and a.shape[1:] in ((4, 4), (3, 4))) and not (a.ndim == 2 and a.shape[1] in (12, 16)):
+        raise InvalidInput(f"poses: expected an (N, 4, 4), (N, 3, 4), (N, 12) or (N, 16) array, got shape {a.shape}")
+    d = _design(design)
+    if d.native is not None:
+        n, c = a.shape[0], np.ascontiguousarray(a)
+        out = (np.empty((n, MAX_IK, N_JOINTS)), np.empty((n, MAX_IK), bool), np.empty((n, MAX_IK), np.int64),
+               np.empty((n, MAX_IK, 1)), np.empty(n, np.int64))
+        if _C_IK_BATCH(c, d.native, *out, c[0].size if n else 12) >= 0:
+            return BatchSolutions(*out)
+    return _stack([ik(x, d) for x in a], MAX_IK, N_JOINTS, 1)

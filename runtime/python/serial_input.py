@@ -1,0 +1,104 @@
+"""A serial arm's inputs: the pose matrix, the joints and the design, validated (the typed errors of
+docs/API.md).
+
+A wristkin runtime source: every serial arm's generated module (the catalogue's DH chains, the finite-screw chains'
+serial view) inlines it from the marker line on (derive/runtime_files.py), after its constants, derived kernels
+and stage functions; above the marker, what it reads from them and from the other sources (serial_stand_in.py:
+the PUMA-560), so that it is linted and tested as it is (tests/test_serial_runtime.py)."""
+
+from __future__ import annotations
+
+import numpy as np
+from serial_stand_in import (
+    _DESIGN_CHECK,
+    DESIGN_CHECKS,
+    DESIGN_NAMES,
+    DESIGN_SCALE_MIN,
+    IK_VERIFY_TOL,
+    JOINT_KINDS,
+    JOINT_NAMES,
+    LENGTH_MAX,
+    LENGTH_MIN,
+    LENGTHS_FLOOR,
+    N_JOINTS,
+    ROTATION_TOL,
+    Design,
+    InvalidDesign,
+    InvalidInput,
+    _array,
+    _as_rotation,
+    _c_design,
+    _design_values,
+    _vector,
+    _wrap,
+)
+
+
+# wristkin: inlined from here
+# ---------------------------------------------------------------------------- input handling
+def _pose(pose):
+    """A 4x4 / 3x4 matrix or 12 / 16 numbers (row-major) -> (the 12 entries of [R | p], rotation deviation); the
+    rotation is projected onto SO(3) when it deviates by at most ROTATION_PROJECT_TOL."""
+    a = _array(pose, "pose")
+    if a.size in (12, 16) and a.ndim == 1:
+        a = a.reshape(-1, 4)
+    if a.shape not in ((3, 4), (4, 4)):
+        raise InvalidInput(f"pose: expected a 4x4 or 3x4 matrix, got shape {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise InvalidInput("pose: values must be finite")
+    if a.shape == (4, 4) and not np.max(np.abs(a[3] - (0.0, 0.0, 0.0, 1.0))) <= ROTATION_TOL:
+        raise InvalidInput(f"pose: last row must be (0, 0, 0, 1) (within {ROTATION_TOL:g}), got {a[3].tolist()}")
+    if not np.max(np.abs(a[:3, 3])) <= LENGTH_MAX:
+        raise InvalidInput(f"pose: translation must be within {LENGTH_MAX:g} m, got {a[:3, 3].tolist()}")
+    r, dev = _as_rotation(a[:3, :3])
+    return tuple(float(x) for x in np.column_stack([r, a[:3, 3]]).ravel()), dev
+
+
+def _joints(joints, what="joints"):
+    """Validated joints: revolute angles wrapped exactly to [-pi, pi] (any finite value), prismatic offsets
+    within LENGTH_MAX."""
+    q = _vector(joints, N_JOINTS, what)
+    for v, kind, name in zip(q, JOINT_KINDS, JOINT_NAMES, strict=True):
+        if kind == "P" and not abs(v) <= LENGTH_MAX:
+            raise InvalidInput(f"{what}: prismatic joint {name} must be within {LENGTH_MAX:g} m, got {v!r}")
+    return tuple(_wrap(v) if kind == "R" else v for v, kind in zip(q, JOINT_KINDS, strict=True))
+
+
+def make_design(params=None) -> Design:
+    """Validate design parameters (sequence in DESIGN_NAMES order or dict; lengths in metres)."""
+    if isinstance(params, Design):
+        return params
+    vals = _design_values(params)
+    scale = max(abs(v) for v in vals)
+    if scale > LENGTH_MAX:
+        raise InvalidDesign(f"design values must be within {LENGTH_MAX:g} m, got {scale:g}")
+    if 0.0 < scale < DESIGN_SCALE_MIN:
+        raise InvalidDesign(f"design scale {scale:.3g} m is below {DESIGN_SCALE_MIN:g} m: the solver's absolute "
+                            f"tolerances (IK_VERIFY_TOL = {IK_VERIFY_TOL:g} m) assume robots of a millimetre and "
+                            "more; express the lengths in smaller units (e.g. millimetres)")
+    if LENGTHS_FLOOR:
+        # a nonzero DH length below LENGTH_MIN makes products of two lengths (stage coefficients) vanish against
+        # DEGENERATE_EPS: a near-degenerate design whose IK would come back empty
+        tiny = [f"{n} = {v!r}" for n, v in zip(DESIGN_NAMES, vals, strict=True) if 0.0 < abs(v) < LENGTH_MIN]
+        if tiny:
+            raise InvalidDesign(f"DH lengths must be 0 or at least {LENGTH_MIN:g} m in magnitude, got "
+                                f"{', '.join(tiny)}: set a vanishing length to exactly 0 (a different structure) "
+                                "or express the lengths in smaller units")
+    if _DESIGN_CHECK is not None:
+        for v, (kind, tol, what) in zip(_DESIGN_CHECK(vals), DESIGN_CHECKS, strict=True):
+            if (abs(v) > tol) if kind == "zero" else (abs(v) <= tol):
+                raise InvalidDesign(f"design violates: {what} (value {v:.3g}, tolerance {tol:g})")
+    return Design(vals, _c_design(vals))
+
+
+_DEFAULT_DESIGN = make_design()
+_JOINT_SHAPE = ((N_JOINTS,),)
+_POSE_SHAPES = ((4, 4), (3, 4), (12,), (16,))
+_REVOLUTE = tuple(k == "R" for k in JOINT_KINDS)
+_HAS_PRISMATIC = "P" in JOINT_KINDS  # IK then returns only the sets whose prismatic values fk accepts
+
+
+def _design(design):
+    if design is None:
+        return _DEFAULT_DESIGN
+    return design if isinstance(design, Design) else make_design(design)

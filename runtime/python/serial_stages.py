@@ -1,0 +1,166 @@
+"""A serial arm's IK stage solvers: each solves its joints and their (cos, sin) algebraically from the stage
+kernel's coefficients, so no stage after the first needs trigonometry, and the FK check (fk_cs) needs none
+either. The generated module's _solve_stage<k> call them with the stage's joints and branch bit.
+
+A wristkin runtime source: every serial arm's generated module (the catalogue's DH chains, the finite-screw chains'
+serial view) inlines it from the marker line on (derive/runtime_files.py), after its constants, derived kernels
+and stage functions; above the marker, what it reads from them and from the other sources (serial_stand_in.py:
+the PUMA-560), so that it is linted and tested as it is (tests/test_serial_runtime.py)."""
+
+from __future__ import annotations
+
+import math
+
+from serial_stand_in import (
+    DEGENERATE_EPS,
+    DOUBLE_ROOT_TOL,
+    FLAG_DOUBLE_ROOT,
+    FLAG_INDETERMINATE,
+    FLAG_SINGULAR_INVERSE,
+    N_JOINTS,
+    SINGULAR_EPS,
+    TANGENT_TOL,
+    WRIST_EXACT_TOL,
+    _k_fk,
+    _wrap,
+)
+
+
+# wristkin: inlined from here
+def _sign(k, bit):
+    """The root a two-root stage takes in set k: +1 when bit `bit` of k is 0 (the +acos root, the first wrist
+    branch), else -1."""
+    return 1.0 if (k >> bit) & 1 == 0 else -1.0
+
+
+def _family_member(j, q, c, s, prev):
+    """A stage whose equation vanishes (a one-parameter family in joint j): its representative, previous's value
+    when `previous` is given (the member nearest it), else 0."""
+    v = 0.0 if prev is None else prev[j]
+    q[j], c[j], s[j] = (v, 1.0, 0.0) if v == 0.0 else (v, math.cos(v), math.sin(v))
+
+
+def _trig_linear(out, j, sgn, q, c, s, prev):
+    """Joint j from A cos q + B sin q + C = 0 (out = (A, B, C)): q = atan2(B, A) + sgn acos(-C / sqrt(A^2 + B^2)),
+    its cos and sin from (A, B, u) without trigonometry. Returns (ok, flags)."""
+    a, b, cc = out
+    r = math.hypot(a, b)
+    if r <= DEGENERATE_EPS:
+        # |C| within sqrt(DOUBLE_ROOT_TOL): a double root upstream (resolved to sqrt(eps)) can leave this stage a
+        # residue of that size where it is really a family (PUMA with a3 = 0, a2 = d4, the arm folded onto the
+        # shoulder); the representative is kept only if the set then passes the FK check
+        if abs(cc) > math.sqrt(DOUBLE_ROOT_TOL) or sgn < 0.0:
+            return False, 0
+        _family_member(j, q, c, s, prev)  # one-parameter family: its representative
+        return True, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE
+    u = -cc / r
+    if not abs(u) <= 1.0 + TANGENT_TOL:
+        return False, 0
+    u = max(-1.0, min(1.0, u))
+    sg = math.sqrt(1.0 - u * u)
+    f = FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE if sg <= math.sqrt(DOUBLE_ROOT_TOL) else 0
+    if f and sgn < 0.0:
+        return False, 0  # a double root is one solution: reported once, by the + branch
+    ca, sa = a / r, b / r  # q = atan2(B, A) + sgn acos(u)
+    c[j], s[j] = ca * u - sgn * sa * sg, sa * u + sgn * ca * sg
+    q[j] = math.atan2(s[j], c[j])
+    return True, f
+
+
+def _rotation2d(out, j, q, c, s, prev):
+    """Joint j as the angle from (u0, v0) to (u, v) (out = (u, v, u0, v0)); a family where either vanishes."""
+    u, v, u0, v0 = out
+    nu, n0 = math.hypot(u, v), math.hypot(u0, v0)
+    if n0 <= DEGENERATE_EPS or nu <= DEGENERATE_EPS:
+        _family_member(j, q, c, s, prev)
+        return True, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE
+    cu, su, c0, s0 = u / nu, v / nu, u0 / n0, v0 / n0
+    c[j], s[j] = cu * c0 + su * s0, su * c0 - cu * s0
+    q[j] = math.atan2(s[j], c[j])
+    return True, 0
+
+
+def _revolute_value(out, j, q, c, s):
+    """A revolute joint j given directly (out = (q_j,)), wrapped."""
+    q[j] = _wrap(out[0])
+    c[j], s[j] = math.cos(q[j]), math.sin(q[j])
+    return True, 0
+
+
+def _prismatic_value(out, j, q):
+    """A prismatic joint j given directly (out = (q_j,))."""
+    q[j] = out[0]
+    return True, 0
+
+
+def _wrist_sigma(up, dp, joints):
+    """+1 when turning q4 by a moves the end frame as turning q6 by a does at theta5 = 0 (up) or pi (down),
+    else -1: the two axes coincide there, so q6 + sigma q4 is what the pose defines. Probed on the chain's
+    own FK (a structural sign: the DH twists fix it)."""
+    j4, j5, j6 = joints
+    q = [0.0] * N_JOINTS
+    q[j5] = 0.0 if up else math.pi
+    qa, qb = list(q), list(q)
+    qa[j4], qb[j6] = 0.5, 0.5
+    same = max(abs(x - y) for x, y in zip(_k_fk(qa, dp), _k_fk(qb, dp), strict=True))
+    return 1.0 if same <= 1e-9 * (1.0 + max(abs(v) for v in dp)) else -1.0
+
+
+def _wrist_mirror(joints, q, c, s):
+    """The second wrist branch mirrors the first, computed for the same prefix at set k - 1 (the wrist is the last
+    branching stage): q5 -> -q5, q4 -> q4 + pi, q6 -> q6 + pi. At the singularity the first branch already holds
+    the whole family, so this one is a duplicate."""
+    j4, j5, j6 = joints
+    if abs(s[j5]) <= WRIST_EXACT_TOL:
+        return False, 0
+    q[j5], s[j5] = -q[j5], -s[j5]
+    for j in (j4, j6):
+        q[j], c[j], s[j] = q[j] - math.pi if q[j] > 0.0 else q[j] + math.pi, -c[j], -s[j]
+    return True, FLAG_SINGULAR_INVERSE if abs(s[j5]) <= SINGULAR_EPS else 0
+
+
+def _wrist(out, sgn, signs, joints, q, c, s, dp):
+    """The spherical wrist (q4, q5, q6) from the entries of its rotation (out, 9), branch sgn; `signs`: the DH
+    twists' signs of those entries (e0..e3) and of the singular family's (k00, k10 with theta5 = 0, then pi)."""
+    e0, e1, e2, e3, k00a, k10a, k00b, k10b = signs
+    j4, j5, j6 = joints
+    s5 = sgn * math.hypot(out[2], out[5])
+    c5 = e0 * out[8]
+    f = FLAG_SINGULAR_INVERSE if abs(s5) <= SINGULAR_EPS else 0
+    if abs(s5) <= WRIST_EXACT_TOL:
+        # wrist singularity: only q4 +/- q6 is defined; q4 := 0 (documented representative, moved to the member
+        # nearest `previous` by ik)
+        if sgn < 0.0:
+            return False, 0
+        up = c5 >= 0.0
+        q[j4], c[j4], s[j4] = 0.0, 1.0, 0.0
+        q[j5], c[j5], s[j5] = (0.0, 1.0, 0.0) if up else (math.pi, -1.0, 0.0)
+        k00, k10 = (k00a, k10a) if up else (k00b, k10b)
+        x, y = k00 * out[0], k10 * out[3]
+        f = FLAG_SINGULAR_INVERSE | FLAG_INDETERMINATE
+    elif f:
+        # near the singularity q4 (and q6 on its own) carry errors ~ eps / sin(theta5), but the angle
+        # phi = q6 + sigma q4 read from the well-conditioned entries (as at the singularity) is exact up to
+        # O(sin^2 theta5) <= SINGULAR_EPS^2: q6 = phi - sigma q4 keeps the pose to rounding.
+        up = c5 >= 0.0
+        n = math.hypot(s5, c5)
+        q[j5], c[j5], s[j5] = math.atan2(s5, c5), c5 / n, s5 / n
+        x, y = e1 * sgn * out[2], e1 * sgn * out[5]
+        n = math.hypot(x, y)
+        q[j4], c[j4], s[j4] = math.atan2(y, x), x / n, y / n
+        k00, k10 = (k00a, k10a) if up else (k00b, k10b)
+        q[j6] = _wrap(math.atan2(k10 * out[3], k00 * out[0]) - _wrist_sigma(up, dp, joints) * q[j4])
+        c[j6], s[j6] = math.cos(q[j6]), math.sin(q[j6])
+        return True, f
+    else:
+        n = math.hypot(s5, c5)
+        q[j5], c[j5], s[j5] = math.atan2(s5, c5), c5 / n, s5 / n
+        x, y = e1 * sgn * out[2], e1 * sgn * out[5]
+        n = math.hypot(x, y)
+        q[j4], c[j4], s[j4] = math.atan2(y, x), x / n, y / n
+        x, y = e2 * sgn * out[6], e3 * sgn * out[7]
+    n = math.hypot(x, y)
+    if n <= DEGENERATE_EPS:
+        return False, 0
+    q[j6], c[j6], s[j6] = math.atan2(y, x), x / n, y / n
+    return True, f

@@ -1,0 +1,73 @@
+"""A stand-in for the names a serial arm's generated module defines before the runtime sources it inlines
+(runtime/python/serial_*.py): the constants templates/python/serial.py.jinja prints for the catalogue's PUMA-560
+(catalogue/puma560.toml), the shared runtime's names, and what is derived or printed per robot (its kernels,
+stage functions and Design) taken from that generated module, with no C extension (_C = None: the numpy path).
+Never inlined: it lets the sources be imported, linted and tested as they are (tests/test_serial_runtime.py)."""
+
+from __future__ import annotations
+
+from _runtime import (  # noqa: F401  (re-exported: the runtime's names a generated module binds)
+    FLAG_DOUBLE_ROOT,
+    FLAG_INDETERMINATE,
+    FLAG_PROJECTED,
+    FLAG_SINGULAR_INVERSE,
+    STATUS_INDETERMINATE,
+    STATUS_OK,
+    STATUS_UNREACHABLE,
+    BatchSolutions,
+    InvalidDesign,
+    InvalidInput,
+    Solutions,
+    _array,
+    _as_rotation,
+    _projected_note,
+    _rows,
+    _stack,
+    _vector,
+    _wrap,
+)
+from wristkin.puma560 import (  # noqa: F401  (derived or printed per robot)
+    _STAGES,
+    Design,
+    _design_values,
+    _k_fk,
+    _k_fk_cs,
+    _k_jacobian,
+    _kv_fk,
+)
+
+NAME = "puma560"
+JOINT_NAMES = ("q1", "q2", "q3", "q4", "q5", "q6", )
+JOINT_KINDS = ("R", "R", "R", "R", "R", "R", )
+DESIGN_NAMES = ("d1", "a2", "d3", "a3", "d4", "d6", )
+N_JOINTS = 6
+MAX_IK = 8
+MAX_FK = 1
+TANGENT_TOL = 1e-9
+DOUBLE_ROOT_TOL = 1e-12
+DEGENERATE_EPS = 1e-12
+IK_VERIFY_TOL = 1e-9
+WRIST_EXACT_TOL = 1e-13
+ROTATION_TOL = 1e-6
+LENGTH_MAX = 1e6
+DESIGN_SCALE_MIN = 1e-3
+LENGTH_MIN = 1e-5
+SINGULAR_EPS = 1e-6
+LENGTHS_FLOOR = True  # DH lengths: each 0 or at least LENGTH_MIN
+DESIGN_CHECKS = ()
+IMAGE_CHECKS = ()
+_DESIGN_CHECK = None  # the kernels of those conditions (a finite-screw chain's), None without any
+_IMAGE_CHECK = None
+_FOLD_BITS = (2, 1, )
+_WRIST_JOINTS = (3, 5)
+_WRIST_STAGE = 3
+
+# the numpy path: no extension (the generated module binds these from wristkin._native when it is built)
+_C = None
+_C_IK = _C_FK = _C_IK_BATCH = _C_FK_BATCH = _C_JACOBIAN = _C_FK_MATRIX = None
+_IK_RESULT = _FK_RESULT = None
+
+
+def _c_design(vals):
+    """No C design without the extension (the generated module's binds wristkin._native's)."""
+    return None

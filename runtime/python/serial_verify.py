@@ -1,0 +1,75 @@
+"""A serial arm's checks of an IK set on its FK: the pose error, the damped Gauss-Newton polish and refit, and
+the member of the wrist's singular family nearest a previous set.
+
+A wristkin runtime source: every serial arm's generated module (the catalogue's DH chains, the finite-screw chains'
+serial view) inlines it from the marker line on (derive/runtime_files.py), after its constants, derived kernels
+and stage functions; above the marker, what it reads from them and from the other sources (serial_stand_in.py:
+the PUMA-560), so that it is linted and tested as it is (tests/test_serial_runtime.py)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from serial_stand_in import _WRIST_JOINTS, IK_VERIFY_TOL, JOINT_KINDS, N_JOINTS, _k_fk, _k_jacobian, _wrap
+
+
+# wristkin: inlined from here
+def _pose_error(q, pose, dp):
+    """(max |FK(q) - pose| over [R | p], 6-vector twist error: position, then 1/2 sum of column crosses)."""
+    t = _k_fk(q, dp)
+    err = max(abs(x - y) for x, y in zip(t, pose, strict=True))
+    r, rt = np.array(t).reshape(3, 4), np.array(pose).reshape(3, 4)
+    w = 0.5 * sum(np.cross(r[:, i], rt[:, i]) for i in range(3))
+    return err, np.concatenate([rt[:, 3] - r[:, 3], w])
+
+
+def _gn_step(q, e, err, pose, dp, max_step=math.inf):
+    """One damped Gauss-Newton step from q (pose error e, residual err), no longer than max_step in any joint:
+    (q, e, err) moved, or as given when the step is refused (singular, too long) or does not help."""
+    j = np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)
+    try:
+        step = np.linalg.solve(j.T @ j + 1e-12 * np.eye(N_JOINTS), j.T @ e)
+    except np.linalg.LinAlgError:
+        return q, e, err
+    if not np.all(np.abs(step) <= max_step):
+        return q, e, err
+    trial = [x + dx for x, dx in zip(q, step, strict=True)]
+    err2, e2 = _pose_error(trial, pose, dp)
+    return (trial, e2, err2) if err2 < err else (q, e, err)
+
+
+def _polish(q, pose, dp, iters=6):
+    """Damped Gauss-Newton on the pose error: removes the sqrt(eps) error a tangent root passes downstream."""
+    q = list(q)
+    err, e = _pose_error(q, pose, dp)
+    for _ in range(iters):
+        if err <= IK_VERIFY_TOL:
+            break
+        q, e, err2 = _gn_step(q, e, err, pose, dp)
+        if not err2 < err:
+            break
+        err = err2
+    return [_wrap(x) if k == "R" else x for x, k in zip(q, JOINT_KINDS, strict=True)], err
+
+
+def _refit(q, pose, dp, max_step):
+    """The residual after at most one damped Gauss-Newton step no longer than max_step in any joint (q updated in
+    place when it helps): the runtime's merge_indistinct asks whether a point between two sets fits the pose."""
+    err, e = _pose_error(q, pose, dp)
+    moved, _, err2 = _gn_step(q, e, err, pose, dp, max_step)
+    if err2 < err:
+        q[:] = [_wrap(x) if k == "R" else x for x, k in zip(moved, JOINT_KINDS, strict=True)]
+    return err2
+
+
+def _nearest_member(q, prev, dp):
+    """At the wrist singularity the family is q4 + t, q6 - sigma t (the two axes coincide; sigma = +1 when they
+    point the same way): the member whose q4 is prev's q4."""
+    j = np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)
+    j4, j6 = _WRIST_JOINTS
+    sigma = 1.0 if float(np.dot(j[3:, j4], j[3:, j6])) >= 0.0 else -1.0
+    t = _wrap(_wrap(prev[j4]) - q[j4])
+    q = list(q)
+    q[j4], q[j6] = _wrap(q[j4] + t), _wrap(q[j6] - sigma * t)
+    return q

@@ -1,0 +1,216 @@
+"""A serial arm's hand-written numerics (runtime/python/serial_*.py, runtime/c/serial/sr_*.c) tested as they are:
+the Python sources imported on their own (serial_stand_in: the PUMA-560's constants and derived kernels), the C
+sources compiled strictly with each catalogue serial robot's switches and derived kernels, on cases whose answer
+is known by construction (a stage equation's generating root, the generating joints among the IK sets), C and
+Python on the same poses, and the generated files carrying the sources verbatim."""
+
+from __future__ import annotations
+
+import ctypes
+import hashlib
+import importlib
+import math
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from cbuild import BUILD_DIR, RUNTIME_C, compile_shared, load
+from seeding import case_rng
+
+from derive import runtime_files
+from derive.serial_core.views import C_RUNTIME_AFTER_STAGES, C_RUNTIME_FILES, PY_RUNTIME_FILES
+
+ROOT = Path(__file__).resolve().parent.parent
+GEN_C = ROOT / "generated" / "c"
+SR_C = ROOT / "runtime" / "c" / "serial"
+ROBOTS = ("puma560", "p1p2p3rarb", "rarararbrb", "rpp_wrist", "scara_wrist", "spherical_wrist", "wrist_1dof")
+D = ctypes.POINTER(ctypes.c_double)
+IP = ctypes.POINTER(ctypes.c_int)
+U = ctypes.POINTER(ctypes.c_uint)
+FLAG_SINGULAR_INVERSE, FLAG_DOUBLE_ROOT, FLAG_INDETERMINATE = 1, 8, 16
+
+
+def _p(a, t=D):
+    return a.ctypes.data_as(t)
+
+
+def _gap(a, b, kinds):
+    d = np.asarray(a, float) - np.asarray(b, float)
+    rev = np.array([k == "R" for k in kinds])
+    d[rev] = np.remainder(d[rev] + math.pi, 2 * math.pi) - math.pi
+    return float(np.max(np.abs(d)))
+
+
+# ------------------------------------------------------------------------------------------------ Python sources
+@pytest.fixture(scope="module")
+def py():
+    """The Python sources imported as they are (each other and serial_stand_in above their markers)."""
+    sys.path.insert(0, str(ROOT / "runtime" / "python"))
+    try:
+        import serial_fk
+        import serial_ik
+        import serial_stages
+    finally:
+        sys.path.remove(str(ROOT / "runtime" / "python"))
+    return type("Sources", (), {"stages": serial_stages, "ik": serial_ik, "fk": serial_fk})
+
+
+def test_trig_linear_returns_the_generating_root_and_one_double_root_at_a_tangent(py):
+    rng = case_rng(2240)
+    st = py.stages
+    for _ in range(50):
+        a, b = rng.normal(size=2)
+        q0 = rng.uniform(-math.pi, math.pi)
+        cc = -(a * math.cos(q0) + b * math.sin(q0))
+        roots = []
+        for sgn in (1.0, -1.0):
+            q, c, s = [0.0], [1.0], [0.0]
+            ok, f = st._trig_linear((a, b, cc), 0, sgn, q, c, s, None)
+            assert ok and f == 0
+            assert abs(a * c[0] + b * s[0] + cc) <= 1e-14 * (1 + abs(a) + abs(b))
+            assert abs(c[0] - math.cos(q[0])) <= 1e-15 and abs(s[0] - math.sin(q[0])) <= 1e-15
+            roots.append(q[0])
+        assert min(abs(math.remainder(r - q0, 2 * math.pi)) for r in roots) <= 1e-12
+        # tangent: C = -sqrt(A^2 + B^2) has the double root atan2(B, A), reported once (+ branch), flagged
+        t = -math.hypot(a, b)
+        q, c, s = [0.0], [1.0], [0.0]
+        assert st._trig_linear((a, b, t), 0, 1.0, q, c, s, None) == (True, FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE)
+        assert abs(math.remainder(q[0] - math.atan2(b, a), 2 * math.pi)) <= 1e-12
+        assert st._trig_linear((a, b, t), 0, -1.0, q, c, s, None) == (False, 0)
+    # a vanishing equation: the family's representative, previous's value when given
+    q, c, s = [0.0], [1.0], [0.0]
+    family = (True, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE)
+    assert st._trig_linear((0.0, 0.0, 0.0), 0, 1.0, q, c, s, [0.7]) == family
+    assert q == [0.7]
+
+
+def test_rotation2d_is_the_angle_between_the_two_vectors(py):
+    rng = case_rng(2241)
+    for _ in range(30):
+        t0, t = rng.uniform(-math.pi, math.pi, 2)
+        r0, r = rng.uniform(0.1, 3.0, 2)
+        q, c, s = [0.0], [1.0], [0.0]
+        out = (r * math.cos(t0 + t), r * math.sin(t0 + t), r0 * math.cos(t0), r0 * math.sin(t0))
+        assert py.stages._rotation2d(out, 0, q, c, s, None) == (True, 0)
+        assert abs(math.remainder(q[0] - t, 2 * math.pi)) <= 1e-13
+
+
+def test_python_ik_returns_the_generating_joints_and_the_wrist_family_near_previous(py):
+    """PUMA-560 through the runtime sources: FK(q) -> IK contains q; at the wrist singularity (q5 = 0) one set of
+    the family, moved to previous's q4 when given."""
+    rng = case_rng(2242)
+    kinds = py.ik.JOINT_KINDS
+    for i in range(40):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        pose = py.fk.fk_matrix(q)
+        sol = py.ik.ik(pose)
+        assert sol.status == 0
+        assert min(_gap(v, q, kinds) for v in sol.values[sol.valid]) <= 1e-8, q
+        assert all(np.max(np.abs(py.fk.fk_matrix(v) - pose)) <= 1e-9 for v in sol.values[sol.valid])
+        if i < 10:
+            q[4] = 0.0
+            pose = py.fk.fk_matrix(q)
+            sol = py.ik.ik(pose, previous=q)
+            assert sol.status == py.ik.STATUS_INDETERMINATE  # the wrist family
+            assert min(_gap(v, q, kinds) for v in sol.values[sol.valid]) <= 1e-8, q
+
+
+# ------------------------------------------------------------------------------------------------ C sources
+def _cut(name):
+    """The generated C's robot-specific parts: before the first runtime source (constants, switches, types,
+    kernels, data) and the stage functions between the stages banner and sr_ik.c."""
+    text = (GEN_C / f"{name}.c").read_text()
+    first = runtime_files.inline(C_RUNTIME_FILES[0])
+    after = runtime_files.inline(C_RUNTIME_AFTER_STAGES[0])
+    assert first in text and after in text
+    stages = re.search(r"/\* -+ the IK stages", text).start()
+    return text[:text.index(first)], text[stages:text.index(after)]
+
+
+@pytest.fixture(scope="module", params=ROBOTS)
+def clib(request):
+    name = request.param
+    prelude, stages = _cut(name)
+    inc = BUILD_DIR / f"serial_runtime_{name}"
+    inc.mkdir(parents=True, exist_ok=True)
+    (inc / "serial_prelude.h").write_text(prelude)
+    (inc / "serial_stages.h").write_text(stages)
+    h = hashlib.sha256(b"".join(p.read_bytes() for p in sorted(SR_C.iterdir())) + prelude.encode()
+                       + stages.encode()).hexdigest()[:16]
+    so = compile_shared([ROOT / "tests" / "c" / "serial_runtime_harness.c", RUNTIME_C], [inc, GEN_C],
+                        f"serial_runtime_{name}", extra_flags=[f"-DWKT_SOURCES={h}"])
+    L = load(so)
+    L.wkt_sr_ik.argtypes = [D, D, D, IP, U, D]
+    L.wkt_sr_fk.argtypes = [D, D, D, D, U]
+    L.wkt_sr_sizes.argtypes = [IP, IP]
+    n, max_ik = ctypes.c_int(), ctypes.c_int()
+    L.wkt_sr_sizes(ctypes.byref(n), ctypes.byref(max_ik))
+    return name, L, n.value, max_ik.value
+
+
+def _c_ik(L, n, max_ik, pose, previous=None):
+    values, valid = np.zeros(max_ik * n), np.zeros(max_ik, np.int32)
+    flags, aux = np.zeros(max_ik, np.uint32), np.zeros(max_ik)
+    prev = None if previous is None else _p(np.ascontiguousarray(previous, float))
+    status = L.wkt_sr_ik(_p(np.ascontiguousarray(pose, float)), prev, _p(values), _p(valid, IP), _p(flags, U),
+                         _p(aux))
+    return status, values.reshape(max_ik, n), valid.astype(bool), flags.astype(np.int64)
+
+
+def test_c_sources_solve_every_catalogue_serial_robot_as_python_does(clib):
+    """Each robot's switches compile the C sources strictly; FK(q) -> IK contains q on a generic pose, and the
+    sets, flags and status equal the generated Python module's numpy path (one algorithm in both)."""
+    name, L, n, max_ik = clib
+    mod = importlib.import_module(f"wristkin.{name}")
+    assert mod.N_JOINTS == n and mod.MAX_IK == max_ik
+    design = mod.make_design()
+    rng = case_rng(2243)
+    kinds = mod.JOINT_KINDS
+    for i in range(40):
+        q = np.array([rng.uniform(-math.pi, math.pi) if k == "R" else rng.uniform(-0.4, 0.4) for k in kinds])
+        if i < 8 and n >= 5:
+            q[-2] = 0.0 if i < 4 else 1e-9  # a wrist at or next to its singularity
+        pose, jac, man, fl = np.zeros(12), np.zeros(6 * n), ctypes.c_double(), ctypes.c_uint()
+        assert L.wkt_sr_fk(_p(q), _p(pose), _p(jac), ctypes.byref(man), ctypes.byref(fl)) == 0
+        assert np.max(np.abs(pose - mod.fk_matrix(q)[:3].ravel())) <= 1e-14
+        assert np.max(np.abs(jac.reshape(6, n) - mod.jacobian(q))) <= 1e-14
+        status, values, valid, flags = _c_ik(L, n, max_ik, pose, q if i % 2 else None)
+        ref = mod._ik_numpy(pose, design, q if i % 2 else None)  # the numpy path: the Python sources
+        assert status == ref.status and list(valid) == list(ref.valid), (name, q)
+        if i >= 8:
+            assert np.allclose(values[valid], ref.values[ref.valid], rtol=0, atol=1e-12)
+        else:  # next to the wrist singularity q4 and q6 alone are fixed to eps / sin(q5) only: compare the poses
+            assert all(np.max(np.abs(mod.fk_matrix(a) - mod.fk_matrix(b))) <= 1e-9
+                       for a, b in zip(values[valid], ref.values[ref.valid], strict=True))
+        assert list(flags[valid]) == list(ref.flags[ref.valid])
+        if i >= 8:  # a generic pose (a singular family has its representative)
+            assert min(_gap(v, q, kinds) for v in values[valid]) <= 1e-6, (name, q)
+
+
+def test_c_design_init_rejects_what_python_rejects(clib):
+    name, L, n, _ = clib
+    mod = importlib.import_module(f"wristkin.{name}")
+    L.wkt_sr_design_init.argtypes = [D, ctypes.c_void_p]
+    buf = ctypes.create_string_buffer(L.wkt_sr_sizes(ctypes.byref(ctypes.c_int()), ctypes.byref(ctypes.c_int())))
+    for scale in (1.0, 1e-6, 1e7):
+        params = np.array(mod.DESIGN_DEFAULT, float) * scale
+        try:
+            mod.make_design(params)
+            want = 0
+        except mod.InvalidDesign:
+            want = -3  # WK_ERR_DESIGN
+        assert L.wkt_sr_design_init(_p(params), buf) == want, (name, scale)
+
+
+def test_the_generated_files_carry_the_sources_verbatim():
+    for name in ROBOTS:
+        py = (ROOT / "generated" / "python" / "wristkin" / f"{name}.py").read_text()
+        c = (GEN_C / f"{name}.c").read_text()
+        assert all(runtime_files.inline(rel) in py for rel in PY_RUNTIME_FILES), name
+        assert all(runtime_files.inline(rel) in c for rel in C_RUNTIME_FILES + C_RUNTIME_AFTER_STAGES), name
+    assert sorted(C_RUNTIME_FILES + C_RUNTIME_AFTER_STAGES) == sorted(f"c/serial/{p.name}" for p in SR_C.glob("*.c"))
+    for template in ("c/serial.c.jinja", "python/serial.py.jinja"):
+        text = (ROOT / "templates" / template).read_text()
+        assert len(text.splitlines()) <= 400 and not re.search(r"\{%-?\s*(el)?if\b", text), template
