@@ -36,7 +36,7 @@ static double now(void)
 #define POSES 25
 enum { S_LINKS, S_EQ, S_QR, S_ABC, S_QEP, S_NULL, S_COMPLETE, S_REFINE, S_N };
 static const char *names[S_N] = {"loop links", "14 equations (P, Q, r)", "QR + null space + N P",
-                                 "A, B, C (12 x 12)", "quadratic eigenproblem", "null vectors (per root)",
+                                 "A, B, C (12 x 12) at phi", "deflated 16 x 16 roots", "null vectors (per root)",
                                  "complete t1, t2, t6", "Newton refine (3 steps)"};
 
 int main(void)
@@ -80,9 +80,8 @@ int main(void)
                 double loop[6][16], links[6][16], P[G6_NEQ][27], Q[G6_NEQ][G6_NY], r[G6_NEQ], t6[6][27];
                 double W[G6_NEQ][G6_NEQ], A[144], B[144], C[144], zinv[16], pinv[16], t0, t1;
                 const double *fr = frames[arm], *pose = poses[arm][p];
-                int e, k, hv, uv, vv, root, c;
+                int e, k, root, c;
                 g6_qr f;
-                wk_qep_result qep;
                 t0 = now();
                 for (i = 0; i < 5; ++i) {
                     g6_inverse(fr + 16 * i, zinv);
@@ -111,48 +110,29 @@ int main(void)
                         t6[e][k] = s;
                     }
                 t1 = now(); tsec[S_QR] += t1 - t0; t0 = t1;
-                memset(A, 0, sizeof A);
-                memset(B, 0, sizeof B);
-                memset(C, 0, sizeof C);
-                for (e = 0; e < 6; ++e)
-                    for (i = 0; i < 3; ++i)
-                        for (j = 0; j < 3; ++j) {
-                            double g[3] = {0.0, 0.0, 0.0};
-                            for (hv = 0; hv < 3; ++hv)
-                                for (uv = 0; uv < 3; ++uv)
-                                    for (vv = 0; vv < 3; ++vv) {
-                                        double w = t6[e][9 * hv + 3 * uv + vv] * g6_half[uv][i] * g6_half[vv][j];
-                                        for (k = 0; k < 3; ++k) g[k] += g6_half[hv][k] * w;
-                                    }
-                            for (k = 0; k < 2; ++k) {
-                                const int row = e + 6 * k, col = 3 * (i + k) + j;
-                                C[12 * row + col] = g[0];
-                                B[12 * row + col] = g[1];
-                                A[12 * row + col] = g[2];
-                            }
+                {
+                    double t6r[6][27], xr[16], phi = 0.0, M[144], m[G6_MAXK][12], angles[3], tq[6];
+                    int nr = g6_deflated_roots(t6, W, &phi, xr), count;
+                    t1 = now(); tsec[S_QEP] += t1 - t0; t0 = t1;
+                    if (nr < 0) continue;
+                    if (rep == 0) real_roots += nr;
+                    g6_rotate_hidden(t6, phi, t6r);
+                    g6_quadratic(t6r, 0, A, B, C);
+                    t1 = now(); tsec[S_ABC] += t1 - t0; t0 = t1;
+                    for (root = 0; root < nr; ++root) {
+                        const double x = xr[root];
+                        for (i = 0; i < 144; ++i) M[i] = (A[i] * x + B[i]) * x + C[i];
+                        count = g6_monomial_vectors(M, m);
+                        t1 = now(); tsec[S_NULL] += t1 - t0; t0 = t1;
+                        for (c = 0; c < count; ++c) {
+                            angles[0] = phi + 2.0 * atan(x);
+                            angles[1] = g6_half_angle(m[c], 0);
+                            angles[2] = g6_half_angle(m[c], 1);
+                            g6_complete(angles, links, P, &f, tq);
+                            t1 = now(); tsec[S_COMPLETE] += t1 - t0; t0 = t1;
+                            g6_refine(fr, home, pose, tq);
+                            t1 = now(); tsec[S_REFINE] += t1 - t0; t0 = t1;
                         }
-                t1 = now(); tsec[S_ABC] += t1 - t0; t0 = t1;
-                if (wk_generalized_quadratic_eig(12, A, B, C, 0.0, &qep) != WK_EIG_OK) continue;
-                t1 = now(); tsec[S_QEP] += t1 - t0; t0 = t1;
-                if (rep == 0) real_roots += qep.n_real + qep.n_infinite;
-                for (root = 0; root < qep.n_real + qep.n_infinite; ++root) {
-                    double M[144], m[G6_MAXK][12], angles[3], tq[6];
-                    const int infinite = root >= qep.n_real;
-                    const double x = infinite ? 0.0 : qep.real[root];
-                    int count;
-                    t0 = now();
-                    for (i = 0; i < 144; ++i) M[i] = infinite ? A[i] : (A[i] * x + B[i]) * x + C[i];
-                    count = g6_monomial_vectors(M, m);
-                    t1 = now(); tsec[S_NULL] += t1 - t0; t0 = t1;
-                    for (c = 0; c < count; ++c) {
-                        angles[0] = infinite ? G6_PI : 2.0 * atan(x);
-                        angles[1] = g6_half_angle(m[c], 0);
-                        angles[2] = g6_half_angle(m[c], 1);
-                        t0 = now();
-                        g6_complete(angles, links, P, &f, tq);
-                        t1 = now(); tsec[S_COMPLETE] += t1 - t0; t0 = t1;
-                        g6_refine(fr, home, pose, tq);
-                        t1 = now(); tsec[S_REFINE] += t1 - t0; t0 = t1;
                     }
                 }
             }

@@ -383,6 +383,372 @@ static int g6_monomial_vectors(const double *M, double m[G6_MAXK][12])
     }
 }
 
+/* ------------------------------------------------------------------ hidden t3: the (1 + x^2)^4 deflated
+ * (runtime/python/general6r.py's docstring has the derivation): two complex combinations mu = a + i b of the six
+ * equations have no 1/z part (z = e^(i t3)); each turns a pair of quadratic rows into a pair of linear ones, so
+ * the 12 x 12 polynomial's determinant drops to degree 16 and the eigenproblem to 16 x 16 (~3x cheaper than the
+ * 24 x 24 companion). */
+
+#define G6_DEFLATE_TOL 1e-8 /* structure not met to this (relative): the 24 x 24 path */
+#define G6_REAL_TOL 1e-6    /* |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding */
+#define G6_RCOND_GOOD 1e-4 /* the leading coefficient this well conditioned: no further origin phi tried */
+#define G6_NPHI 4
+static const double g6_phis[G6_NPHI] = {0.0, 2.0 * G6_PI / 3.0, -2.0 * G6_PI / 3.0, G6_PI / 2.0};
+
+/* Householder QR with column pivoting of a (rows x cols, row-major, rows <= 12, cols <= 8) for `rank` steps; out
+ * (rows x (rows - rank), row-major) receives Q's last rows - rank columns: an orthonormal basis of the complement
+ * of the pivot columns' span. Returns 0 when the rank-th pivot is below G6_DEFLATE_TOL of the first or (rank <
+ * cols) what is left of the other columns is above it: the span does not have that rank. */
+static int g6_complement(int rows, int cols, const double *a, int rank, double *out)
+{
+    double w[12][8], v[8][12], beta[8], first = 0.0;
+    int perm[8], i, j, k;
+    for (i = 0; i < rows; ++i)
+        for (j = 0; j < cols; ++j) w[i][j] = a[cols * i + j];
+    for (j = 0; j < cols; ++j) perm[j] = j;
+    for (k = 0; k < rank; ++k) {
+        double best = -1.0, norm = 0.0, alpha, vtv = 0.0;
+        int p = k;
+        for (j = k; j < cols; ++j) {
+            double s = 0.0;
+            for (i = k; i < rows; ++i) s += w[i][j] * w[i][j];
+            if (s > best) {
+                best = s;
+                p = j;
+            }
+        }
+        if (p != k)
+            for (i = 0; i < rows; ++i) {
+                const double t = w[i][k];
+                w[i][k] = w[i][p];
+                w[i][p] = t;
+            }
+        j = perm[k]; perm[k] = perm[p]; perm[p] = j;
+        norm = sqrt(best);
+        if (k == 0) first = norm;
+        if (!(norm > G6_DEFLATE_TOL * first) || !(first > 0.0)) return 0;
+        alpha = w[k][k] > 0.0 ? -norm : norm;
+        for (i = 0; i < rows; ++i) v[k][i] = i < k ? 0.0 : w[i][k];
+        v[k][k] -= alpha;
+        for (i = k; i < rows; ++i) vtv += v[k][i] * v[k][i];
+        beta[k] = 2.0 / vtv;
+        for (j = k; j < cols; ++j) {
+            double s = 0.0;
+            for (i = k; i < rows; ++i) s += v[k][i] * w[i][j];
+            s *= beta[k];
+            for (i = k; i < rows; ++i) w[i][j] -= s * v[k][i];
+        }
+    }
+    for (j = rank; j < cols; ++j) { /* the rest of the columns must lie in the span */
+        double s = 0.0;
+        for (i = rank; i < rows; ++i) s += w[i][j] * w[i][j];
+        if (!(sqrt(s) <= G6_DEFLATE_TOL * first)) return 0;
+    }
+    for (j = rank; j < rows; ++j) { /* Q e_j = H_0 ... H_(rank-1) e_j */
+        double e[12];
+        for (i = 0; i < rows; ++i) e[i] = i == j ? 1.0 : 0.0;
+        for (k = rank - 1; k >= 0; --k) {
+            double s = 0.0;
+            for (i = k; i < rows; ++i) s += v[k][i] * e[i];
+            s *= beta[k];
+            for (i = k; i < rows; ++i) e[i] -= s * v[k][i];
+        }
+        for (i = 0; i < rows; ++i) out[(rows - rank) * i + (j - rank)] = e[i];
+    }
+    return 1;
+}
+
+/* f (3 x 3 over (1, c, s) of the two non-hidden angles) times (1 + u^2)(1 + v^2) as a row over the 12 monomials
+ * u^i v^j (index 3 i + j), and its u multiple */
+static void g6_trig_rows(const double *f, double *row, double *shifted)
+{
+    int i, j, a, b;
+    for (i = 0; i < 12; ++i) row[i] = shifted[i] = 0.0;
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j) {
+            double s = 0.0;
+            for (a = 0; a < 3; ++a)
+                for (b = 0; b < 3; ++b) s += f[3 * a + b] * g6_half[a][i] * g6_half[b][j];
+            row[3 * i + j] = s;
+            shifted[3 * (i + 1) + j] = s;
+        }
+}
+
+/* The six equations' coefficients with the hidden angle's origin at phi: t3 = phi + t', (c3, s3) rotated into
+ * (c', s'); hidden is t3 here (index 0 of the 27) */
+static void g6_rotate_hidden(double t6[6][27], double phi, double out[6][27])
+{
+    const double c = cos(phi), s = sin(phi);
+    int e, k;
+    for (e = 0; e < 6; ++e)
+        for (k = 0; k < 9; ++k) {
+            out[e][k] = t6[e][k];
+            out[e][9 + k] = c * t6[e][9 + k] + s * t6[e][18 + k];
+            out[e][18 + k] = c * t6[e][18 + k] - s * t6[e][9 + k];
+        }
+}
+
+/* The 12 x 12 A, B, C of (1 + x^2) times the six equations (hidden = phi + 2 atan x, rotated already in t6) over
+ * the monomials u^i v^j of the other two, the equations in rows 0..5 and their u multiples in 6..11 */
+static void g6_quadratic(double t6[6][27], int hidden, double *A, double *B, double *C)
+{
+    int e, i, j, k, hv, uv, vv;
+    for (i = 0; i < 144; ++i) A[i] = B[i] = C[i] = 0.0;
+    for (e = 0; e < 6; ++e)
+        for (i = 0; i < 3; ++i)
+            for (j = 0; j < 3; ++j) {
+                double g[3] = {0.0, 0.0, 0.0};
+                for (hv = 0; hv < 3; ++hv)
+                    for (uv = 0; uv < 3; ++uv)
+                        for (vv = 0; vv < 3; ++vv) {
+                            int idx[3];
+                            double w;
+                            idx[hidden] = hv;
+                            idx[hidden == 0 ? 1 : 0] = uv;
+                            idx[hidden == 2 ? 1 : 2] = vv;
+                            w = t6[e][9 * idx[0] + 3 * idx[1] + idx[2]] * g6_half[uv][i] * g6_half[vv][j];
+                            for (k = 0; k < 3; ++k) g[k] += g6_half[hv][k] * w;
+                        }
+                for (k = 0; k < 2; ++k) {
+                    const int row = e + 6 * k, col = 3 * (i + k) + j;
+                    C[12 * row + col] = g[0];
+                    B[12 * row + col] = g[1];
+                    A[12 * row + col] = g[2];
+                }
+            }
+}
+
+/* LU with partial pivoting of the n x n a in place; 0 if a pivot is exactly zero */
+static int g6_lu(int n, double *a, int *piv)
+{
+    int i, j, k;
+    for (k = 0; k < n; ++k) {
+        int p = k;
+        for (i = k + 1; i < n; ++i)
+            if (fabs(a[n * i + k]) > fabs(a[n * p + k])) p = i;
+        piv[k] = p;
+        if (!(a[n * p + k] != 0.0)) return 0;
+        if (p != k)
+            for (j = 0; j < n; ++j) {
+                const double t = a[n * k + j];
+                a[n * k + j] = a[n * p + j];
+                a[n * p + j] = t;
+            }
+        for (i = k + 1; i < n; ++i) {
+            const double f = a[n * i + k] /= a[n * k + k];
+            for (j = k + 1; j < n; ++j) a[n * i + j] -= f * a[n * k + j];
+        }
+    }
+    return 1;
+}
+
+/* b (n x cols, row-major) := (LU)^-1 b */
+static void g6_lu_solve(int n, const double *lu, const int *piv, double *b, int cols)
+{
+    int i, j, k;
+    for (k = 0; k < n; ++k)
+        if (piv[k] != k)
+            for (j = 0; j < cols; ++j) {
+                const double t = b[cols * k + j];
+                b[cols * k + j] = b[cols * piv[k] + j];
+                b[cols * piv[k] + j] = t;
+            }
+    for (i = 1; i < n; ++i)
+        for (k = 0; k < i; ++k) {
+            const double f = lu[n * i + k];
+            for (j = 0; j < cols; ++j) b[cols * i + j] -= f * b[cols * k + j];
+        }
+    for (i = n - 1; i >= 0; --i) {
+        for (k = i + 1; k < n; ++k) {
+            const double f = lu[n * i + k];
+            for (j = 0; j < cols; ++j) b[cols * i + j] -= f * b[cols * k + j];
+        }
+        for (j = 0; j < cols; ++j) b[cols * i + j] /= lu[n * i + i];
+    }
+}
+
+/* 1-norm reciprocal condition of the 12 x 12 k from its LU (explicit inverse: at 12 it costs about an LU) */
+static double g6_rcond(const double *k, const double *lu, const int *piv)
+{
+    double inv[144], nk = 0.0, ni = 0.0;
+    int i, j;
+    for (i = 0; i < 144; ++i) inv[i] = (i % 13 == 0) ? 1.0 : 0.0;
+    g6_lu_solve(12, lu, piv, inv, 12);
+    for (j = 0; j < 12; ++j) {
+        double sk = 0.0, si = 0.0;
+        for (i = 0; i < 12; ++i) {
+            sk += fabs(k[12 * i + j]);
+            si += fabs(inv[12 * i + j]);
+        }
+        if (sk > nk) nk = sk;
+        if (!(si <= ni)) ni = si;
+    }
+    return (nk > 0.0 && isfinite(ni) && ni > 0.0) ? 1.0 / (nk * ni) : 0.0;
+}
+
+/* The deflated pencil's rows, split by the hidden angle's origin phi (each is linear in cos phi, sin phi): the eight
+ * linear rows L0 + x K (Re L of the four (a; b), then their u multiples) are a0 + c pr + s qr and b0 + c qr - s pr
+ * (2 pr = a gc + b gs, 2 qr = a gs - b gc: Re L = (a g0 + kr) + x (b g0 - ki) with 2 kappa = mu (gc - i gs) at phi);
+ * the four quadratic rows (the two complementary equations and their u multiples) are, with k1, kc, ks their
+ * (1, c, s) parts in the hidden angle, A4 = k1 - kc, B4 = 2 ks, C4 = k1 + kc, kc = c gc + s gs, ks = c gs - s gc. */
+typedef struct {
+    double a0[8][12], b0[8][12], pr[8][12], qr[8][12]; /* linear rows */
+    double k1[4][12], kc[4][12], ks[4][12];             /* quadratic rows */
+} g6_deflated;
+
+static void g6_deflated_parts(double t6[6][27], const double *ab, const double *comp, g6_deflated *d)
+{
+    int j, e, k;
+    for (j = 0; j < 4; ++j) {
+        double f[4][9];
+        for (k = 0; k < 9; ++k) {
+            double ag0 = 0.0, bg0 = 0.0, agc = 0.0, ags = 0.0, bgc = 0.0, bgs = 0.0;
+            for (e = 0; e < 6; ++e) {
+                const double a = ab[4 * e + j], b = ab[4 * (6 + e) + j];
+                ag0 += a * t6[e][k];
+                bg0 += b * t6[e][k];
+                agc += a * t6[e][9 + k];
+                ags += a * t6[e][18 + k];
+                bgc += b * t6[e][9 + k];
+                bgs += b * t6[e][18 + k];
+            }
+            f[0][k] = ag0;
+            f[1][k] = bg0;
+            f[2][k] = 0.5 * (agc + bgs);
+            f[3][k] = 0.5 * (ags - bgc);
+        }
+        g6_trig_rows(f[0], d->a0[j], d->a0[4 + j]);
+        g6_trig_rows(f[1], d->b0[j], d->b0[4 + j]);
+        g6_trig_rows(f[2], d->pr[j], d->pr[4 + j]);
+        g6_trig_rows(f[3], d->qr[j], d->qr[4 + j]);
+    }
+    for (j = 0; j < 2; ++j) {
+        double f[3][9];
+        for (k = 0; k < 27; ++k) {
+            double s = 0.0;
+            for (e = 0; e < 6; ++e) s += comp[2 * e + j] * t6[e][k];
+            f[k / 9][k % 9] = s;
+        }
+        g6_trig_rows(f[0], d->k1[j], d->k1[2 + j]);
+        g6_trig_rows(f[1], d->kc[j], d->kc[2 + j]);
+        g6_trig_rows(f[2], d->ks[j], d->ks[2 + j]);
+    }
+}
+
+/* 2^-e with 2^e the largest |entry| of the n values (a row's exact power-of-two equilibration), 1 for zeros */
+static double g6_row_scale(const double *x, int n)
+{
+    double big = 0.0;
+    int i, e = 0;
+    for (i = 0; i < n; ++i)
+        if (fabs(x[i]) > big) big = fabs(x[i]);
+    if (!(big > 0.0) || !isfinite(big)) return 1.0;
+    (void)frexp(big, &e);
+    return ldexp(1.0, -e);
+}
+
+/* K (12 x 12: the linear rows' x coefficient, then the quadratic rows' x^2 coefficient), L0 (8 x 12), B4, C4
+ * (4 x 12) at phi, each row (with its partners) equilibrated by a power of two */
+static void g6_deflated_at(const g6_deflated *d, double phi, double *K, double *L0, double *B4, double *C4)
+{
+    const double c = cos(phi), s = sin(phi);
+    double sc;
+    int r, k;
+    for (r = 0; r < 8; ++r) {
+        for (k = 0; k < 12; ++k) {
+            L0[12 * r + k] = d->a0[r][k] + c * d->pr[r][k] + s * d->qr[r][k];
+            K[12 * r + k] = d->b0[r][k] + c * d->qr[r][k] - s * d->pr[r][k];
+        }
+        sc = g6_row_scale(L0 + 12 * r, 12);
+        if (g6_row_scale(K + 12 * r, 12) < sc) sc = g6_row_scale(K + 12 * r, 12);
+        for (k = 0; k < 12; ++k) {
+            L0[12 * r + k] *= sc;
+            K[12 * r + k] *= sc;
+        }
+    }
+    for (r = 0; r < 4; ++r) {
+        double *a = K + 12 * (8 + r), *b = B4 + 12 * r, *cc = C4 + 12 * r;
+        for (k = 0; k < 12; ++k) {
+            const double kc = c * d->kc[r][k] + s * d->ks[r][k], ks = c * d->ks[r][k] - s * d->kc[r][k];
+            a[k] = d->k1[r][k] - kc;
+            b[k] = 2.0 * ks;
+            cc[k] = d->k1[r][k] + kc;
+        }
+        sc = g6_row_scale(a, 12);
+        if (g6_row_scale(b, 12) < sc) sc = g6_row_scale(b, 12);
+        if (g6_row_scale(cc, 12) < sc) sc = g6_row_scale(cc, 12);
+        for (k = 0; k < 12; ++k) {
+            a[k] *= sc;
+            b[k] *= sc;
+            cc[k] *= sc;
+        }
+    }
+}
+
+/* The roots x (real ones in xr, at most 16) of the hidden t3 = phi + 2 atan x by the deflated 16 x 16
+ * eigenproblem, phi chosen as the Python does (the first of g6_phis whose K has rcond > G6_RCOND_GOOD, else the
+ * best). Returns the number of real roots, or -1 when the structure is not met (the caller takes the 24 x 24 path)
+ * or the eigenvalues fail. */
+static int g6_deflated_roots(double t6[6][27], double W[G6_NEQ][G6_NEQ], double *phi_out, double *xr)
+{
+    static const int blocks[4] = {0, 3, 8, 11};
+    double z[12 * 8], ab[12 * 4], v[6 * 8], comp[6 * 2], K[144], L0[96], B4[48], C4[48], lu[144], best_lu[144];
+    double bL0[96], bB4[48], bC4[48], rhs[12 * 16], S[256], wr[16], wi[16], work[WK_EIG_WORK(16)];
+    double best = -1.0;
+    g6_deflated d;
+    int piv[12], best_piv[12], e, j, k, i, n = 0;
+    for (e = 0; e < 6; ++e) /* [[X, Y], [-Y, X]], X + i Y = N W4 */
+        for (j = 0; j < 4; ++j) {
+            const double x = W[8 + e][blocks[j]], y = W[8 + e][blocks[j] + 1];
+            z[8 * e + j] = x;
+            z[8 * e + 4 + j] = y;
+            z[8 * (6 + e) + j] = -y;
+            z[8 * (6 + e) + 4 + j] = x;
+        }
+    if (!g6_complement(12, 8, z, 8, ab)) return -1;
+    for (e = 0; e < 6; ++e)
+        for (j = 0; j < 4; ++j) {
+            v[8 * e + j] = ab[4 * e + j];
+            v[8 * e + 4 + j] = ab[4 * (6 + e) + j];
+        }
+    if (!g6_complement(6, 8, v, 4, comp)) return -1;
+    g6_deflated_parts(t6, ab, comp, &d);
+    for (k = 0; k < G6_NPHI; ++k) {
+        double rc;
+        g6_deflated_at(&d, g6_phis[k], K, L0, B4, C4);
+        memcpy(lu, K, sizeof lu);
+        rc = g6_lu(12, lu, piv) ? g6_rcond(K, lu, piv) : 0.0;
+        if (rc > best) {
+            best = rc;
+            *phi_out = g6_phis[k];
+            memcpy(best_lu, lu, sizeof lu);
+            memcpy(best_piv, piv, sizeof piv);
+            memcpy(bL0, L0, sizeof L0);
+            memcpy(bB4, B4, sizeof B4);
+            memcpy(bC4, C4, sizeof C4);
+        }
+        if (rc > G6_RCOND_GOOD) break;
+    }
+    if (!(best > 64.0 * 12.0 * 2.220446049250313e-16)) return -1;
+    /* x m = K^-1 [-L0 m; s] (the top 12 rows of S), x s = -C4 m - B4 x m (the last 4) */
+    memset(rhs, 0, sizeof rhs);
+    for (i = 0; i < 8; ++i)
+        for (j = 0; j < 12; ++j) rhs[16 * i + j] = -bL0[12 * i + j];
+    for (i = 0; i < 4; ++i) rhs[16 * (8 + i) + 12 + i] = 1.0;
+    g6_lu_solve(12, best_lu, best_piv, rhs, 16);
+    memcpy(S, rhs, sizeof rhs);
+    for (i = 0; i < 4; ++i)
+        for (j = 0; j < 16; ++j) {
+            double s = j < 12 ? -bC4[12 * i + j] : 0.0;
+            for (k = 0; k < 12; ++k) s -= bB4[12 * i + k] * rhs[16 * k + j];
+            S[16 * (12 + i) + j] = s;
+        }
+    if (wk_eig_real(16, S, wr, wi, work) != WK_EIG_OK) return -1;
+    for (k = 0; k < 16; ++k) /* a near-real pair once, at its real part */
+        if (wi[k] >= 0.0 && fabs(wi[k]) <= G6_REAL_TOL * (1.0 + fabs(wr[k]))) xr[n++] = wr[k];
+    return n;
+}
+
 void wk_g6_z_frames(const double *axes, const double *points, double *frames)
 {
     int i, k;
@@ -553,12 +919,37 @@ static void g6_refine(const double *frames, const double *home, const double *po
     }
 }
 
+/* The candidates of one root x (hidden = phi + 2 atan x, or phi + pi when infinite): the monomial vectors in M(x)'s
+ * null space, the other two angles from them, t1, t2, t6 from the loop, refined on the chain; appended at row n of
+ * q (up to max_out). Returns the new count. */
+static int g6_emit(const double *A, const double *B, const double *C, double x, int infinite, double phi, int hidden,
+                   double links[6][16], double P[G6_NEQ][27], const g6_qr *f, const int *joints, double sign,
+                   const double *frames, const double *home, const double *pose, double *q, int n, int max_out)
+{
+    double M[144], m[G6_MAXK][12], angles[3];
+    const int a = hidden == 0 ? 1 : 0, b = hidden == 2 ? 1 : 2;
+    int i, c, count;
+    for (i = 0; i < 144; ++i) M[i] = infinite ? A[i] : (A[i] * x + B[i]) * x + C[i];
+    count = g6_monomial_vectors(M, m);
+    for (c = 0; c < count && n < max_out; ++c) {
+        double t[6];
+        angles[hidden] = phi + (infinite ? G6_PI : 2.0 * atan(x));
+        angles[a] = g6_half_angle(m[c], 0);
+        angles[b] = g6_half_angle(m[c], 1);
+        g6_complete(angles, links, P, f, t);
+        for (i = 0; i < 6; ++i) q[6 * n + joints[i]] = sign * t[i];
+        g6_refine(frames, home, pose, q + 6 * n);
+        ++n;
+    }
+    return n;
+}
+
 int wk_g6_solve(const double *frames, const double *home, const double *pose, int shift, int reverse, int hidden,
                 double *q, int max_out)
 {
     double loop[6][16], links[6][16], P[G6_NEQ][27], Q[G6_NEQ][G6_NY], r[G6_NEQ], t6[6][27], W[G6_NEQ][G6_NEQ];
     double A[144], B[144], C[144], zinv[16], pinv[16];
-    int joints[6], i, j, e, n = 0, k, a, b, c, hv, uv, vv, root;
+    int joints[6], i, j, e, n = 0, k, root;
     double sign;
     g6_qr f;
     wk_qep_result qep;
@@ -600,52 +991,24 @@ int wk_g6_solve(const double *frames, const double *home, const double *pose, in
             for (i = 0; i < G6_NEQ; ++i) s += W[8 + e][i] * P[i][k];
             t6[e][k] = s;
         }
-    /* (1 + x^2) times the equations with the hidden angle 2 atan x, over u^i v^j of the other two */
-    memset(A, 0, sizeof A);
-    memset(B, 0, sizeof B);
-    memset(C, 0, sizeof C);
-    for (e = 0; e < 6; ++e)
-        for (i = 0; i < 3; ++i)
-            for (j = 0; j < 3; ++j) {
-                double g[3] = {0.0, 0.0, 0.0};
-                for (hv = 0; hv < 3; ++hv)
-                    for (uv = 0; uv < 3; ++uv)
-                        for (vv = 0; vv < 3; ++vv) {
-                            int idx[3];
-                            double w;
-                            idx[hidden] = hv;
-                            idx[hidden == 0 ? 1 : 0] = uv;
-                            idx[hidden == 2 ? 1 : 2] = vv;
-                            w = t6[e][9 * idx[0] + 3 * idx[1] + idx[2]] * g6_half[uv][i] * g6_half[vv][j];
-                            for (k = 0; k < 3; ++k) g[k] += g6_half[hv][k] * w;
-                        }
-                for (k = 0; k < 2; ++k) {
-                    const int row = e + 6 * k, col = 3 * (i + k) + j;
-                    C[12 * row + col] = g[0];
-                    B[12 * row + col] = g[1];
-                    A[12 * row + col] = g[2];
-                }
-            }
+    if (hidden == 0) { /* the (1 + x^2)^4 deflated: a 16 x 16 eigenproblem */
+        double t6r[6][27], xr[16], phi = 0.0;
+        const int nr = g6_deflated_roots(t6, W, &phi, xr);
+        if (nr >= 0) {
+            g6_rotate_hidden(t6, phi, t6r);
+            g6_quadratic(t6r, 0, A, B, C);
+            for (root = 0; root < nr; ++root)
+                n = g6_emit(A, B, C, xr[root], 0, phi, hidden, links, P, &f, joints, sign, frames, home, pose, q,
+                            n, max_out);
+            return n;
+        }
+    }
+    g6_quadratic(t6, hidden, A, B, C);
     if (wk_generalized_quadratic_eig(12, A, B, C, 0.0, &qep) != WK_EIG_OK) return -1;
     for (root = 0; root < qep.n_real + qep.n_infinite; ++root) {
-        double M[144], m[G6_MAXK][12], angles[3];
         const int infinite = root >= qep.n_real;
-        const double x = infinite ? 0.0 : qep.real[root];
-        int count;
-        for (i = 0; i < 144; ++i) M[i] = infinite ? A[i] : (A[i] * x + B[i]) * x + C[i];
-        count = g6_monomial_vectors(M, m);
-        for (c = 0; c < count && n < max_out; ++c) {
-            double t[6];
-            a = hidden == 0 ? 1 : 0;
-            b = hidden == 2 ? 1 : 2;
-            angles[hidden] = infinite ? G6_PI : 2.0 * atan(x);
-            angles[a] = g6_half_angle(m[c], 0);
-            angles[b] = g6_half_angle(m[c], 1);
-            g6_complete(angles, links, P, &f, t);
-            for (i = 0; i < 6; ++i) q[6 * n + joints[i]] = sign * t[i];
-            g6_refine(frames, home, pose, q + 6 * n);
-            ++n;
-        }
+        n = g6_emit(A, B, C, infinite ? 0.0 : qep.real[root], infinite, 0.0, hidden, links, P, &f, joints, sign,
+                    frames, home, pose, q, n, max_out);
     }
     return n;
 }

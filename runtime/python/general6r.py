@@ -25,6 +25,24 @@ M(x) the other two, the least-squares Y the angles t1, t2 (its entries include (
 loop what turns t6. Each candidate is refined by Newton steps on the chain (g6_refine) and verified by the
 caller.
 
+When the hidden angle is t3 (the one next to the eliminated pair), det(A x^2 + B x + C) has degree 24 but only 16
+roots are solutions: it has the factor (1 + x^2)^4, which is deflated before the eigenproblem (a 16 x 16 one
+instead of 24 x 24, ~3x cheaper). Why: t3 enters the left side only as Rz(t3) applied to vectors of t4, t5 (and
+not at all in the scalars p.p, p.l), and with z = e^(i t3), c3 = (z + 1/z) / 2 and s3 = (z - 1/z) / (2i), the
+1/z part of Rz(t3) is (1/2) w conj(w)^T with w = (1, i, 0). So the 1/z part of the 14 equations lies in the span of
+the four columns W4 (w placed in the rows of l, p, p x l and (p.p) l - 2 (p.l) p), and after elimination the six
+equations' 1/z part, N W4 alpha(t4, t5), has rank 4: two complex combinations mu (mu^T N W4 = 0) of the six
+equations have no 1/z part, mu^T G = mu0 + kappa z. As z = (1 + i x) / (1 - i x), (1 - i x) mu^T G =
+(1 - i x) mu0 + (1 + i x) kappa =: L is LINEAR in x, and for real x, with mu = a + i b,
+(1 + x^2) (a^T G, b^T G) = [[1, -x], [x, 1]] (Re L, Im L): each of the two mu (and each again for the u
+multiples) trades a quadratic pair of rows for a linear pair, dropping one factor (1 + x^2) of the determinant.
+The eight linear rows (Re L of the four real vectors (a; b) of the left null space of [[X, Y], [-Y, X]],
+X + i Y = N W4) and the four quadratic rows of the two equations orthogonal to every a and b give a 12 x 12
+polynomial of determinant degree 16, linearised with s = x A4 m (A4 the quadratic rows' x^2 coefficient):
+x [m; s] = S [m; s], S 16 x 16 (_g6_deflated_matrix). tests/test_general6r.py checks that its eigenvalues are the
+24 x 24 companion's other than +-i. Where the structure is not met to rounding (G of rank < 4: a real combination
+of the six equations free of t3) the 24 x 24 companion is used.
+
 The source generated Python modules inline (from the marker line on; derive/runtime_files.py), linted and tested
 here as it is (tests/test_general6r.py).
 """
@@ -47,6 +65,9 @@ G6_REFINE_STEPS = 3  # Newton steps per candidate (quadratic: 1e-9 -> 1e-18 -> r
 G6_NULL_TOL = 1e-8  # singular values of M(x) up to this x the largest span its null space
 G6_REAL_TOL = 1e-6  # |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding (verification decides)
 _G6_PHIS = (0.0, 2.0 * math.pi / 3.0, -2.0 * math.pi / 3.0, math.pi / 2.0)
+_G6_BLOCKS = (0, 3, 8, 11)  # the x rows of the 14's vectors l, p, p x l, (p.p) l - 2 (p.l) p (y follows)
+G6_RCOND_GOOD = 1e-4  # the deflated K this well conditioned (equilibrated rows): no further origin phi tried
+G6_DEFLATE_TOL = 1e-8  # sigma_min / sigma_max of [[X, Y], [-Y, X]] below this: N W4 rank < 4, no deflation
 
 
 def g6_rz(t: float) -> np.ndarray:
@@ -145,29 +166,101 @@ def _g6_with_constant(P, r):
     return out
 
 
+def _g6_trig_rows(f):
+    """The trig polynomial f (3 x 3 over (1, c, s) of the two non-hidden angles) times (1 + u^2)(1 + v^2), as a row
+    over the 12 monomials u^i v^j, and its u multiple."""
+    g = np.einsum("ai,bj,ab->ij", _G6_HALF, _G6_HALF, f).ravel()
+    row, shifted = np.zeros(12), np.zeros(12)
+    row[:9], shifted[3:] = g, g
+    return row, shifted
+
+
+def g6_deflation_basis(n):
+    """(ab, comp) for the six equations' rows n (6 x 14, the left null space of Q): ab (12 x 4) the real vectors
+    (a; b) with (a + i b)^T n W4 = 0, comp (6 x 2) the equations orthogonal to every a and b; None where n W4 has
+    rank < 4 (see the module docstring)."""
+    x, y = n[:, _G6_BLOCKS], n[:, [b + 1 for b in _G6_BLOCKS]]
+    u, sv, _ = np.linalg.svd(np.block([[x, y], [-y, x]]))
+    if not sv[-1] > G6_DEFLATE_TOL * sv[0]:
+        return None
+    ab = u[:, 8:]
+    ua, sa, _ = np.linalg.svd(np.hstack([ab[:6], ab[6:]]))
+    if not sa[3] > G6_DEFLATE_TOL * sa[0]:  # the a's and b's span less than 4 real dimensions
+        return None
+    return ab, ua[:, 4:]
+
+
+def _g6_deflated_matrix(t6, basis, phi):
+    """(S, rcond of K): the 16 x 16 matrix whose eigenvalues are the roots x of hidden = t3 = phi + 2 atan x other
+    than +-i (the module docstring), and the reciprocal condition of its leading coefficient K."""
+    ab, comp = basis
+    c, s = math.cos(phi), math.sin(phi)
+    g0, gc, gs = t6[:, 0], t6[:, 1] * c + t6[:, 2] * s, t6[:, 2] * c - t6[:, 1] * s
+    l0, l1 = [], []
+    for a, b in zip(ab[:6].T, ab[6:].T, strict=True):  # Re L = (a g0 + kr) + x (b g0 - ki), 2 k = mu (gc - i gs)
+        ag0, bg0, agc, ags, bgc, bgs = (np.tensordot(v, w, 1) for v, w in
+                                        ((a, g0), (b, g0), (a, gc), (a, gs), (b, gc), (b, gs)))
+        l0 += _g6_trig_rows(ag0 + 0.5 * (agc + bgs))
+        l1 += _g6_trig_rows(bg0 - 0.5 * (bgc - ags))
+    t2 = np.zeros_like(t6)
+    t2[:2] = np.einsum("ek,ehab->khab", comp, t6)
+    a2, b2, c2 = (m[[0, 1, 6, 7]] for m in _g6_matrix_polynomial(t2, 0, phi))  # the two and their u multiples
+    l0, k = np.array(l0), np.vstack([np.array(l1), a2])
+    # each row with its partners equilibrated by a power of two (the C's g6_deflated_at): K's conditioning then
+    # measures the problem, not the rows' scales
+    lin = np.maximum(np.max(np.abs(l0), axis=1), np.max(np.abs(k[:8]), axis=1))
+    quad = np.max(np.abs(np.hstack([a2, b2, c2])), axis=1)
+    scale = np.exp2(-np.frexp(np.where(np.concatenate([lin, quad]) > 0.0, np.concatenate([lin, quad]), 1.0))[1])
+    l0, k = l0 * scale[:8, None], k * scale[:, None]
+    b2, c2 = b2 * scale[8:, None], c2 * scale[8:, None]
+    sv = np.linalg.svd(k, compute_uv=False)
+    rc = sv[-1] / sv[0] if sv[0] > 0.0 else 0.0
+    if not rc > 0.0:
+        return None, 0.0
+    rhs = np.zeros((12, 16))
+    rhs[:8, :12] = -l0
+    rhs[8:, 12:] = np.eye(4)
+    d = np.linalg.solve(k, rhs)  # x m = K^-1 [-L0 m; s]
+    return np.vstack([d, np.hstack([-c2, np.zeros((4, 4))]) - b2 @ d]), rc  # x s = -C4 m - B4 x m
+
+
+def _g6_roots(t6, n, hidden):
+    """(eigenvalues x, phi, A, B, C): the roots of det(A x^2 + B x + C) for hidden = phi + 2 atan x, phi chosen so
+    that the leading coefficient is well conditioned (x = infinity, phi + pi, far from a root); deflated to 16
+    for hidden t3."""
+    basis = g6_deflation_basis(n) if hidden == 0 else None
+    best = None
+    for phi in _G6_PHIS:
+        if basis is not None:
+            mat, rc = _g6_deflated_matrix(t6, basis, phi)
+        else:
+            a = _g6_matrix_polynomial(t6, hidden, phi)[0]
+            sv = np.linalg.svd(a, compute_uv=False)
+            rc, mat = (sv[-1] / sv[0] if sv[0] > 0.0 else 0.0), None
+        if best is None or rc > best[0]:
+            best = (rc, phi, mat)
+        if rc > (G6_RCOND_GOOD if basis is not None else 1e-3):  # the leading coefficient well conditioned
+            break
+    _, phi, mat = best
+    a, b, c = _g6_matrix_polynomial(t6, hidden, phi)
+    if mat is None:
+        ainv = np.linalg.inv(a)
+        mat = np.zeros((24, 24))
+        mat[:12, 12:] = np.eye(12)
+        mat[12:, :12] = -ainv @ c
+        mat[12:, 12:] = -ainv @ b
+    return np.linalg.eigvals(mat), phi, a, b, c
+
+
 def g6_candidates(links, hidden=0):
     """Loop angles (t1..t6) of every real root of the eliminated system for the loop's links."""
     P, Q, r = g6_equations(links)
-    u = np.linalg.svd(Q)[0]
-    t6 = np.einsum("fe,eabc->fabc", u[:, 8:].T, _g6_with_constant(P, r))
-    best = None
-    for phi in _G6_PHIS:
-        a, b, c = _g6_matrix_polynomial(t6, hidden, phi)
-        sv = np.linalg.svd(a, compute_uv=False)
-        rc = sv[-1] / sv[0] if sv[0] > 0.0 else 0.0
-        if best is None or rc > best[0]:
-            best = (rc, phi, a, b, c)
-        if rc > 1e-3:  # the hidden angle phi + pi (x = infinity) is far from a root: A well conditioned
-            break
-    _, phi, a, b, c = best
-    ainv = np.linalg.inv(a)
-    comp = np.zeros((24, 24))
-    comp[:12, 12:] = np.eye(12)
-    comp[12:, :12] = -ainv @ c
-    comp[12:, 12:] = -ainv @ b
+    n = np.linalg.svd(Q)[0][:, 8:].T
+    t6 = np.einsum("fe,eabc->fabc", n, _g6_with_constant(P, r))
+    roots, phi, a, b, c = _g6_roots(t6, n, hidden)
     others = [k for k in range(3) if k != hidden]
     out = []
-    for x in np.linalg.eigvals(comp):
+    for x in roots:
         if abs(x.imag) > G6_REAL_TOL * (1.0 + abs(x)):
             continue
         x = float(x.real)
