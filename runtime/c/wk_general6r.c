@@ -16,7 +16,6 @@
 #define G6_PI 3.14159265358979323846
 #define G6_SQRT3 1.73205080756887729353
 
-static const double g6_grid[3] = {0.0, 2.0 * G6_PI / 3.0, 4.0 * G6_PI / 3.0};
 /* interpolation: the (1, c, s) coefficients of f(t) = c0 + c1 cos t + c2 sin t from f at the grid */
 static const double g6_binv[3][3] = { {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0},
                                      {2.0 / 3.0, -1.0 / 3.0, -1.0 / 3.0},
@@ -62,10 +61,12 @@ static void g6_rz(double a, double *o)
     o[15] = 1.0;
 }
 
-/* the 14 functions of the line of t's z axis: d, p, p.p, p.d, p x d, (p.p) d - 2 (p.d) p */
-static void g6_fourteen(const double *t, double *e)
+/* cos and sin of the interpolation grid 0, 2 pi / 3, 4 pi / 3 */
+static const double g6_grid_cs[3][2] = { {1.0, 0.0}, {-0.5, 0.5 * G6_SQRT3}, {-0.5, -0.5 * G6_SQRT3} };
+
+/* the 14 functions of a line (direction d, point p): d, p, p.p, p.d, p x d, (p.p) d - 2 (p.d) p */
+static void g6_fourteen(const double *d, const double *p, double *e)
 {
-    const double d[3] = {t[2], t[6], t[10]}, p[3] = {t[3], t[7], t[11]};
     const double pp = p[0] * p[0] + p[1] * p[1] + p[2] * p[2], pd = p[0] * d[0] + p[1] * d[1] + p[2] * d[2];
     int i;
     for (i = 0; i < 3; ++i) {
@@ -80,62 +81,97 @@ static void g6_fourteen(const double *t, double *e)
     e[10] = p[0] * d[1] - p[1] * d[0];
 }
 
-/* P[e][9 m3 + 3 m4 + m5] (the constant term already minus r), Q[e][k], r[e] of the labelled loop */
+/* a line (d, p: 6 doubles) moved by the rigid 4 x 4 t, or turned by Rz of (c, s) (sign -1: Rz(-angle)) */
+static void g6_line_move(const double *t, const double *l, double *o)
+{
+    int i;
+    for (i = 0; i < 3; ++i) {
+        o[i] = t[4 * i] * l[0] + t[4 * i + 1] * l[1] + t[4 * i + 2] * l[2];
+        o[3 + i] = t[4 * i] * l[3] + t[4 * i + 1] * l[4] + t[4 * i + 2] * l[5] + t[4 * i + 3];
+    }
+}
+
+static void g6_line_turn(const double *cs, double sign, const double *l, double *o)
+{
+    const double c = cs[0], s = sign * cs[1];
+    int k;
+    for (k = 0; k < 6; k += 3) {
+        const double x = l[k], y = l[k + 1];
+        o[k] = c * x - s * y;
+        o[k + 1] = s * x + c * y;
+        o[k + 2] = l[k + 2];
+    }
+}
+
+/* P[e][9 m3 + 3 m4 + m5] (the constant term already minus r), Q[e][k], r[e] of the labelled loop: the line of
+ * joint 6 from both sides at the grid (a tree of line moves: 3 + 9 + 27 on the left, 3 + 9 on the right), then
+ * the interpolation one axis at a time (separable: 3 x 14 x 27 x 3 products instead of 14 x 27 x 27) */
 static void g6_equations(double links[6][16], double P[G6_NEQ][27], double Q[G6_NEQ][G6_NY], double *r)
 {
     static const int y_index[G6_NY][2] = { {2, 2}, {2, 1}, {1, 2}, {1, 1}, {2, 0}, {1, 0}, {0, 2}, {0, 1} };
-    double vals[3][3][3][G6_NEQ], rvals[3][3][G6_NEQ], R[G6_NEQ][3][3], t[16], ta[16], tb[16], rot[16];
-    double k1i[16], k2i[16], k6i[16];
-    int a, b, c, e, m3, m4, m5;
-    for (a = 0; a < 3; ++a) {
-        g6_rz(g6_grid[a], rot);
-        g6_mul(rot, links[2], ta);
-        for (b = 0; b < 3; ++b) {
-            g6_rz(g6_grid[b], rot);
-            g6_mul(ta, rot, tb);
-            g6_mul(tb, links[3], tb);
-            for (c = 0; c < 3; ++c) {
-                g6_rz(g6_grid[c], rot);
-                g6_mul(tb, rot, t);
-                g6_mul(t, links[4], t);
-                g6_fourteen(t, vals[a][b][c]);
-            }
-        }
+    double vals[27][G6_NEQ], tmp[27][G6_NEQ], rvals[9][G6_NEQ], rtmp[9][G6_NEQ], R[G6_NEQ][9];
+    double l0[6], lc[3][6], lb[9][6], la[6], t[6], k1i[16], k2i[16], k6i[16], zline[6] = {0, 0, 1, 0, 0, 0};
+    int a, b, c, e, m, i;
+    g6_line_move(links[4], zline, l0);
+    for (c = 0; c < 3; ++c) {
+        g6_line_turn(g6_grid_cs[c], 1.0, l0, t);
+        g6_line_move(links[3], t, lc[c]);
     }
-    for (e = 0; e < G6_NEQ; ++e)
-        for (m3 = 0; m3 < 3; ++m3)
-            for (m4 = 0; m4 < 3; ++m4)
-                for (m5 = 0; m5 < 3; ++m5) {
-                    double s = 0.0;
-                    for (a = 0; a < 3; ++a)
-                        for (b = 0; b < 3; ++b)
-                            for (c = 0; c < 3; ++c)
-                                s += g6_binv[m3][a] * g6_binv[m4][b] * g6_binv[m5][c] * vals[a][b][c][e];
-                    P[e][9 * m3 + 3 * m4 + m5] = s;
-                }
+    for (b = 0; b < 3; ++b)
+        for (c = 0; c < 3; ++c) {
+            g6_line_turn(g6_grid_cs[b], 1.0, lc[c], t);
+            g6_line_move(links[2], t, lb[3 * b + c]);
+        }
+    for (a = 0; a < 3; ++a)
+        for (i = 0; i < 9; ++i) {
+            g6_line_turn(g6_grid_cs[a], 1.0, lb[i], la);
+            g6_fourteen(la, la + 3, vals[9 * a + i]);
+        }
+    /* interpolation along c, then b, then a: vals[9 a + 3 b + c] -> P[e][9 m3 + 3 m4 + m5] */
+    for (a = 0; a < 9; ++a)
+        for (m = 0; m < 3; ++m)
+            for (e = 0; e < G6_NEQ; ++e)
+                tmp[3 * a + m][e] = g6_binv[m][0] * vals[3 * a][e] + g6_binv[m][1] * vals[3 * a + 1][e] +
+                                    g6_binv[m][2] * vals[3 * a + 2][e];
+    for (a = 0; a < 3; ++a)
+        for (m = 0; m < 3; ++m)
+            for (c = 0; c < 3; ++c)
+                for (e = 0; e < G6_NEQ; ++e)
+                    vals[9 * a + 3 * m + c][e] = g6_binv[m][0] * tmp[9 * a + c][e] +
+                                                 g6_binv[m][1] * tmp[9 * a + 3 + c][e] +
+                                                 g6_binv[m][2] * tmp[9 * a + 6 + c][e];
+    for (m = 0; m < 3; ++m)
+        for (i = 0; i < 9; ++i)
+            for (e = 0; e < G6_NEQ; ++e)
+                P[e][9 * m + i] = g6_binv[m][0] * vals[i][e] + g6_binv[m][1] * vals[9 + i][e] +
+                                  g6_binv[m][2] * vals[18 + i][e];
+    /* the right side K2^-1 Rz(-t2) K1^-1 Rz(-t1) K6^-1 (e_z, o) at t1 = grid a, t2 = grid b */
     g6_inverse(links[0], k1i);
     g6_inverse(links[1], k2i);
     g6_inverse(links[5], k6i);
-    for (a = 0; a < 3; ++a)
+    g6_line_move(k6i, zline, l0);
+    for (a = 0; a < 3; ++a) {
+        g6_line_turn(g6_grid_cs[a], -1.0, l0, t);
+        g6_line_move(k1i, t, lc[a]);
         for (b = 0; b < 3; ++b) {
-            g6_rz(-g6_grid[b], rot);
-            g6_mul(k2i, rot, t);
-            g6_mul(t, k1i, t);
-            g6_rz(-g6_grid[a], rot);
-            g6_mul(t, rot, t);
-            g6_mul(t, k6i, t);
-            g6_fourteen(t, rvals[a][b]);
+            g6_line_turn(g6_grid_cs[b], -1.0, lc[a], t);
+            g6_line_move(k2i, t, la);
+            g6_fourteen(la, la + 3, rvals[3 * a + b]);
         }
+    }
+    for (a = 0; a < 3; ++a)
+        for (m = 0; m < 3; ++m)
+            for (e = 0; e < G6_NEQ; ++e)
+                rtmp[3 * a + m][e] = g6_binv[m][0] * rvals[3 * a][e] + g6_binv[m][1] * rvals[3 * a + 1][e] +
+                                     g6_binv[m][2] * rvals[3 * a + 2][e];
+    for (m = 0; m < 3; ++m)
+        for (i = 0; i < 3; ++i)
+            for (e = 0; e < G6_NEQ; ++e)
+                R[e][3 * m + i] = g6_binv[m][0] * rtmp[i][e] + g6_binv[m][1] * rtmp[3 + i][e] +
+                                  g6_binv[m][2] * rtmp[6 + i][e];
     for (e = 0; e < G6_NEQ; ++e) {
-        for (m3 = 0; m3 < 3; ++m3)
-            for (m4 = 0; m4 < 3; ++m4) {
-                double s = 0.0;
-                for (a = 0; a < 3; ++a)
-                    for (b = 0; b < 3; ++b) s += g6_binv[m3][a] * g6_binv[m4][b] * rvals[a][b][e];
-                R[e][m3][m4] = s;
-            }
-        for (a = 0; a < G6_NY; ++a) Q[e][a] = R[e][y_index[a][0]][y_index[a][1]];
-        r[e] = R[e][0][0];
+        for (a = 0; a < G6_NY; ++a) Q[e][a] = R[e][3 * y_index[a][0] + y_index[a][1]];
+        r[e] = R[e][0];
         P[e][0] -= r[e];
     }
 }
@@ -818,23 +854,45 @@ static void g6_complete(const double *angles, double links[6][16], double P[G6_N
     t[5] = atan2(acc[4], acc[0]);
 }
 
-/* prod Z_i Rz(q_i) Z_i^-1 . home (t) and the geometric Jacobian (6 x 6 row-major, linear velocity first) */
+/* prod Z_i Rz(q_i) Z_i^-1 . home (t) and the geometric Jacobian (6 x 6 row-major, linear velocity first). Each
+ * Z Rz(q) Z^-1 is the turn about the line (axis a, point p) = (z column, origin) of Z: R = c I + s [a]x +
+ * (1 - c) a a^T, translation p - R p (Rodrigues; a third of the 4 x 4 products' cost) */
 static void g6_fk(const double *frames, const double *home, const double *q, double *t, double *jac)
 {
-    double acc[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, m[16], zi[16], ax[6][3], pt[6][3];
-    int i, r;
+    double R[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, tr[3] = {0, 0, 0}, ax[6][3], pt[6][3], acc[16];
+    int i, r, k;
     for (i = 0; i < 6; ++i) {
         const double *z = frames + 16 * i;
+        const double a[3] = {z[2], z[6], z[10]}, p[3] = {z[3], z[7], z[11]};
+        const double c = cos(q[i]), s = sin(q[i]), v = 1.0 - c;
+        double E[9], et[3], R2[9];
         for (r = 0; r < 3; ++r) {
-            ax[i][r] = acc[4 * r] * z[2] + acc[4 * r + 1] * z[6] + acc[4 * r + 2] * z[10];
-            pt[i][r] = acc[4 * r] * z[3] + acc[4 * r + 1] * z[7] + acc[4 * r + 2] * z[11] + acc[4 * r + 3];
+            ax[i][r] = R[3 * r] * a[0] + R[3 * r + 1] * a[1] + R[3 * r + 2] * a[2];
+            pt[i][r] = R[3 * r] * p[0] + R[3 * r + 1] * p[1] + R[3 * r + 2] * p[2] + tr[r];
         }
-        g6_mul(acc, z, acc);
-        g6_rz(q[i], m);
-        g6_mul(acc, m, acc);
-        g6_inverse(z, zi);
-        g6_mul(acc, zi, acc);
+        E[0] = c + v * a[0] * a[0];
+        E[1] = v * a[0] * a[1] - s * a[2];
+        E[2] = v * a[0] * a[2] + s * a[1];
+        E[3] = v * a[1] * a[0] + s * a[2];
+        E[4] = c + v * a[1] * a[1];
+        E[5] = v * a[1] * a[2] - s * a[0];
+        E[6] = v * a[2] * a[0] - s * a[1];
+        E[7] = v * a[2] * a[1] + s * a[0];
+        E[8] = c + v * a[2] * a[2];
+        for (r = 0; r < 3; ++r) et[r] = p[r] - (E[3 * r] * p[0] + E[3 * r + 1] * p[1] + E[3 * r + 2] * p[2]);
+        for (r = 0; r < 3; ++r) {
+            tr[r] += R[3 * r] * et[0] + R[3 * r + 1] * et[1] + R[3 * r + 2] * et[2];
+            for (k = 0; k < 3; ++k)
+                R2[3 * r + k] = R[3 * r] * E[k] + R[3 * r + 1] * E[3 + k] + R[3 * r + 2] * E[6 + k];
+        }
+        memcpy(R, R2, sizeof R);
     }
+    for (r = 0; r < 3; ++r) {
+        for (k = 0; k < 3; ++k) acc[4 * r + k] = R[3 * r + k];
+        acc[4 * r + 3] = tr[r];
+    }
+    acc[12] = acc[13] = acc[14] = 0.0;
+    acc[15] = 1.0;
     g6_mul(acc, home, t);
     for (i = 0; i < 6; ++i) {
         const double d[3] = {t[3] - pt[i][0], t[7] - pt[i][1], t[11] - pt[i][2]};
