@@ -20,8 +20,6 @@
 static const double g6_binv[3][3] = { {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0},
                                      {2.0 / 3.0, -1.0 / 3.0, -1.0 / 3.0},
                                      {0.0, 1.0 / G6_SQRT3, -1.0 / G6_SQRT3} };
-/* (1 + u^2) times 1, c, s as coefficients of u^0, u^1, u^2 */
-static const double g6_half[3][3] = { {1.0, 0.0, 1.0}, {1.0, 0.0, -1.0}, {0.0, 2.0, 0.0} };
 
 static void g6_mul(const double *a, const double *b, double *o)
 {
@@ -47,18 +45,6 @@ static void g6_inverse(const double *t, double *o)
     r[12] = r[13] = r[14] = 0.0;
     r[15] = 1.0;
     memcpy(o, r, sizeof r);
-}
-
-static void g6_rz(double a, double *o)
-{
-    const double c = cos(a), s = sin(a);
-    memset(o, 0, 16 * sizeof(double));
-    o[0] = c;
-    o[1] = -s;
-    o[4] = s;
-    o[5] = c;
-    o[10] = 1.0;
-    o[15] = 1.0;
 }
 
 /* cos and sin of the interpolation grid 0, 2 pi / 3, 4 pi / 3 */
@@ -494,20 +480,25 @@ static int g6_complement(int rows, int cols, const double *a, int rank, double *
     return 1;
 }
 
+/* (1 + u^2) (f0 + f1 c + f2 s) as coefficients of u^0, u^1, u^2 (c = (1 - u^2) / (1 + u^2), s = 2u / (1 + u^2)):
+ * for f = 1, c, s: (1, 0, 1), (1, 0, -1), (0, 2, 0) */
+#define G6_HALF(f, g, k, stride)                      \
+    do {                                              \
+        (g)[0] = (f)[0] + (f)[(stride)];              \
+        (g)[(k)] = 2.0 * (f)[2 * (stride)];           \
+        (g)[2 * (k)] = (f)[0] - (f)[(stride)];        \
+    } while (0)
+
 /* f (3 x 3 over (1, c, s) of the two non-hidden angles) times (1 + u^2)(1 + v^2) as a row over the 12 monomials
  * u^i v^j (index 3 i + j), and its u multiple */
 static void g6_trig_rows(const double *f, double *row, double *shifted)
 {
-    int i, j, a, b;
+    double h[9];
+    int i;
+    for (i = 0; i < 3; ++i) G6_HALF(f + i, h + i, 3, 3); /* along u: h[3 i + b] over u^i, (1, c, s)_v b */
     for (i = 0; i < 12; ++i) row[i] = shifted[i] = 0.0;
-    for (i = 0; i < 3; ++i)
-        for (j = 0; j < 3; ++j) {
-            double s = 0.0;
-            for (a = 0; a < 3; ++a)
-                for (b = 0; b < 3; ++b) s += f[3 * a + b] * g6_half[a][i] * g6_half[b][j];
-            row[3 * i + j] = s;
-            shifted[3 * (i + 1) + j] = s;
-        }
+    for (i = 0; i < 3; ++i) G6_HALF(h + 3 * i, row + 3 * i, 1, 1);
+    for (i = 0; i < 9; ++i) shifted[3 + i] = row[i];
 }
 
 /* The six equations' coefficients with the hidden angle's origin at phi: t3 = phi + t', (c3, s3) rotated into
@@ -528,30 +519,35 @@ static void g6_rotate_hidden(double t6[6][27], double phi, double out[6][27])
  * the monomials u^i v^j of the other two, the equations in rows 0..5 and their u multiples in 6..11 */
 static void g6_quadratic(double t6[6][27], int hidden, double *A, double *B, double *C)
 {
-    int e, i, j, k, hv, uv, vv;
+    static const int stride[3][3] = { {9, 3, 1}, {3, 9, 1}, {1, 9, 3} }; /* of hidden, u, v in the 27 */
+    const int sh = stride[hidden][0], su = stride[hidden][1], sv = stride[hidden][2];
+    int e, h, i, j;
     for (i = 0; i < 144; ++i) A[i] = B[i] = C[i] = 0.0;
     for (e = 0; e < 6; ++e)
-        for (i = 0; i < 3; ++i)
-            for (j = 0; j < 3; ++j) {
-                double g[3] = {0.0, 0.0, 0.0};
-                for (hv = 0; hv < 3; ++hv)
-                    for (uv = 0; uv < 3; ++uv)
-                        for (vv = 0; vv < 3; ++vv) {
-                            int idx[3];
-                            double w;
-                            idx[hidden] = hv;
-                            idx[hidden == 0 ? 1 : 0] = uv;
-                            idx[hidden == 2 ? 1 : 2] = vv;
-                            w = t6[e][9 * idx[0] + 3 * idx[1] + idx[2]] * g6_half[uv][i] * g6_half[vv][j];
-                            for (k = 0; k < 3; ++k) g[k] += g6_half[hv][k] * w;
-                        }
-                for (k = 0; k < 2; ++k) {
-                    const int row = e + 6 * k, col = 3 * (i + k) + j;
-                    C[12 * row + col] = g[0];
-                    B[12 * row + col] = g[1];
-                    A[12 * row + col] = g[2];
+        for (h = 0; h < 3; ++h) {
+            double f[9], row[12], shifted[12];
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) f[3 * i + j] = t6[e][sh * h + su * i + sv * j];
+            g6_trig_rows(f, row, shifted);
+            /* over x: (1 + x^2), (1 - x^2), 2 x for h = 1, c, s */
+            for (i = 0; i < 12; ++i) {
+                const double w = row[i], ws = shifted[i];
+                if (h == 0) {
+                    C[12 * e + i] += w;
+                    A[12 * e + i] += w;
+                    C[12 * (6 + e) + i] += ws;
+                    A[12 * (6 + e) + i] += ws;
+                } else if (h == 1) {
+                    C[12 * e + i] += w;
+                    A[12 * e + i] -= w;
+                    C[12 * (6 + e) + i] += ws;
+                    A[12 * (6 + e) + i] -= ws;
+                } else {
+                    B[12 * e + i] += 2.0 * w;
+                    B[12 * (6 + e) + i] += 2.0 * ws;
                 }
             }
+        }
 }
 
 /* LU with partial pivoting of the n x n a in place; 0 if a pivot is exactly zero */
@@ -820,18 +816,22 @@ void wk_g6_z_frames(const double *axes, const double *points, double *frames)
 static void g6_complete(const double *angles, double links[6][16], double P[G6_NEQ][27], const g6_qr *f,
                         double *t)
 {
-    double fb[3][3], lhs[G6_NEQ], y[G6_NY], acc[16], rot[16], inv[16], k6i[16];
-    int i, e, a, b, c;
+    double fb[3][3], lhs[G6_NEQ], y[G6_NY], cs[5][2], col[2][3], h;
+    int i, e, a, k;
     for (i = 0; i < 3; ++i) {
         fb[i][0] = 1.0;
         fb[i][1] = cos(angles[i]);
         fb[i][2] = sin(angles[i]);
     }
-    for (e = 0; e < G6_NEQ; ++e) {
+    for (e = 0; e < G6_NEQ; ++e) { /* P contracted with (1, c, s) of t5, then t4, then t3 */
         double s = 0.0;
-        for (a = 0; a < 3; ++a)
-            for (b = 0; b < 3; ++b)
-                for (c = 0; c < 3; ++c) s += P[e][9 * a + 3 * b + c] * fb[0][a] * fb[1][b] * fb[2][c];
+        for (a = 0; a < 3; ++a) {
+            double sb = 0.0;
+            for (k = 0; k < 3; ++k)
+                sb += fb[1][k] * (P[e][9 * a + 3 * k] + fb[2][1] * P[e][9 * a + 3 * k + 1] +
+                                  fb[2][2] * P[e][9 * a + 3 * k + 2]);
+            s += fb[0][a] * sb;
+        }
         lhs[e] = s;
     }
     g6_qr_solve(f, lhs, y);
@@ -840,18 +840,31 @@ static void g6_complete(const double *angles, double links[6][16], double P[G6_N
     t[2] = angles[0];
     t[3] = angles[1];
     t[4] = angles[2];
-    g6_rz(t[0], acc);
-    for (i = 0; i < 5; ++i) {
-        if (i > 0) {
-            g6_rz(t[i], rot);
-            g6_mul(acc, rot, acc);
-        }
-        g6_mul(acc, links[i], acc);
+    /* Rz(t6) = (Rz(t1) K1 ... Rz(t5) K5)^-1 K6^-1: its first column from the rotations alone, (R e_x, R e_y) . (the
+     * first row of K6's rotation), R the product's rotation (its first two columns, from the right) */
+    h = hypot(y[4], y[5]);
+    cs[0][0] = h > 0.0 ? y[5] / h : 1.0;
+    cs[0][1] = h > 0.0 ? y[4] / h : 0.0;
+    h = hypot(y[6], y[7]);
+    cs[1][0] = h > 0.0 ? y[7] / h : 1.0;
+    cs[1][1] = h > 0.0 ? y[6] / h : 0.0;
+    for (i = 0; i < 3; ++i) {
+        cs[2 + i][0] = fb[i][1];
+        cs[2 + i][1] = fb[i][2];
     }
-    g6_inverse(acc, inv);
-    g6_inverse(links[5], k6i);
-    g6_mul(inv, k6i, acc);
-    t[5] = atan2(acc[4], acc[0]);
+    for (k = 0; k < 2; ++k) {
+        double v[3] = {k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, 0.0}, w[3];
+        for (i = 4; i >= 0; --i) {
+            const double *m = links[i];
+            for (a = 0; a < 3; ++a) w[a] = m[4 * a] * v[0] + m[4 * a + 1] * v[1] + m[4 * a + 2] * v[2];
+            v[0] = cs[i][0] * w[0] - cs[i][1] * w[1];
+            v[1] = cs[i][1] * w[0] + cs[i][0] * w[1];
+            v[2] = w[2];
+        }
+        for (a = 0; a < 3; ++a) col[k][a] = v[a];
+    }
+    t[5] = atan2(col[1][0] * links[5][0] + col[1][1] * links[5][1] + col[1][2] * links[5][2],
+                 col[0][0] * links[5][0] + col[0][1] * links[5][1] + col[0][2] * links[5][2]);
 }
 
 /* prod Z_i Rz(q_i) Z_i^-1 . home (t) and the geometric Jacobian (6 x 6 row-major, linear velocity first). Each
