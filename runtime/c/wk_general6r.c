@@ -929,12 +929,17 @@ static double g6_pose_error(const double *t, const double *pose)
 
 /* Newton steps on the chain's pose error (Python's g6_refine): the eigenproblem leaves a root ~1e-9 off where
  * roots are close; a few steps bring it to rounding, so every caller verifies the same set */
+#define G6_REFINE_DONE 0x1p-50 /* ~4 eps: the pose error at rounding (relative to 1 + |p|_1) */
+
 static void g6_refine(const double *frames, const double *home, const double *pose, double *q)
 {
     double t[16], jac[36], err;
     int it, i, c;
+    /* rounding of the pose error: a few units of eps times the pose's size */
+    const double done = G6_REFINE_DONE * (1.0 + fabs(pose[3]) + fabs(pose[7]) + fabs(pose[11]));
     g6_fk(frames, home, q, t, jac);
     err = g6_pose_error(t, pose);
+    if (err <= done) return;
     for (it = 0; it < WK_G6_REFINE_STEPS; ++it) {
         double e[6], a[36], trial[6], t2[16], jac2[36], err2;
         int ok = 1;
@@ -987,6 +992,7 @@ static void g6_refine(const double *frames, const double *home, const double *po
         memcpy(t, t2, sizeof t2);
         memcpy(jac, jac2, sizeof jac2);
         err = err2;
+        if (err <= done) break; /* at rounding: a further step cannot improve (saves its FK) */
     }
 }
 

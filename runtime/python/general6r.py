@@ -62,6 +62,7 @@ _G6_BINV = np.linalg.inv(_G6_B)
 # (1 + u^2) times 1, c, s (c = (1 - u^2) / (1 + u^2), s = 2u / (1 + u^2)) as coefficients of u^0, u^1, u^2
 _G6_HALF = np.array([[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0]])
 G6_REFINE_STEPS = 3  # Newton steps per candidate (quadratic: 1e-9 -> 1e-18 -> rounding)
+G6_REFINE_DONE = 2.0**-50  # ~4 eps: the pose error at rounding (relative to 1 + |p|_1), where refinement stops
 G6_NULL_TOL = 1e-8  # singular values of M(x) up to this x the largest span its null space
 G6_REAL_TOL = 1e-6  # |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding (verification decides)
 _G6_PHIS = (0.0, 2.0 * math.pi / 3.0, -2.0 * math.pi / 3.0, math.pi / 2.0)
@@ -85,31 +86,28 @@ def g6_inverse(t: np.ndarray) -> np.ndarray:
 
 
 def g6_fourteen(d: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """The 14 functions of a line (direction d, point p): d, p, p.p, p.d, p x d, (p.p) d - 2 (p.d) p."""
-    pp, pd = p @ p, p @ d
-    return np.concatenate([d, p, [pp, pd], np.cross(p, d), pp * d - 2.0 * pd * p])
+    """The 14 functions of lines (directions d, points p: (..., 3)): d, p, p.p, p.d, p x d, (p.p) d - 2 (p.d) p."""
+    pp, pd = np.sum(p * p, axis=-1)[..., None], np.sum(p * d, axis=-1)[..., None]
+    return np.concatenate([d, p, pp, pd, np.cross(p, d), pp * d - 2.0 * pd * p], axis=-1)
+
+
+_G6_GRID_RZ = np.stack([g6_rz(g) for g in _G6_GRID])  # (3, 4, 4): Rz at the grid; transposed, Rz(-g)
 
 
 def g6_equations(links):
     """(P, Q, r) of the loop with links K1..K6 (4x4 each): P[e, a, b, c] the coefficient of the product of the
     a-th, b-th, c-th of (1, c, s) of t3, t4, t5 in equation e of the left side; the right side as Q Y + r, Y =
-    (s1 s2, s1 c2, c1 s2, c1 c2, s1, c1, s2, c2)."""
+    (s1 s2, s1 c2, c1 s2, c1 c2, s1, c1, s2, c2). The 27 (9) grid transforms at once (numpy broadcasting)."""
     k1, k2, k3, k4, k5, k6 = links
-    vals = np.zeros((3, 3, 3, 14))
-    for a, ga in enumerate(_G6_GRID):
-        ta = g6_rz(ga) @ k3
-        for b, gb in enumerate(_G6_GRID):
-            tb = ta @ g6_rz(gb) @ k4
-            for c, gc in enumerate(_G6_GRID):
-                t = tb @ g6_rz(gc) @ k5
-                vals[a, b, c] = g6_fourteen(t[:3, 2], t[:3, 3])
-    P = np.einsum("ma,nb,oc,abce->emno", _G6_BINV, _G6_BINV, _G6_BINV, vals)
+    rz, rzt = _G6_GRID_RZ, _G6_GRID_RZ.transpose(0, 2, 1)
+    ta = rz @ k3  # (a)
+    tb = (ta[:, None] @ rz[None]) @ k4  # (a, b)
+    t = (tb[:, :, None] @ rz[None, None]) @ k5  # (a, b, c)
+    vals = g6_fourteen(t[..., :3, 2], t[..., :3, 3])
+    P = np.einsum("ma,nb,oc,abce->emno", _G6_BINV, _G6_BINV, _G6_BINV, vals, optimize=True)
     k2i, k1i, k6i = g6_inverse(k2), g6_inverse(k1), g6_inverse(k6)
-    rvals = np.zeros((3, 3, 14))
-    for a, ga in enumerate(_G6_GRID):
-        for b, gb in enumerate(_G6_GRID):
-            t = k2i @ g6_rz(-gb) @ k1i @ g6_rz(-ga) @ k6i
-            rvals[a, b] = g6_fourteen(t[:3, 2], t[:3, 3])
+    t = ((k2i @ rzt) @ k1i)[None] @ (rzt @ k6i)[:, None]  # [a, b] = K2^-1 Rz(-b) K1^-1 Rz(-a) K6^-1
+    rvals = g6_fourteen(t[..., :3, 2], t[..., :3, 3])
     R = np.einsum("ma,nb,abe->emn", _G6_BINV, _G6_BINV, rvals)  # R[e, m1, m2] over (1, c, s) of t1 and of t2
     # Y = (s1 s2, s1 c2, c1 s2, c1 c2, s1, c1, s2, c2) in those indices (1 = 0, c = 1, s = 2)
     y_index = ((2, 2), (2, 1), (1, 2), (1, 1), (2, 0), (1, 0), (0, 2), (0, 1))
@@ -166,13 +164,13 @@ def _g6_with_constant(P, r):
     return out
 
 
-def _g6_trig_rows(f):
-    """The trig polynomial f (3 x 3 over (1, c, s) of the two non-hidden angles) times (1 + u^2)(1 + v^2), as a row
-    over the 12 monomials u^i v^j, and its u multiple."""
-    g = np.einsum("ai,bj,ab->ij", _G6_HALF, _G6_HALF, f).ravel()
-    row, shifted = np.zeros(12), np.zeros(12)
-    row[:9], shifted[3:] = g, g
-    return row, shifted
+def _g6_trig_rows_many(f):
+    """Trig polynomials f (k x 3 x 3 over (1, c, s) of the two non-hidden angles) times (1 + u^2)(1 + v^2), as rows
+    over the 12 monomials u^i v^j: the k rows, then their u multiples (2k x 12)."""
+    g = np.einsum("ai,bj,kab->kij", _G6_HALF, _G6_HALF, f).reshape(-1, 9)
+    out = np.zeros((2 * len(f), 12))
+    out[: len(f), :9], out[len(f):, 3:] = g, g
+    return out
 
 
 def g6_deflation_basis(n):
@@ -196,16 +194,16 @@ def _g6_deflated_matrix(t6, basis, phi):
     ab, comp = basis
     c, s = math.cos(phi), math.sin(phi)
     g0, gc, gs = t6[:, 0], t6[:, 1] * c + t6[:, 2] * s, t6[:, 2] * c - t6[:, 1] * s
-    l0, l1 = [], []
-    for a, b in zip(ab[:6].T, ab[6:].T, strict=True):  # Re L = (a g0 + kr) + x (b g0 - ki), 2 k = mu (gc - i gs)
-        ag0, bg0, agc, ags, bgc, bgs = (np.tensordot(v, w, 1) for v, w in
-                                        ((a, g0), (b, g0), (a, gc), (a, gs), (b, gc), (b, gs)))
-        l0 += _g6_trig_rows(ag0 + 0.5 * (agc + bgs))
-        l1 += _g6_trig_rows(bg0 - 0.5 * (bgc - ags))
+    a, b = ab[:6], ab[6:]  # (6, 4) each: column j one (a; b)
+    ag0, bg0, agc, ags, bgc, bgs = (np.einsum("ej,euv->juv", v, w) for v, w in
+                                    ((a, g0), (b, g0), (a, gc), (a, gs), (b, gc), (b, gs)))
+    # Re L = (a g0 + kr) + x (b g0 - ki), 2 kappa = mu (gc - i gs); rows then their u multiples
+    l0 = _g6_trig_rows_many(ag0 + 0.5 * (agc + bgs))
+    l1 = _g6_trig_rows_many(bg0 - 0.5 * (bgc - ags))
     t2 = np.zeros_like(t6)
     t2[:2] = np.einsum("ek,ehab->khab", comp, t6)
     a2, b2, c2 = (m[[0, 1, 6, 7]] for m in _g6_matrix_polynomial(t2, 0, phi))  # the two and their u multiples
-    l0, k = np.array(l0), np.vstack([np.array(l1), a2])
+    k = np.vstack([l1, a2])
     # each row with its partners equilibrated by a power of two (the C's g6_deflated_at): K's conditioning then
     # measures the problem, not the rows' scales
     lin = np.maximum(np.max(np.abs(l0), axis=1), np.max(np.abs(k[:8]), axis=1))
@@ -255,20 +253,22 @@ def _g6_roots(t6, n, hidden):
 def g6_candidates(links, hidden=0):
     """Loop angles (t1..t6) of every real root of the eliminated system for the loop's links."""
     P, Q, r = g6_equations(links)
-    n = np.linalg.svd(Q)[0][:, 8:].T
-    t6 = np.einsum("fe,eabc->fabc", n, _g6_with_constant(P, r))
+    u, sq, vt = np.linalg.svd(Q)
+    n, pc = u[:, 8:].T, _g6_with_constant(P, r)
+    t6 = np.einsum("fe,eabc->fabc", n, pc)
+    qpinv = (vt.T / sq) @ u[:, :8].T
     roots, phi, a, b, c = _g6_roots(t6, n, hidden)
     others = [k for k in range(3) if k != hidden]
     out = []
     for x in roots:
-        if abs(x.imag) > G6_REAL_TOL * (1.0 + abs(x)):
+        if x.imag < 0.0 or abs(x.imag) > G6_REAL_TOL * (1.0 + abs(x)):  # a near-real pair once, at its real part
             continue
         x = float(x.real)
         for v in _g6_monomial_vectors(a * x * x + b * x + c):
             angles = [0.0, 0.0, 0.0]
             angles[hidden] = phi + 2.0 * math.atan(x)
             angles[others[0]], angles[others[1]] = _g6_half_angle(v, 0), _g6_half_angle(v, 1)
-            out.append(_g6_complete(angles, links, P, Q, r))
+            out.append(_g6_complete(angles, links, pc, qpinv))
     return out
 
 
@@ -290,13 +290,14 @@ def _g6_monomial_vectors(m):
             if abs(vals[i].imag) <= G6_REAL_TOL * (1.0 + abs(vals[i]))]
 
 
-def _g6_complete(angles, links, P, Q, r):
-    """theta1, theta2 (least-squares Y of the 14 equations) and theta6 (what the loop leaves) for theta3..5."""
+def _g6_complete(angles, links, P, Q):
+    """theta1, theta2 (least-squares Y of the 14 equations) and theta6 (what the loop leaves) for theta3..5 (P with
+    its constant term, Q the pseudo-inverse of the equations' Q)."""
     k1, k2, k3, k4, k5, k6 = links
     t3, t4, t5 = angles
     f3, f4, f5 = (np.array([1.0, math.cos(t), math.sin(t)]) for t in angles)
-    lhs = np.einsum("eabc,a,b,c->e", _g6_with_constant(P, r), f3, f4, f5)
-    y = np.linalg.lstsq(Q, lhs, rcond=None)[0]
+    lhs = np.einsum("eabc,a,b,c->e", P, f3, f4, f5)
+    y = Q @ lhs  # Q: the pseudo-inverse (least squares)
     t1, t2 = math.atan2(y[4], y[5]), math.atan2(y[6], y[7])
     # Rz(t6) = (Rz(t1) K1 ... Rz(t5) K5)^-1 K6^-1
     f = g6_rz(t1) @ k1 @ g6_rz(t2) @ k2 @ g6_rz(t3) @ k3 @ g6_rz(t4) @ k4 @ g6_rz(t5) @ k5
@@ -337,46 +338,87 @@ def g6_labelled(links, shift: int, reverse: bool):
     return links[k:] + links[:k], joints[k:] + joints[:k], -1.0 if reverse else 1.0
 
 
+def g6_fk_many(frames, home, qs):
+    """prod Z_i Rz(q_i) Z_i^-1 . home for each row of qs (n x 6), and the geometric Jacobians (n x 6 x 6, linear
+    velocity of the end origin first). Each Z Rz(q) Z^-1 is the turn about the line (axis a, point p) of Z:
+    R = c I + s [a]x + (1 - c) a a^T, translation p - R p (Rodrigues, all rows at once)."""
+    qs = np.asarray(qs, dtype=float).reshape(-1, 6)
+    n = len(qs)
+    rot, tr = np.broadcast_to(np.eye(3), (n, 3, 3)), np.zeros((n, 3))
+    axes, points = [], []
+    for z, v in zip(frames, qs.T, strict=True):
+        a, p = z[:3, 2], z[:3, 3]
+        axes.append(rot @ a)
+        points.append(rot @ p + tr)
+        c, s = np.cos(v)[:, None, None], np.sin(v)[:, None, None]
+        skew = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+        e = c * np.eye(3) + s * skew + (1.0 - c) * np.outer(a, a)
+        tr = tr + np.einsum("nij,nj->ni", rot, p - e @ p)
+        rot = rot @ e
+    t = np.zeros((n, 4, 4))
+    t[:, :3, :3], t[:, :3, 3], t[:, 3, 3] = rot, tr, 1.0
+    t = t @ home
+    ax, pt = np.stack(axes, axis=1), np.stack(points, axis=1)  # (n, 6, 3)
+    lin = np.cross(ax, t[:, None, :3, 3] - pt)
+    return t, np.concatenate([lin, ax], axis=2).transpose(0, 2, 1)
+
+
 def g6_fk(frames, home, q):
     """prod Z_i Rz(q_i) Z_i^-1 . home, and the geometric Jacobian (linear velocity of the end origin first)."""
-    t = np.eye(4)
-    axes, points = [], []
-    for z, v in zip(frames, q, strict=True):
-        axes.append(t[:3, :3] @ z[:3, 2])
-        points.append(t[:3, :3] @ z[:3, 3] + t[:3, 3])
-        t = t @ z @ g6_rz(v) @ g6_inverse(z)
-    t = t @ home
-    jac = np.array([np.concatenate([np.cross(a, t[:3, 3] - p), a]) for a, p in zip(axes, points, strict=True)]).T
-    return t, jac
+    t, jac = g6_fk_many(frames, home, np.asarray(q, dtype=float)[None])
+    return t[0], jac[0]
+
+
+def _g6_pose_error(t, pose):
+    return np.max(np.abs(t[:, :3] - pose[:3]), axis=(1, 2))
+
+
+def g6_refine_many(frames, home, pose, qs, steps=G6_REFINE_STEPS):
+    """Newton steps on the chain's pose error for each row of qs (n x 6; all rows at once): the eigenproblem leaves
+    a root ~1e-9 off where roots are close, a few steps bring it to rounding, so that every caller (C, numpy)
+    starts its verification from the same set. A row stops at rounding, when a step does not improve it, or when
+    its Jacobian is singular."""
+    q = np.array(qs, dtype=float).reshape(-1, 6)
+    t, jac = g6_fk_many(frames, home, q)
+    err = _g6_pose_error(t, pose)
+    done = G6_REFINE_DONE * (1.0 + float(np.sum(np.abs(pose[:3, 3]))))  # the pose error at rounding
+    active = err > done
+    for _ in range(steps):
+        idx = np.flatnonzero(active)
+        if len(idx) == 0:
+            break
+        e = np.concatenate([pose[:3, 3] - t[idx, :3, 3],
+                            0.5 * np.cross(t[idx, :3, :3].transpose(0, 2, 1), pose[:3, :3].T).sum(axis=1)], axis=1)
+        step, ok = np.zeros((len(idx), 6)), np.ones(len(idx), dtype=bool)
+        try:
+            step = np.linalg.solve(jac[idx], e[..., None])[..., 0]
+        except np.linalg.LinAlgError:  # one row singular: solved row by row
+            for k in range(len(idx)):
+                try:
+                    step[k] = np.linalg.solve(jac[idx[k]], e[k])
+                except np.linalg.LinAlgError:
+                    ok[k] = False
+        t2, jac2 = g6_fk_many(frames, home, q[idx] + step)
+        err2 = _g6_pose_error(t2, pose)
+        better = ok & (err2 < err[idx])
+        take = idx[better]
+        q[take], t[take], jac[take], err[take] = q[take] + step[better], t2[better], jac2[better], err2[better]
+        active[idx[~better]] = False
+        active[take] = err[take] > done
+    return q
 
 
 def g6_refine(frames, home, pose, q, steps=G6_REFINE_STEPS):
-    """Newton steps on the chain's pose error: the eigenproblem leaves a root ~1e-9 off where roots are close, a
-    few steps bring it to rounding, so that every caller (C, numpy) starts its verification from the same set."""
-    q = np.array(q, dtype=float)
-    t, jac = g6_fk(frames, home, q)
-    err = float(np.max(np.abs(t[:3] - pose[:3])))
-    for _ in range(steps):
-        e = np.concatenate([pose[:3, 3] - t[:3, 3], 0.5 * sum(np.cross(t[:3, i], pose[:3, i]) for i in range(3))])
-        try:
-            step = np.linalg.solve(jac, e)
-        except np.linalg.LinAlgError:
-            break
-        t2, jac2 = g6_fk(frames, home, q + step)
-        err2 = float(np.max(np.abs(t2[:3] - pose[:3])))
-        if not err2 < err:
-            break
-        q, t, jac, err = q + step, t2, jac2, err2
-    return [float(v) for v in q]
+    """g6_refine_many for one q (a list of floats)."""
+    return [float(v) for v in g6_refine_many(frames, home, pose, q, steps)[0]]
 
 
 def g6_solve(frames, home, pose, shift=0, reverse=False, hidden=0):
     """Joint candidates q (length 6, refined by Newton on the chain) of prod Z_i Rz(q_i) Z_i^-1 home = pose."""
     links, joints, sign = g6_labelled(g6_loop_links(frames, home, pose), shift, reverse)
-    out = []
-    for t in g6_candidates(links, hidden):
-        q = [0.0] * 6
-        for j, v in zip(joints, t, strict=True):
-            q[j] = sign * v
-        out.append(g6_refine(frames, home, pose, q))
-    return out
+    cands = g6_candidates(links, hidden)
+    if not cands:
+        return []
+    q = np.zeros((len(cands), 6))
+    q[:, joints] = sign * np.array(cands)
+    return [[float(v) for v in row] for row in g6_refine_many(frames, home, pose, q)]
