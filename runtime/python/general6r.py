@@ -91,6 +91,8 @@ def g6_fourteen(d: np.ndarray, p: np.ndarray) -> np.ndarray:
     return np.concatenate([d, p, pp, pd, np.cross(p, d), pp * d - 2.0 * pd * p], axis=-1)
 
 
+_G6_BINV2 = np.kron(_G6_BINV, _G6_BINV)  # the interpolation over two (three) joints' grids at once
+_G6_BINV3 = np.kron(_G6_BINV2, _G6_BINV)
 _G6_GRID_RZ = np.stack([g6_rz(g) for g in _G6_GRID])  # (3, 4, 4): Rz at the grid; transposed, Rz(-g)
 
 
@@ -104,11 +106,11 @@ def g6_equations(links):
     tb = (ta[:, None] @ rz[None]) @ k4  # (a, b)
     t = (tb[:, :, None] @ rz[None, None]) @ k5  # (a, b, c)
     vals = g6_fourteen(t[..., :3, 2], t[..., :3, 3])
-    P = np.einsum("ma,nb,oc,abce->emno", _G6_BINV, _G6_BINV, _G6_BINV, vals, optimize=True)
+    P = (_G6_BINV3 @ vals.reshape(27, 14)).T.reshape(14, 3, 3, 3)
     k2i, k1i, k6i = g6_inverse(k2), g6_inverse(k1), g6_inverse(k6)
     t = ((k2i @ rzt) @ k1i)[None] @ (rzt @ k6i)[:, None]  # [a, b] = K2^-1 Rz(-b) K1^-1 Rz(-a) K6^-1
     rvals = g6_fourteen(t[..., :3, 2], t[..., :3, 3])
-    R = np.einsum("ma,nb,abe->emn", _G6_BINV, _G6_BINV, rvals)  # R[e, m1, m2] over (1, c, s) of t1 and of t2
+    R = (_G6_BINV2 @ rvals.reshape(9, 14)).T.reshape(14, 3, 3)  # R[e, m1, m2] over (1, c, s) of t1 and of t2
     # Y = (s1 s2, s1 c2, c1 s2, c1 c2, s1, c1, s2, c2) in those indices (1 = 0, c = 1, s = 2)
     y_index = ((2, 2), (2, 1), (1, 2), (1, 1), (2, 0), (1, 0), (0, 2), (0, 1))
     Q = np.stack([R[:, i, j] for i, j in y_index], axis=1)
@@ -188,27 +190,38 @@ def g6_deflation_basis(n):
     return ab, ua[:, 4:]
 
 
-def _g6_deflated_matrix(t6, basis, phi):
-    """(S, rcond of K): the 16 x 16 matrix whose eigenvalues are the roots x of hidden = t3 = phi + 2 atan x other
-    than +-i (the module docstring), and the reciprocal condition of its leading coefficient K."""
+def _g6_deflated_parts(t6, basis):
+    """The deflated pencil's rows split by the hidden angle's origin phi (each is linear in cos phi, sin phi): the
+    linear rows L0 + x K = (a0 + c pr + s qr) + x (b0 + c qr - s pr) (Re L = (a g0 + kr) + x (b g0 - ki) with
+    2 kappa = mu (gc - i gs) at phi; 2 pr = a gc + b gs, 2 qr = a gs - b gc), then the two complementary
+    equations' (1, c, s) parts k1, kc, ks in the hidden angle (rows and u multiples each)."""
     ab, comp = basis
-    c, s = math.cos(phi), math.sin(phi)
-    g0, gc, gs = t6[:, 0], t6[:, 1] * c + t6[:, 2] * s, t6[:, 2] * c - t6[:, 1] * s
+    g0, gc, gs = t6[:, 0], t6[:, 1], t6[:, 2]
     a, b = ab[:6], ab[6:]  # (6, 4) each: column j one (a; b)
     ag0, bg0, agc, ags, bgc, bgs = (np.einsum("ej,euv->juv", v, w) for v, w in
                                     ((a, g0), (b, g0), (a, gc), (a, gs), (b, gc), (b, gs)))
-    # Re L = (a g0 + kr) + x (b g0 - ki), 2 kappa = mu (gc - i gs); rows then their u multiples
-    l0 = _g6_trig_rows_many(ag0 + 0.5 * (agc + bgs))
-    l1 = _g6_trig_rows_many(bg0 - 0.5 * (bgc - ags))
-    t2 = np.zeros_like(t6)
-    t2[:2] = np.einsum("ek,ehab->khab", comp, t6)
-    a2, b2, c2 = (m[[0, 1, 6, 7]] for m in _g6_matrix_polynomial(t2, 0, phi))  # the two and their u multiples
+    lin = _g6_trig_rows_many(np.stack([ag0, bg0, 0.5 * (agc + bgs), 0.5 * (ags - bgc)]).reshape(16, 3, 3))
+    lin = lin.reshape(2, 4, 4, 12).transpose(1, 0, 2, 3).reshape(4, 8, 12)  # a0, b0, pr, qr: 4 rows + u multiples
+    quad = _g6_trig_rows_many(np.einsum("ek,ehab->hkab", comp, t6).reshape(6, 3, 3))
+    quad = quad.reshape(2, 3, 2, 12).transpose(1, 0, 2, 3).reshape(3, 4, 12)  # k1, kc, ks: 2 rows + u multiples
+    return lin, quad
+
+
+def _g6_deflated_at(parts, phi):
+    """(S, rcond of K): the 16 x 16 matrix whose eigenvalues are the roots x of hidden = t3 = phi + 2 atan x other
+    than +-i (the module docstring), and the reciprocal condition of its leading coefficient K."""
+    (a0, b0, pr, qr), (k1, kc, ks) = parts
+    c, s = math.cos(phi), math.sin(phi)
+    l0, l1 = a0 + c * pr + s * qr, b0 + c * qr - s * pr
+    kc, ks = c * kc + s * ks, c * ks - s * kc
+    a2, b2, c2 = k1 - kc, 2.0 * ks, k1 + kc  # (1 + x^2) k1 + (1 - x^2) kc + 2 x ks
     k = np.vstack([l1, a2])
     # each row with its partners equilibrated by a power of two (the C's g6_deflated_at): K's conditioning then
     # measures the problem, not the rows' scales
-    lin = np.maximum(np.max(np.abs(l0), axis=1), np.max(np.abs(k[:8]), axis=1))
+    lin = np.maximum(np.max(np.abs(l0), axis=1), np.max(np.abs(l1), axis=1))
     quad = np.max(np.abs(np.hstack([a2, b2, c2])), axis=1)
-    scale = np.exp2(-np.frexp(np.where(np.concatenate([lin, quad]) > 0.0, np.concatenate([lin, quad]), 1.0))[1])
+    big = np.concatenate([lin, quad])
+    scale = np.exp2(-np.frexp(np.where(big > 0.0, big, 1.0))[1])
     l0, k = l0 * scale[:8, None], k * scale[:, None]
     b2, c2 = b2 * scale[8:, None], c2 * scale[8:, None]
     sv = np.linalg.svd(k, compute_uv=False)
@@ -222,15 +235,21 @@ def _g6_deflated_matrix(t6, basis, phi):
     return np.vstack([d, np.hstack([-c2, np.zeros((4, 4))]) - b2 @ d]), rc  # x s = -C4 m - B4 x m
 
 
+def _g6_deflated_matrix(t6, basis, phi):
+    """_g6_deflated_at for one phi."""
+    return _g6_deflated_at(_g6_deflated_parts(t6, basis), phi)
+
+
 def _g6_roots(t6, n, hidden):
     """(eigenvalues x, phi, A, B, C): the roots of det(A x^2 + B x + C) for hidden = phi + 2 atan x, phi chosen so
     that the leading coefficient is well conditioned (x = infinity, phi + pi, far from a root); deflated to 16
     for hidden t3."""
     basis = g6_deflation_basis(n) if hidden == 0 else None
+    parts = _g6_deflated_parts(t6, basis) if basis is not None else None
     best = None
     for phi in _G6_PHIS:
-        if basis is not None:
-            mat, rc = _g6_deflated_matrix(t6, basis, phi)
+        if parts is not None:
+            mat, rc = _g6_deflated_at(parts, phi)
         else:
             a = _g6_matrix_polynomial(t6, hidden, phi)[0]
             sv = np.linalg.svd(a, compute_uv=False)
@@ -344,17 +363,21 @@ def g6_fk_many(frames, home, qs):
     R = c I + s [a]x + (1 - c) a a^T, translation p - R p (Rodrigues, all rows at once)."""
     qs = np.asarray(qs, dtype=float).reshape(-1, 6)
     n = len(qs)
+    a = np.array([z[:3, 2] for z in frames])  # (6, 3) axes
+    p = np.array([z[:3, 3] for z in frames])  # (6, 3) points
+    skew = np.zeros((6, 3, 3))
+    skew[:, 0, 1], skew[:, 0, 2], skew[:, 1, 2] = -a[:, 2], a[:, 1], -a[:, 0]
+    skew = skew - skew.transpose(0, 2, 1)
+    c, s = np.cos(qs)[..., None, None], np.sin(qs)[..., None, None]  # (n, 6, 1, 1)
+    e = c * np.eye(3) + s * skew + (1.0 - c) * (a[:, :, None] * a[:, None, :])  # (n, 6, 3, 3)
+    et = p - np.einsum("nkij,kj->nki", e, p)  # (n, 6, 3)
     rot, tr = np.broadcast_to(np.eye(3), (n, 3, 3)), np.zeros((n, 3))
     axes, points = [], []
-    for z, v in zip(frames, qs.T, strict=True):
-        a, p = z[:3, 2], z[:3, 3]
-        axes.append(rot @ a)
-        points.append(rot @ p + tr)
-        c, s = np.cos(v)[:, None, None], np.sin(v)[:, None, None]
-        skew = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
-        e = c * np.eye(3) + s * skew + (1.0 - c) * np.outer(a, a)
-        tr = tr + np.einsum("nij,nj->ni", rot, p - e @ p)
-        rot = rot @ e
+    for k in range(6):
+        axes.append(rot @ a[k])
+        points.append(rot @ p[k] + tr)
+        tr = tr + np.einsum("nij,nj->ni", rot, et[:, k])
+        rot = rot @ e[:, k]
     t = np.zeros((n, 4, 4))
     t[:, :3, :3], t[:, :3, 3], t[:, 3, 3] = rot, tr, 1.0
     t = t @ home
