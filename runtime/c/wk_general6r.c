@@ -412,7 +412,9 @@ static int g6_monomial_vectors(const double *M, double m[G6_MAXK][12])
  * 24 x 24 companion). */
 
 #define G6_DEFLATE_TOL 1e-8 /* structure not met to this (relative): the 24 x 24 path */
-#define G6_REAL_TOL 1e-6    /* |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding */
+/* |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding (Python's G6_REAL_TOL: a double root
+ * splits by ~sqrt(c n eps / rcond(K)) into a complex pair, 6.6e-6 seen at rcond ~1e-4; verification decides) */
+#define G6_REAL_TOL 1e-4
 #define G6_RCOND_GOOD 1e-4 /* the leading coefficient this well conditioned: no further origin phi tried */
 #define G6_NPHI 4
 static const double g6_phis[G6_NPHI] = {0.0, 2.0 * G6_PI / 3.0, -2.0 * G6_PI / 3.0, G6_PI / 2.0};
@@ -930,18 +932,27 @@ static double g6_pose_error(const double *t, const double *pose)
 /* Newton steps on the chain's pose error (Python's g6_refine): the eigenproblem leaves a root ~1e-9 off where
  * roots are close; a few steps bring it to rounding, so every caller verifies the same set */
 #define G6_REFINE_DONE 0x1p-50 /* ~4 eps: the pose error at rounding (relative to 1 + |p|_1) */
+#define G6_REFINE_NEAR 1e-10   /* below this pose error (relative), a step may raise it while the steps contract */
 
+/* Newton steps on the chain's pose error (Python's g6_refine_many): the eigenproblem leaves a root ~1e-9 off where
+ * roots are close; a few steps bring it to rounding, so every caller verifies the same set. At a double root (two
+ * solutions meeting: J singular there) Newton converges only linearly, halving the distance per step while the
+ * pose error, already near rounding, goes up and down: there a step is taken while the steps contract, and the
+ * iterate with the smallest error is kept. */
 static void g6_refine(const double *frames, const double *home, const double *pose, double *q)
 {
-    double t[16], jac[36], err;
+    double t[16], jac[36], err, best[6], best_err, last = HUGE_VAL;
     int it, i, c;
     /* rounding of the pose error: a few units of eps times the pose's size */
-    const double done = G6_REFINE_DONE * (1.0 + fabs(pose[3]) + fabs(pose[7]) + fabs(pose[11]));
+    const double scale = 1.0 + fabs(pose[3]) + fabs(pose[7]) + fabs(pose[11]);
+    const double done = G6_REFINE_DONE * scale, near = G6_REFINE_NEAR * scale;
     g6_fk(frames, home, q, t, jac);
     err = g6_pose_error(t, pose);
     if (err <= done) return;
+    memcpy(best, q, sizeof best);
+    best_err = err;
     for (it = 0; it < WK_G6_REFINE_STEPS; ++it) {
-        double e[6], a[36], trial[6], t2[16], jac2[36], err2;
+        double e[6], a[36], trial[6], t2[16], jac2[36], err2, size = 0.0;
         int ok = 1;
         e[0] = pose[3] - t[3];
         e[1] = pose[7] - t[7];
@@ -984,17 +995,27 @@ static void g6_refine(const double *frames, const double *home, const double *po
             for (i = c + 1; i < 6; ++i) s -= a[6 * c + i] * e[i];
             e[c] = s / a[6 * c + c];
         }
-        for (i = 0; i < 6; ++i) trial[i] = q[i] + e[i];
+        for (i = 0; i < 6; ++i) {
+            trial[i] = q[i] + e[i];
+            if (!(fabs(e[i]) <= size)) size = fabs(e[i]);
+        }
         g6_fk(frames, home, trial, t2, jac2);
         err2 = g6_pose_error(t2, pose);
-        if (!(err2 < err)) break;
+        if (!(err2 < err) && !(err2 <= near && size <= 0.75 * last)) break;
         memcpy(q, trial, sizeof trial);
         memcpy(t, t2, sizeof t2);
         memcpy(jac, jac2, sizeof jac2);
         err = err2;
+        last = size;
+        if (err < best_err) {
+            best_err = err;
+            memcpy(best, q, sizeof best);
+        }
         if (err <= done) break; /* at rounding: a further step cannot improve (saves its FK) */
     }
+    memcpy(q, best, sizeof best);
 }
+
 
 /* The candidates of one root x (hidden = phi + 2 atan x, or phi + pi when infinite): the monomial vectors in M(x)'s
  * null space, the other two angles from them, t1, t2, t6 from the loop, refined on the chain; appended at row n of

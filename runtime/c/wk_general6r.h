@@ -17,7 +17,8 @@ extern "C" {
 
 #define WK_G6_MAX_CANDIDATES 48 /* 24 eigenvalues, a shared hidden angle giving up to 4 sets each: capped */
 #define WK_G6_NULL_TOL 1e-8     /* sigma / sigma_max of M(x) up to this spans its null space */
-#define WK_G6_REFINE_STEPS 3    /* Newton steps per candidate on the chain (quadratic: 1e-9 -> rounding) */
+#define WK_G6_REFINE_STEPS 8    /* Newton steps per candidate at most (a simple root: 1-2 to rounding, then it stops;
+                                   a double root converges linearly, halving the distance per step) */
 
 /* A frame per joint with its z axis on the joint's line (axis i through point i; x any normal): frames holds
  * 6 x 16 doubles, frame i at frames + 16 i. */

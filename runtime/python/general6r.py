@@ -61,10 +61,16 @@ _G6_B = np.array([[1.0, math.cos(g), math.sin(g)] for g in _G6_GRID])
 _G6_BINV = np.linalg.inv(_G6_B)
 # (1 + u^2) times 1, c, s (c = (1 - u^2) / (1 + u^2), s = 2u / (1 + u^2)) as coefficients of u^0, u^1, u^2
 _G6_HALF = np.array([[1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0]])
-G6_REFINE_STEPS = 3  # Newton steps per candidate (quadratic: 1e-9 -> 1e-18 -> rounding)
+G6_REFINE_STEPS = 8  # Newton steps per candidate at most (a simple root: 1-2 to rounding; a double root: linear)
+G6_REFINE_NEAR = 1e-10  # below this pose error (relative to 1 + |p|_1) a step may raise it while the steps contract
 G6_REFINE_DONE = 2.0**-50  # ~4 eps: the pose error at rounding (relative to 1 + |p|_1), where refinement stops
 G6_NULL_TOL = 1e-8  # singular values of M(x) up to this x the largest span its null space
-G6_REAL_TOL = 1e-6  # |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding (verification decides)
+# |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding (verification decides). A real double
+# root (two solutions meeting) perturbed by the eigenproblem's backward error delta ~ c n eps / rcond(K) splits by
+# ~sqrt(delta) into a complex pair: 6.6e-6 seen at rcond ~1e-4 (test_at_a_double_root_...); 1e-4 keeps such pairs
+# down to rcond ~1e-6. A genuinely complex pair that close gives a candidate the verification rejects.
+G6_REAL_TOL = 1e-4
+G6_SHIFT_REAL_TOL = 1e-6  # the same for the k x k shift pencil's eigenvalues u (k solutions sharing the hidden angle)
 _G6_PHIS = (0.0, 2.0 * math.pi / 3.0, -2.0 * math.pi / 3.0, math.pi / 2.0)
 _G6_BLOCKS = (0, 3, 8, 11)  # the x rows of the 14's vectors l, p, p x l, (p.p) l - 2 (p.l) p (y follows)
 G6_RCOND_GOOD = 1e-4  # the deflated K this well conditioned (equilibrated rows): no further origin phi tried
@@ -306,7 +312,7 @@ def _g6_monomial_vectors(m):
     lhs, rhs = (up, down) if swap else (down, up)
     vals, vecs = np.linalg.eig(np.linalg.lstsq(lhs, rhs, rcond=None)[0])
     return [np.real(basis @ vecs[:, i]) for i in range(k)
-            if abs(vals[i].imag) <= G6_REAL_TOL * (1.0 + abs(vals[i]))]
+            if abs(vals[i].imag) <= G6_SHIFT_REAL_TOL * (1.0 + abs(vals[i]))]
 
 
 def _g6_complete(angles, links, P, Q):
@@ -399,12 +405,16 @@ def _g6_pose_error(t, pose):
 def g6_refine_many(frames, home, pose, qs, steps=G6_REFINE_STEPS):
     """Newton steps on the chain's pose error for each row of qs (n x 6; all rows at once): the eigenproblem leaves
     a root ~1e-9 off where roots are close, a few steps bring it to rounding, so that every caller (C, numpy)
-    starts its verification from the same set. A row stops at rounding, when a step does not improve it, or when
-    its Jacobian is singular."""
+    starts its verification from the same set. A row stops at rounding, when a step neither lowers its error nor
+    (below G6_REFINE_NEAR) contracts, or when its Jacobian is singular; it keeps its smallest-error iterate. At a
+    double root (two solutions meeting, J singular there) Newton converges only linearly, halving the distance per
+    step while the pose error, already near rounding, goes up and down: hence the contraction rule."""
     q = np.array(qs, dtype=float).reshape(-1, 6)
     t, jac = g6_fk_many(frames, home, q)
     err = _g6_pose_error(t, pose)
-    done = G6_REFINE_DONE * (1.0 + float(np.sum(np.abs(pose[:3, 3]))))  # the pose error at rounding
+    scale = 1.0 + float(np.sum(np.abs(pose[:3, 3])))
+    done, near = G6_REFINE_DONE * scale, G6_REFINE_NEAR * scale
+    best, best_err, last = q.copy(), err.copy(), np.full(len(q), np.inf)
     active = err > done
     for _ in range(steps):
         idx = np.flatnonzero(active)
@@ -421,14 +431,18 @@ def g6_refine_many(frames, home, pose, qs, steps=G6_REFINE_STEPS):
                     step[k] = np.linalg.solve(jac[idx[k]], e[k])
                 except np.linalg.LinAlgError:
                     ok[k] = False
+        size = np.max(np.abs(step), axis=1)
         t2, jac2 = g6_fk_many(frames, home, q[idx] + step)
         err2 = _g6_pose_error(t2, pose)
-        better = ok & (err2 < err[idx])
-        take = idx[better]
-        q[take], t[take], jac[take], err[take] = q[take] + step[better], t2[better], jac2[better], err2[better]
-        active[idx[~better]] = False
+        take_m = ok & ((err2 < err[idx]) | ((err2 <= near) & (size <= 0.75 * last[idx])))
+        take = idx[take_m]
+        q[take], t[take], jac[take], err[take] = q[take] + step[take_m], t2[take_m], jac2[take_m], err2[take_m]
+        last[take] = size[take_m]
+        improved = take[err[take] < best_err[take]]
+        best[improved], best_err[improved] = q[improved], err[improved]
+        active[idx[~take_m]] = False
         active[take] = err[take] > done
-    return q
+    return best
 
 
 def g6_refine(frames, home, pose, q, steps=G6_REFINE_STEPS):
