@@ -122,24 +122,29 @@ def test_the_run_time_equations_are_the_symbolic_ones():
         assert g6.symbolic_mismatch(chain, rng) <= 1e-12
 
 
-def test_the_hidden_t3_determinant_has_the_factor_one_plus_x_squared_to_the_fourth():
-    """The deflation's premise (runtime/python/general6r.py's docstring), for random arms and poses: the six
-    equations' 1/z part (z = e^(i t3)) has two complex left null combinations mu = a + i b (|mu^T (gc + i gs)| at
-    rounding), M(+-i) has a 4-dimensional null space, and the 16 eigenvalues of the deflated matrix are the 24 x 24
-    companion's other than the eight at +-i (both well separated here: compared to 1e-8 relative)."""
+@pytest.mark.parametrize("case", ["random", "ur5e_tilted"])
+def test_the_hidden_t3_determinant_has_the_factor_one_plus_x_squared_to_the_fourth(case):
+    """The deflation's premise (runtime/python/general6r.py's docstring), for random arms (no real combination free
+    of t3, d0 = 0) and the tilted UR5e (d0 = 1) at random poses and labellings: the combinations mu = a + i b (and
+    the real r0) of the six equations have no 1/z part (z = e^(i t3)) to rounding, M(+-i) has a 4-dimensional null
+    space, and the 16 eigenvalues of the deflated matrix are the 24 x 24 companion's other than the eight at +-i
+    (compared to 1e-8 relative: both well separated at these poses)."""
     rng = case_rng(605)
-    for _ in range(4):
-        chain = random_arm(rng)
+    chains = [random_arm(rng) for _ in range(4)] if case == "random" else [tilted_ur5e()] * 4
+    seen_d0 = set()
+    for chain in chains:
         frames = G6.g6_z_frames(chain.axes, chain.points)
         pose = chain.fk(rng.uniform(-math.pi, math.pi, 6))
         loop = G6.g6_loop_links(frames, chain.home, pose)
-        links = G6.g6_labelled(loop, int(rng.integers(6)), bool(rng.integers(2)))[0]
+        links = G6.g6_labelled(loop, *((2, True) if case == "ur5e_tilted" else
+                                       (int(rng.integers(6)), bool(rng.integers(2)))))[0]
         P, Q, r = G6.g6_equations(links)
         n = np.linalg.svd(Q)[0][:, 8:].T
         t6 = np.einsum("fe,eabc->fabc", n, G6._g6_with_constant(P, r))
         basis = G6.g6_deflation_basis(n)
-        ab = basis[0]
-        mu = ab[:6] + 1j * ab[6:]
+        r0, ab, _ = basis
+        seen_d0.add(r0.shape[1])
+        mu = np.hstack([ab[:6] + 1j * ab[6:], r0])
         one_over_z = np.einsum("ek,eab->kab", mu, t6[:, 1] + 1j * t6[:, 2])
         assert np.max(np.abs(one_over_z)) <= 1e-13 * np.max(np.abs(t6))
         phi = float(rng.uniform(-math.pi, math.pi))
@@ -153,11 +158,12 @@ def test_the_hidden_t3_determinant_has_the_factor_one_plus_x_squared_to_the_four
         full = np.linalg.eigvals(comp)
         full = full[np.abs(full * full + 1.0) > 1e-4]
         deflated = np.linalg.eigvals(G6._g6_deflated_matrix(t6, basis, phi)[0])
-        assert len(full) == 16
+        assert len(full) == len(deflated) == 16
         for x in deflated:  # each matched to its own (a distinct nearest) companion eigenvalue
             k = int(np.argmin(np.abs(full - x)))
             assert abs(full[k] - x) <= 1e-8 * (1.0 + abs(x))
             full = np.delete(full, k)
+    assert seen_d0 == ({0} if case == "random" else {1})
 
 
 def test_dh_frames_reproduce_the_chain():

@@ -419,19 +419,19 @@ static int g6_monomial_vectors(const double *M, double m[G6_MAXK][12])
 #define G6_NPHI 4
 static const double g6_phis[G6_NPHI] = {0.0, 2.0 * G6_PI / 3.0, -2.0 * G6_PI / 3.0, G6_PI / 2.0};
 
-/* Householder QR with column pivoting of a (rows x cols, row-major, rows <= 12, cols <= 8) for `rank` steps; out
- * (rows x (rows - rank), row-major) receives Q's last rows - rank columns: an orthonormal basis of the complement
- * of the pivot columns' span. Returns 0 when the rank-th pivot is below G6_DEFLATE_TOL of the first or (rank <
- * cols) what is left of the other columns is above it: the span does not have that rank. */
-static int g6_complement(int rows, int cols, const double *a, int rank, double *out)
+/* Householder QR with column pivoting of a (rows x cols, row-major, rows <= 12, cols <= 8): q (rows x rows,
+ * row-major) receives Q, whose first `rank` columns span the columns of a and the others their orthogonal
+ * complement. rank >= 0 is what the caller expects; -1 lets the pivots decide (a pivot below G6_DEFLATE_TOL of the
+ * first ends it). Returns the rank, or -1 when a expected rank is not met (a pivot too small, or what is left
+ * of the other columns above that tolerance). */
+static int g6_span_qr(int rows, int cols, const double *a, int rank, double *q)
 {
     double w[12][8], v[8][12], beta[8], first = 0.0;
-    int perm[8], i, j, k;
+    int i, j, k, steps = rank >= 0 ? rank : (rows < cols ? rows : cols);
     for (i = 0; i < rows; ++i)
         for (j = 0; j < cols; ++j) w[i][j] = a[cols * i + j];
-    for (j = 0; j < cols; ++j) perm[j] = j;
-    for (k = 0; k < rank; ++k) {
-        double best = -1.0, norm = 0.0, alpha, vtv = 0.0;
+    for (k = 0; k < steps; ++k) {
+        double best = -1.0, norm, alpha, vtv = 0.0;
         int p = k;
         for (j = k; j < cols; ++j) {
             double s = 0.0;
@@ -447,10 +447,14 @@ static int g6_complement(int rows, int cols, const double *a, int rank, double *
                 w[i][k] = w[i][p];
                 w[i][p] = t;
             }
-        j = perm[k]; perm[k] = perm[p]; perm[p] = j;
         norm = sqrt(best);
         if (k == 0) first = norm;
-        if (!(norm > G6_DEFLATE_TOL * first) || !(first > 0.0)) return 0;
+        if (!(first > 0.0)) return -1;
+        if (!(norm > G6_DEFLATE_TOL * first)) {
+            if (rank >= 0) return -1;
+            steps = k; /* the numerical rank */
+            break;
+        }
         alpha = w[k][k] > 0.0 ? -norm : norm;
         for (i = 0; i < rows; ++i) v[k][i] = i < k ? 0.0 : w[i][k];
         v[k][k] -= alpha;
@@ -463,23 +467,23 @@ static int g6_complement(int rows, int cols, const double *a, int rank, double *
             for (i = k; i < rows; ++i) w[i][j] -= s * v[k][i];
         }
     }
-    for (j = rank; j < cols; ++j) { /* the rest of the columns must lie in the span */
+    for (j = steps; j < cols; ++j) { /* the rest of the columns must lie in the span */
         double s = 0.0;
-        for (i = rank; i < rows; ++i) s += w[i][j] * w[i][j];
-        if (!(sqrt(s) <= G6_DEFLATE_TOL * first)) return 0;
+        for (i = steps; i < rows; ++i) s += w[i][j] * w[i][j];
+        if (!(sqrt(s) <= G6_DEFLATE_TOL * first)) return -1;
     }
-    for (j = rank; j < rows; ++j) { /* Q e_j = H_0 ... H_(rank-1) e_j */
+    for (j = 0; j < rows; ++j) { /* Q e_j = H_0 ... H_(steps-1) e_j */
         double e[12];
         for (i = 0; i < rows; ++i) e[i] = i == j ? 1.0 : 0.0;
-        for (k = rank - 1; k >= 0; --k) {
+        for (k = steps - 1; k >= 0; --k) {
             double s = 0.0;
             for (i = k; i < rows; ++i) s += v[k][i] * e[i];
             s *= beta[k];
             for (i = k; i < rows; ++i) e[i] -= s * v[k][i];
         }
-        for (i = 0; i < rows; ++i) out[(rows - rank) * i + (j - rank)] = e[i];
+        for (i = 0; i < rows; ++i) q[rows * i + j] = e[i];
     }
-    return 1;
+    return steps;
 }
 
 /* (1 + u^2) (f0 + f1 c + f2 s) as coefficients of u^0, u^1, u^2 (c = (1 - u^2) / (1 + u^2), s = 2u / (1 + u^2)):
@@ -601,44 +605,45 @@ static void g6_lu_solve(int n, const double *lu, const int *piv, double *b, int 
     }
 }
 
-/* 1-norm reciprocal condition of the 12 x 12 k from its LU (explicit inverse: at 12 it costs about an LU) */
-static double g6_rcond(const double *k, const double *lu, const int *piv)
-{
-    double inv[144], nk = 0.0, ni = 0.0;
-    int i, j;
-    for (i = 0; i < 144; ++i) inv[i] = (i % 13 == 0) ? 1.0 : 0.0;
-    g6_lu_solve(12, lu, piv, inv, 12);
-    for (j = 0; j < 12; ++j) {
-        double sk = 0.0, si = 0.0;
-        for (i = 0; i < 12; ++i) {
-            sk += fabs(k[12 * i + j]);
-            si += fabs(inv[12 * i + j]);
-        }
-        if (sk > nk) nk = sk;
-        if (!(si <= ni)) ni = si;
-    }
-    return (nk > 0.0 && isfinite(ni) && ni > 0.0) ? 1.0 / (nk * ni) : 0.0;
-}
-
-/* The deflated pencil's rows, split by the hidden angle's origin phi (each is linear in cos phi, sin phi): the eight
- * linear rows L0 + x K (Re L of the four (a; b), then their u multiples) are a0 + c pr + s qr and b0 + c qr - s pr
+/* The deflated pencil's rows, split by the hidden angle's origin phi (each is linear in cos phi, sin phi): the
+ * linear rows L0 + x K (Re L of the (a; b), then their u multiples) are a0 + c pr + s qr and b0 + c qr - s pr
  * (2 pr = a gc + b gs, 2 qr = a gs - b gc: Re L = (a g0 + kr) + x (b g0 - ki) with 2 kappa = mu (gc - i gs) at phi);
- * the four quadratic rows (the two complementary equations and their u multiples) are, with k1, kc, ks their
- * (1, c, s) parts in the hidden angle, A4 = k1 - kc, B4 = 2 ks, C4 = k1 + kc, kc = c gc + s gs, ks = c gs - s gc. */
+ * the quadratic rows (the complementary equations and their u multiples) are, with k1, kc, ks their (1, c, s) parts
+ * in the hidden angle, A = k1 - kc, B = 2 ks, C = k1 + kc, kc = c gc + s gs, ks = c gs - s gc. Every row is
+ * already times m0, the basis of the monomial vectors the d0 rows free of t3 leave (nm = 12 - 2 d0 columns). */
 typedef struct {
+    int nm, nl, nq;                                     /* columns, linear rows (8 - 4 d0), quadratic (4 + 2 d0) */
     double a0[8][12], b0[8][12], pr[8][12], qr[8][12]; /* linear rows */
-    double k1[4][12], kc[4][12], ks[4][12];             /* quadratic rows */
+    double k1[8][12], kc[8][12], ks[8][12];            /* quadratic rows */
 } g6_deflated;
 
-static void g6_deflated_parts(double t6[6][27], const double *ab, const double *comp, g6_deflated *d)
+/* rows (n x 12) := rows m0 (12 x nm, row-major) */
+static void g6_times_m0(double rows[8][12], int n, const double *m0, int nm)
 {
-    int j, e, k;
-    for (j = 0; j < 4; ++j) {
+    int r, i, k;
+    for (r = 0; r < n; ++r) {
+        double t[12];
+        for (k = 0; k < nm; ++k) {
+            double s = 0.0;
+            for (i = 0; i < 12; ++i) s += rows[r][i] * m0[nm * i + k];
+            t[k] = s;
+        }
+        for (k = 0; k < 12; ++k) rows[r][k] = k < nm ? t[k] : 0.0;
+    }
+}
+
+/* r0 (6 x d0), ab (12 x nab = 4 - 2 d0: a over b), comp (6 x nc = 2 + d0), all row-major */
+static int g6_deflated_parts(double t6[6][27], const double *r0, int d0, const double *ab, int nab,
+                             const double *comp, int nc, g6_deflated *d)
+{
+    double m0[144];
+    int j, e, k, nm = 12;
+    for (j = 0; j < nab; ++j) {
         double f[4][9];
         for (k = 0; k < 9; ++k) {
             double ag0 = 0.0, bg0 = 0.0, agc = 0.0, ags = 0.0, bgc = 0.0, bgs = 0.0;
             for (e = 0; e < 6; ++e) {
-                const double a = ab[4 * e + j], b = ab[4 * (6 + e) + j];
+                const double a = ab[nab * e + j], b = ab[nab * (6 + e) + j];
                 ag0 += a * t6[e][k];
                 bg0 += b * t6[e][k];
                 agc += a * t6[e][9 + k];
@@ -651,22 +656,51 @@ static void g6_deflated_parts(double t6[6][27], const double *ab, const double *
             f[2][k] = 0.5 * (agc + bgs);
             f[3][k] = 0.5 * (ags - bgc);
         }
-        g6_trig_rows(f[0], d->a0[j], d->a0[4 + j]);
-        g6_trig_rows(f[1], d->b0[j], d->b0[4 + j]);
-        g6_trig_rows(f[2], d->pr[j], d->pr[4 + j]);
-        g6_trig_rows(f[3], d->qr[j], d->qr[4 + j]);
+        g6_trig_rows(f[0], d->a0[j], d->a0[nab + j]);
+        g6_trig_rows(f[1], d->b0[j], d->b0[nab + j]);
+        g6_trig_rows(f[2], d->pr[j], d->pr[nab + j]);
+        g6_trig_rows(f[3], d->qr[j], d->qr[nab + j]);
     }
-    for (j = 0; j < 2; ++j) {
+    for (j = 0; j < nc; ++j) {
         double f[3][9];
         for (k = 0; k < 27; ++k) {
             double s = 0.0;
-            for (e = 0; e < 6; ++e) s += comp[2 * e + j] * t6[e][k];
+            for (e = 0; e < 6; ++e) s += comp[nc * e + j] * t6[e][k];
             f[k / 9][k % 9] = s;
         }
-        g6_trig_rows(f[0], d->k1[j], d->k1[2 + j]);
-        g6_trig_rows(f[1], d->kc[j], d->kc[2 + j]);
-        g6_trig_rows(f[2], d->ks[j], d->ks[2 + j]);
+        g6_trig_rows(f[0], d->k1[j], d->k1[nc + j]);
+        g6_trig_rows(f[1], d->kc[j], d->kc[nc + j]);
+        g6_trig_rows(f[2], d->ks[j], d->ks[nc + j]);
     }
+    if (d0 > 0) { /* m0: the complement of the rows r0 g0 (and their u multiples) in the 12 monomials */
+        double rows[4][12], rt[12 * 4], q[144];
+        for (j = 0; j < d0; ++j) {
+            double f[9];
+            for (k = 0; k < 9; ++k) {
+                double s = 0.0;
+                for (e = 0; e < 6; ++e) s += r0[d0 * e + j] * t6[e][k];
+                f[k] = s;
+            }
+            g6_trig_rows(f, rows[j], rows[d0 + j]);
+        }
+        for (j = 0; j < 2 * d0; ++j)
+            for (k = 0; k < 12; ++k) rt[2 * d0 * k + j] = rows[j][k];
+        if (g6_span_qr(12, 2 * d0, rt, 2 * d0, q) != 2 * d0) return 0;
+        nm = 12 - 2 * d0;
+        for (k = 0; k < 12; ++k)
+            for (j = 0; j < nm; ++j) m0[nm * k + j] = q[12 * k + 2 * d0 + j];
+        g6_times_m0(d->a0, 2 * nab, m0, nm);
+        g6_times_m0(d->b0, 2 * nab, m0, nm);
+        g6_times_m0(d->pr, 2 * nab, m0, nm);
+        g6_times_m0(d->qr, 2 * nab, m0, nm);
+        g6_times_m0(d->k1, 2 * nc, m0, nm);
+        g6_times_m0(d->kc, 2 * nc, m0, nm);
+        g6_times_m0(d->ks, 2 * nc, m0, nm);
+    }
+    d->nm = nm;
+    d->nl = 2 * nab;
+    d->nq = 2 * nc;
+    return 1;
 }
 
 /* 2^-e with 2^e the largest |entry| of the n values (a row's exact power-of-two equilibration), 1 for zeros */
@@ -681,42 +715,63 @@ static double g6_row_scale(const double *x, int n)
     return ldexp(1.0, -e);
 }
 
-/* K (12 x 12: the linear rows' x coefficient, then the quadratic rows' x^2 coefficient), L0 (8 x 12), B4, C4
- * (4 x 12) at phi, each row (with its partners) equilibrated by a power of two */
-static void g6_deflated_at(const g6_deflated *d, double phi, double *K, double *L0, double *B4, double *C4)
+/* K (nm x nm: the linear rows' x coefficient, then the quadratic rows' x^2 coefficient), L0 (nl x nm), Bq and Cq
+ * (nq x nm) at phi, row-major with stride nm, each row (with its partners) equilibrated by a power of two */
+static void g6_deflated_at(const g6_deflated *d, double phi, double *K, double *L0, double *Bq, double *Cq)
 {
     const double c = cos(phi), s = sin(phi);
+    const int nm = d->nm;
     double sc;
     int r, k;
-    for (r = 0; r < 8; ++r) {
-        for (k = 0; k < 12; ++k) {
-            L0[12 * r + k] = d->a0[r][k] + c * d->pr[r][k] + s * d->qr[r][k];
-            K[12 * r + k] = d->b0[r][k] + c * d->qr[r][k] - s * d->pr[r][k];
+    for (r = 0; r < d->nl; ++r) {
+        double *l0 = L0 + nm * r, *l1 = K + nm * r;
+        for (k = 0; k < nm; ++k) {
+            l0[k] = d->a0[r][k] + c * d->pr[r][k] + s * d->qr[r][k];
+            l1[k] = d->b0[r][k] + c * d->qr[r][k] - s * d->pr[r][k];
         }
-        sc = g6_row_scale(L0 + 12 * r, 12);
-        if (g6_row_scale(K + 12 * r, 12) < sc) sc = g6_row_scale(K + 12 * r, 12);
-        for (k = 0; k < 12; ++k) {
-            L0[12 * r + k] *= sc;
-            K[12 * r + k] *= sc;
+        sc = g6_row_scale(l0, nm);
+        if (g6_row_scale(l1, nm) < sc) sc = g6_row_scale(l1, nm);
+        for (k = 0; k < nm; ++k) {
+            l0[k] *= sc;
+            l1[k] *= sc;
         }
     }
-    for (r = 0; r < 4; ++r) {
-        double *a = K + 12 * (8 + r), *b = B4 + 12 * r, *cc = C4 + 12 * r;
-        for (k = 0; k < 12; ++k) {
+    for (r = 0; r < d->nq; ++r) {
+        double *a = K + nm * (d->nl + r), *b = Bq + nm * r, *cc = Cq + nm * r;
+        for (k = 0; k < nm; ++k) {
             const double kc = c * d->kc[r][k] + s * d->ks[r][k], ks = c * d->ks[r][k] - s * d->kc[r][k];
             a[k] = d->k1[r][k] - kc;
             b[k] = 2.0 * ks;
             cc[k] = d->k1[r][k] + kc;
         }
-        sc = g6_row_scale(a, 12);
-        if (g6_row_scale(b, 12) < sc) sc = g6_row_scale(b, 12);
-        if (g6_row_scale(cc, 12) < sc) sc = g6_row_scale(cc, 12);
-        for (k = 0; k < 12; ++k) {
+        sc = g6_row_scale(a, nm);
+        if (g6_row_scale(b, nm) < sc) sc = g6_row_scale(b, nm);
+        if (g6_row_scale(cc, nm) < sc) sc = g6_row_scale(cc, nm);
+        for (k = 0; k < nm; ++k) {
             a[k] *= sc;
             b[k] *= sc;
             cc[k] *= sc;
         }
     }
+}
+
+/* 1-norm reciprocal condition of the n x n k from its LU (explicit inverse: at 12 it costs about an LU) */
+static double g6_rcond(int n, const double *k, const double *lu, const int *piv)
+{
+    double inv[144], nk = 0.0, ni = 0.0;
+    int i, j;
+    for (i = 0; i < n * n; ++i) inv[i] = (i % (n + 1) == 0) ? 1.0 : 0.0;
+    g6_lu_solve(n, lu, piv, inv, n);
+    for (j = 0; j < n; ++j) {
+        double sk = 0.0, si = 0.0;
+        for (i = 0; i < n; ++i) {
+            sk += fabs(k[n * i + j]);
+            si += fabs(inv[n * i + j]);
+        }
+        if (sk > nk) nk = sk;
+        if (!(si <= ni)) ni = si;
+    }
+    return (nk > 0.0 && isfinite(ni) && ni > 0.0) ? 1.0 / (nk * ni) : 0.0;
 }
 
 /* The roots x (real ones in xr, at most 16) of the hidden t3 = phi + 2 atan x by the deflated 16 x 16
@@ -726,11 +781,11 @@ static void g6_deflated_at(const g6_deflated *d, double phi, double *K, double *
 static int g6_deflated_roots(double t6[6][27], double W[G6_NEQ][G6_NEQ], double *phi_out, double *xr)
 {
     static const int blocks[4] = {0, 3, 8, 11};
-    double z[12 * 8], ab[12 * 4], v[6 * 8], comp[6 * 2], K[144], L0[96], B4[48], C4[48], lu[144], best_lu[144];
-    double bL0[96], bB4[48], bC4[48], rhs[12 * 16], S[256], wr[16], wi[16], work[WK_EIG_WORK(16)];
-    double best = -1.0;
+    double z[12 * 8], xy[6 * 8], qz[144], qr0[36], ab[12 * 4], r0[6 * 2], span[6 * 8], qs[36], comp[6 * 4];
+    double K[144], L0[96], Bq[96], Cq[96], lu[144], best_lu[144], bL0[96], bBq[96], bCq[96], rhs[12 * 16];
+    double S[256], wr[16], wi[16], work[WK_EIG_WORK(16)], best = -1.0;
     g6_deflated d;
-    int piv[12], best_piv[12], e, j, k, i, n = 0;
+    int piv[12], best_piv[12], e, j, k, i, n = 0, rank, d0, nab, nc, nm, nl, nq;
     for (e = 0; e < 6; ++e) /* [[X, Y], [-Y, X]], X + i Y = N W4 */
         for (j = 0; j < 4; ++j) {
             const double x = W[8 + e][blocks[j]], y = W[8 + e][blocks[j] + 1];
@@ -738,44 +793,87 @@ static int g6_deflated_roots(double t6[6][27], double W[G6_NEQ][G6_NEQ], double 
             z[8 * e + 4 + j] = y;
             z[8 * (6 + e) + j] = -y;
             z[8 * (6 + e) + 4 + j] = x;
+            xy[8 * e + j] = x;
+            xy[8 * e + 4 + j] = y;
         }
-    if (!g6_complement(12, 8, z, 8, ab)) return -1;
-    for (e = 0; e < 6; ++e)
-        for (j = 0; j < 4; ++j) {
-            v[8 * e + j] = ab[4 * e + j];
-            v[8 * e + 4 + j] = ab[4 * (6 + e) + j];
+    if (g6_span_qr(12, 8, z, 8, qz) != 8) return -1;
+    rank = g6_span_qr(6, 8, xy, -1, qr0); /* [X Y]'s left null space: real combinations free of t3 */
+    d0 = 6 - rank;
+    if (rank < 0 || d0 > 2) return -1;
+    for (i = 0; i < 6; ++i)
+        for (j = 0; j < d0; ++j) r0[d0 * i + j] = qr0[6 * i + rank + j];
+    nab = 4 - 2 * d0;
+    {
+        double proj[12 * 4], qp[144];
+        for (i = 0; i < 12; ++i)
+            for (j = 0; j < 4; ++j) proj[4 * i + j] = qz[12 * i + 8 + j];
+        for (j = 0; j < 4 && d0 > 0; ++j) /* the (r; 0), (0; r) directions out */
+            for (k = 0; k < d0; ++k) {
+                double sa = 0.0, sb = 0.0;
+                for (i = 0; i < 6; ++i) {
+                    sa += r0[d0 * i + k] * proj[4 * i + j];
+                    sb += r0[d0 * i + k] * proj[4 * (6 + i) + j];
+                }
+                for (i = 0; i < 6; ++i) {
+                    proj[4 * i + j] -= sa * r0[d0 * i + k];
+                    proj[4 * (6 + i) + j] -= sb * r0[d0 * i + k];
+                }
+            }
+        if (d0 == 0) {
+            memcpy(ab, proj, sizeof proj);
+        } else if (d0 == 1) {
+            if (g6_span_qr(12, 4, proj, 2, qp) != 2) return -1;
+            for (i = 0; i < 12; ++i)
+                for (j = 0; j < 2; ++j) ab[2 * i + j] = qp[12 * i + j];
         }
-    if (!g6_complement(6, 8, v, 4, comp)) return -1;
-    g6_deflated_parts(t6, ab, comp, &d);
+    }
+    nc = 2 + d0;
+    {
+        const int cols = d0 + 2 * nab;
+        for (i = 0; i < 6; ++i) {
+            for (j = 0; j < d0; ++j) span[cols * i + j] = r0[d0 * i + j];
+            for (j = 0; j < nab; ++j) {
+                span[cols * i + d0 + j] = ab[nab * i + j];
+                span[cols * i + d0 + nab + j] = ab[nab * (6 + i) + j];
+            }
+        }
+        if (g6_span_qr(6, cols, span, 4 - d0, qs) != 4 - d0) return -1;
+        for (i = 0; i < 6; ++i)
+            for (j = 0; j < nc; ++j) comp[nc * i + j] = qs[6 * i + 4 - d0 + j];
+    }
+    if (!g6_deflated_parts(t6, r0, d0, ab, nab, comp, nc, &d)) return -1;
+    nm = d.nm;
+    nl = d.nl;
+    nq = d.nq;
     for (k = 0; k < G6_NPHI; ++k) {
         double rc;
-        g6_deflated_at(&d, g6_phis[k], K, L0, B4, C4);
-        memcpy(lu, K, sizeof lu);
-        rc = g6_lu(12, lu, piv) ? g6_rcond(K, lu, piv) : 0.0;
+        g6_deflated_at(&d, g6_phis[k], K, L0, Bq, Cq);
+        memcpy(lu, K, sizeof(double) * (size_t)(nm * nm));
+        rc = g6_lu(nm, lu, piv) ? g6_rcond(nm, K, lu, piv) : 0.0;
         if (rc > best) {
             best = rc;
             *phi_out = g6_phis[k];
             memcpy(best_lu, lu, sizeof lu);
             memcpy(best_piv, piv, sizeof piv);
             memcpy(bL0, L0, sizeof L0);
-            memcpy(bB4, B4, sizeof B4);
-            memcpy(bC4, C4, sizeof C4);
+            memcpy(bBq, Bq, sizeof Bq);
+            memcpy(bCq, Cq, sizeof Cq);
         }
         if (rc > G6_RCOND_GOOD) break;
     }
     if (!(best > 64.0 * 12.0 * 2.220446049250313e-16)) return -1;
-    /* x m = K^-1 [-L0 m; s] (the top 12 rows of S), x s = -C4 m - B4 x m (the last 4) */
+    /* x m = K^-1 [-L0 m; s] (the top nm rows of S), x s = -Cq m - Bq x m (the last nq); nm + nq = 16 */
     memset(rhs, 0, sizeof rhs);
-    for (i = 0; i < 8; ++i)
-        for (j = 0; j < 12; ++j) rhs[16 * i + j] = -bL0[12 * i + j];
-    for (i = 0; i < 4; ++i) rhs[16 * (8 + i) + 12 + i] = 1.0;
-    g6_lu_solve(12, best_lu, best_piv, rhs, 16);
-    memcpy(S, rhs, sizeof rhs);
-    for (i = 0; i < 4; ++i)
+    for (i = 0; i < nl; ++i)
+        for (j = 0; j < nm; ++j) rhs[16 * i + j] = -bL0[nm * i + j];
+    for (i = 0; i < nq; ++i) rhs[16 * (nl + i) + nm + i] = 1.0;
+    g6_lu_solve(nm, best_lu, best_piv, rhs, 16);
+    memcpy(S, rhs, sizeof(double) * (size_t)(16 * nm));
+    for (i = 0; i < nq; ++i)
         for (j = 0; j < 16; ++j) {
-            double s = j < 12 ? -bC4[12 * i + j] : 0.0;
-            for (k = 0; k < 12; ++k) s -= bB4[12 * i + k] * rhs[16 * k + j];
-            S[16 * (12 + i) + j] = s;
+            double s = j < nm ? -bCq[nm * i + j] : 0.0;
+            for (k = 0; k < nm; ++k) s -= bBq[nm * i + k] * rhs[16 * k + j];
+            S[16 * (nm + i) + j] = s;
         }
     if (wk_eig_real(16, S, wr, wi, work) != WK_EIG_OK) return -1;
     for (k = 0; k < 16; ++k) /* a near-real pair once, at its real part */

@@ -182,41 +182,62 @@ def _g6_trig_rows_many(f):
 
 
 def g6_deflation_basis(n):
-    """(ab, comp) for the six equations' rows n (6 x 14, the left null space of Q): ab (12 x 4) the real vectors
-    (a; b) with (a + i b)^T n W4 = 0, comp (6 x 2) the equations orthogonal to every a and b; None where n W4 has
-    rank < 4 (see the module docstring)."""
+    """(r0, ab, comp) for the six equations' rows n (6 x 14, the left null space of Q): r0 (6 x d0) the real
+    combinations free of t3 altogether (r^T n W4 = 0; d0 = 0 for a generic arm, 1 for a UR-like one), ab
+    (12 x (4 - 2 d0)) the other real vectors (a; b) with (a + i b)^T n W4 = 0, comp (6 x (2 + d0)) the equations
+    orthogonal to all of them; None where n W4 has rank < 4 or the spans do not add up (see the module docstring)."""
     x, y = n[:, _G6_BLOCKS], n[:, [b + 1 for b in _G6_BLOCKS]]
     u, sv, _ = np.linalg.svd(np.block([[x, y], [-y, x]]))
     if not sv[-1] > G6_DEFLATE_TOL * sv[0]:
         return None
-    ab = u[:, 8:]
-    ua, sa, _ = np.linalg.svd(np.hstack([ab[:6], ab[6:]]))
-    if not sa[3] > G6_DEFLATE_TOL * sa[0]:  # the a's and b's span less than 4 real dimensions
+    ur, sr, _ = np.linalg.svd(np.hstack([x, y]))  # 6 x 8: its left null space, the real mu
+    d0 = 6 - int(np.sum(sr > G6_DEFLATE_TOL * sr[0]))
+    if d0 > 2:
         return None
-    return ab, ua[:, 4:]
+    r0 = ur[:, 6 - d0:]
+    ab = u[:, 8:]
+    if d0:  # the (r; 0), (0; r) directions out of the null space of [[X, Y], [-Y, X]]
+        real = np.zeros((12, 2 * d0))
+        real[:6, :d0], real[6:, d0:] = r0, r0
+        ua, sa, _ = np.linalg.svd(ab - real @ (real.T @ ab))
+        if d0 < 2 and not sa[3 - 2 * d0] > G6_DEFLATE_TOL * sa[0]:
+            return None
+        ab = ua[:, : 4 - 2 * d0]
+    k = 4 - d0  # the real span of r0, the a's and the b's
+    ua, sa, _ = np.linalg.svd(np.hstack([r0, ab[:6], ab[6:]]))
+    if not (sa[k - 1] > G6_DEFLATE_TOL * sa[0] and (len(sa) <= k or sa[k] <= G6_DEFLATE_TOL * sa[0])):
+        return None
+    return r0, ab, ua[:, k:]
 
 
 def _g6_deflated_parts(t6, basis):
     """The deflated pencil's rows split by the hidden angle's origin phi (each is linear in cos phi, sin phi): the
     linear rows L0 + x K = (a0 + c pr + s qr) + x (b0 + c qr - s pr) (Re L = (a g0 + kr) + x (b g0 - ki) with
-    2 kappa = mu (gc - i gs) at phi; 2 pr = a gc + b gs, 2 qr = a gs - b gc), then the two complementary
-    equations' (1, c, s) parts k1, kc, ks in the hidden angle (rows and u multiples each)."""
-    ab, comp = basis
+    2 kappa = mu (gc - i gs) at phi; 2 pr = a gc + b gs, 2 qr = a gs - b gc), the complementary equations'
+    (1, c, s) parts k1, kc, ks in the hidden angle (rows and u multiples each), all times m0 (12 x (12 - 2 d0)):
+    an orthonormal basis of the monomial vectors m that the rows free of t3 (r0 g0 m = 0) leave."""
+    r0, ab, comp = basis
     g0, gc, gs = t6[:, 0], t6[:, 1], t6[:, 2]
-    a, b = ab[:6], ab[6:]  # (6, 4) each: column j one (a; b)
+    a, b = ab[:6], ab[6:]  # (6, j) each: column j one (a; b)
+    nl, nq = ab.shape[1], comp.shape[1]
     ag0, bg0, agc, ags, bgc, bgs = (np.einsum("ej,euv->juv", v, w) for v, w in
                                     ((a, g0), (b, g0), (a, gc), (a, gs), (b, gc), (b, gs)))
-    lin = _g6_trig_rows_many(np.stack([ag0, bg0, 0.5 * (agc + bgs), 0.5 * (ags - bgc)]).reshape(16, 3, 3))
-    lin = lin.reshape(2, 4, 4, 12).transpose(1, 0, 2, 3).reshape(4, 8, 12)  # a0, b0, pr, qr: 4 rows + u multiples
-    quad = _g6_trig_rows_many(np.einsum("ek,ehab->hkab", comp, t6).reshape(6, 3, 3))
-    quad = quad.reshape(2, 3, 2, 12).transpose(1, 0, 2, 3).reshape(3, 4, 12)  # k1, kc, ks: 2 rows + u multiples
-    return lin, quad
+    lin = _g6_trig_rows_many(np.stack([ag0, bg0, 0.5 * (agc + bgs), 0.5 * (ags - bgc)]).reshape(4 * nl, 3, 3))
+    lin = lin.reshape(2, 4, nl, 12).transpose(1, 0, 2, 3).reshape(4, 2 * nl, 12)  # a0, b0, pr, qr (+ u multiples)
+    quad = _g6_trig_rows_many(np.einsum("ek,ehab->hkab", comp, t6).reshape(3 * nq, 3, 3))
+    quad = quad.reshape(2, 3, nq, 12).transpose(1, 0, 2, 3).reshape(3, 2 * nq, 12)  # k1, kc, ks (+ u multiples)
+    m0 = np.eye(12)
+    if r0.shape[1]:
+        rows = _g6_trig_rows_many(np.einsum("ek,euv->kuv", r0, g0))
+        m0 = np.linalg.svd(rows)[2][len(rows):].T
+    return lin @ m0, quad @ m0
 
 
 def _g6_deflated_at(parts, phi):
     """(S, rcond of K): the 16 x 16 matrix whose eigenvalues are the roots x of hidden = t3 = phi + 2 atan x other
     than +-i (the module docstring), and the reciprocal condition of its leading coefficient K."""
     (a0, b0, pr, qr), (k1, kc, ks) = parts
+    nm, nl2, nq2 = a0.shape[1], len(a0), len(k1)  # m's dimension (12 - 2 d0), linear and quadratic rows
     c, s = math.cos(phi), math.sin(phi)
     l0, l1 = a0 + c * pr + s * qr, b0 + c * qr - s * pr
     kc, ks = c * kc + s * ks, c * ks - s * kc
@@ -224,21 +245,21 @@ def _g6_deflated_at(parts, phi):
     k = np.vstack([l1, a2])
     # each row with its partners equilibrated by a power of two (the C's g6_deflated_at): K's conditioning then
     # measures the problem, not the rows' scales
-    lin = np.maximum(np.max(np.abs(l0), axis=1), np.max(np.abs(l1), axis=1))
+    lin = np.maximum(np.max(np.abs(l0), axis=1, initial=0.0), np.max(np.abs(l1), axis=1, initial=0.0))
     quad = np.max(np.abs(np.hstack([a2, b2, c2])), axis=1)
     big = np.concatenate([lin, quad])
     scale = np.exp2(-np.frexp(np.where(big > 0.0, big, 1.0))[1])
-    l0, k = l0 * scale[:8, None], k * scale[:, None]
-    b2, c2 = b2 * scale[8:, None], c2 * scale[8:, None]
+    l0, k = l0 * scale[:nl2, None], k * scale[:, None]
+    b2, c2 = b2 * scale[nl2:, None], c2 * scale[nl2:, None]
     sv = np.linalg.svd(k, compute_uv=False)
     rc = sv[-1] / sv[0] if sv[0] > 0.0 else 0.0
     if not rc > 0.0:
         return None, 0.0
-    rhs = np.zeros((12, 16))
-    rhs[:8, :12] = -l0
-    rhs[8:, 12:] = np.eye(4)
+    rhs = np.zeros((nm, nm + nq2))
+    rhs[:nl2, :nm] = -l0
+    rhs[nl2:, nm:] = np.eye(nq2)
     d = np.linalg.solve(k, rhs)  # x m = K^-1 [-L0 m; s]
-    return np.vstack([d, np.hstack([-c2, np.zeros((4, 4))]) - b2 @ d]), rc  # x s = -C4 m - B4 x m
+    return np.vstack([d, np.hstack([-c2, np.zeros((nq2, nq2))]) - b2 @ d]), rc  # x s = -C4 m - B4 x m
 
 
 def _g6_deflated_matrix(t6, basis, phi):
