@@ -8,7 +8,11 @@
  *   wk_g6_solve 87.7 us: quadratic eigenproblem 43.2 (53%: the 24 x 24 companion's Hessenberg + Francis QR and
  *   the leading coefficient's LU), Newton refine 11.7 (14%: 4.5 candidates x ~3 chain FKs of 18 4x4 products),
  *   the 14 equations 10.4 (13%: 27 loop products and the 27 x 27 interpolation per equation), null vectors 6.0
- *   (7%: complete-pivoting LU per real root), complete 3.8, A/B/C 3.4, QR and N P 2.3, links 0.3. */
+ *   (7%: complete-pivoting LU per real root), complete 3.8, A/B/C 3.4, QR and N P 2.3, links 0.3.
+ * After it (same machine, load ~4 from other jobs on its 2 cores; the sections now as wk_g6_solve runs hidden t3):
+ *   wk_g6_solve 38 us: the deflated 16 x 16 roots 23 (wk_eig_real on 16 x 16 alone ~16: Hessenberg ~5, Francis QR
+ *   ~11 with ~26 double-shift sweeps; the rest the structure's QRs, the rows per phi and K's LU), null vectors 5.5,
+ *   refine 2.8, complete 2.6, QR and N P 2.1, the 14 equations 1.1, A/B/C 0.8. */
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,9 +1,10 @@
 /* wristkin: the general 6R arm's inverse kinematics by elimination (C99, libm only; do not edit).
  * @generated-by@
  *
- * See wk_general6r.h; the method is runtime/python/general6r.py's, step for step, except that the quadratic
- * eigenproblem chooses its own leading coefficient (wk_generalized_quadratic_eig: the problem, its reversal or a
- * Moebius rotation), where the Python picks the hidden angle's origin phi. */
+ * See wk_general6r.h; the method is runtime/python/general6r.py's, step for step (the hidden angle t3 deflated to a
+ * 16 x 16 eigenproblem, its origin phi chosen alike), except that the 24 x 24 fallback (hidden t4 or t5, or the
+ * structure not met) chooses its own leading coefficient (wk_generalized_quadratic_eig: the problem, its reversal
+ * or a Moebius rotation), where the Python picks phi. Where the time goes: bench/profile_general6r.c. */
 #include "wk_general6r.h"
 
 #include "wk_eigen.h"
@@ -409,7 +410,8 @@ static int g6_monomial_vectors(const double *M, double m[G6_MAXK][12])
  * (runtime/python/general6r.py's docstring has the derivation): two complex combinations mu = a + i b of the six
  * equations have no 1/z part (z = e^(i t3)); each turns a pair of quadratic rows into a pair of linear ones, so
  * the 12 x 12 polynomial's determinant drops to degree 16 and the eigenproblem to 16 x 16 (~3x cheaper than the
- * 24 x 24 companion). */
+ * 24 x 24 companion). Where d0 real combinations are free of t3 altogether (parallel axes elsewhere: the tilted
+ * UR5e, the xArm6), their rows r g0 = 0 restrict the monomial vector to 12 - 2 d0 dimensions instead. */
 
 #define G6_DEFLATE_TOL 1e-8 /* structure not met to this (relative): the 24 x 24 path */
 /* |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding (Python's G6_REAL_TOL: a double root

@@ -5,8 +5,9 @@
  * loop Rz(t1) K1 Rz(t2) K2 ... Rz(t6) K6 = I of six turns and constant links; read from joint `shift`
  * (backwards when `reverse`), the 14 equations of Raghavan and Roth are interpolated exactly from three angles
  * per joint, theta1 and theta2 eliminated by Q's left null space (Householder QR), and the six equations left
- * become the 12 x 12 matrix polynomial of the hidden angle, whose real eigenvalues (wk_eigen.c) and null vectors
- * give the candidates, each refined by Newton steps on the chain. The caller verifies each (candidates are not
+ * become the 12 x 12 matrix polynomial of the hidden angle, whose real eigenvalues (wk_eigen.c; for hidden t3 with
+ * the determinant's extraneous (1 + x^2)^4 deflated: 16 x 16) and null vectors give the candidates, each refined
+ * by Newton steps on the chain. The caller verifies each (candidates are not
  * solutions until then). Frames and poses are 4 x 4 row-major; no allocation, every size fixed below. */
 #ifndef WK_GENERAL6R_H
 #define WK_GENERAL6R_H

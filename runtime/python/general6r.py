@@ -39,9 +39,13 @@ multiples) trades a quadratic pair of rows for a linear pair, dropping one facto
 The eight linear rows (Re L of the four real vectors (a; b) of the left null space of [[X, Y], [-Y, X]],
 X + i Y = N W4) and the four quadratic rows of the two equations orthogonal to every a and b give a 12 x 12
 polynomial of determinant degree 16, linearised with s = x A4 m (A4 the quadratic rows' x^2 coefficient):
-x [m; s] = S [m; s], S 16 x 16 (_g6_deflated_matrix). tests/test_general6r.py checks that its eigenvalues are the
-24 x 24 companion's other than +-i. Where the structure is not met to rounding (G of rank < 4: a real combination
-of the six equations free of t3) the 24 x 24 companion is used.
+x [m; s] = S [m; s], S 16 x 16 (_g6_deflated_matrix). When a mu is real up to a factor (d0 = 1 or 2 real
+combinations r of the six equations free of t3 altogether, as for the UR5e with a tilted wrist or the xArm6: parallel
+axes elsewhere in the loop), its pair degenerates (Re L = r g0, Im L = -x r g0); the row r g0 = 0 (degree 0 in x)
+then restricts m to a (12 - 2 d0)-dimensional basis m0, the other mu give 4 - 2 d0 linear rows and the 2 + d0
+complementary equations quadratic ones: again 16 x 16. tests/test_general6r.py checks that its eigenvalues are the
+24 x 24 companion's other than +-i (random arms, d0 = 0; the tilted UR5e, d0 = 1). Where the structure is not met
+to rounding (N W4 of rank < 4, or d0 > 2) and for hidden t4 or t5, the 24 x 24 companion is used.
 
 The source generated Python modules inline (from the marker line on; derive/runtime_files.py), linted and tested
 here as it is (tests/test_general6r.py).
