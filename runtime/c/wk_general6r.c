@@ -424,9 +424,10 @@ static const double g6_phis[G6_NPHI] = {0.0, 2.0 * G6_PI / 3.0, -2.0 * G6_PI / 3
 /* Householder QR with column pivoting of a (rows x cols, row-major, rows <= 12, cols <= 8): q (rows x rows,
  * row-major) receives Q, whose first `rank` columns span the columns of a and the others their orthogonal
  * complement. rank >= 0 is what the caller expects; -1 lets the pivots decide (a pivot below G6_DEFLATE_TOL of the
- * first ends it). Returns the rank, or -1 when a expected rank is not met (a pivot too small, or what is left
- * of the other columns above that tolerance). */
-static int g6_span_qr(int rows, int cols, const double *a, int rank, double *q)
+ * first ends it). Only Q's columns from the rank on (the complement) are written unless all_columns. Returns the
+ * rank, or -1 when a expected rank is not met (a pivot too small, or what is left of the other columns above that
+ * tolerance). */
+static int g6_span_qr(int rows, int cols, const double *a, int rank, int all_columns, double *q)
 {
     double w[12][8], v[8][12], beta[8], first = 0.0;
     int i, j, k, steps = rank >= 0 ? rank : (rows < cols ? rows : cols);
@@ -474,7 +475,7 @@ static int g6_span_qr(int rows, int cols, const double *a, int rank, double *q)
         for (i = steps; i < rows; ++i) s += w[i][j] * w[i][j];
         if (!(sqrt(s) <= G6_DEFLATE_TOL * first)) return -1;
     }
-    for (j = 0; j < rows; ++j) { /* Q e_j = H_0 ... H_(steps-1) e_j */
+    for (j = all_columns ? 0 : steps; j < rows; ++j) { /* Q e_j = H_0 ... H_(steps-1) e_j */
         double e[12];
         for (i = 0; i < rows; ++i) e[i] = i == j ? 1.0 : 0.0;
         for (k = steps - 1; k >= 0; --k) {
@@ -687,7 +688,7 @@ static int g6_deflated_parts(double t6[6][27], const double *r0, int d0, const d
         }
         for (j = 0; j < 2 * d0; ++j)
             for (k = 0; k < 12; ++k) rt[2 * d0 * k + j] = rows[j][k];
-        if (g6_span_qr(12, 2 * d0, rt, 2 * d0, q) != 2 * d0) return 0;
+        if (g6_span_qr(12, 2 * d0, rt, 2 * d0, 0, q) != 2 * d0) return 0;
         nm = 12 - 2 * d0;
         for (k = 0; k < 12; ++k)
             for (j = 0; j < nm; ++j) m0[nm * k + j] = q[12 * k + 2 * d0 + j];
@@ -798,8 +799,8 @@ static int g6_deflated_roots(double t6[6][27], double W[G6_NEQ][G6_NEQ], double 
             xy[8 * e + j] = x;
             xy[8 * e + 4 + j] = y;
         }
-    if (g6_span_qr(12, 8, z, 8, qz) != 8) return -1;
-    rank = g6_span_qr(6, 8, xy, -1, qr0); /* [X Y]'s left null space: real combinations free of t3 */
+    if (g6_span_qr(12, 8, z, 8, 0, qz) != 8) return -1;
+    rank = g6_span_qr(6, 8, xy, -1, 0, qr0); /* [X Y]'s left null space: real combinations free of t3 */
     d0 = 6 - rank;
     if (rank < 0 || d0 > 2) return -1;
     for (i = 0; i < 6; ++i)
@@ -824,7 +825,7 @@ static int g6_deflated_roots(double t6[6][27], double W[G6_NEQ][G6_NEQ], double 
         if (d0 == 0) {
             memcpy(ab, proj, sizeof proj);
         } else if (d0 == 1) {
-            if (g6_span_qr(12, 4, proj, 2, qp) != 2) return -1;
+            if (g6_span_qr(12, 4, proj, 2, 1, qp) != 2) return -1;
             for (i = 0; i < 12; ++i)
                 for (j = 0; j < 2; ++j) ab[2 * i + j] = qp[12 * i + j];
         }
@@ -839,7 +840,7 @@ static int g6_deflated_roots(double t6[6][27], double W[G6_NEQ][G6_NEQ], double 
                 span[cols * i + d0 + nab + j] = ab[nab * (6 + i) + j];
             }
         }
-        if (g6_span_qr(6, cols, span, 4 - d0, qs) != 4 - d0) return -1;
+        if (g6_span_qr(6, cols, span, 4 - d0, 0, qs) != 4 - d0) return -1;
         for (i = 0; i < 6; ++i)
             for (j = 0; j < nc; ++j) comp[nc * i + j] = qs[6 * i + 4 - d0 + j];
     }
