@@ -82,15 +82,21 @@ def bench(name, path, free, n):
 def report(n: int = 100) -> str:
     folder = Path(tempfile.mkdtemp(prefix="wk_g6_specs_"))
     rows = [bench(name, path, free, n) for name, path, free in robots(folder)]
-    lines = [f"General 6R by elimination ({platform.processor() or platform.machine()}, load "
+    lines = [f"General 6R by elimination ({platform.processor() or platform.machine()}, {os.cpu_count()} cores, load "
              f"{os.getloadavg()[0]:.1f}; {n} random poses per robot; goals of issue 23: derive <= 30 s, "
-             "Python <= 50 us, C loop <= 20 us):", "",
+             "Python <= 50 us, C loop <= 20 us; the numpy path's own goal <= 1 ms):", "",
              "| robot | derive (s) | ik from Python, C ext. (us) | numpy path (us) | C loop (us) | sets per pose | "
              "generating joints found |", "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for r in rows:
         c = "-" if r["c_us"] is None else f"{r['c_us']:.0f}"
         lines.append(f"| {r['robot']} | {r['derive_s']:.1f} | {r['py_us']:.0f} | {r['np_us']:.0f} | {c} | "
                      f"{r['sets']:.1f} | {r['found']}/{r['n']} |")
+    met = {"derive <= 30 s": sum(r["derive_s"] <= 30.0 for r in rows),
+           "Python <= 50 us": sum(r["py_us"] <= 50.0 for r in rows),
+           "C loop <= 20 us": sum(r["c_us"] is not None and r["c_us"] <= 20.0 for r in rows),
+           "numpy <= 1 ms": sum(r["np_us"] <= 1000.0 for r in rows)}
+    lines += ["", "Goals met (robots of " + str(len(rows)) + "): " + ", ".join(f"{k} {v}" for k, v in met.items())
+              + ". The C time is mostly the deflated 16 x 16 eigenproblem (bench/profile_general6r.c)."]
     return "\n".join(lines)
 
 

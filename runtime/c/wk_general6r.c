@@ -1,9 +1,10 @@
 /* wristkin: the general 6R arm's inverse kinematics by elimination (C99, libm only; do not edit).
  * @generated-by@
  *
- * See wk_general6r.h; the method is runtime/python/general6r.py's, step for step, except that the quadratic
- * eigenproblem chooses its own leading coefficient (wk_generalized_quadratic_eig: the problem, its reversal or a
- * Moebius rotation), where the Python picks the hidden angle's origin phi. */
+ * See wk_general6r.h; the method is runtime/python/general6r.py's, step for step (the hidden angle t3 deflated to a
+ * 16 x 16 eigenproblem, its origin phi chosen alike), except that the 24 x 24 fallback (hidden t4 or t5, or the
+ * structure not met) chooses its own leading coefficient (wk_generalized_quadratic_eig: the problem, its reversal
+ * or a Moebius rotation), where the Python picks phi. Where the time goes: bench/profile_general6r.c. */
 #include "wk_general6r.h"
 
 #include "wk_eigen.h"
@@ -16,13 +17,10 @@
 #define G6_PI 3.14159265358979323846
 #define G6_SQRT3 1.73205080756887729353
 
-static const double g6_grid[3] = {0.0, 2.0 * G6_PI / 3.0, 4.0 * G6_PI / 3.0};
 /* interpolation: the (1, c, s) coefficients of f(t) = c0 + c1 cos t + c2 sin t from f at the grid */
 static const double g6_binv[3][3] = { {1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0},
                                      {2.0 / 3.0, -1.0 / 3.0, -1.0 / 3.0},
                                      {0.0, 1.0 / G6_SQRT3, -1.0 / G6_SQRT3} };
-/* (1 + u^2) times 1, c, s as coefficients of u^0, u^1, u^2 */
-static const double g6_half[3][3] = { {1.0, 0.0, 1.0}, {1.0, 0.0, -1.0}, {0.0, 2.0, 0.0} };
 
 static void g6_mul(const double *a, const double *b, double *o)
 {
@@ -50,22 +48,12 @@ static void g6_inverse(const double *t, double *o)
     memcpy(o, r, sizeof r);
 }
 
-static void g6_rz(double a, double *o)
-{
-    const double c = cos(a), s = sin(a);
-    memset(o, 0, 16 * sizeof(double));
-    o[0] = c;
-    o[1] = -s;
-    o[4] = s;
-    o[5] = c;
-    o[10] = 1.0;
-    o[15] = 1.0;
-}
+/* cos and sin of the interpolation grid 0, 2 pi / 3, 4 pi / 3 */
+static const double g6_grid_cs[3][2] = { {1.0, 0.0}, {-0.5, 0.5 * G6_SQRT3}, {-0.5, -0.5 * G6_SQRT3} };
 
-/* the 14 functions of the line of t's z axis: d, p, p.p, p.d, p x d, (p.p) d - 2 (p.d) p */
-static void g6_fourteen(const double *t, double *e)
+/* the 14 functions of a line (direction d, point p): d, p, p.p, p.d, p x d, (p.p) d - 2 (p.d) p */
+static void g6_fourteen(const double *d, const double *p, double *e)
 {
-    const double d[3] = {t[2], t[6], t[10]}, p[3] = {t[3], t[7], t[11]};
     const double pp = p[0] * p[0] + p[1] * p[1] + p[2] * p[2], pd = p[0] * d[0] + p[1] * d[1] + p[2] * d[2];
     int i;
     for (i = 0; i < 3; ++i) {
@@ -80,62 +68,97 @@ static void g6_fourteen(const double *t, double *e)
     e[10] = p[0] * d[1] - p[1] * d[0];
 }
 
-/* P[e][9 m3 + 3 m4 + m5] (the constant term already minus r), Q[e][k], r[e] of the labelled loop */
+/* a line (d, p: 6 doubles) moved by the rigid 4 x 4 t, or turned by Rz of (c, s) (sign -1: Rz(-angle)) */
+static void g6_line_move(const double *t, const double *l, double *o)
+{
+    int i;
+    for (i = 0; i < 3; ++i) {
+        o[i] = t[4 * i] * l[0] + t[4 * i + 1] * l[1] + t[4 * i + 2] * l[2];
+        o[3 + i] = t[4 * i] * l[3] + t[4 * i + 1] * l[4] + t[4 * i + 2] * l[5] + t[4 * i + 3];
+    }
+}
+
+static void g6_line_turn(const double *cs, double sign, const double *l, double *o)
+{
+    const double c = cs[0], s = sign * cs[1];
+    int k;
+    for (k = 0; k < 6; k += 3) {
+        const double x = l[k], y = l[k + 1];
+        o[k] = c * x - s * y;
+        o[k + 1] = s * x + c * y;
+        o[k + 2] = l[k + 2];
+    }
+}
+
+/* P[e][9 m3 + 3 m4 + m5] (the constant term already minus r), Q[e][k], r[e] of the labelled loop: the line of
+ * joint 6 from both sides at the grid (a tree of line moves: 3 + 9 + 27 on the left, 3 + 9 on the right), then
+ * the interpolation one axis at a time (separable: 3 x 14 x 27 x 3 products instead of 14 x 27 x 27) */
 static void g6_equations(double links[6][16], double P[G6_NEQ][27], double Q[G6_NEQ][G6_NY], double *r)
 {
     static const int y_index[G6_NY][2] = { {2, 2}, {2, 1}, {1, 2}, {1, 1}, {2, 0}, {1, 0}, {0, 2}, {0, 1} };
-    double vals[3][3][3][G6_NEQ], rvals[3][3][G6_NEQ], R[G6_NEQ][3][3], t[16], ta[16], tb[16], rot[16];
-    double k1i[16], k2i[16], k6i[16];
-    int a, b, c, e, m3, m4, m5;
-    for (a = 0; a < 3; ++a) {
-        g6_rz(g6_grid[a], rot);
-        g6_mul(rot, links[2], ta);
-        for (b = 0; b < 3; ++b) {
-            g6_rz(g6_grid[b], rot);
-            g6_mul(ta, rot, tb);
-            g6_mul(tb, links[3], tb);
-            for (c = 0; c < 3; ++c) {
-                g6_rz(g6_grid[c], rot);
-                g6_mul(tb, rot, t);
-                g6_mul(t, links[4], t);
-                g6_fourteen(t, vals[a][b][c]);
-            }
-        }
+    double vals[27][G6_NEQ], tmp[27][G6_NEQ], rvals[9][G6_NEQ], rtmp[9][G6_NEQ], R[G6_NEQ][9];
+    double l0[6], lc[3][6], lb[9][6], la[6], t[6], k1i[16], k2i[16], k6i[16], zline[6] = {0, 0, 1, 0, 0, 0};
+    int a, b, c, e, m, i;
+    g6_line_move(links[4], zline, l0);
+    for (c = 0; c < 3; ++c) {
+        g6_line_turn(g6_grid_cs[c], 1.0, l0, t);
+        g6_line_move(links[3], t, lc[c]);
     }
-    for (e = 0; e < G6_NEQ; ++e)
-        for (m3 = 0; m3 < 3; ++m3)
-            for (m4 = 0; m4 < 3; ++m4)
-                for (m5 = 0; m5 < 3; ++m5) {
-                    double s = 0.0;
-                    for (a = 0; a < 3; ++a)
-                        for (b = 0; b < 3; ++b)
-                            for (c = 0; c < 3; ++c)
-                                s += g6_binv[m3][a] * g6_binv[m4][b] * g6_binv[m5][c] * vals[a][b][c][e];
-                    P[e][9 * m3 + 3 * m4 + m5] = s;
-                }
+    for (b = 0; b < 3; ++b)
+        for (c = 0; c < 3; ++c) {
+            g6_line_turn(g6_grid_cs[b], 1.0, lc[c], t);
+            g6_line_move(links[2], t, lb[3 * b + c]);
+        }
+    for (a = 0; a < 3; ++a)
+        for (i = 0; i < 9; ++i) {
+            g6_line_turn(g6_grid_cs[a], 1.0, lb[i], la);
+            g6_fourteen(la, la + 3, vals[9 * a + i]);
+        }
+    /* interpolation along c, then b, then a: vals[9 a + 3 b + c] -> P[e][9 m3 + 3 m4 + m5] */
+    for (a = 0; a < 9; ++a)
+        for (m = 0; m < 3; ++m)
+            for (e = 0; e < G6_NEQ; ++e)
+                tmp[3 * a + m][e] = g6_binv[m][0] * vals[3 * a][e] + g6_binv[m][1] * vals[3 * a + 1][e] +
+                                    g6_binv[m][2] * vals[3 * a + 2][e];
+    for (a = 0; a < 3; ++a)
+        for (m = 0; m < 3; ++m)
+            for (c = 0; c < 3; ++c)
+                for (e = 0; e < G6_NEQ; ++e)
+                    vals[9 * a + 3 * m + c][e] = g6_binv[m][0] * tmp[9 * a + c][e] +
+                                                 g6_binv[m][1] * tmp[9 * a + 3 + c][e] +
+                                                 g6_binv[m][2] * tmp[9 * a + 6 + c][e];
+    for (m = 0; m < 3; ++m)
+        for (i = 0; i < 9; ++i)
+            for (e = 0; e < G6_NEQ; ++e)
+                P[e][9 * m + i] = g6_binv[m][0] * vals[i][e] + g6_binv[m][1] * vals[9 + i][e] +
+                                  g6_binv[m][2] * vals[18 + i][e];
+    /* the right side K2^-1 Rz(-t2) K1^-1 Rz(-t1) K6^-1 (e_z, o) at t1 = grid a, t2 = grid b */
     g6_inverse(links[0], k1i);
     g6_inverse(links[1], k2i);
     g6_inverse(links[5], k6i);
-    for (a = 0; a < 3; ++a)
+    g6_line_move(k6i, zline, l0);
+    for (a = 0; a < 3; ++a) {
+        g6_line_turn(g6_grid_cs[a], -1.0, l0, t);
+        g6_line_move(k1i, t, lc[a]);
         for (b = 0; b < 3; ++b) {
-            g6_rz(-g6_grid[b], rot);
-            g6_mul(k2i, rot, t);
-            g6_mul(t, k1i, t);
-            g6_rz(-g6_grid[a], rot);
-            g6_mul(t, rot, t);
-            g6_mul(t, k6i, t);
-            g6_fourteen(t, rvals[a][b]);
+            g6_line_turn(g6_grid_cs[b], -1.0, lc[a], t);
+            g6_line_move(k2i, t, la);
+            g6_fourteen(la, la + 3, rvals[3 * a + b]);
         }
+    }
+    for (a = 0; a < 3; ++a)
+        for (m = 0; m < 3; ++m)
+            for (e = 0; e < G6_NEQ; ++e)
+                rtmp[3 * a + m][e] = g6_binv[m][0] * rvals[3 * a][e] + g6_binv[m][1] * rvals[3 * a + 1][e] +
+                                     g6_binv[m][2] * rvals[3 * a + 2][e];
+    for (m = 0; m < 3; ++m)
+        for (i = 0; i < 3; ++i)
+            for (e = 0; e < G6_NEQ; ++e)
+                R[e][3 * m + i] = g6_binv[m][0] * rtmp[i][e] + g6_binv[m][1] * rtmp[3 + i][e] +
+                                  g6_binv[m][2] * rtmp[6 + i][e];
     for (e = 0; e < G6_NEQ; ++e) {
-        for (m3 = 0; m3 < 3; ++m3)
-            for (m4 = 0; m4 < 3; ++m4) {
-                double s = 0.0;
-                for (a = 0; a < 3; ++a)
-                    for (b = 0; b < 3; ++b) s += g6_binv[m3][a] * g6_binv[m4][b] * rvals[a][b][e];
-                R[e][m3][m4] = s;
-            }
-        for (a = 0; a < G6_NY; ++a) Q[e][a] = R[e][y_index[a][0]][y_index[a][1]];
-        r[e] = R[e][0][0];
+        for (a = 0; a < G6_NY; ++a) Q[e][a] = R[e][3 * y_index[a][0] + y_index[a][1]];
+        r[e] = R[e][0];
         P[e][0] -= r[e];
     }
 }
@@ -383,6 +406,484 @@ static int g6_monomial_vectors(const double *M, double m[G6_MAXK][12])
     }
 }
 
+/* ------------------------------------------------------------------ hidden t3: the (1 + x^2)^4 deflated
+ * (runtime/python/general6r.py's docstring has the derivation): two complex combinations mu = a + i b of the six
+ * equations have no 1/z part (z = e^(i t3)); each turns a pair of quadratic rows into a pair of linear ones, so
+ * the 12 x 12 polynomial's determinant drops to degree 16 and the eigenproblem to 16 x 16 (~3x cheaper than the
+ * 24 x 24 companion). Where d0 real combinations are free of t3 altogether (parallel axes elsewhere: the tilted
+ * UR5e, the xArm6), their rows r g0 = 0 restrict the monomial vector to 12 - 2 d0 dimensions instead. */
+
+#define G6_DEFLATE_TOL 1e-8 /* structure not met to this (relative): the 24 x 24 path */
+/* |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding (Python's G6_REAL_TOL: a double root
+ * splits by ~sqrt(c n eps / rcond(K)) into a complex pair, 6.6e-6 seen at rcond ~1e-4; verification decides) */
+#define G6_REAL_TOL 1e-4
+#define G6_RCOND_GOOD 1e-4 /* the leading coefficient this well conditioned: no further origin phi tried */
+#define G6_NPHI 4
+static const double g6_phis[G6_NPHI] = {0.0, 2.0 * G6_PI / 3.0, -2.0 * G6_PI / 3.0, G6_PI / 2.0};
+
+/* Householder QR with column pivoting of a (rows x cols, row-major, rows <= 12, cols <= 8): q (rows x rows,
+ * row-major) receives Q, whose first `rank` columns span the columns of a and the others their orthogonal
+ * complement. rank >= 0 is what the caller expects; -1 lets the pivots decide (a pivot below G6_DEFLATE_TOL of the
+ * first ends it). Only Q's columns from the rank on (the complement) are written unless all_columns. Returns the
+ * rank, or -1 when a expected rank is not met (a pivot too small, or what is left of the other columns above that
+ * tolerance). */
+static int g6_span_qr(int rows, int cols, const double *a, int rank, int all_columns, double *q)
+{
+    double w[12][8], v[8][12], beta[8], first = 0.0;
+    int i, j, k, steps = rank >= 0 ? rank : (rows < cols ? rows : cols);
+    for (i = 0; i < rows; ++i)
+        for (j = 0; j < cols; ++j) w[i][j] = a[cols * i + j];
+    for (k = 0; k < steps; ++k) {
+        double best = -1.0, norm, alpha, vtv = 0.0;
+        int p = k;
+        for (j = k; j < cols; ++j) {
+            double s = 0.0;
+            for (i = k; i < rows; ++i) s += w[i][j] * w[i][j];
+            if (s > best) {
+                best = s;
+                p = j;
+            }
+        }
+        if (p != k)
+            for (i = 0; i < rows; ++i) {
+                const double t = w[i][k];
+                w[i][k] = w[i][p];
+                w[i][p] = t;
+            }
+        norm = sqrt(best);
+        if (k == 0) first = norm;
+        if (!(first > 0.0)) return -1;
+        if (!(norm > G6_DEFLATE_TOL * first)) {
+            if (rank >= 0) return -1;
+            steps = k; /* the numerical rank */
+            break;
+        }
+        alpha = w[k][k] > 0.0 ? -norm : norm;
+        for (i = 0; i < rows; ++i) v[k][i] = i < k ? 0.0 : w[i][k];
+        v[k][k] -= alpha;
+        for (i = k; i < rows; ++i) vtv += v[k][i] * v[k][i];
+        beta[k] = 2.0 / vtv;
+        for (j = k; j < cols; ++j) {
+            double s = 0.0;
+            for (i = k; i < rows; ++i) s += v[k][i] * w[i][j];
+            s *= beta[k];
+            for (i = k; i < rows; ++i) w[i][j] -= s * v[k][i];
+        }
+    }
+    for (j = steps; j < cols; ++j) { /* the rest of the columns must lie in the span */
+        double s = 0.0;
+        for (i = steps; i < rows; ++i) s += w[i][j] * w[i][j];
+        if (!(sqrt(s) <= G6_DEFLATE_TOL * first)) return -1;
+    }
+    for (j = all_columns ? 0 : steps; j < rows; ++j) { /* Q e_j = H_0 ... H_(steps-1) e_j */
+        double e[12];
+        for (i = 0; i < rows; ++i) e[i] = i == j ? 1.0 : 0.0;
+        for (k = steps - 1; k >= 0; --k) {
+            double s = 0.0;
+            for (i = k; i < rows; ++i) s += v[k][i] * e[i];
+            s *= beta[k];
+            for (i = k; i < rows; ++i) e[i] -= s * v[k][i];
+        }
+        for (i = 0; i < rows; ++i) q[rows * i + j] = e[i];
+    }
+    return steps;
+}
+
+/* (1 + u^2) (f0 + f1 c + f2 s) as coefficients of u^0, u^1, u^2 (c = (1 - u^2) / (1 + u^2), s = 2u / (1 + u^2)):
+ * for f = 1, c, s: (1, 0, 1), (1, 0, -1), (0, 2, 0) */
+#define G6_HALF(f, g, k, stride)                      \
+    do {                                              \
+        (g)[0] = (f)[0] + (f)[(stride)];              \
+        (g)[(k)] = 2.0 * (f)[2 * (stride)];           \
+        (g)[2 * (k)] = (f)[0] - (f)[(stride)];        \
+    } while (0)
+
+/* f (3 x 3 over (1, c, s) of the two non-hidden angles) times (1 + u^2)(1 + v^2) as a row over the 12 monomials
+ * u^i v^j (index 3 i + j), and its u multiple */
+static void g6_trig_rows(const double *f, double *row, double *shifted)
+{
+    double h[9];
+    int i;
+    for (i = 0; i < 3; ++i) G6_HALF(f + i, h + i, 3, 3); /* along u: h[3 i + b] over u^i, (1, c, s)_v b */
+    for (i = 0; i < 12; ++i) row[i] = shifted[i] = 0.0;
+    for (i = 0; i < 3; ++i) G6_HALF(h + 3 * i, row + 3 * i, 1, 1);
+    for (i = 0; i < 9; ++i) shifted[3 + i] = row[i];
+}
+
+/* The six equations' coefficients with the hidden angle's origin at phi: t3 = phi + t', (c3, s3) rotated into
+ * (c', s'); hidden is t3 here (index 0 of the 27) */
+static void g6_rotate_hidden(double t6[6][27], double phi, double out[6][27])
+{
+    const double c = cos(phi), s = sin(phi);
+    int e, k;
+    for (e = 0; e < 6; ++e)
+        for (k = 0; k < 9; ++k) {
+            out[e][k] = t6[e][k];
+            out[e][9 + k] = c * t6[e][9 + k] + s * t6[e][18 + k];
+            out[e][18 + k] = c * t6[e][18 + k] - s * t6[e][9 + k];
+        }
+}
+
+/* The 12 x 12 A, B, C of (1 + x^2) times the six equations (hidden = phi + 2 atan x, rotated already in t6) over
+ * the monomials u^i v^j of the other two, the equations in rows 0..5 and their u multiples in 6..11 */
+static void g6_quadratic(double t6[6][27], int hidden, double *A, double *B, double *C)
+{
+    static const int stride[3][3] = { {9, 3, 1}, {3, 9, 1}, {1, 9, 3} }; /* of hidden, u, v in the 27 */
+    const int sh = stride[hidden][0], su = stride[hidden][1], sv = stride[hidden][2];
+    int e, h, i, j;
+    for (i = 0; i < 144; ++i) A[i] = B[i] = C[i] = 0.0;
+    for (e = 0; e < 6; ++e)
+        for (h = 0; h < 3; ++h) {
+            double f[9], row[12], shifted[12];
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) f[3 * i + j] = t6[e][sh * h + su * i + sv * j];
+            g6_trig_rows(f, row, shifted);
+            /* over x: (1 + x^2), (1 - x^2), 2 x for h = 1, c, s */
+            for (i = 0; i < 12; ++i) {
+                const double w = row[i], ws = shifted[i];
+                if (h == 0) {
+                    C[12 * e + i] += w;
+                    A[12 * e + i] += w;
+                    C[12 * (6 + e) + i] += ws;
+                    A[12 * (6 + e) + i] += ws;
+                } else if (h == 1) {
+                    C[12 * e + i] += w;
+                    A[12 * e + i] -= w;
+                    C[12 * (6 + e) + i] += ws;
+                    A[12 * (6 + e) + i] -= ws;
+                } else {
+                    B[12 * e + i] += 2.0 * w;
+                    B[12 * (6 + e) + i] += 2.0 * ws;
+                }
+            }
+        }
+}
+
+/* LU with partial pivoting of the n x n a in place; 0 if a pivot is exactly zero */
+static int g6_lu(int n, double *a, int *piv)
+{
+    int i, j, k;
+    for (k = 0; k < n; ++k) {
+        int p = k;
+        for (i = k + 1; i < n; ++i)
+            if (fabs(a[n * i + k]) > fabs(a[n * p + k])) p = i;
+        piv[k] = p;
+        if (!(a[n * p + k] != 0.0)) return 0;
+        if (p != k)
+            for (j = 0; j < n; ++j) {
+                const double t = a[n * k + j];
+                a[n * k + j] = a[n * p + j];
+                a[n * p + j] = t;
+            }
+        for (i = k + 1; i < n; ++i) {
+            const double f = a[n * i + k] /= a[n * k + k];
+            for (j = k + 1; j < n; ++j) a[n * i + j] -= f * a[n * k + j];
+        }
+    }
+    return 1;
+}
+
+/* b (n x cols, row-major) := (LU)^-1 b */
+static void g6_lu_solve(int n, const double *lu, const int *piv, double *b, int cols)
+{
+    int i, j, k;
+    for (k = 0; k < n; ++k)
+        if (piv[k] != k)
+            for (j = 0; j < cols; ++j) {
+                const double t = b[cols * k + j];
+                b[cols * k + j] = b[cols * piv[k] + j];
+                b[cols * piv[k] + j] = t;
+            }
+    for (i = 1; i < n; ++i)
+        for (k = 0; k < i; ++k) {
+            const double f = lu[n * i + k];
+            for (j = 0; j < cols; ++j) b[cols * i + j] -= f * b[cols * k + j];
+        }
+    for (i = n - 1; i >= 0; --i) {
+        for (k = i + 1; k < n; ++k) {
+            const double f = lu[n * i + k];
+            for (j = 0; j < cols; ++j) b[cols * i + j] -= f * b[cols * k + j];
+        }
+        for (j = 0; j < cols; ++j) b[cols * i + j] /= lu[n * i + i];
+    }
+}
+
+/* The deflated pencil's rows, split by the hidden angle's origin phi (each is linear in cos phi, sin phi): the
+ * linear rows L0 + x K (Re L of the (a; b), then their u multiples) are a0 + c pr + s qr and b0 + c qr - s pr
+ * (2 pr = a gc + b gs, 2 qr = a gs - b gc: Re L = (a g0 + kr) + x (b g0 - ki) with 2 kappa = mu (gc - i gs) at phi);
+ * the quadratic rows (the complementary equations and their u multiples) are, with k1, kc, ks their (1, c, s) parts
+ * in the hidden angle, A = k1 - kc, B = 2 ks, C = k1 + kc, kc = c gc + s gs, ks = c gs - s gc. Every row is
+ * already times m0, the basis of the monomial vectors the d0 rows free of t3 leave (nm = 12 - 2 d0 columns). */
+typedef struct {
+    int nm, nl, nq;                                     /* columns, linear rows (8 - 4 d0), quadratic (4 + 2 d0) */
+    double a0[8][12], b0[8][12], pr[8][12], qr[8][12]; /* linear rows */
+    double k1[8][12], kc[8][12], ks[8][12];            /* quadratic rows */
+} g6_deflated;
+
+/* rows (n x 12) := rows m0 (12 x nm, row-major) */
+static void g6_times_m0(double rows[8][12], int n, const double *m0, int nm)
+{
+    int r, i, k;
+    for (r = 0; r < n; ++r) {
+        double t[12];
+        for (k = 0; k < nm; ++k) {
+            double s = 0.0;
+            for (i = 0; i < 12; ++i) s += rows[r][i] * m0[nm * i + k];
+            t[k] = s;
+        }
+        for (k = 0; k < 12; ++k) rows[r][k] = k < nm ? t[k] : 0.0;
+    }
+}
+
+/* r0 (6 x d0), ab (12 x nab = 4 - 2 d0: a over b), comp (6 x nc = 2 + d0), all row-major */
+static int g6_deflated_parts(double t6[6][27], const double *r0, int d0, const double *ab, int nab,
+                             const double *comp, int nc, g6_deflated *d)
+{
+    double m0[144];
+    int j, e, k, nm = 12;
+    for (j = 0; j < nab; ++j) {
+        double f[4][9];
+        for (k = 0; k < 9; ++k) {
+            double ag0 = 0.0, bg0 = 0.0, agc = 0.0, ags = 0.0, bgc = 0.0, bgs = 0.0;
+            for (e = 0; e < 6; ++e) {
+                const double a = ab[nab * e + j], b = ab[nab * (6 + e) + j];
+                ag0 += a * t6[e][k];
+                bg0 += b * t6[e][k];
+                agc += a * t6[e][9 + k];
+                ags += a * t6[e][18 + k];
+                bgc += b * t6[e][9 + k];
+                bgs += b * t6[e][18 + k];
+            }
+            f[0][k] = ag0;
+            f[1][k] = bg0;
+            f[2][k] = 0.5 * (agc + bgs);
+            f[3][k] = 0.5 * (ags - bgc);
+        }
+        g6_trig_rows(f[0], d->a0[j], d->a0[nab + j]);
+        g6_trig_rows(f[1], d->b0[j], d->b0[nab + j]);
+        g6_trig_rows(f[2], d->pr[j], d->pr[nab + j]);
+        g6_trig_rows(f[3], d->qr[j], d->qr[nab + j]);
+    }
+    for (j = 0; j < nc; ++j) {
+        double f[3][9];
+        for (k = 0; k < 27; ++k) {
+            double s = 0.0;
+            for (e = 0; e < 6; ++e) s += comp[nc * e + j] * t6[e][k];
+            f[k / 9][k % 9] = s;
+        }
+        g6_trig_rows(f[0], d->k1[j], d->k1[nc + j]);
+        g6_trig_rows(f[1], d->kc[j], d->kc[nc + j]);
+        g6_trig_rows(f[2], d->ks[j], d->ks[nc + j]);
+    }
+    if (d0 > 0) { /* m0: the complement of the rows r0 g0 (and their u multiples) in the 12 monomials */
+        double rows[4][12], rt[12 * 4], q[144];
+        for (j = 0; j < d0; ++j) {
+            double f[9];
+            for (k = 0; k < 9; ++k) {
+                double s = 0.0;
+                for (e = 0; e < 6; ++e) s += r0[d0 * e + j] * t6[e][k];
+                f[k] = s;
+            }
+            g6_trig_rows(f, rows[j], rows[d0 + j]);
+        }
+        for (j = 0; j < 2 * d0; ++j)
+            for (k = 0; k < 12; ++k) rt[2 * d0 * k + j] = rows[j][k];
+        if (g6_span_qr(12, 2 * d0, rt, 2 * d0, 0, q) != 2 * d0) return 0;
+        nm = 12 - 2 * d0;
+        for (k = 0; k < 12; ++k)
+            for (j = 0; j < nm; ++j) m0[nm * k + j] = q[12 * k + 2 * d0 + j];
+        g6_times_m0(d->a0, 2 * nab, m0, nm);
+        g6_times_m0(d->b0, 2 * nab, m0, nm);
+        g6_times_m0(d->pr, 2 * nab, m0, nm);
+        g6_times_m0(d->qr, 2 * nab, m0, nm);
+        g6_times_m0(d->k1, 2 * nc, m0, nm);
+        g6_times_m0(d->kc, 2 * nc, m0, nm);
+        g6_times_m0(d->ks, 2 * nc, m0, nm);
+    }
+    d->nm = nm;
+    d->nl = 2 * nab;
+    d->nq = 2 * nc;
+    return 1;
+}
+
+/* 2^-e with 2^e the largest |entry| of the n values (a row's exact power-of-two equilibration), 1 for zeros */
+static double g6_row_scale(const double *x, int n)
+{
+    double big = 0.0;
+    int i, e = 0;
+    for (i = 0; i < n; ++i)
+        if (fabs(x[i]) > big) big = fabs(x[i]);
+    if (!(big > 0.0) || !isfinite(big)) return 1.0;
+    (void)frexp(big, &e);
+    return ldexp(1.0, -e);
+}
+
+/* K (nm x nm: the linear rows' x coefficient, then the quadratic rows' x^2 coefficient), L0 (nl x nm), Bq and Cq
+ * (nq x nm) at phi, row-major with stride nm, each row (with its partners) equilibrated by a power of two */
+static void g6_deflated_at(const g6_deflated *d, double phi, double *K, double *L0, double *Bq, double *Cq)
+{
+    const double c = cos(phi), s = sin(phi);
+    const int nm = d->nm;
+    double sc;
+    int r, k;
+    for (r = 0; r < d->nl; ++r) {
+        double *l0 = L0 + nm * r, *l1 = K + nm * r;
+        for (k = 0; k < nm; ++k) {
+            l0[k] = d->a0[r][k] + c * d->pr[r][k] + s * d->qr[r][k];
+            l1[k] = d->b0[r][k] + c * d->qr[r][k] - s * d->pr[r][k];
+        }
+        sc = g6_row_scale(l0, nm);
+        if (g6_row_scale(l1, nm) < sc) sc = g6_row_scale(l1, nm);
+        for (k = 0; k < nm; ++k) {
+            l0[k] *= sc;
+            l1[k] *= sc;
+        }
+    }
+    for (r = 0; r < d->nq; ++r) {
+        double *a = K + nm * (d->nl + r), *b = Bq + nm * r, *cc = Cq + nm * r;
+        for (k = 0; k < nm; ++k) {
+            const double kc = c * d->kc[r][k] + s * d->ks[r][k], ks = c * d->ks[r][k] - s * d->kc[r][k];
+            a[k] = d->k1[r][k] - kc;
+            b[k] = 2.0 * ks;
+            cc[k] = d->k1[r][k] + kc;
+        }
+        sc = g6_row_scale(a, nm);
+        if (g6_row_scale(b, nm) < sc) sc = g6_row_scale(b, nm);
+        if (g6_row_scale(cc, nm) < sc) sc = g6_row_scale(cc, nm);
+        for (k = 0; k < nm; ++k) {
+            a[k] *= sc;
+            b[k] *= sc;
+            cc[k] *= sc;
+        }
+    }
+}
+
+/* 1-norm reciprocal condition of the n x n k from its LU (explicit inverse: at 12 it costs about an LU) */
+static double g6_rcond(int n, const double *k, const double *lu, const int *piv)
+{
+    double inv[144], nk = 0.0, ni = 0.0;
+    int i, j;
+    for (i = 0; i < n * n; ++i) inv[i] = (i % (n + 1) == 0) ? 1.0 : 0.0;
+    g6_lu_solve(n, lu, piv, inv, n);
+    for (j = 0; j < n; ++j) {
+        double sk = 0.0, si = 0.0;
+        for (i = 0; i < n; ++i) {
+            sk += fabs(k[n * i + j]);
+            si += fabs(inv[n * i + j]);
+        }
+        if (sk > nk) nk = sk;
+        if (!(si <= ni)) ni = si;
+    }
+    return (nk > 0.0 && isfinite(ni) && ni > 0.0) ? 1.0 / (nk * ni) : 0.0;
+}
+
+/* The roots x (real ones in xr, at most 16) of the hidden t3 = phi + 2 atan x by the deflated 16 x 16
+ * eigenproblem, phi chosen as the Python does (the first of g6_phis whose K has rcond > G6_RCOND_GOOD, else the
+ * best). Returns the number of real roots, or -1 when the structure is not met (the caller takes the 24 x 24 path)
+ * or the eigenvalues fail. */
+static int g6_deflated_roots(double t6[6][27], double W[G6_NEQ][G6_NEQ], double *phi_out, double *xr)
+{
+    static const int blocks[4] = {0, 3, 8, 11};
+    double z[12 * 8], xy[6 * 8], qz[144], qr0[36], ab[12 * 4], r0[6 * 2], span[6 * 8], qs[36], comp[6 * 4];
+    double K[144], L0[96], Bq[96], Cq[96], lu[144], best_lu[144], bL0[96], bBq[96], bCq[96], rhs[12 * 16];
+    double S[256], wr[16], wi[16], work[WK_EIG_WORK(16)], best = -1.0;
+    g6_deflated d;
+    int piv[12], best_piv[12], e, j, k, i, n = 0, rank, d0, nab, nc, nm, nl, nq;
+    for (e = 0; e < 6; ++e) /* [[X, Y], [-Y, X]], X + i Y = N W4 */
+        for (j = 0; j < 4; ++j) {
+            const double x = W[8 + e][blocks[j]], y = W[8 + e][blocks[j] + 1];
+            z[8 * e + j] = x;
+            z[8 * e + 4 + j] = y;
+            z[8 * (6 + e) + j] = -y;
+            z[8 * (6 + e) + 4 + j] = x;
+            xy[8 * e + j] = x;
+            xy[8 * e + 4 + j] = y;
+        }
+    if (g6_span_qr(12, 8, z, 8, 0, qz) != 8) return -1;
+    rank = g6_span_qr(6, 8, xy, -1, 0, qr0); /* [X Y]'s left null space: real combinations free of t3 */
+    d0 = 6 - rank;
+    if (rank < 0 || d0 > 2) return -1;
+    for (i = 0; i < 6; ++i)
+        for (j = 0; j < d0; ++j) r0[d0 * i + j] = qr0[6 * i + rank + j];
+    nab = 4 - 2 * d0;
+    {
+        double proj[12 * 4], qp[144];
+        for (i = 0; i < 12; ++i)
+            for (j = 0; j < 4; ++j) proj[4 * i + j] = qz[12 * i + 8 + j];
+        for (j = 0; j < 4 && d0 > 0; ++j) /* the (r; 0), (0; r) directions out */
+            for (k = 0; k < d0; ++k) {
+                double sa = 0.0, sb = 0.0;
+                for (i = 0; i < 6; ++i) {
+                    sa += r0[d0 * i + k] * proj[4 * i + j];
+                    sb += r0[d0 * i + k] * proj[4 * (6 + i) + j];
+                }
+                for (i = 0; i < 6; ++i) {
+                    proj[4 * i + j] -= sa * r0[d0 * i + k];
+                    proj[4 * (6 + i) + j] -= sb * r0[d0 * i + k];
+                }
+            }
+        if (d0 == 0) {
+            memcpy(ab, proj, sizeof proj);
+        } else if (d0 == 1) {
+            if (g6_span_qr(12, 4, proj, 2, 1, qp) != 2) return -1;
+            for (i = 0; i < 12; ++i)
+                for (j = 0; j < 2; ++j) ab[2 * i + j] = qp[12 * i + j];
+        }
+    }
+    nc = 2 + d0;
+    {
+        const int cols = d0 + 2 * nab;
+        for (i = 0; i < 6; ++i) {
+            for (j = 0; j < d0; ++j) span[cols * i + j] = r0[d0 * i + j];
+            for (j = 0; j < nab; ++j) {
+                span[cols * i + d0 + j] = ab[nab * i + j];
+                span[cols * i + d0 + nab + j] = ab[nab * (6 + i) + j];
+            }
+        }
+        if (g6_span_qr(6, cols, span, 4 - d0, 0, qs) != 4 - d0) return -1;
+        for (i = 0; i < 6; ++i)
+            for (j = 0; j < nc; ++j) comp[nc * i + j] = qs[6 * i + 4 - d0 + j];
+    }
+    if (!g6_deflated_parts(t6, r0, d0, ab, nab, comp, nc, &d)) return -1;
+    nm = d.nm;
+    nl = d.nl;
+    nq = d.nq;
+    for (k = 0; k < G6_NPHI; ++k) {
+        double rc;
+        g6_deflated_at(&d, g6_phis[k], K, L0, Bq, Cq);
+        memcpy(lu, K, sizeof(double) * (size_t)(nm * nm));
+        rc = g6_lu(nm, lu, piv) ? g6_rcond(nm, K, lu, piv) : 0.0;
+        if (rc > best) {
+            best = rc;
+            *phi_out = g6_phis[k];
+            memcpy(best_lu, lu, sizeof lu);
+            memcpy(best_piv, piv, sizeof piv);
+            memcpy(bL0, L0, sizeof L0);
+            memcpy(bBq, Bq, sizeof Bq);
+            memcpy(bCq, Cq, sizeof Cq);
+        }
+        if (rc > G6_RCOND_GOOD) break;
+    }
+    if (!(best > 64.0 * 12.0 * 2.220446049250313e-16)) return -1;
+    /* x m = K^-1 [-L0 m; s] (the top nm rows of S), x s = -Cq m - Bq x m (the last nq); nm + nq = 16 */
+    memset(rhs, 0, sizeof rhs);
+    for (i = 0; i < nl; ++i)
+        for (j = 0; j < nm; ++j) rhs[16 * i + j] = -bL0[nm * i + j];
+    for (i = 0; i < nq; ++i) rhs[16 * (nl + i) + nm + i] = 1.0;
+    g6_lu_solve(nm, best_lu, best_piv, rhs, 16);
+    memcpy(S, rhs, sizeof(double) * (size_t)(16 * nm));
+    for (i = 0; i < nq; ++i)
+        for (j = 0; j < 16; ++j) {
+            double s = j < nm ? -bCq[nm * i + j] : 0.0;
+            for (k = 0; k < nm; ++k) s -= bBq[nm * i + k] * rhs[16 * k + j];
+            S[16 * (nm + i) + j] = s;
+        }
+    if (wk_eig_real(16, S, wr, wi, work) != WK_EIG_OK) return -1;
+    for (k = 0; k < 16; ++k) /* a near-real pair once, at its real part */
+        if (wi[k] >= 0.0 && fabs(wi[k]) <= G6_REAL_TOL * (1.0 + fabs(wr[k]))) xr[n++] = wr[k];
+    return n;
+}
+
 void wk_g6_z_frames(const double *axes, const double *points, double *frames)
 {
     int i, k;
@@ -418,18 +919,22 @@ void wk_g6_z_frames(const double *axes, const double *points, double *frames)
 static void g6_complete(const double *angles, double links[6][16], double P[G6_NEQ][27], const g6_qr *f,
                         double *t)
 {
-    double fb[3][3], lhs[G6_NEQ], y[G6_NY], acc[16], rot[16], inv[16], k6i[16];
-    int i, e, a, b, c;
+    double fb[3][3], lhs[G6_NEQ], y[G6_NY], cs[5][2], col[2][3], h;
+    int i, e, a, k;
     for (i = 0; i < 3; ++i) {
         fb[i][0] = 1.0;
         fb[i][1] = cos(angles[i]);
         fb[i][2] = sin(angles[i]);
     }
-    for (e = 0; e < G6_NEQ; ++e) {
+    for (e = 0; e < G6_NEQ; ++e) { /* P contracted with (1, c, s) of t5, then t4, then t3 */
         double s = 0.0;
-        for (a = 0; a < 3; ++a)
-            for (b = 0; b < 3; ++b)
-                for (c = 0; c < 3; ++c) s += P[e][9 * a + 3 * b + c] * fb[0][a] * fb[1][b] * fb[2][c];
+        for (a = 0; a < 3; ++a) {
+            double sb = 0.0;
+            for (k = 0; k < 3; ++k)
+                sb += fb[1][k] * (P[e][9 * a + 3 * k] + fb[2][1] * P[e][9 * a + 3 * k + 1] +
+                                  fb[2][2] * P[e][9 * a + 3 * k + 2]);
+            s += fb[0][a] * sb;
+        }
         lhs[e] = s;
     }
     g6_qr_solve(f, lhs, y);
@@ -438,37 +943,72 @@ static void g6_complete(const double *angles, double links[6][16], double P[G6_N
     t[2] = angles[0];
     t[3] = angles[1];
     t[4] = angles[2];
-    g6_rz(t[0], acc);
-    for (i = 0; i < 5; ++i) {
-        if (i > 0) {
-            g6_rz(t[i], rot);
-            g6_mul(acc, rot, acc);
-        }
-        g6_mul(acc, links[i], acc);
+    /* Rz(t6) = (Rz(t1) K1 ... Rz(t5) K5)^-1 K6^-1: its first column from the rotations alone, (R e_x, R e_y) . (the
+     * first row of K6's rotation), R the product's rotation (its first two columns, from the right) */
+    h = hypot(y[4], y[5]);
+    cs[0][0] = h > 0.0 ? y[5] / h : 1.0;
+    cs[0][1] = h > 0.0 ? y[4] / h : 0.0;
+    h = hypot(y[6], y[7]);
+    cs[1][0] = h > 0.0 ? y[7] / h : 1.0;
+    cs[1][1] = h > 0.0 ? y[6] / h : 0.0;
+    for (i = 0; i < 3; ++i) {
+        cs[2 + i][0] = fb[i][1];
+        cs[2 + i][1] = fb[i][2];
     }
-    g6_inverse(acc, inv);
-    g6_inverse(links[5], k6i);
-    g6_mul(inv, k6i, acc);
-    t[5] = atan2(acc[4], acc[0]);
+    for (k = 0; k < 2; ++k) {
+        double v[3] = {k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, 0.0}, w[3];
+        for (i = 4; i >= 0; --i) {
+            const double *m = links[i];
+            for (a = 0; a < 3; ++a) w[a] = m[4 * a] * v[0] + m[4 * a + 1] * v[1] + m[4 * a + 2] * v[2];
+            v[0] = cs[i][0] * w[0] - cs[i][1] * w[1];
+            v[1] = cs[i][1] * w[0] + cs[i][0] * w[1];
+            v[2] = w[2];
+        }
+        for (a = 0; a < 3; ++a) col[k][a] = v[a];
+    }
+    t[5] = atan2(col[1][0] * links[5][0] + col[1][1] * links[5][1] + col[1][2] * links[5][2],
+                 col[0][0] * links[5][0] + col[0][1] * links[5][1] + col[0][2] * links[5][2]);
 }
 
-/* prod Z_i Rz(q_i) Z_i^-1 . home (t) and the geometric Jacobian (6 x 6 row-major, linear velocity first) */
+/* prod Z_i Rz(q_i) Z_i^-1 . home (t) and the geometric Jacobian (6 x 6 row-major, linear velocity first). Each
+ * Z Rz(q) Z^-1 is the turn about the line (axis a, point p) = (z column, origin) of Z: R = c I + s [a]x +
+ * (1 - c) a a^T, translation p - R p (Rodrigues; a third of the 4 x 4 products' cost) */
 static void g6_fk(const double *frames, const double *home, const double *q, double *t, double *jac)
 {
-    double acc[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, m[16], zi[16], ax[6][3], pt[6][3];
-    int i, r;
+    double R[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, tr[3] = {0, 0, 0}, ax[6][3], pt[6][3], acc[16];
+    int i, r, k;
     for (i = 0; i < 6; ++i) {
         const double *z = frames + 16 * i;
+        const double a[3] = {z[2], z[6], z[10]}, p[3] = {z[3], z[7], z[11]};
+        const double c = cos(q[i]), s = sin(q[i]), v = 1.0 - c;
+        double E[9], et[3], R2[9];
         for (r = 0; r < 3; ++r) {
-            ax[i][r] = acc[4 * r] * z[2] + acc[4 * r + 1] * z[6] + acc[4 * r + 2] * z[10];
-            pt[i][r] = acc[4 * r] * z[3] + acc[4 * r + 1] * z[7] + acc[4 * r + 2] * z[11] + acc[4 * r + 3];
+            ax[i][r] = R[3 * r] * a[0] + R[3 * r + 1] * a[1] + R[3 * r + 2] * a[2];
+            pt[i][r] = R[3 * r] * p[0] + R[3 * r + 1] * p[1] + R[3 * r + 2] * p[2] + tr[r];
         }
-        g6_mul(acc, z, acc);
-        g6_rz(q[i], m);
-        g6_mul(acc, m, acc);
-        g6_inverse(z, zi);
-        g6_mul(acc, zi, acc);
+        E[0] = c + v * a[0] * a[0];
+        E[1] = v * a[0] * a[1] - s * a[2];
+        E[2] = v * a[0] * a[2] + s * a[1];
+        E[3] = v * a[1] * a[0] + s * a[2];
+        E[4] = c + v * a[1] * a[1];
+        E[5] = v * a[1] * a[2] - s * a[0];
+        E[6] = v * a[2] * a[0] - s * a[1];
+        E[7] = v * a[2] * a[1] + s * a[0];
+        E[8] = c + v * a[2] * a[2];
+        for (r = 0; r < 3; ++r) et[r] = p[r] - (E[3 * r] * p[0] + E[3 * r + 1] * p[1] + E[3 * r + 2] * p[2]);
+        for (r = 0; r < 3; ++r) {
+            tr[r] += R[3 * r] * et[0] + R[3 * r + 1] * et[1] + R[3 * r + 2] * et[2];
+            for (k = 0; k < 3; ++k)
+                R2[3 * r + k] = R[3 * r] * E[k] + R[3 * r + 1] * E[3 + k] + R[3 * r + 2] * E[6 + k];
+        }
+        memcpy(R, R2, sizeof R);
     }
+    for (r = 0; r < 3; ++r) {
+        for (k = 0; k < 3; ++k) acc[4 * r + k] = R[3 * r + k];
+        acc[4 * r + 3] = tr[r];
+    }
+    acc[12] = acc[13] = acc[14] = 0.0;
+    acc[15] = 1.0;
     g6_mul(acc, home, t);
     for (i = 0; i < 6; ++i) {
         const double d[3] = {t[3] - pt[i][0], t[7] - pt[i][1], t[11] - pt[i][2]};
@@ -492,14 +1032,28 @@ static double g6_pose_error(const double *t, const double *pose)
 
 /* Newton steps on the chain's pose error (Python's g6_refine): the eigenproblem leaves a root ~1e-9 off where
  * roots are close; a few steps bring it to rounding, so every caller verifies the same set */
+#define G6_REFINE_DONE 0x1p-50 /* ~4 eps: the pose error at rounding (relative to 1 + |p|_1) */
+#define G6_REFINE_NEAR 1e-10   /* below this pose error (relative), a step may raise it while the steps contract */
+
+/* Newton steps on the chain's pose error (Python's g6_refine_many): the eigenproblem leaves a root ~1e-9 off where
+ * roots are close; a few steps bring it to rounding, so every caller verifies the same set. At a double root (two
+ * solutions meeting: J singular there) Newton converges only linearly, halving the distance per step while the
+ * pose error, already near rounding, goes up and down: there a step is taken while the steps contract, and the
+ * iterate with the smallest error is kept. */
 static void g6_refine(const double *frames, const double *home, const double *pose, double *q)
 {
-    double t[16], jac[36], err;
+    double t[16], jac[36], err, best[6], best_err, last = HUGE_VAL;
     int it, i, c;
+    /* rounding of the pose error: a few units of eps times the pose's size */
+    const double scale = 1.0 + fabs(pose[3]) + fabs(pose[7]) + fabs(pose[11]);
+    const double done = G6_REFINE_DONE * scale, near = G6_REFINE_NEAR * scale;
     g6_fk(frames, home, q, t, jac);
     err = g6_pose_error(t, pose);
+    if (err <= done) return;
+    memcpy(best, q, sizeof best);
+    best_err = err;
     for (it = 0; it < WK_G6_REFINE_STEPS; ++it) {
-        double e[6], a[36], trial[6], t2[16], jac2[36], err2;
+        double e[6], a[36], trial[6], t2[16], jac2[36], err2, size = 0.0;
         int ok = 1;
         e[0] = pose[3] - t[3];
         e[1] = pose[7] - t[7];
@@ -542,15 +1096,51 @@ static void g6_refine(const double *frames, const double *home, const double *po
             for (i = c + 1; i < 6; ++i) s -= a[6 * c + i] * e[i];
             e[c] = s / a[6 * c + c];
         }
-        for (i = 0; i < 6; ++i) trial[i] = q[i] + e[i];
+        for (i = 0; i < 6; ++i) {
+            trial[i] = q[i] + e[i];
+            if (!(fabs(e[i]) <= size)) size = fabs(e[i]);
+        }
         g6_fk(frames, home, trial, t2, jac2);
         err2 = g6_pose_error(t2, pose);
-        if (!(err2 < err)) break;
+        if (!(err2 < err) && !(err2 <= near && size <= 0.75 * last)) break;
         memcpy(q, trial, sizeof trial);
         memcpy(t, t2, sizeof t2);
         memcpy(jac, jac2, sizeof jac2);
         err = err2;
+        last = size;
+        if (err < best_err) {
+            best_err = err;
+            memcpy(best, q, sizeof best);
+        }
+        if (err <= done) break; /* at rounding: a further step cannot improve (saves its FK) */
     }
+    memcpy(q, best, sizeof best);
+}
+
+
+/* The candidates of one root x (hidden = phi + 2 atan x, or phi + pi when infinite): the monomial vectors in M(x)'s
+ * null space, the other two angles from them, t1, t2, t6 from the loop, refined on the chain; appended at row n of
+ * q (up to max_out). Returns the new count. */
+static int g6_emit(const double *A, const double *B, const double *C, double x, int infinite, double phi, int hidden,
+                   double links[6][16], double P[G6_NEQ][27], const g6_qr *f, const int *joints, double sign,
+                   const double *frames, const double *home, const double *pose, double *q, int n, int max_out)
+{
+    double M[144], m[G6_MAXK][12], angles[3];
+    const int a = hidden == 0 ? 1 : 0, b = hidden == 2 ? 1 : 2;
+    int i, c, count;
+    for (i = 0; i < 144; ++i) M[i] = infinite ? A[i] : (A[i] * x + B[i]) * x + C[i];
+    count = g6_monomial_vectors(M, m);
+    for (c = 0; c < count && n < max_out; ++c) {
+        double t[6];
+        angles[hidden] = phi + (infinite ? G6_PI : 2.0 * atan(x));
+        angles[a] = g6_half_angle(m[c], 0);
+        angles[b] = g6_half_angle(m[c], 1);
+        g6_complete(angles, links, P, f, t);
+        for (i = 0; i < 6; ++i) q[6 * n + joints[i]] = sign * t[i];
+        g6_refine(frames, home, pose, q + 6 * n);
+        ++n;
+    }
+    return n;
 }
 
 int wk_g6_solve(const double *frames, const double *home, const double *pose, int shift, int reverse, int hidden,
@@ -558,7 +1148,7 @@ int wk_g6_solve(const double *frames, const double *home, const double *pose, in
 {
     double loop[6][16], links[6][16], P[G6_NEQ][27], Q[G6_NEQ][G6_NY], r[G6_NEQ], t6[6][27], W[G6_NEQ][G6_NEQ];
     double A[144], B[144], C[144], zinv[16], pinv[16];
-    int joints[6], i, j, e, n = 0, k, a, b, c, hv, uv, vv, root;
+    int joints[6], i, j, e, n = 0, k, root;
     double sign;
     g6_qr f;
     wk_qep_result qep;
@@ -600,52 +1190,24 @@ int wk_g6_solve(const double *frames, const double *home, const double *pose, in
             for (i = 0; i < G6_NEQ; ++i) s += W[8 + e][i] * P[i][k];
             t6[e][k] = s;
         }
-    /* (1 + x^2) times the equations with the hidden angle 2 atan x, over u^i v^j of the other two */
-    memset(A, 0, sizeof A);
-    memset(B, 0, sizeof B);
-    memset(C, 0, sizeof C);
-    for (e = 0; e < 6; ++e)
-        for (i = 0; i < 3; ++i)
-            for (j = 0; j < 3; ++j) {
-                double g[3] = {0.0, 0.0, 0.0};
-                for (hv = 0; hv < 3; ++hv)
-                    for (uv = 0; uv < 3; ++uv)
-                        for (vv = 0; vv < 3; ++vv) {
-                            int idx[3];
-                            double w;
-                            idx[hidden] = hv;
-                            idx[hidden == 0 ? 1 : 0] = uv;
-                            idx[hidden == 2 ? 1 : 2] = vv;
-                            w = t6[e][9 * idx[0] + 3 * idx[1] + idx[2]] * g6_half[uv][i] * g6_half[vv][j];
-                            for (k = 0; k < 3; ++k) g[k] += g6_half[hv][k] * w;
-                        }
-                for (k = 0; k < 2; ++k) {
-                    const int row = e + 6 * k, col = 3 * (i + k) + j;
-                    C[12 * row + col] = g[0];
-                    B[12 * row + col] = g[1];
-                    A[12 * row + col] = g[2];
-                }
-            }
+    if (hidden == 0) { /* the (1 + x^2)^4 deflated: a 16 x 16 eigenproblem */
+        double t6r[6][27], xr[16], phi = 0.0;
+        const int nr = g6_deflated_roots(t6, W, &phi, xr);
+        if (nr >= 0) {
+            g6_rotate_hidden(t6, phi, t6r);
+            g6_quadratic(t6r, 0, A, B, C);
+            for (root = 0; root < nr; ++root)
+                n = g6_emit(A, B, C, xr[root], 0, phi, hidden, links, P, &f, joints, sign, frames, home, pose, q,
+                            n, max_out);
+            return n;
+        }
+    }
+    g6_quadratic(t6, hidden, A, B, C);
     if (wk_generalized_quadratic_eig(12, A, B, C, 0.0, &qep) != WK_EIG_OK) return -1;
     for (root = 0; root < qep.n_real + qep.n_infinite; ++root) {
-        double M[144], m[G6_MAXK][12], angles[3];
         const int infinite = root >= qep.n_real;
-        const double x = infinite ? 0.0 : qep.real[root];
-        int count;
-        for (i = 0; i < 144; ++i) M[i] = infinite ? A[i] : (A[i] * x + B[i]) * x + C[i];
-        count = g6_monomial_vectors(M, m);
-        for (c = 0; c < count && n < max_out; ++c) {
-            double t[6];
-            a = hidden == 0 ? 1 : 0;
-            b = hidden == 2 ? 1 : 2;
-            angles[hidden] = infinite ? G6_PI : 2.0 * atan(x);
-            angles[a] = g6_half_angle(m[c], 0);
-            angles[b] = g6_half_angle(m[c], 1);
-            g6_complete(angles, links, P, &f, t);
-            for (i = 0; i < 6; ++i) q[6 * n + joints[i]] = sign * t[i];
-            g6_refine(frames, home, pose, q + 6 * n);
-            ++n;
-        }
+        n = g6_emit(A, B, C, infinite ? 0.0 : qep.real[root], infinite, 0.0, hidden, links, P, &f, joints, sign,
+                    frames, home, pose, q, n, max_out);
     }
     return n;
 }

@@ -5,8 +5,9 @@
  * loop Rz(t1) K1 Rz(t2) K2 ... Rz(t6) K6 = I of six turns and constant links; read from joint `shift`
  * (backwards when `reverse`), the 14 equations of Raghavan and Roth are interpolated exactly from three angles
  * per joint, theta1 and theta2 eliminated by Q's left null space (Householder QR), and the six equations left
- * become the 12 x 12 matrix polynomial of the hidden angle, whose real eigenvalues (wk_eigen.c) and null vectors
- * give the candidates, each refined by Newton steps on the chain. The caller verifies each (candidates are not
+ * become the 12 x 12 matrix polynomial of the hidden angle, whose real eigenvalues (wk_eigen.c; for hidden t3 with
+ * the determinant's extraneous (1 + x^2)^4 deflated: 16 x 16) and null vectors give the candidates, each refined
+ * by Newton steps on the chain. The caller verifies each (candidates are not
  * solutions until then). Frames and poses are 4 x 4 row-major; no allocation, every size fixed below. */
 #ifndef WK_GENERAL6R_H
 #define WK_GENERAL6R_H
@@ -17,7 +18,8 @@ extern "C" {
 
 #define WK_G6_MAX_CANDIDATES 48 /* 24 eigenvalues, a shared hidden angle giving up to 4 sets each: capped */
 #define WK_G6_NULL_TOL 1e-8     /* sigma / sigma_max of M(x) up to this spans its null space */
-#define WK_G6_REFINE_STEPS 3    /* Newton steps per candidate on the chain (quadratic: 1e-9 -> rounding) */
+#define WK_G6_REFINE_STEPS 8    /* Newton steps per candidate at most (a simple root: 1-2 to rounding, then it stops;
+                                   a double root converges linearly, halving the distance per step) */
 
 /* A frame per joint with its z axis on the joint's line (axis i through point i; x any normal): frames holds
  * 6 x 16 doubles, frame i at frames + 16 i. */
