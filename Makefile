@@ -35,7 +35,7 @@ SENSITIVE_TESTS := tests/test_underactuated_wrist.py tests/test_reference_undera
 	tests/test_native.py tests/test_reproducers.py tests/test_chain_robots.py tests/test_chain_c.py \
 	tests/test_robot_descriptions.py tests/test_description_corpus.py tests/test_atlas.py tests/test_chain_runtime.py \
 	tests/test_general6r.py tests/test_general6r_solvers.py tests/test_runtime_eigen.py tests/test_uw_runtime.py \
-	tests/test_serial_runtime.py tests/test_rsr_runtime.py
+	tests/test_serial_runtime.py tests/test_rsr_runtime.py tests/test_own_robots_near_singular.py
 
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 export PIP_NO_INPUT := 1

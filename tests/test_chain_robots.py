@@ -709,7 +709,9 @@ def test_panda_with_joint2_held_is_solved_away_from_its_self_motion(tmp_path):
     own_robot.derive(_file("panda", "dh"), tmp_path, name="panda_j2", free="joint2", progress=lambda _: None)
     m = own_robot.import_solver(tmp_path, "panda_j2")
     py = own_robot.import_solver(tmp_path, "panda_j2", backend="numpy")
-    assert m.BACKEND == "c" and m._DEGENERATE_HELD == (0.0, math.pi)
+    if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
+        assert m.BACKEND == "c"
+    assert m._DEGENERATE_HELD == (0.0, math.pi)
     rng = case_rng(35)
     for i in range(12):
         q = rng.uniform(-math.pi, math.pi, 7)

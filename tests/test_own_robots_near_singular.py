@@ -16,6 +16,7 @@ on-axis band 1e-12), 40 of 154 irb120 poses (shoulder at 1e-12, the pair's on-ax
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 import pytest
@@ -38,7 +39,8 @@ def solvers(request, tmp_path_factory):
     out = tmp_path_factory.mktemp(f"near_{name}")
     own_robot.derive(ROBOTS_DIR / name / f"{name}.urdf", out, free=ROBOTS[name], progress=lambda _: None)
     c = own_robot.import_solver(out, name)
-    assert c.BACKEND == "c"
+    if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
+        assert c.BACKEND == "c"
     return name, c, own_robot.import_solver(out, name, backend="numpy")
 
 
