@@ -28,6 +28,9 @@ CASES = {  # name: (description file, --free)
     "ur5e_tilted": (ROBOTS / "ur5e_tilted" / "ur5e_tilted_poe.toml", None),
     "xarm6": (None, None),
     "panda_free1": (ROBOTS / "panda" / "panda_dh.toml", "joint1"),
+    # joint5 held: the deflated leading coefficient is exactly singular at one phi (numpy's solve raised
+    # LinAlgError inside ik, and derive crashed with "Singular matrix"); the next phi serves
+    "panda_free5": (ROBOTS / "panda" / "panda_dh.toml", "joint5"),
 }
 
 
@@ -89,3 +92,15 @@ def test_the_audit_states_the_elimination_and_its_checks():
     for words in ("general 6R", "14 equations", "Groebner", "symbolic ones", "multistart", "loop read"):
         assert words in text, words
     assert "FAILED" not in text
+
+
+def test_a_reading_that_misses_solutions_is_refused_by_the_audit(tmp_path):
+    """Panda with joint6 held: the elimination's reading misses real solutions (5 of 20 random poses lacked the
+    generating joints in the emitted solver, which the audit's 4 sampled poses had not caught). The audit now
+    compares 16 poses with the multistart count and refuses the robot, naming the check."""
+    from derive.model import NoDecomposition
+
+    # a derivation step whose check fails stops the derivation (AssertionError, as every failed step)
+    with pytest.raises((NoDecomposition, AssertionError), match="g6_solutions"):
+        own_robot.derive(ROBOTS / "panda" / "panda_dh.toml", tmp_path, free="joint6", native=False,
+                         progress=lambda _: None)

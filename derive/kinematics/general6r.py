@@ -315,7 +315,7 @@ def symbolic_mismatch(chain: Chain, rng: np.random.Generator, poses: int = 3) ->
     return worst
 
 
-def steps(chain: Chain, labelling: Labelling, rng: np.random.Generator, poses: int = 4) -> list[Step]:
+def steps(chain: Chain, labelling: Labelling, rng: np.random.Generator, poses: int = 16) -> list[Step]:
     """The derivation's records: the structure (proven for every 6R), the robot's equations on its FK, the
     labelling chosen and why, and sampled poses against a multistart count."""
     viol = structure_violations()

@@ -262,7 +262,10 @@ def _g6_deflated_at(parts, phi):
     rhs = np.zeros((nm, nm + nq2))
     rhs[:nl2, :nm] = -l0
     rhs[nl2:, nm:] = np.eye(nq2)
-    d = np.linalg.solve(k, rhs)  # x m = K^-1 [-L0 m; s]
+    try:
+        d = np.linalg.solve(k, rhs)  # x m = K^-1 [-L0 m; s]
+    except np.linalg.LinAlgError:  # K exactly singular at this phi (LU's pivot 0): the next phi, or the 24 x 24
+        return None, 0.0
     return np.vstack([d, np.hstack([-c2, np.zeros((nq2, nq2))]) - b2 @ d]), rc  # x s = -C4 m - B4 x m
 
 
@@ -292,7 +295,10 @@ def _g6_roots(t6, n, hidden):
     _, phi, mat = best
     a, b, c = _g6_matrix_polynomial(t6, hidden, phi)
     if mat is None:
-        ainv = np.linalg.inv(a)
+        try:
+            ainv = np.linalg.inv(a)
+        except np.linalg.LinAlgError:  # singular at every phi tried: no candidate from this reading (never a crash)
+            return np.zeros(0, dtype=complex), phi, a, b, c
         mat = np.zeros((24, 24))
         mat[:12, 12:] = np.eye(12)
         mat[12:, :12] = -ainv @ c
