@@ -180,7 +180,12 @@ def test_c_sources_solve_every_catalogue_serial_robot_as_python_does(clib):
         ref = mod._ik_numpy(pose, design, q if i % 2 else None)  # the numpy path: the Python sources
         assert status == ref.status and list(valid) == list(ref.valid), (name, q)
         if i >= 8:
-            assert np.allclose(values[valid], ref.values[ref.valid], rtol=0, atol=1e-12)
+            # one algorithm in both, rounding apart: each set agrees to its conditioning, a few eps of the pose over
+            # sigma_min of J there (seed 3 under Haswell: the PUMA's sets 1.2e-12 apart at sigma_min 3.5e-4)
+            for a, b in zip(values[valid], ref.values[ref.valid], strict=True):
+                sigma_min = np.linalg.svd(mod.jacobian(b), compute_uv=False)[-1]
+                tol = max(1e-12, 64 * np.finfo(float).eps * max(1.0, float(np.max(np.abs(pose)))) / sigma_min)
+                assert np.max(np.abs(a - b)) <= tol, (name, q, np.max(np.abs(a - b)), tol)
         else:  # next to the wrist singularity q4 and q6 alone are fixed to eps / sin(q5) only: compare the poses
             assert all(np.max(np.abs(mod.fk_matrix(a) - mod.fk_matrix(b))) <= 1e-9
                        for a, b in zip(values[valid], ref.values[ref.valid], strict=True))
