@@ -118,7 +118,8 @@ def sweep_joints(m, rng):
     return rows
 
 
-def run_c(out: Path, name: str, poses) -> list[dict]:
+def run_c(out: Path, name: str, poses) -> Path:
+    """Compile the timing harness beside the robot's C, run it on the poses; the file of its results."""
     cdir = out / "c"
     src = cdir / "near_singular_main.c"
     src.write_text(HARNESS.replace("NAME", name).replace("WK_" + name, "WK_" + name.upper()))
@@ -128,7 +129,7 @@ def run_c(out: Path, name: str, poses) -> list[dict]:
     data, res = cdir / "poses.bin", cdir / "sets.bin"
     data.write_bytes(np.ascontiguousarray(np.array([T[:3].ravel() for T in poses])).tobytes())
     subprocess.run([str(exe), str(data), str(res)], check=True)
-    return data, res
+    return res
 
 
 def read_c(res: Path, n_poses: int, max_ik: int, nj: int) -> list[dict]:
@@ -173,7 +174,7 @@ def bench_robot(spec: Path) -> dict:
     if m._FREE >= 0:
         random_q[:, m._FREE] = 0.0
     poses = [m.fk_matrix(q, design) for _, _, q in rows] + [m.fk_matrix(q, design) for q in random_q]
-    _, res = run_c(out, name, poses)
+    res = run_c(out, name, poses)
     c = read_c(res, len(poses), m.MAX_IK, m.N_JOINTS)
     median = float(np.median([r["ns"] for r in c[len(rows):]]))
     sweep_ns = np.array([r["ns"] for r in c[: len(rows)]])

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 import os
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -25,11 +26,11 @@ from seeding import case_rng
 
 from derive import own_robot
 
-ROBOTS_DIR = __import__("pathlib").Path(__file__).resolve().parent / "robots"
+ROBOTS_DIR = Path(__file__).resolve().parent / "robots"
 # one of each decomposition path: three parallel axes (ur5e), the meeting pair (irb120), a plane + a single
 # joint (kr6), a held free joint of a 7-joint arm (iiwa14, a3 held)
 ROBOTS = {"ur5e": None, "irb120": None, "kr6": None, "iiwa14": "a3"}
-# down to 1e-10: at 1e-12 a wrist can be within its family band, 1e-13 times the amplification of the trig stages
+# down to 1e-10: at 1e-12 a wrist can be within its family band, 1e-12 times the amplification of the trig stages
 # before it (up to ~20: an irb120 wrist at 1e-12 came back as the family at seed 3 under Haswell);
 # bench/near_singular.py reports 1e-12 too
 DELTAS = (1e-10, 1e-8, 1e-6, 1e-4)

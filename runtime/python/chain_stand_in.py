@@ -85,7 +85,7 @@ DEGENERATE_EPS = 1e-12  # a subproblem's coefficient norm (relative to SCALE) be
 # subproblem 2's two roots within this (g relative to |p|: |sin| of a wrist's middle angle) are one, the singular
 # family: the stages before an orientation (the degree-8 polynomial, subproblem 6's Newton steps) leave ~1e-12 in
 # its rotation, which a tighter threshold would split into two "regular" sets of a singular pose
-FAMILY_TOL = 1e-13
+FAMILY_TOL = 1e-12
 ON_AXIS_TOL = 64 * 2.220446049250313e-16
 # a singular orientation family's free angle when no `previous` is given: the first of these (every degree, nearest
 # to 0 first) for which the rest of the decomposition has a verified solution (with a parallel group the position

@@ -307,6 +307,8 @@ class ChainMechanism(MechanismDefaults):
         solver = self.solver_chain(c, 0.0, plan.reversed)
         roles, branch_names = _roles(plan, solver)
         free = self.desc.free
+        deviation = self.deviation()
+        calibrated = deviation > CALIBRATED_DEVIATION
         return {"name": self.NAME, "title": self.title, "joint_names": list(c.joint_names),
                 "joint_kinds": list(c.kinds), "n_joints": c.n, "max_ik": plan.branches,
                 "design_names": [c.joint_names[free]] if free >= 0 else [],
@@ -314,11 +316,11 @@ class ChainMechanism(MechanismDefaults):
                 "lower": [_num(v) for v in c.lower], "upper": [_num(v) for v in c.upper],
                 "strategy": plan.strategy, "controls": self.controls(), "branch_names": branch_names,
                 "scale": repr(self.scale()), "geometry_tol": repr(self.desc.geometry_tol),
-                "geometry_deviation": repr(self.deviation()),
-                "calibrated": self.deviation() > CALIBRATED_DEVIATION,
+                "geometry_deviation": repr(deviation),
+                "calibrated": calibrated,
                 "degenerate_held": repr(self.degenerate_held()),
                 "tangent_tol": repr(max(float(TOLERANCES["stage_tangent"]),
-                                        8.0 * self.deviation() / min(1.0, self.scale()))),
+                                        8.0 * deviation / min(1.0, self.scale()))),
                 "axes": _vectors(c.axes), "points": _vectors(c.points), "home": _matrix(c.home),
                 "ideal_axes": _vectors(ideal.axes), "ideal_points": _vectors(ideal.points),
                 "ideal_home": _matrix(ideal.home), "base": _matrix(c.base), "tool_frame": _matrix(c.tool),
@@ -331,8 +333,8 @@ class ChainMechanism(MechanismDefaults):
                 "has_poly": any(op["op"] in ("spatial3", "sp6") for op in plan.ops),
                 "c_plan_rows": views.c_plan_rows([stage(i, op) for i, op in enumerate(plan.ops)], solver.joint_names),
                 "c_runtime_files": views.c_runtime_files(plan.ops),
-                "c_flags": views.c_flags(plan.ops, free, plan.reversed, self.deviation() > CALIBRATED_DEVIATION,
-                                         self.degenerate_held(), self.desc.geometry_tol),
+                "c_flags": views.c_flags(plan.ops, free, plan.reversed, calibrated, self.degenerate_held(),
+                                         self.desc.geometry_tol),
                 **views.stage_tolerances(plan.ops),
                 "py_runtime_files": views.py_runtime_files(plan.ops),
                 "c_includes": views.c_includes(plan.ops),
