@@ -91,7 +91,7 @@ WRIST = 4  # q5: the middle wrist joint of both arms (0: the wrist singularity)
 
 WK_OK, WK_ERR_NULL, WK_ERR_NONFINITE, WK_ERR_DESIGN, WK_ERR_RANGE = 0, -1, -2, -3, -4
 STATUS_OK, STATUS_UNREACHABLE, STATUS_INDETERMINATE = 0, 1, 3
-FLAG_SINGULAR_INVERSE, FLAG_INDETERMINATE, FLAG_PROJECTED = 1, 16, 32
+FLAG_SINGULAR_INVERSE, FLAG_DOUBLE_ROOT, FLAG_INDETERMINATE, FLAG_PROJECTED = 1, 8, 16, 32
 D = ctypes.POINTER(ctypes.c_double)
 
 
@@ -409,13 +409,23 @@ def test_previous_changes_no_set_near_the_wrist_singularity(solvers, name):
         q[WRIST] = (1.0 if i % 2 else -1.0) * (1e-9, 1e-7, 1e-6)[i % 3]
         pose = py.fk_matrix(q)
         a, b = py.ik(pose), py.ik(pose, None, q)
-        assert (a.count, a.status) == (b.count, b.status) and a.count >= 1, (name, i, a.reason, b.reason)
-        np.testing.assert_array_equal(a.flags, b.flags)
+        assert a.status == b.status and a.count >= 1, (name, i, a.reason, b.reason)
         _assert_same(py, a, c.ik(pose), f"{name} near {i}", tol=1.0)  # the sets, flags, status; values below
         _assert_same(py, b, c.ik(pose, None, q), f"{name} near {i} previous", tol=1.0)
-        for k in range(a.count):  # a regular set stays (a family's member is previous's to pick)
-            if not a.flags[k] & FLAG_INDETERMINATE:
-                assert _gap(a.values[k], b.values[k], py.JOINT_KINDS) < 1e-9, (name, i, k)
+        regular = [[k for k in range(s.count) if not s.flags[k] & FLAG_INDETERMINATE] for s in (a, b)]
+        family = [[k for k in range(s.count) if s.flags[k] & FLAG_INDETERMINATE] for s in (a, b)]
+        assert len(regular[0]) == len(regular[1]) and bool(family[0]) == bool(family[1]), (name, i, a.reason,
+                                                                                         b.reason)
+        for ka, kb in zip(*regular, strict=True):  # a regular set stays, flags and all
+            assert a.flags[ka] == b.flags[kb], (name, i, ka)
+            assert _gap(a.values[ka], b.values[kb], py.JOINT_KINDS) < 1e-9, (name, i, ka)
+        # A family's member is previous's to pick, and members differ in how many sets they carry: where a later
+        # stage (the elbow of the offset wrist, whose family moves the wrist centre) is at its tangent for one member
+        # its two branches are one double root there (seed 77: previous's member had the elbow straight, 1 set; the
+        # grid's member 2). So the counts may differ only by such a merge, flagged.
+        if len(family[0]) != len(family[1]):
+            fewer = min((a, family[0]), (b, family[1]), key=lambda t: len(t[1]))
+            assert all(fewer[0].flags[k] & FLAG_DOUBLE_ROOT for k in fewer[1]), (name, i, a.reason, b.reason)
 
 
 def test_offset_wrist_singularity_equals_python(solvers):
