@@ -332,8 +332,7 @@ def test_every_source_compiles_strictly_where_a_robot_includes_it(tmp_path, monk
         spec = tmp_path / f"{name}.toml"
         spec.write_text(SPECS[name])
         mech = load_spec(spec)
-        mech.derive()
-        pipeline.emit_solvers(name, mech, [], tmp_path, tmp_path)
+        pipeline.emit_solvers(name, mech, mech.kernels(mech.derive()), tmp_path, tmp_path)
         text = (tmp_path / f"{name}.c").read_text()
         assert f'#include "{CHAIN_C / "ck_interpreter.c"}"' in text
         r = subprocess.run([compiler(), "-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-c",

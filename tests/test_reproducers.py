@@ -221,3 +221,23 @@ def test_previous_moves_only_a_family_never_a_regular_wrist():
         assert np.max(s.aux[s.valid]) <= mod.IK_VERIFY_TOL
     res, _ = c.ik_near(T, moved)
     assert res.count >= 1 and all(abs(v[0] - 0.4) < 1e-12 for v in res.values[res.valid])
+
+
+def test_an_exact_wrist_singularity_behind_a_near_double_shoulder_root_is_the_family():
+    """PUMA-560 at theta5 = 0 exactly, theta1's two roots 0.0044 apart (the shoulder near its double root: sin w =
+    2.2e-3). The stages before the wrist amplify the pose's rounding by 1 / sin w = 450, so |sin theta5| came out
+    1.3e-13, above WRIST_EXACT_TOL, and the exact singularity was returned as 8 "regular" sets (status ok, the family
+    lost: make test-portable at WRISTKIN_TEST_SEED=627229). Now the wrist's band grows by the stages' amplification:
+    the family, in Python and C."""
+    mod, _ = serial("puma560")
+    q = np.array([2.6698769939804583, -3.1086951870997592, 1.5431024612111823, 2.1108314795488496, 0.0,
+                  3.135144430130416])
+    pose = mod.fk_matrix(q)
+
+    def numpy_ik(p, previous=None):
+        return mod._ik_numpy(p, mod._design(None), previous)
+
+    for ik in (mod.ik, numpy_ik):
+        s = ik(pose, previous=q)
+        assert s.status == mod.STATUS_INDETERMINATE, s.reason
+        assert min(wrapped(v, q) for v in s) < 1e-8

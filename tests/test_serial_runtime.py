@@ -67,7 +67,7 @@ def test_trig_linear_returns_the_generating_root_and_one_double_root_at_a_tangen
         roots = []
         for sgn in (1.0, -1.0):
             q, c, s = [0.0], [1.0], [0.0]
-            ok, f = st._trig_linear((a, b, cc), 0, sgn, q, c, s, None)
+            ok, f = st._trig_linear((a, b, cc), 0, sgn, q, c, s, None, [1.0])
             assert ok and f == 0
             assert abs(a * c[0] + b * s[0] + cc) <= 1e-14 * (1 + abs(a) + abs(b))
             assert abs(c[0] - math.cos(q[0])) <= 1e-15 and abs(s[0] - math.sin(q[0])) <= 1e-15
@@ -76,13 +76,15 @@ def test_trig_linear_returns_the_generating_root_and_one_double_root_at_a_tangen
         # tangent: C = -sqrt(A^2 + B^2) has the double root atan2(B, A), reported once (+ branch), flagged
         t = -math.hypot(a, b)
         q, c, s = [0.0], [1.0], [0.0]
-        assert st._trig_linear((a, b, t), 0, 1.0, q, c, s, None) == (True, FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE)
+        a1 = [1.0]
+        assert st._trig_linear((a, b, t), 0, 1.0, q, c, s, None, a1) == (True, FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE)
+        assert a1[0] == 1e6  # a double root: 1 / sqrt(DOUBLE_ROOT_TOL)
         assert abs(math.remainder(q[0] - math.atan2(b, a), 2 * math.pi)) <= 1e-12
-        assert st._trig_linear((a, b, t), 0, -1.0, q, c, s, None) == (False, 0)
+        assert st._trig_linear((a, b, t), 0, -1.0, q, c, s, None, [1.0]) == (False, 0)
     # a vanishing equation: the family's representative, previous's value when given
     q, c, s = [0.0], [1.0], [0.0]
     family = (True, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE)
-    assert st._trig_linear((0.0, 0.0, 0.0), 0, 1.0, q, c, s, [0.7]) == family
+    assert st._trig_linear((0.0, 0.0, 0.0), 0, 1.0, q, c, s, [0.7], [1.0]) == family
     assert q == [0.7]
 
 

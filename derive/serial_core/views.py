@@ -15,13 +15,21 @@ def _tuple(xs) -> str:
     return "(" + "".join(f"{x}, " for x in xs) + ")"
 
 
+def _amp_before(st: dict, fmt: str) -> str:
+    """The wrist's family band factor: the largest amplification of the two-root stages before it (1 without)."""
+    js = st.get("amp_joints", [])
+    if not js:
+        return "1.0"
+    return fmt.format(", ".join(f"amp[{j}]" for j in js)) if len(js) > 1 else f"amp[{js[0]}]"
+
+
 def py_stage_body(st: dict) -> list[str]:
-    """The body of the generated `_solve_stage<k>(k, pose, q, c, s, dp, prev)`: the stage's kernel, then the
+    """The body of the generated `_solve_stage<k>(k, pose, q, c, s, dp, prev, amp)`: the stage's kernel, then the
     runtime solver of its kind with its joints and branch bit. Returns (ok, flags)."""
     out = f"_k_stage{st['index']}(pose, q, c, s, dp)"
     j = st["joints"][0]
     if st["kind"] == "trig_linear":
-        return [f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev)"]
+        return [f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp)"]
     if st["kind"] == "rotation2d":
         return [f"return _rotation2d({out}, {j}, q, c, s, prev)"]
     if st["kind"] == "value":
@@ -31,7 +39,8 @@ def py_stage_body(st: dict) -> list[str]:
         joints, signs = "(" + ", ".join(map(str, st["joints"])) + ")", "(" + ", ".join(map(str, st["signs"])) + ")"
         mirror = ["if k & 1:  # the second branch mirrors the first (set k - 1's prefix)",
                   f"    return _wrist_mirror({joints}, q, c, s)"] if st["bit"] == 0 else []
-        return mirror + [f"return _wrist({out}, _sign(k, {st['bit']}), {signs}, {joints}, q, c, s, dp)"]
+        return mirror + [f"a = {_amp_before(st, 'max({})')}  # the two-root stages' amplification",
+                         f"return _wrist({out}, _sign(k, {st['bit']}), {signs}, {joints}, q, c, s, dp, a)"]
     raise ValueError(f"stage kind {st['kind']!r}")
 
 
@@ -41,9 +50,10 @@ def c_stage_body(st: dict) -> list[str]:
     call = f"sr_k_stage{st['index']}(pose, q, c, s, dp, out);"
     j = st["joints"][0]
     head = [f"double out[{size}];", "(void)k;", "(void)prev; /* a family's representative (trig_linear, "
-            "rotation2d stages) */", "*f = 0u;"]
+            "rotation2d stages) */", "(void)amp; /* the two-root stages' amplification (trig_linear, wrist) */",
+            "*f = 0u;"]
     if st["kind"] == "trig_linear":
-        return head + [call, f"return sr_trig_linear(out, {j}, sr_sign(k, {st['bit']}), q, c, s, prev, f);"]
+        return head + [call, f"return sr_trig_linear(out, {j}, sr_sign(k, {st['bit']}), q, c, s, prev, amp, f);"]
     if st["kind"] == "rotation2d":
         return head + [call, f"return sr_rotation2d(out, {j}, q, c, s, prev, f);"]
     if st["kind"] == "value":
@@ -56,7 +66,11 @@ def c_stage_body(st: dict) -> list[str]:
                 f"static const double signs[8] = {{ {signs} }};"] + head
         if st["bit"] == 0:
             body += ["if ((k & 1) == 1) return sr_wrist_mirror(joints, q, c, s, f); /* set k - 1's prefix */"]
-        return body + [call, f"return sr_wrist(out, sr_sign(k, {st['bit']}), signs, joints, q, c, s, dp, f);"]
+        before = _amp_before(st, "sr_max({})") if len(st.get("amp_joints", [])) <= 2 else \
+            "sr_max(" * (len(st["amp_joints"]) - 1) + f"amp[{st['amp_joints'][0]}]" + \
+            "".join(f", amp[{j}])" for j in st["amp_joints"][1:])
+        return body + [call, f"return sr_wrist(out, sr_sign(k, {st['bit']}), signs, joints, q, c, s, dp, {before}, "
+                             "f);"]
     raise ValueError(f"stage kind {st['kind']!r}")
 
 

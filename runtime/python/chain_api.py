@@ -64,13 +64,15 @@ from chain_stand_in import (
     WristkinError,
     _array,
     _as_rotation,
+    _k_fk,
+    _k_jacobian,
     _projected_note,
     _rows,
     _stack,
     _vector,
     _wrap,
 )
-from chain_verify import _frame_error, _jacobian_chain, _polish, _pose_error, _ratio
+from chain_verify import _frame_error, _polish, _pose_error, _ratio, _ratio_of
 
 
 # wristkin: inlined from here
@@ -144,18 +146,42 @@ _IDEAL = _full_chain(_IDEAL_AXES, _IDEAL_POINTS, _IDEAL_HOME)
 
 
 # ---------------------------------------------------------------------------- forward kinematics
-def _fk_full(q, d):
+# The robot's derived kernels (_k_fk, _k_jacobian: its product of exponentials with the constants folded, printed
+# above by derive/families/chain/kernels.py) answer FK and the Jacobian; the chain's table (_fk_chain) serves the
+# solver's own chains (held, reversed, ideal).
+def _rt12(v):
+    """[R | p] (12 entries, row-major) as a rigid transform."""
+    return ((v[0], v[1], v[2]), (v[4], v[5], v[6]), (v[8], v[9], v[10])), (v[3], v[7], v[11])
+
+
+def _trig_of(q):
+    """cos and sin of the revolute joints (a prismatic joint's are unused: 1, 0), taken once for every kernel."""
+    return ([math.cos(v) if k == "R" else 1.0 for v, k in zip(q, JOINT_KINDS, strict=True)],
+            [math.sin(v) if k == "R" else 0.0 for v, k in zip(q, JOINT_KINDS, strict=True)])
+
+
+def _fk_full(q, d, trig=None):
+    """base . chain . tool (trig: the joints' cos and sin when the caller has them)."""
     base, tool = _frames(d)
-    return _compose(_compose(base, _fk_chain(_TRUE, q)), tool)
+    c, s = trig or _trig_of(q)
+    return _compose(_compose(base, _rt12(_k_fk(q, c, s))), tool)
+
+
+def _jacobian_held(full, trig):
+    """The chain's Jacobian in the solver's joints: the kernel's columns without the free joint's (held, the
+    solver's chain has the description's base and end frame, so its Jacobian is these columns)."""
+    jac = np.array(_k_jacobian(full, *trig)).reshape(6, N_JOINTS)
+    return np.delete(jac, _FREE, axis=1) if _FREE >= 0 else jac
 
 
 def _jacobian_full(q, d):
     """Jacobian of base . chain . tool: the chain's columns rotated into the base frame, the tool's offset in
     the linear rows."""
     base, tool = _frames(d)
-    jc = _jacobian_chain(_TRUE, q)
+    c, s = _trig_of(q)
+    jc = np.array(_k_jacobian(q, c, s)).reshape(6, N_JOINTS)
     r = np.array(base[0])
-    chain_end = _fk_chain(_TRUE, q)
+    chain_end = _rt12(_k_fk(q, c, s))
     end = _compose(chain_end, tool)[1]  # chain frame: the tool point
     t_end = np.array(chain_end[1])
     lin, ang = jc[:3], jc[3:]
@@ -330,31 +356,40 @@ def _ik_numpy(pose, d, previous):
         if len(found) >= MAX_IK:
             return False
         qc = [_wrap(v) if k == "R" else v for v, k in zip(qc, ideal.kinds, strict=True)]
-        err, _ = _pose_error(true, qc, target_rt)
-        if err > IK_VERIFY_TOL:
-            qc, err = _polish(true, qc, target_rt)
-        if CALIBRATED and not err <= IK_VERIFY_TOL:  # once per candidate: no retry loop (a second and third
-            # compensation found 7 more of 168 near-singular sets of the calibrated KR 6 at 3x the time)
-            near = _compensated(ideal, true, qc, target_rt, prev_c)
-            if near is not None:
-                qc, err = _polish(true, near, target_rt)
-        if not err <= IK_VERIFY_TOL:
-            return False
+        # the common case first: the module's own FK (the robot's derived kernel, base . chain . tool) reproduces
+        # the pose with the set as it stands, so it needs neither the solver chain's check nor a polish
         full = _full_joints(qc, ideal.index, d)
-        # the residual reported and checked is the module's own FK (fk_matrix) of the returned set: the solver's
-        # chain (held, maybe reversed: T^-1's entries) and base . chain . tool round differently, and the tool's
-        # lever scales an orientation error, so a set within IK_VERIFY_TOL there can miss it here; such a set is
-        # polished on to POLISH_TOL and kept only if it then meets IK_VERIFY_TOL
-        err = _frame_error(_fk_full(full, d), target)
-        if err > IK_VERIFY_TOL:
-            qc, _ = _polish(true, qc, target_rt)
-            full = _full_joints(qc, ideal.index, d)
-            err = _frame_error(_fk_full(full, d), target)
+        trig = _trig_of(full)
+        err = _frame_error(_fk_full(full, d, trig), target)
+        exact = err <= IK_VERIFY_TOL
+        if not exact:
+            err, _ = _pose_error(true, qc, target_rt)
+            if err > IK_VERIFY_TOL:
+                qc, err = _polish(true, qc, target_rt)
+            if CALIBRATED and not err <= IK_VERIFY_TOL:  # once per candidate: no retry loop (a second and third
+                # compensation found 7 more of 168 near-singular sets of the calibrated KR 6 at 3x the time)
+                near = _compensated(ideal, true, qc, target_rt, prev_c)
+                if near is not None:
+                    qc, err = _polish(true, near, target_rt)
             if not err <= IK_VERIFY_TOL:
                 return False
+            full = _full_joints(qc, ideal.index, d)
+            # the residual reported and checked is the module's own FK (fk_matrix) of the returned set: the
+            # solver's chain (held, maybe reversed: T^-1's entries) and base . chain . tool round differently, and
+            # the tool's lever scales an orientation error, so a set within IK_VERIFY_TOL there can miss it here;
+            # such a set is polished on to POLISH_TOL and kept only if it then meets IK_VERIFY_TOL
+            err = _frame_error(_fk_full(full, d), target)
+            if err > IK_VERIFY_TOL:
+                qc, _ = _polish(true, qc, target_rt)
+                full = _full_joints(qc, ideal.index, d)
+                err = _frame_error(_fk_full(full, d), target)
+                if not err <= IK_VERIFY_TOL:
+                    return False
         if any(_same(full, other) for other, _, _ in found):
             return False
-        if _ratio(true, qc) <= SINGULAR_EPS:
+        # the solver chain's conditioning: read from the kernel where that chain is the description's with the
+        # free joint held (same base and end frame), from the reversed chain's table otherwise
+        if (_ratio(true, qc) if _REVERSED or not exact else _ratio_of(_jacobian_held(full, trig))) <= SINGULAR_EPS:
             f |= FLAG_SINGULAR_INVERSE
         if dry:
             return True

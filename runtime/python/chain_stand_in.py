@@ -192,3 +192,21 @@ INPUTS_HASH = "stand-in"
 _C = None  # no compiled extension: every verb runs the numpy path
 _C_IK = _C_FK = _C_IK_BATCH = _C_FK_BATCH = _C_JACOBIAN = _C_FK_MATRIX = None
 _IK_RESULT = _FK_RESULT = None
+
+
+
+def _k_fk(q, c, s):  # the derived kernel reads c and s; the table takes q
+    """Stand-in for the robot's derived FK kernel (derive/families/chain/kernels.py prints it straight-line): the same
+    12 entries of [R | p] from the chain's table."""
+    from chain_poe import _fk_chain, _full_chain
+
+    r, t = _fk_chain(_full_chain(_AXES, _POINTS, _HOME), q)
+    return (*r[0], t[0], *r[1], t[1], *r[2], t[2])
+
+
+def _k_jacobian(q, c, s):
+    """Stand-in for the derived Jacobian kernel: the 6 x n Jacobian row-major."""
+    from chain_poe import _full_chain
+    from chain_verify import _jacobian_chain
+
+    return tuple(float(v) for v in _jacobian_chain(_full_chain(_AXES, _POINTS, _HOME), q).ravel())

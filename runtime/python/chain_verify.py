@@ -67,9 +67,14 @@ def _polish(ch, q, target):
     return q, err
 
 
-def _ratio(ch, q):
-    """sigma_min / sigma_max of the Jacobian (6 x n): conditioning of the configuration."""
-    s = np.linalg.svd(_jacobian_chain(ch, q), compute_uv=False)
+def _ratio_of(jac):
+    """sigma_min / sigma_max of a Jacobian (6 x n): conditioning of the configuration."""
+    s = np.linalg.svd(jac, compute_uv=False)
     return float(s[-1] / s[0]) if s[0] > 0.0 else 0.0
+
+
+def _ratio(ch, q):
+    """sigma_min / sigma_max of the chain's Jacobian at q."""
+    return _ratio_of(_jacobian_chain(ch, q))
 
 

@@ -40,9 +40,10 @@ def _family_member(j, q, c, s, prev):
     q[j], c[j], s[j] = (v, 1.0, 0.0) if v == 0.0 else (v, math.cos(v), math.sin(v))
 
 
-def _trig_linear(out, j, sgn, q, c, s, prev):
+def _trig_linear(out, j, sgn, q, c, s, prev, amp):
     """Joint j from A cos q + B sin q + C = 0 (out = (A, B, C)): q = atan2(B, A) + sgn acos(-C / sqrt(A^2 + B^2)),
-    its cos and sin from (A, B, u) without trigonometry. Returns (ok, flags)."""
+    its cos and sin from (A, B, u) without trigonometry; amp[j]: how much its roots amplify the input's rounding.
+    Returns (ok, flags)."""
     a, b, cc = out
     r = math.hypot(a, b)
     if r <= DEGENERATE_EPS:
@@ -52,6 +53,7 @@ def _trig_linear(out, j, sgn, q, c, s, prev):
         if abs(cc) > math.sqrt(DOUBLE_ROOT_TOL) or sgn < 0.0:
             return False, 0
         _family_member(j, q, c, s, prev)  # one-parameter family: its representative
+        amp[j] = 1.0
         return True, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE
     u = -cc / r
     if not abs(u) <= 1.0 + TANGENT_TOL:
@@ -61,6 +63,10 @@ def _trig_linear(out, j, sgn, q, c, s, prev):
     f = FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE if sg <= math.sqrt(DOUBLE_ROOT_TOL) else 0
     if f and sgn < 0.0:
         return False, 0  # a double root is one solution: reported once, by the + branch
+    # the roots phi +- w amplify the input's rounding by 1 / sin w (a double root: 1 / sqrt(DOUBLE_ROOT_TOL)): a wrist
+    # after them reads its rotation with that much more rounding (seed 627229: a PUMA shoulder 0.0022 from its
+    # double root left |sin theta5| = 1.3e-13 at an exact wrist singularity, which came back as 8 "regular" sets)
+    amp[j] = 1.0 / (math.sqrt(DOUBLE_ROOT_TOL) if f else sg)
     ca, sa = a / r, b / r  # q = atan2(B, A) + sgn acos(u)
     c[j], s[j] = ca * u - sgn * sa * sg, sa * u + sgn * ca * sg
     q[j] = math.atan2(s[j], c[j])
@@ -119,15 +125,18 @@ def _wrist_mirror(joints, q, c, s):
     return True, FLAG_SINGULAR_INVERSE if abs(s[j5]) <= SINGULAR_EPS else 0
 
 
-def _wrist(out, sgn, signs, joints, q, c, s, dp):
+def _wrist(out, sgn, signs, joints, q, c, s, dp, amp_before):
     """The spherical wrist (q4, q5, q6) from the entries of its rotation (out, 9), branch sgn; `signs`: the DH
-    twists' signs of those entries (e0..e3) and of the singular family's (k00, k10 with theta5 = 0, then pi)."""
+    twists' signs of those entries (e0..e3) and of the singular family's (k00, k10 with theta5 = 0, then pi);
+    `amp_before`: how much the two-root stages before it amplified the input's rounding (their largest amp), by which
+    its family band WRIST_EXACT_TOL grows."""
     e0, e1, e2, e3, k00a, k10a, k00b, k10b = signs
     j4, j5, j6 = joints
     s5 = sgn * math.hypot(out[2], out[5])
     c5 = e0 * out[8]
     f = FLAG_SINGULAR_INVERSE if abs(s5) <= SINGULAR_EPS else 0
-    if abs(s5) <= WRIST_EXACT_TOL:
+    exact = WRIST_EXACT_TOL * amp_before
+    if abs(s5) <= exact:
         # wrist singularity: only q4 +/- q6 is defined; q4 := 0 (documented representative, moved to the member
         # nearest `previous` by ik)
         if sgn < 0.0:

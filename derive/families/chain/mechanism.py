@@ -20,6 +20,7 @@ from ...model import Check, Derivation, Finding, NoDecomposition, Step
 from ...tolerances import TOLERANCES
 from . import views
 from .description import Description
+from .kernels import chain_kernels, kernel_check
 from .stages import stage
 
 FREE_SAMPLES = (0.0, 0.7, -1.9, 2.6)  # values of a free joint the decomposition must hold at
@@ -275,6 +276,16 @@ class ChainMechanism(MechanismDefaults):
                     "before it; linear velocity first", ("chain",), {"columns": f"{c.n}"},
                     (numeric_predicate(jac_err, "columns equal central differences of FK (h = 1e-6)", samples=40,
                                        tol=1e-7 * max(1.0, scale)),)))
+        ks = chain_kernels(c)
+        ks = chain_kernels(c)
+        dv.add(Step("kernels", "The robot's FK and Jacobian as straight-line kernels",
+                    "the product of exponentials and the Jacobian's columns over the joint symbols, each axis and "
+                    "point substituted as numbers (exact 0 and +-1 kept exact, so the terms they zero vanish), then "
+                    "CSE'd per target", ("chain", "jacobian"),
+                    {"kernels": ", ".join(f"{k.name} ({k.n_out} outputs)" for k in ks)},
+                    (numeric_predicate(kernel_check(c, ks), "the kernels equal the chain's product of 4 x 4 "
+                                       "transforms and its Jacobian (kinematics/poe.py; base and tool left out)",
+                                       samples=40, tol=1e-12 * max(1.0, scale)),)))
         checked = ("every op checked on 200 sampled configurations" if self._labelling is None else
                    "the 14 equations checked on 40 sampled configurations, the solutions against a multistart count")
         dv.findings.append(Finding("decomposition", "the description (no IK given)", plan.strategy, "clarified",
@@ -299,7 +310,7 @@ class ChainMechanism(MechanismDefaults):
 
     # ------------------------------------------------------------------------------------------ emission
     def kernels(self, dv):
-        return []
+        return chain_kernels(self.chain)
 
     def extra_context(self, ks) -> dict:
         plan, ideal = self.plan()

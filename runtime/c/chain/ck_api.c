@@ -77,15 +77,52 @@ static int ck_api_design_set_frames(ck_design *design, const double base[12], co
 }
 
 /* ------------------------------------------------------------------ forward kinematics */
-/* base . chain . tool */
-static void ck_fk_full(const double *q, const ck_design *d, ck_rt *o)
+/* The robot's derived kernels (ck_k_fk, ck_k_jacobian: its product of exponentials with the constants folded,
+ * printed before the runtime by derive/families/chain/kernels.py) answer FK and the Jacobian; the chain's table
+ * (ck_fk_chain) serves the solver's own chains (held, reversed, ideal). */
+/* cos and sin of the revolute joints (a prismatic joint's are unused: 1, 0), taken once for every kernel */
+static void ck_trig_of(const double *q, double *c, double *s)
+{
+    int j;
+    for (j = 0; j < CK_N; ++j) {
+        c[j] = ck_revolute[j] ? cos(q[j]) : 1.0;
+        s[j] = ck_revolute[j] ? sin(q[j]) : 0.0;
+    }
+}
+
+/* base . chain . tool, from the joints and their cos and sin */
+static void ck_fk_full_cs(const double *q, const double *c, const double *s, const ck_design *d, ck_rt *o)
 {
     ck_rt base, tool;
+    double v[12];
     ck_from12(d->base, &base);
     ck_from12(d->tool, &tool);
-    ck_fk_chain(&ck_true_chain, q, o);
+    ck_k_fk(q, c, s, v);
+    ck_from12(v, o);
     ck_compose(&base, o, o);
     ck_compose(o, &tool, o);
+}
+
+static void ck_fk_full(const double *q, const ck_design *d, ck_rt *o)
+{
+    double c[CK_N], s[CK_N];
+    ck_trig_of(q, c, s);
+    ck_fk_full_cs(q, c, s, d, o);
+}
+
+/* The chain's Jacobian (6 x n) in the solver's joints: the kernel's columns without the free joint's (held, the
+ * solver's chain has the description's base and end frame, so its Jacobian is these columns). */
+static void ck_jacobian_held(const double *full, const double *c, const double *s, double *jac)
+{
+    double v[6 * CK_N];
+    int i, j, m;
+    ck_k_jacobian(full, c, s, v);
+    for (i = 0; i < 6; ++i)
+        for (j = 0, m = 0; j < CK_N; ++j) {
+            if (j == CK_FREE) continue;
+            jac[i * (CK_N - (CK_FREE >= 0)) + m] = v[i * CK_N + j];
+            ++m;
+        }
 }
 
 /* Jacobian of base . chain . tool: the chain's columns with the tool's offset in the linear rows, rotated into
@@ -93,11 +130,14 @@ static void ck_fk_full(const double *q, const ck_design *d, ck_rt *o)
 static void ck_jacobian_full(const double *q, const ck_design *d, double *jac)
 {
     ck_rt base, tool, t, te;
-    double jc[6 * CK_N], off[3];
+    double c[CK_N], s[CK_N], v[12], jc[6 * CK_N], off[3];
     int i, j;
     ck_from12(d->base, &base);
     ck_from12(d->tool, &tool);
-    ck_jacobian_chain(&ck_true_chain, q, jc, &t);
+    ck_trig_of(q, c, s);
+    ck_k_fk(q, c, s, v);
+    ck_k_jacobian(q, c, s, jc);
+    ck_from12(v, &t);
     ck_compose(&t, &tool, &te);
     ck_sub(te.t, t.t, off);
     for (j = 0; j < CK_N; ++j) {

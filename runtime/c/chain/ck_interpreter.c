@@ -191,14 +191,31 @@ static int ck_compensated(const ck_ctx *c, double *qc)
 }
 #endif
 
+static void ck_trig_of(const double *q, double *c, double *s);
+static void ck_fk_full_cs(const double *q, const double *c, const double *s, const ck_design *d, ck_rt *o);
+static void ck_jacobian_held(const double *full, const double *c, const double *s, double *jac);
+
+/* A candidate of the plan as it stands, when the module's own FK (the robot's derived kernel, base . chain . tool)
+ * reproduces the pose with it: the common case, which needs neither the solver chain's check nor a polish (Python's
+ * accept). 1 with full, its cos and sin and err set; 0 to verify it on the solver's chain. */
+static int ck_candidate_exact(const ck_ctx *c, const double *qc, double *full, double *cs, double *sn, double *err)
+{
+    ck_rt t;
+    ck_full_joints(c, qc, full);
+    ck_trig_of(full, cs, sn);
+    ck_fk_full_cs(full, cs, sn, c->design, &t);
+    *err = ck_frame_error(&t, &c->pose);
+    return *err <= CK_IK_VERIFY_TOL;
+}
+
 /* A candidate of the plan: verified (and polished) on the true chain, deduplicated, flagged, stored. */
 static void ck_candidate(ck_ctx *c, unsigned flags)
 {
     ck_ik_solutions *out = c->out;
     const ck_chain *ch = c->truth;
-    double qc[CK_N], full[CK_N], jac[6 * CK_N], err;
+    double qc[CK_N], full[CK_N], cs[CK_N], sn[CK_N], jac[6 * CK_N], err;
     ck_rt t;
-    int i, k;
+    int i, k, have_jac = 0;
 #if CK_CALIBRATED
     if (c->raw) {
         ck_raw_candidate(c);
@@ -207,37 +224,43 @@ static void ck_candidate(ck_ctx *c, unsigned flags)
 #endif
     if (out->count >= CK_MAX_IK) return;
     for (i = 0; i < ch->n; ++i) qc[i] = ch->prismatic[i] ? c->q[i] : ck_wrap(c->q[i]);
-    ck_jacobian_chain(ch, qc, jac, &t); /* the FK and the Jacobian share their screws */
-    err = ck_frame_error(&t, &c->target);
-    if (err > CK_IK_VERIFY_TOL) {
-        err = ck_polish(ch, qc, &c->target);
-#if CK_CALIBRATED
-        if (!(err <= CK_IK_VERIFY_TOL) && ck_compensated(c, qc)) /* once per candidate: no retry loop */
+    if (!ck_candidate_exact(c, qc, full, cs, sn, &err)) {
+        ck_jacobian_chain(ch, qc, jac, &t); /* the FK and the Jacobian share their screws */
+        err = ck_frame_error(&t, &c->target);
+        if (err > CK_IK_VERIFY_TOL) {
             err = ck_polish(ch, qc, &c->target);
+#if CK_CALIBRATED
+            if (!(err <= CK_IK_VERIFY_TOL) && ck_compensated(c, qc)) /* once per candidate: no retry loop */
+                err = ck_polish(ch, qc, &c->target);
 #endif
-        ck_jacobian_chain(ch, qc, jac, NULL);
-    }
-    if (!(err <= CK_IK_VERIFY_TOL)) return;
-    ck_full_joints(c, qc, full);
-    /* the residual reported and checked is the module's own FK (fk_matrix) of the returned set: the solver's chain
-     * (held, maybe reversed: T^-1's entries) and base . chain . tool round differently, and the tool's lever scales
-     * an orientation error, so a set within the tolerance there can miss it here; such a set is polished on to
-     * CK_POLISH_TOL and kept only if it then meets CK_IK_VERIFY_TOL */
-    ck_fk_full(full, c->design, &t);
-    err = ck_frame_error(&t, &c->pose);
-    if (err > CK_IK_VERIFY_TOL) {
-        ck_polish(ch, qc, &c->target);
-        ck_jacobian_chain(ch, qc, jac, NULL);
-        ck_full_joints(c, qc, full);
-        ck_fk_full(full, c->design, &t);
-        err = ck_frame_error(&t, &c->pose);
+            ck_jacobian_chain(ch, qc, jac, NULL);
+        }
         if (!(err <= CK_IK_VERIFY_TOL)) return;
+        have_jac = 1;
+        /* the residual reported and checked is the module's own FK (fk_matrix) of the returned set: the solver's
+         * chain (held, maybe reversed: T^-1's entries) and base . chain . tool round differently, and the tool's
+         * lever scales an orientation error, so a set within the tolerance there can miss it here; such a set is
+         * polished on to CK_POLISH_TOL and kept only if it then meets CK_IK_VERIFY_TOL */
+        if (!ck_candidate_exact(c, qc, full, cs, sn, &err)) {
+            ck_polish(ch, qc, &c->target);
+            ck_jacobian_chain(ch, qc, jac, NULL);
+            if (!ck_candidate_exact(c, qc, full, cs, sn, &err)) return;
+        }
     }
     for (k = 0; k < out->count; ++k)
         if (ck_same(full, out->values[k])) return;
     if (c->probe) {
         ++c->hits;
         return;
+    }
+    /* the solver chain's conditioning: read from the kernel where that chain is the description's with the free
+     * joint held (same base and end frame), from the reversed chain's table otherwise */
+    if (!have_jac) {
+#if CK_REVERSED
+        ck_jacobian_chain(ch, qc, jac, NULL);
+#else
+        ck_jacobian_held(full, cs, sn, jac);
+#endif
     }
     if (ck_is_singular(jac, ch->n)) flags |= WK_FLAG_SINGULAR_INVERSE;
     k = out->count;

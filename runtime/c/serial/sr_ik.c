@@ -8,7 +8,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
                           sr_ik_solutions *out)
 {
     const sr_design *d = sr_design_or_default(design);
-    double q[SR_N], c[SR_N], s[SR_N], pose[12], rot[9], deviation = 0.0;
+    double q[SR_N], c[SR_N], s[SR_N], amp[SR_N], pose[12], rot[9], deviation = 0.0;
     long key[SR_N_STAGES];
     int stage_ok[SR_N_STAGES];
     unsigned stage_flags[SR_N_STAGES], projected;
@@ -72,13 +72,14 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         q[j] = 0.0;
         c[j] = 1.0;
         s[j] = 0.0;
+        amp[j] = 1.0;
     }
     for (k = 0; k < SR_MAX_IK; ++k) {
         double t[12], err = 0.0;
         unsigned f = 0u;
         int alive = 1;
         /* the stages (sr_run_stages, printed per chain): each recomputed only when its branch prefix changes */
-        alive = sr_run_stages(k, pose, q, c, s, d->params, prev, key, stage_ok, stage_flags, &f);
+        alive = sr_run_stages(k, pose, q, c, s, d->params, prev, amp, key, stage_ok, stage_flags, &f);
 #if SR_REUSE_MIRROR_CHECK
         if ((k & 1) == 0) base_err = -1.0;
 #endif

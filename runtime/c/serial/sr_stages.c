@@ -26,6 +26,12 @@ static void sr_family_member(int j, double *q, double *c, double *s, const doubl
 #endif
 
 #if SR_HAS_TRIG_LINEAR
+/* the larger of two amplifications (the generated wrist stage's band factor) */
+static inline double sr_max(double a, double b)
+{
+    return a > b ? a : b;
+}
+
 static double sr_clamp1(double x)
 {
     return x > 1.0 ? 1.0 : (x < -1.0 ? -1.0 : x);
@@ -34,7 +40,7 @@ static double sr_clamp1(double x)
 /* Joint j from A cos q + B sin q + C = 0 (out = A, B, C): q = atan2(B, A) + sgn acos(-C / sqrt(A^2 + B^2)).
  * inline: each stage of this kind calls it with its own constant joint and bit, as straight-line code would */
 static inline int sr_trig_linear(const double *out, int j, double sgn, double *q, double *c, double *s,
-                                 const double *prev, unsigned *f)
+                                 const double *prev, double *amp, unsigned *f)
 {
     const double r = sqrt(out[0] * out[0] + out[1] * out[1]);
     double u, sg, ca, sa;
@@ -43,6 +49,7 @@ static inline int sr_trig_linear(const double *out, int j, double sgn, double *q
         if (fabs(out[2]) > sqrt(SR_DOUBLE_ROOT_TOL) || sgn < 0.0) return 0;
         sr_family_member(j, q, c, s, prev); /* one-parameter family: its representative */
         *f = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
+        amp[j] = 1.0;
         return 1;
     }
     u = -out[2] / r;
@@ -53,6 +60,8 @@ static inline int sr_trig_linear(const double *out, int j, double sgn, double *q
         if (sgn < 0.0) return 0; /* a double root is one solution: reported once, by the + branch */
         *f = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
     }
+    /* the roots phi +- w amplify the input's rounding by 1 / sin w (a double root: 1 / sqrt(SR_DOUBLE_ROOT_TOL)) */
+    amp[j] = 1.0 / (*f ? sqrt(SR_DOUBLE_ROOT_TOL) : sg);
     /* q = atan2(B, A) + sgn acos(u): its cos and sin follow from (A, B, u) */
     ca = out[0] / r;
     sa = out[1] / r;
@@ -146,12 +155,14 @@ static int sr_wrist_mirror(const int *w, double *q, double *c, double *s, unsign
 /* The spherical wrist (q4, q5, q6 = w[0..2]) from the entries of its rotation (out, 9), branch sgn; e: the DH
  * twists' signs of those entries (e0..e3) and of the singular family's (k00, k10 at theta5 = 0, then pi). */
 static int sr_wrist(const double *out, double sgn, const double *e, const int *w, double *q, double *c, double *s,
-                    const double *dp, unsigned *f)
+                    const double *dp, double amp_before, unsigned *f)
 {
     const double s5 = sgn * sqrt(out[2] * out[2] + out[5] * out[5]), c5 = e[0] * out[8];
+    /* the family band: the stages before amplified the input's rounding into the wrist's rotation (Python's _wrist) */
+    const double exact = SR_WRIST_EXACT_TOL * amp_before;
     double x, y, n;
     if (fabs(s5) <= SR_SINGULAR_EPS) *f = WK_FLAG_SINGULAR_INVERSE;
-    if (fabs(s5) > SR_WRIST_EXACT_TOL && fabs(s5) <= SR_SINGULAR_EPS) {
+    if (fabs(s5) > exact && fabs(s5) <= SR_SINGULAR_EPS) {
         /* near the singularity q6 = phi - sigma q4, phi from the well-conditioned entries (see Python) */
         const int up = c5 >= 0.0;
         const double k00 = up ? e[4] : e[6], k10 = up ? e[5] : e[7];
@@ -170,7 +181,7 @@ static int sr_wrist(const double *out, double sgn, const double *e, const int *w
         s[w[2]] = sin(q[w[2]]);
         return 1;
     }
-    if (fabs(s5) <= SR_WRIST_EXACT_TOL) {
+    if (fabs(s5) <= exact) {
         /* wrist singularity: q4 := 0 (moved to previous's q4 by ik_near), q6 carries q4 +/- q6 */
         const int up = c5 >= 0.0;
         const double k00 = up ? e[4] : e[6], k10 = up ? e[5] : e[7];
