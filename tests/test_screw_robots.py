@@ -204,10 +204,15 @@ def test_near_singular_configurations():
         if i < 9 and offset != 1e-7:
             expected = ref.ik_reference(robot, T, 4, starts=40)
             near = 1e-3 if offset == 0.0 else max(1e-5, 2.0 * abs(offset)) if double else 1e-5
+            if offset == 0.0:  # at the double root LM can stall in the fold's flat valley: keep only roots
+                expected = [x for x in expected if min(ref.distance(robot, x, v) for v in vals) < near
+                            or ref.refine(robot, T, x) <= 1e-13]
             for x in expected:  # none missed
                 assert min(ref.distance(robot, x, v) for v in vals) < near
-            for v in vals:  # none spurious: each set stands for a root the reference found
-                assert min(ref.distance(robot, x, v) for x in expected) < near
+            for v in vals:  # none spurious: each set stands for a root the reference found (at the double root,
+                # or is one by the reference's FK to 1e-13: its multistart can miss a root in the fold's valley)
+                assert min(ref.distance(robot, x, v) for x in expected) < near or (
+                    offset == 0.0 and ref.refine(robot, T, v) <= 1e-13)
             if not double:  # then the roots are simple and distinct: one set each
                 merge = 1e-3 if offset == 0.0 else 1e-6
                 clusters: list = []

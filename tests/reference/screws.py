@@ -160,3 +160,16 @@ def ik_reference(robot, T, max_solutions: int, starts: int = 60, seed: int = 0, 
                 if solve_from(f + sign * h * vt[-1]):
                     return found
     return found
+
+
+def refine(robot, T, q, max_nfev: int = 5000) -> float:
+    """The pose error LM reaches from q with tight tolerances: rounding (~1e-15) at a root, simple or double; a point
+    where it stalls well above that (2e-11 in a fold's flat valley, Haswell, WRISTKIN_TEST_SEED=481689) is no root,
+    though ik_reference's tol admitted it."""
+    T = np.asarray(T, dtype=float)
+
+    def res(x):
+        return (fk_fast(robot, x)[0][:3] - T[:3]).ravel()
+    sol = least_squares(res, np.asarray(q, dtype=float), method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
+                        max_nfev=max_nfev)
+    return pose_error(robot, sol.x, T)
