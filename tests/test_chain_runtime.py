@@ -64,6 +64,7 @@ def lib():
     L.wkt_sp4.argtypes = [D, D, D, ctypes.c_double, D, U]
     L.wkt_sp6.argtypes = [D, D, D, D, D, ctypes.c_double, D, D, D, D, U]
     L.wkt_lstsq.argtypes = [D, ctypes.c_int, ctypes.c_int, D, D]
+    L.wkt_solve_square.argtypes = [D, ctypes.c_int, D, D]
     L.wkt_spectrum.argtypes = [D, ctypes.c_int, D]
     L.wkt_spectrum.restype = ctypes.c_double
     L.wkt_conditioning.argtypes = [D, ctypes.c_int, D]
@@ -202,6 +203,16 @@ def test_lstsq_and_spectrum_agree_with_numpy(lib):
             x = np.zeros(n)
             lib.wkt_lstsq(_p(a), m, n, _p(b), _p(x))
             assert np.allclose(x, np.linalg.lstsq(a, b, rcond=None)[0], atol=1e-10)
+    # the polish's square solve: lstsq's answer to rounding times the conditioning; a (near) rank-deficient J is
+    # refused (pivot below 1e-8 of the largest entry), for the SVD to decide
+    for _ in range(40):
+        a, b = rng.normal(size=(6, 6)), rng.normal(size=6)
+        x = np.zeros(6)
+        assert lib.wkt_solve_square(_p(a), 6, _p(b), _p(x)) == 1
+        ref = np.linalg.lstsq(a, b, rcond=None)[0]
+        assert np.max(np.abs(x - ref)) <= 1e-13 * np.linalg.cond(a) * max(1.0, np.max(np.abs(ref)))
+    a[:, 5] = a[:, 4] * (1.0 + 1e-12)
+    assert lib.wkt_solve_square(_p(a), 6, _p(b), _p(x)) == 0
     for n in (6, 7, 5):
         j = rng.normal(size=(6, n))
         ratio = np.zeros(1)

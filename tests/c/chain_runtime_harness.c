@@ -74,6 +74,7 @@ int wkt_sp4(const double *h, const double *k, const double *p, double d, double 
 int wkt_sp6(const double *n, const double *h0, const double *p0, const double *h4, const double *p4, double d0,
             const double *g, const double *h5, double *q0, double *q4, unsigned *f);
 void wkt_lstsq(const double *a, int m, int n, const double *b, double *x);
+int wkt_solve_square(const double *a, int n, const double *b, double *x);
 double wkt_spectrum(const double *jac, int n, double *ratio);
 void wkt_fk(int n, const int *kinds, const double *axes, const double *points, const double *home, const double *q,
             double *pose);
@@ -126,6 +127,11 @@ int wkt_sp6(const double *n, const double *h0, const double *p0, const double *h
 void wkt_lstsq(const double *a, int m, int n, const double *b, double *x)
 {
     ck_lstsq(a, m, n, b, x);
+}
+
+int wkt_solve_square(const double *a, int n, const double *b, double *x)
+{
+    return ck_solve_square(a, n, b, x);
 }
 
 double wkt_spectrum(const double *jac, int n, double *ratio)

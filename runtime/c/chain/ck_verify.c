@@ -56,7 +56,7 @@ static double ck_polish(const ck_chain *ch, double *q, const ck_rt *target)
         if (err <= CK_POLISH_TOL) break;
         ck_jacobian_chain(ch, q, jac, NULL);
         ck_twist_error(&t, target, e);
-        ck_lstsq(jac, 6, n, e, step);
+        if (n != 6 || !ck_solve_square(jac, 6, e, step)) ck_lstsq(jac, 6, n, e, step); /* square: J^-1 e */
         for (j = 0; j < n; ++j) trial[j] = q[j] + step[j];
         err2 = ck_pose_error(ch, trial, target, &t2);
         if (!(err2 < err)) break;
