@@ -224,6 +224,19 @@ def test_lstsq_and_spectrum_agree_with_numpy(lib):
     man = np.zeros(1)
     assert lib.wkt_conditioning(_p(j), 6, _p(man)) == 3
     assert lib.wkt_conditioning(_p(rng.normal(size=(6, 6))), 6, _p(man)) == 0
+    # the singular flag and the manipulability by the runtime's bounds (|det J| / ||J||_F^6 first for a square J,
+    # then the Gram matrix's Cholesky factors, else the SVD): the SVD's verdict wherever the ratio is not within 2x
+    # of SINGULAR_EPS (1e-6), the product of the singular values to 1e-9 (where the Gram matrix's Cholesky
+    # factors read it, to its conditioning: eps (sigma_max / sigma_min)^2 relative)
+    for ratio in np.geomspace(1e-10, 1.0, 41):
+        u, _ = np.linalg.qr(rng.normal(size=(6, 6)))
+        v, _ = np.linalg.qr(rng.normal(size=(6, 6)))
+        s = np.sort(np.concatenate([[1.0, ratio], rng.uniform(ratio, 1.0, 4)]))[::-1] * rng.uniform(0.1, 3.0)
+        j = u @ np.diag(s) @ v.T
+        flag = lib.wkt_conditioning(_p(j), 6, _p(man))
+        if not 0.5e-6 <= ratio <= 2e-6:
+            assert (flag != 0) == (ratio <= 1e-6), ratio
+        assert math.isclose(man[0], np.prod(s), rel_tol=1e-9 + 64 * np.finfo(float).eps / ratio**2), ratio
 
 
 def test_perpendicular_transpose_and_points(lib):

@@ -61,7 +61,8 @@ double wk_jacobi_spectrum(double *g, int n, double *ratio);
 
 /* Whether sigma_min / sigma_max of the 6 x n matrix jac (row-major, n <= WK_MAX_DIM) is above eps, proven from
  * Cholesky factorisations of its Gram matrix G (J^T J for n <= 6, J J^T above) at a fraction of a spectrum's cost
- * (eps >= 1e-7: the margins need eps^2 above G's rounding): 1 proven above, with *man = sqrt(det G) (the
+ * (eps >= 1e-7: the margins need eps^2 above G's rounding), a square J first by |det J| / ||J||_F^6 (cheaper
+ * still): 1 proven above, with *man = sqrt(det G) = |det J| (the
  * manipulability, the product of the nonzero singular values; not computed when man is NULL); -1 proven at or
  * below; 0 undecided (near eps, or J = 0): the caller's spectrum decides. */
 int wk_conditioning_bound(const double *jac, int n, double eps, double *man);

@@ -208,6 +208,54 @@ static int ck_candidate_exact(const ck_ctx *c, const double *qc, double *full, d
     return *err <= CK_IK_VERIFY_TOL;
 }
 
+#if !CK_REVERSED
+/* The solver's chain is the description's with the free joint held: its end frame and Jacobian at qc are the
+ * robot's derived kernels' at the full joints (no walk along the chain's table) */
+static void ck_held_fk(const void *self, const double *qc, ck_rt *t)
+{
+    double full[CK_N], cs[CK_N], sn[CK_N], v[12];
+    ck_full_joints((const ck_ctx *)self, qc, full);
+    ck_trig_of(full, cs, sn);
+    ck_k_fk(full, cs, sn, v);
+    ck_from12(v, t);
+}
+
+static void ck_held_jacobian(const void *self, const double *qc, double *jac)
+{
+    double full[CK_N], cs[CK_N], sn[CK_N];
+    ck_full_joints((const ck_ctx *)self, qc, full);
+    ck_trig_of(full, cs, sn);
+    ck_jacobian_held(full, cs, sn, jac);
+}
+#endif
+
+/* A candidate's polish on the true chain: through the derived kernels where the solver's chain is the held
+ * description, on the reversed chain's table otherwise */
+static double ck_polish_candidate(const ck_ctx *c, double *qc)
+{
+#if CK_REVERSED
+    return ck_polish(c->truth, qc, &c->target);
+#else
+    ck_reader r;
+    r.fk = ck_held_fk;
+    r.jacobian = ck_held_jacobian;
+    r.self = c;
+    r.n = c->truth->n;
+    return ck_polish_read(&r, qc, &c->target);
+#endif
+}
+
+/* The true solver chain's Jacobian at qc (and its end frame when t is not NULL), the same two readings */
+static void ck_candidate_jacobian(const ck_ctx *c, const double *qc, double *jac, ck_rt *t)
+{
+#if CK_REVERSED
+    ck_jacobian_chain(c->truth, qc, jac, t);
+#else
+    if (t) ck_held_fk(c, qc, t);
+    ck_held_jacobian(c, qc, jac);
+#endif
+}
+
 /* A candidate of the plan: verified (and polished) on the true chain, deduplicated, flagged, stored. */
 static void ck_candidate(ck_ctx *c, unsigned flags)
 {
@@ -225,15 +273,15 @@ static void ck_candidate(ck_ctx *c, unsigned flags)
     if (out->count >= CK_MAX_IK) return;
     for (i = 0; i < ch->n; ++i) qc[i] = ch->prismatic[i] ? c->q[i] : ck_wrap(c->q[i]);
     if (!ck_candidate_exact(c, qc, full, cs, sn, &err)) {
-        ck_jacobian_chain(ch, qc, jac, &t); /* the FK and the Jacobian share their screws */
+        ck_candidate_jacobian(c, qc, jac, &t);
         err = ck_frame_error(&t, &c->target);
         if (err > CK_IK_VERIFY_TOL) {
-            err = ck_polish(ch, qc, &c->target);
+            err = ck_polish_candidate(c, qc);
 #if CK_CALIBRATED
             if (!(err <= CK_IK_VERIFY_TOL) && ck_compensated(c, qc)) /* once per candidate: no retry loop */
-                err = ck_polish(ch, qc, &c->target);
+                err = ck_polish_candidate(c, qc);
 #endif
-            ck_jacobian_chain(ch, qc, jac, NULL);
+            ck_candidate_jacobian(c, qc, jac, NULL);
         }
         if (!(err <= CK_IK_VERIFY_TOL)) return;
         have_jac = 1;
@@ -242,8 +290,8 @@ static void ck_candidate(ck_ctx *c, unsigned flags)
          * lever scales an orientation error, so a set within the tolerance there can miss it here; such a set is
          * polished on to CK_POLISH_TOL and kept only if it then meets CK_IK_VERIFY_TOL */
         if (!ck_candidate_exact(c, qc, full, cs, sn, &err)) {
-            ck_polish(ch, qc, &c->target);
-            ck_jacobian_chain(ch, qc, jac, NULL);
+            ck_polish_candidate(c, qc);
+            ck_candidate_jacobian(c, qc, jac, NULL);
             if (!ck_candidate_exact(c, qc, full, cs, sn, &err)) return;
         }
     }

@@ -18,13 +18,6 @@ static double ck_frame_error(const ck_rt *t, const ck_rt *target)
     return err;
 }
 
-/* max |FK(q) - target| over the entries of [R | p]; t = FK(q) */
-static double ck_pose_error(const ck_chain *ch, const double *q, const ck_rt *target, ck_rt *t)
-{
-    ck_fk_chain(ch, q, t);
-    return ck_frame_error(t, target);
-}
-
 /* 6-vector (position error, 1/2 sum of column crosses) from t to target */
 static void ck_twist_error(const ck_rt *t, const ck_rt *target, double *e)
 {
@@ -44,26 +37,59 @@ static void ck_twist_error(const ck_rt *t, const ck_rt *target, double *e)
     }
 }
 
-/* Gauss-Newton on the true chain: removes the error of the ideal geometry and of a tangent root. q in place;
- * returns the pose error. */
-static double ck_polish(const ck_chain *ch, double *q, const ck_rt *target)
+/* How a polish reads the chain it drives: its end frame and its Jacobian (6 x n) at q. */
+typedef struct {
+    void (*fk)(const void *self, const double *q, ck_rt *t);
+    void (*jacobian)(const void *self, const double *q, double *jac);
+    const void *self;
+    int n;
+} ck_reader;
+
+/* Gauss-Newton on the chain `r` reads: removes the error of the ideal geometry and of a tangent root. q in place;
+ * returns the pose error. A square step is J^-1 e by elimination, else (or near rank deficiency) least squares. */
+static double ck_polish_read(const ck_reader *r, double *q, const ck_rt *target)
 {
     ck_rt t, t2;
-    double err = ck_pose_error(ch, q, target, &t);
-    int it, j, n = ch->n;
+    double err;
+    int it, j, n = r->n;
+    r->fk(r->self, q, &t);
+    err = ck_frame_error(&t, target);
     for (it = 0; it < CK_POLISH_STEPS; ++it) {
         double jac[6 * CK_N], e[6], step[CK_N], trial[CK_N], err2;
         if (err <= CK_POLISH_TOL) break;
-        ck_jacobian_chain(ch, q, jac, NULL);
+        r->jacobian(r->self, q, jac);
         ck_twist_error(&t, target, e);
-        if (n != 6 || !ck_solve_square(jac, 6, e, step)) ck_lstsq(jac, 6, n, e, step); /* square: J^-1 e */
+        if (n != 6 || !ck_solve_square(jac, 6, e, step)) ck_lstsq(jac, 6, n, e, step);
         for (j = 0; j < n; ++j) trial[j] = q[j] + step[j];
-        err2 = ck_pose_error(ch, trial, target, &t2);
+        r->fk(r->self, trial, &t2);
+        err2 = ck_frame_error(&t2, target);
         if (!(err2 < err)) break;
         for (j = 0; j < n; ++j) q[j] = trial[j];
         err = err2;
         t = t2;
     }
     return err;
+}
+
+static void ck_table_fk(const void *self, const double *q, ck_rt *t)
+{
+    ck_fk_chain((const ck_chain *)self, q, t);
+}
+
+static void ck_table_jacobian(const void *self, const double *q, double *jac)
+{
+    ck_jacobian_chain((const ck_chain *)self, q, jac, NULL);
+}
+
+/* The polish on a chain's table (the solver's chains: reversed, ideal; inline: a robot whose candidates the
+ * kernels polish has no call) */
+static inline double ck_polish(const ck_chain *ch, double *q, const ck_rt *target)
+{
+    ck_reader r;
+    r.fk = ck_table_fk;
+    r.jacobian = ck_table_jacobian;
+    r.self = ch;
+    r.n = ch->n;
+    return ck_polish_read(&r, q, target);
 }
 
