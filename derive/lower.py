@@ -22,6 +22,10 @@ class Kernel:
     doc: str
     inputs: tuple[tuple[str, tuple[sp.Symbol, ...]], ...]  # (group name, symbols in order)
     outputs: tuple[tuple[str, sp.Expr], ...]
+    # whether irrational constants may appear (sqrt(3)/2 ...): folded to floats before CSE. A kernel built from
+    # floats and integers only (a robot's product of exponentials) skips the walk, which on its deep products
+    # costs seconds
+    irrational: bool = True
 
     @property
     def n_out(self) -> int:
@@ -47,7 +51,7 @@ def _fold_constants(e: sp.Expr) -> sp.Expr:
 
 
 def cse_kernel(kernel: Kernel):
-    exprs = [_fold_constants(sp.sympify(e)) for _, e in kernel.outputs]
+    exprs = [_fold_constants(sp.sympify(e)) if kernel.irrational else sp.sympify(e) for _, e in kernel.outputs]
     temps, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("t"), order="canonical")
     # CSE can leave a temp no output needs (its uses cancelled after extraction): drop those, last first
     needed = set().union(*(e.free_symbols for e in reduced))
