@@ -12,6 +12,7 @@ from dataclasses import replace
 import numpy as np
 import sympy as sp
 
+from ...identities.frames import rodrigues
 from ...lower import Kernel, lower
 from ...serial_core.stages import POSE_SYMBOLS
 
@@ -32,17 +33,12 @@ def _vec(v) -> sp.Matrix:
     return sp.Matrix([_number(x) for x in v])
 
 
-def _skew(h: sp.Matrix) -> sp.Matrix:
-    return sp.Matrix([[0, -h[2], h[1]], [h[2], 0, -h[0]], [-h[1], h[0], 0]])
-
-
 def _screw(kind: str, h: sp.Matrix, r: sp.Matrix, q: sp.Symbol, c: sp.Symbol, s: sp.Symbol):
     """exp(S q) as (R, t): a slide q along h, or a turn about the axis through r along h by the angle whose cosine and
     sine are c, s (Rodrigues)."""
     if kind == "P":
         return sp.eye(3), h * q
-    k = _skew(h)
-    rot = sp.eye(3) + s * k + (1 - c) * (k * k)
+    rot = rodrigues(h, c, s)
     return rot, r - rot * r
 
 

@@ -16,6 +16,7 @@ import numpy as np
 import sympy as sp
 
 from ...identities.dh import chain as dh_chain
+from ...identities.frames import rodrigues
 from ...kinematics.planner import NoClosedForm, find_plan
 from ...kinematics.poe import Chain
 from ...serial_core.stages import P_POSE, R_POSE, Stage
@@ -29,8 +30,7 @@ class PlanError(ValueError):
 
 
 def _rodrigues(h, q):
-    k = sp.Matrix([[0, -h[2], h[1]], [h[2], 0, -h[0]], [-h[1], h[0], 0]])
-    return sp.eye(3) + sp.sin(q) * k + (1 - sp.cos(q)) * k * k
+    return rodrigues(h, sp.cos(q), sp.sin(q))
 
 
 class _Motion:
