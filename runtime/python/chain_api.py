@@ -50,6 +50,7 @@ from chain_stand_in import (
     MAX_IK,
     N_JOINTS,
     NAME,
+    POLISH_TOL,
     ROTATION_TOL,
     SINGULAR_EPS,
     STATUS_INDETERMINATE,
@@ -356,12 +357,15 @@ def _ik_numpy(pose, d, previous):
         if len(found) >= MAX_IK:
             return False
         qc = [_wrap(v) if k == "R" else v for v, k in zip(qc, ideal.kinds, strict=True)]
-        # the common case first: the module's own FK (the robot's derived kernel, base . chain . tool) reproduces
-        # the pose with the set as it stands, so it needs neither the solver chain's check nor a polish
+        # the common case first: a set at rounding level (POLISH_TOL) by the module's own FK (the robot's derived
+        # kernel, base . chain . tool) needs neither the solver chain's check nor a polish. Above it the verdicts
+        # stay the two checks' (the solver chain's frame, then the module's): a set near the tolerance passes one
+        # and fails the other (a reversed chain reads T^-1's entries), and which one decides whether a family's
+        # member verifies
         full = _full_joints(qc, ideal.index, d)
         trig = _trig_of(full)
         err = _frame_error(_fk_full(full, d, trig), target)
-        exact = err <= IK_VERIFY_TOL
+        exact = err <= POLISH_TOL
         if not exact:
             err, _ = _pose_error(true, qc, target_rt)
             if err > IK_VERIFY_TOL:

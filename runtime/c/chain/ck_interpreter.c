@@ -196,8 +196,7 @@ static void ck_fk_full_cs(const double *q, const double *c, const double *s, con
 static void ck_jacobian_held(const double *full, const double *c, const double *s, double *jac);
 
 /* A candidate of the plan as it stands, when the module's own FK (the robot's derived kernel, base . chain . tool)
- * reproduces the pose with it: the common case, which needs neither the solver chain's check nor a polish (Python's
- * accept). 1 with full, its cos and sin and err set; 0 to verify it on the solver's chain. */
+ * reproduces the pose with it (err <= CK_IK_VERIFY_TOL; full, its cos and sin and err set). */
 static int ck_candidate_exact(const ck_ctx *c, const double *qc, double *full, double *cs, double *sn, double *err)
 {
     ck_rt t;
@@ -272,7 +271,11 @@ static void ck_candidate(ck_ctx *c, unsigned flags)
 #endif
     if (out->count >= CK_MAX_IK) return;
     for (i = 0; i < ch->n; ++i) qc[i] = ch->prismatic[i] ? c->q[i] : ck_wrap(c->q[i]);
-    if (!ck_candidate_exact(c, qc, full, cs, sn, &err)) {
+    /* the common case first: a set at rounding level (CK_POLISH_TOL) by the module's own FK needs neither the solver
+     * chain's check nor a polish. Above it the verdicts stay the two checks' (the solver chain's frame, then the
+     * module's): a set near the tolerance passes one and fails the other (a reversed chain reads T^-1's entries),
+     * and which one decides whether a family's member verifies (Python's accept) */
+    if (!(ck_candidate_exact(c, qc, full, cs, sn, &err) && err <= CK_POLISH_TOL)) {
         ck_candidate_jacobian(c, qc, jac, &t);
         err = ck_frame_error(&t, &c->target);
         if (err > CK_IK_VERIFY_TOL) {
