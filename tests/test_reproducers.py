@@ -241,3 +241,23 @@ def test_an_exact_wrist_singularity_behind_a_near_double_shoulder_root_is_the_fa
         s = ik(pose, previous=q)
         assert s.status == mod.STATUS_INDETERMINATE, s.reason
         assert min(wrapped(v, q) for v in s) < 1e-8
+
+
+def test_an_exact_wrist_singularity_behind_amplifying_position_stages_is_the_family():
+    """PUMA-560 at theta5 = 0 exactly, the elbow's two roots 0.05 apart and the shoulder's amplifying by 32: the
+    stages' errors compound (40 x 32 x 6.7 over theta3, theta2, theta1), leaving |sin theta5| = 5.1e-12, where the
+    largest single amplification (40) kept the band at 4e-12 and the singularity came back as two "regular" sets
+    whose theta4 the pose fixes only to 1e-5 (C and numpy 1.1e-5 apart; make test-haswell at
+    WRISTKIN_TEST_SEED=507497). The band grows by the product: the family, in Python and C."""
+    mod, _ = serial("puma560")
+    q = np.array([-2.606073908150718, -1e-07, 1.642858033204953, -math.pi / 2, 0.0, 0.7009509987521931])
+    pose = mod.fk_matrix(q)
+
+    def numpy_ik(p, previous=None):
+        return mod._ik_numpy(p, mod._design(None), previous)
+
+    for ik in (mod.ik, numpy_ik):
+        s = ik(pose)
+        assert s.status == mod.STATUS_INDETERMINATE, s.reason
+        s = ik(pose, previous=q)
+        assert min(wrapped(v, q) for v in s) < 1e-8

@@ -95,7 +95,7 @@ def test_rotation2d_is_the_angle_between_the_two_vectors(py):
         r0, r = rng.uniform(0.1, 3.0, 2)
         q, c, s = [0.0], [1.0], [0.0]
         out = (r * math.cos(t0 + t), r * math.sin(t0 + t), r0 * math.cos(t0), r0 * math.sin(t0))
-        assert py.stages._rotation2d(out, 0, q, c, s, None) == (True, 0)
+        assert py.stages._rotation2d(out, 0, q, c, s, None, [1.0]) == (True, 0)
         assert abs(math.remainder(q[0] - t, 2 * math.pi)) <= 1e-13
 
 

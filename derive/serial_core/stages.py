@@ -99,7 +99,7 @@ def stage_view(spec) -> list[dict]:
             view["signs"] = list(st.signs)
             # the two-root stages before it: their roots' amplification of the input's rounding widens its
             # family band (serial_stages._wrist)
-            view["amp_joints"] = [j for prior in spec.stages[:k - 1] if prior.kind == "trig_linear"
+            view["amp_joints"] = [j for prior in spec.stages[:k - 1] if prior.kind in ("trig_linear", "rotation2d")
                                   for j in prior.joints]
             view["joint_kinds"] = [spec.kinds[j] for j in st.joints]
         else:

@@ -15,12 +15,11 @@ def _tuple(xs) -> str:
     return "(" + "".join(f"{x}, " for x in xs) + ")"
 
 
-def _amp_before(st: dict, fmt: str) -> str:
-    """The wrist's family band factor: the largest amplification of the two-root stages before it (1 without)."""
+def _amp_before(st: dict) -> str:
+    """The wrist's family band factor: the product of the amplifications of the angle stages before it (each reads
+    the joints the ones before it solved, so their errors compound; 1 without)."""
     js = st.get("amp_joints", [])
-    if not js:
-        return "1.0"
-    return fmt.format(", ".join(f"amp[{j}]" for j in js)) if len(js) > 1 else f"amp[{js[0]}]"
+    return " * ".join(f"amp[{j}]" for j in js) if js else "1.0"
 
 
 def py_stage_body(st: dict) -> list[str]:
@@ -31,7 +30,7 @@ def py_stage_body(st: dict) -> list[str]:
     if st["kind"] == "trig_linear":
         return [f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp)"]
     if st["kind"] == "rotation2d":
-        return [f"return _rotation2d({out}, {j}, q, c, s, prev)"]
+        return [f"return _rotation2d({out}, {j}, q, c, s, prev, amp)"]
     if st["kind"] == "value":
         return [f"return _revolute_value({out}, {j}, q, c, s)" if st["joint_kind"] == "R" else
                 f"return _prismatic_value({out}, {j}, q)"]
@@ -39,7 +38,7 @@ def py_stage_body(st: dict) -> list[str]:
         joints, signs = "(" + ", ".join(map(str, st["joints"])) + ")", "(" + ", ".join(map(str, st["signs"])) + ")"
         mirror = ["if k & 1:  # the second branch mirrors the first (set k - 1's prefix)",
                   f"    return _wrist_mirror({joints}, q, c, s)"] if st["bit"] == 0 else []
-        return mirror + [f"a = {_amp_before(st, 'max({})')}  # the two-root stages' amplification",
+        return mirror + [f"a = {_amp_before(st)}  # the angle stages' amplification",
                          f"return _wrist({out}, _sign(k, {st['bit']}), {signs}, {joints}, q, c, s, dp, a)"]
     raise ValueError(f"stage kind {st['kind']!r}")
 
@@ -55,7 +54,7 @@ def c_stage_body(st: dict) -> list[str]:
     if st["kind"] == "trig_linear":
         return head + [call, f"return sr_trig_linear(out, {j}, sr_sign(k, {st['bit']}), q, c, s, prev, amp, f);"]
     if st["kind"] == "rotation2d":
-        return head + [call, f"return sr_rotation2d(out, {j}, q, c, s, prev, f);"]
+        return head + [call, f"return sr_rotation2d(out, {j}, q, c, s, prev, amp, f);"]
     if st["kind"] == "value":
         return head + [call, f"return sr_revolute_value(out, {j}, q, c, s);" if st["joint_kind"] == "R" else
                        f"return sr_prismatic_value(out, {j}, q, c, s);"]
@@ -66,11 +65,8 @@ def c_stage_body(st: dict) -> list[str]:
                 f"static const double signs[8] = {{ {signs} }};"] + head
         if st["bit"] == 0:
             body += ["if ((k & 1) == 1) return sr_wrist_mirror(joints, q, c, s, f); /* set k - 1's prefix */"]
-        before = _amp_before(st, "sr_max({})") if len(st.get("amp_joints", [])) <= 2 else \
-            "sr_max(" * (len(st["amp_joints"]) - 1) + f"amp[{st['amp_joints'][0]}]" + \
-            "".join(f", amp[{j}])" for j in st["amp_joints"][1:])
-        return body + [call, f"return sr_wrist(out, sr_sign(k, {st['bit']}), signs, joints, q, c, s, dp, {before}, "
-                             "f);"]
+        return body + [call, f"return sr_wrist(out, sr_sign(k, {st['bit']}), signs, joints, q, c, s, dp, "
+                             f"{_amp_before(st)}, f);"]
     raise ValueError(f"stage kind {st['kind']!r}")
 
 

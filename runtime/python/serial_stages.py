@@ -73,13 +73,18 @@ def _trig_linear(out, j, sgn, q, c, s, prev, amp):
     return True, f
 
 
-def _rotation2d(out, j, q, c, s, prev):
-    """Joint j as the angle from (u0, v0) to (u, v) (out = (u, v, u0, v0)); a family where either vanishes."""
+def _rotation2d(out, j, q, c, s, prev, amp):
+    """Joint j as the angle from (u0, v0) to (u, v) (out = (u, v, u0, v0)); a family where either vanishes. amp[j]:
+    the angle carries the vectors' rounding (a few eps of the metre-sized terms) over the shorter one's length."""
     u, v, u0, v0 = out
     nu, n0 = math.hypot(u, v), math.hypot(u0, v0)
     if n0 <= DEGENERATE_EPS or nu <= DEGENERATE_EPS:
         _family_member(j, q, c, s, prev)
+        amp[j] = 1.0
         return True, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE
+    # a wrist after it reads its rotation with that much more rounding (seed 507497: a PUMA's wrist centre near the
+    # shoulder axis left |sin theta5| = 5e-12 at an exact wrist singularity, returned as two "regular" sets)
+    amp[j] = max(1.0, 1.0 / min(nu, n0))
     cu, su, c0, s0 = u / nu, v / nu, u0 / n0, v0 / n0
     c[j], s[j] = cu * c0 + su * s0, su * c0 - cu * s0
     q[j] = math.atan2(s[j], c[j])
@@ -128,8 +133,8 @@ def _wrist_mirror(joints, q, c, s):
 def _wrist(out, sgn, signs, joints, q, c, s, dp, amp_before):
     """The spherical wrist (q4, q5, q6) from the entries of its rotation (out, 9), branch sgn; `signs`: the DH
     twists' signs of those entries (e0..e3) and of the singular family's (k00, k10 with theta5 = 0, then pi);
-    `amp_before`: how much the two-root stages before it amplified the input's rounding (their largest amp), by which
-    its family band WRIST_EXACT_TOL grows."""
+    `amp_before`: how much the angle stages before it amplified the input's rounding (the product of their amp: each
+    reads the joints the ones before it solved), by which its family band WRIST_EXACT_TOL grows."""
     e0, e1, e2, e3, k00a, k10a, k00b, k10b = signs
     j4, j5, j6 = joints
     s5 = sgn * math.hypot(out[2], out[5])

@@ -26,12 +26,6 @@ static void sr_family_member(int j, double *q, double *c, double *s, const doubl
 #endif
 
 #if SR_HAS_TRIG_LINEAR
-/* the larger of two amplifications (the generated wrist stage's band factor) */
-static inline double sr_max(double a, double b)
-{
-    return a > b ? a : b;
-}
-
 static double sr_clamp1(double x)
 {
     return x > 1.0 ? 1.0 : (x < -1.0 ? -1.0 : x);
@@ -74,14 +68,19 @@ static inline int sr_trig_linear(const double *out, int j, double sgn, double *q
 
 #if SR_HAS_ROTATION2D
 /* Joint j as the angle from (u0, v0) to (u, v) (out = u, v, u0, v0); a family where either vanishes */
-static int sr_rotation2d(const double *out, int j, double *q, double *c, double *s, const double *prev, unsigned *f)
+static int sr_rotation2d(const double *out, int j, double *q, double *c, double *s, const double *prev,
+                         double *amp, unsigned *f)
 {
     const double nu = sqrt(out[0] * out[0] + out[1] * out[1]), n0 = sqrt(out[2] * out[2] + out[3] * out[3]);
     if (n0 <= SR_DEGENERATE_EPS || nu <= SR_DEGENERATE_EPS) {
         sr_family_member(j, q, c, s, prev);
         *f = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
+        amp[j] = 1.0;
     } else {
         const double cu = out[0] / nu, su = out[1] / nu, c0 = out[2] / n0, s0 = out[3] / n0;
+        const double shorter = nu < n0 ? nu : n0;
+        /* the angle carries the vectors' rounding over the shorter one's length (Python's _rotation2d) */
+        amp[j] = shorter < 1.0 ? 1.0 / shorter : 1.0;
         c[j] = cu * c0 + su * s0;
         s[j] = su * c0 - cu * s0;
         q[j] = atan2(s[j], c[j]);
