@@ -50,6 +50,12 @@ def _orientations(n: int, seed: int, max_nutation_deg: float = 25.0, max_twist_d
     return out
 
 
+# test_fk_matches_multistart: a converged LM point's residual (the loop's rounding), and how far from a converged
+# point a stalled one may lie: sqrt(res_tol = 1e-10) for a curvature of order 1
+ROUNDING = 1e-14
+STALL_SPREAD = 1e-5
+
+
 def _min_dist(R: np.ndarray, mats: list[np.ndarray]) -> float:
     return min((float(np.linalg.norm(R - M)) for M in mats), default=math.inf)
 
@@ -221,11 +227,18 @@ def _crosscheck_triples():
 def test_fk_matches_multistart(thetas):
     fk = fk_reference(thetas)
     ms = fk_reference_multistart(thetas)
-    assert fk.count == ms.count
-    for M in ms.rotations:
+    # Between two close roots LM can stall with a residual below its res_tol (1e-10) but far above rounding, next to
+    # a point that did converge (WRISTKIN_TEST_SEED=906809: two roots 3.8e-6 apart, both found by the scan and by LM
+    # at 1e-16, and a third point 5.2e-7 from one of them at 3.8e-13). Such a stalled point is no root of its own.
+    res = ms.residuals
+    kept = [M for i, M in enumerate(ms.rotations)
+            if not (res[i] > ROUNDING and any(res[k] <= ROUNDING and _min_dist(M, [N]) < STALL_SPREAD
+                                              for k, N in enumerate(ms.rotations) if k != i))]
+    assert fk.count == len(kept)
+    for M in kept:
         assert _min_dist(M, fk.rotations) < 1e-8
     for M in fk.rotations:
-        assert _min_dist(M, ms.rotations) < 1e-8
+        assert _min_dist(M, kept) < 1e-8
 
 
 # Paper Table 2 (values printed to 0.01 deg), reproduced by the reference: joint angles theta_i
