@@ -97,8 +97,8 @@ def stage_view(spec) -> list[dict]:
                 "bit": shift if st.branches == 2 else None, "shift": shift}
         if st.kind == "wrist":
             view["signs"] = list(st.signs)
-            # the two-root stages before it: their roots' amplification of the input's rounding widens its
-            # family band (serial_stages._wrist)
+            # the angle stages before it: their amplification of the input's rounding widens its family band
+            # (serial_stages._wrist)
             view["amp_joints"] = [j for prior in spec.stages[:k - 1] if prior.kind in ("trig_linear", "rotation2d")
                                   for j in prior.joints]
             view["joint_kinds"] = [spec.kinds[j] for j in st.joints]

@@ -49,7 +49,7 @@ def c_stage_body(st: dict) -> list[str]:
     call = f"sr_k_stage{st['index']}(pose, q, c, s, dp, out);"
     j = st["joints"][0]
     head = [f"double out[{size}];", "(void)k;", "(void)prev; /* a family's representative (trig_linear, "
-            "rotation2d stages) */", "(void)amp; /* the two-root stages' amplification (trig_linear, wrist) */",
+            "rotation2d stages) */", "(void)amp; /* the angle stages' amplification */",
             "*f = 0u;"]
     if st["kind"] == "trig_linear":
         return head + [call, f"return sr_trig_linear(out, {j}, sr_sign(k, {st['bit']}), q, c, s, prev, amp, f);"]

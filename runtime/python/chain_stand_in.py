@@ -194,7 +194,6 @@ _C_IK = _C_FK = _C_IK_BATCH = _C_FK_BATCH = _C_JACOBIAN = _C_FK_MATRIX = None
 _IK_RESULT = _FK_RESULT = None
 
 
-
 def _k_fk(q, c, s):  # the derived kernel reads c and s; the table takes q
     """Stand-in for the robot's derived FK kernel (derive/families/chain/kernels.py prints it straight-line): the same
     12 entries of [R | p] from the chain's table."""

@@ -77,7 +77,7 @@ def _ik_numpy(pose, d, previous):
                                  f"pose not reachable: outside the chain's image, {what} = {e:.3g} "
                                  f"(tolerance IK_VERIFY_TOL = {IK_VERIFY_TOL:g})")
     q, c, s = [0.0] * N_JOINTS, [1.0] * N_JOINTS, [0.0] * N_JOINTS
-    amp = [1.0] * N_JOINTS  # each two-root stage's amplification of the input's rounding (serial_stages)
+    amp = [1.0] * N_JOINTS  # each angle stage's amplification of the input's rounding (serial_stages)
     key = [-1] * len(_STAGES)
     state = [(False, 0)] * len(_STAGES)
     unreachable = beyond = 0

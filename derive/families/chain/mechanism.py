@@ -45,6 +45,7 @@ class ChainMechanism(MechanismDefaults):
         self._ideal: Chain | None = None
         self._labelling: general6r.Labelling | None = None
         self._degenerate: tuple[float, ...] | None = None
+        self._kernels: list | None = None  # derive's FK / Jacobian kernels, emitted as they were checked
         self.free_note = ""  # how the free joint was chosen when the user gave none
 
     # ------------------------------------------------------------------------------------------ planning
@@ -276,8 +277,7 @@ class ChainMechanism(MechanismDefaults):
                     "before it; linear velocity first", ("chain",), {"columns": f"{c.n}"},
                     (numeric_predicate(jac_err, "columns equal central differences of FK (h = 1e-6)", samples=40,
                                        tol=1e-7 * max(1.0, scale)),)))
-        ks = chain_kernels(c)
-        ks = chain_kernels(c)
+        ks = self._kernels = chain_kernels(c)
         dv.add(Step("kernels", "The robot's FK and Jacobian as straight-line kernels",
                     "the product of exponentials and the Jacobian's columns over the joint symbols, each axis and "
                     "point substituted as numbers (exact 0 and +-1 kept exact, so the terms they zero vanish), then "
@@ -310,7 +310,7 @@ class ChainMechanism(MechanismDefaults):
 
     # ------------------------------------------------------------------------------------------ emission
     def kernels(self, dv):
-        return chain_kernels(self.chain)
+        return self._kernels if self._kernels is not None else chain_kernels(self.chain)
 
     def extra_context(self, ks) -> dict:
         plan, ideal = self.plan()
