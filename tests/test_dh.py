@@ -261,20 +261,34 @@ def test_a_stage_left_degenerate_by_an_upstream_double_root_returns_the_family()
 
 # strict: an XPASS fails the suite, so the marker goes once the defect is fixed; the miss is structural (digits
 # lost at 1e-8), not last-ulp rounding: it holds on both backends and with glibc's non-FMA kernels
-@pytest.mark.xfail(strict=True, reason="known defect (open): within 1e-8 of these singularities, on these designs, "
-                   "the stages lose the offset that fixes theta1 (the distance stage sees it squared, cos theta2 "
-                   "rounds to -1) and the reachable pose is reported unreachable (README, Known defects)")
+_FOLDED_SCARA = pytest.mark.xfail(strict=True, reason="known defect (open): within 1e-8 of the fold, with a1 = a2, the "
+                                  "elbow's distance stage sees the wrist's distance from axis 1 squared next to "
+                                  "a1^2 + a2^2, cos theta2 rounds to -1, and theta1 becomes a family whose "
+                                  "representative fails the FK check (README, Known defects)")
+
+
 @pytest.mark.parametrize("name, design, q", [
-    ("puma560", (0.6718, 0.4318, 0.0, 0.0203, 0.4318, 0.0),  # d3 = 0, wrist centre 2e-9 m from axis 1
+    # d3 = 0, wrist centre 2e-9 m from axis 1 (the shoulder singularity): fixed by the planner's preference for a
+    # plane op (theta1 from the offset, linear in the wrist centre) over a second distance op (theta2 from the
+    # distance to a point on axis 1, which sees that 2e-9 m squared and merged the shoulder's two branches)
+    ("puma560", (0.6718, 0.4318, 0.0, 0.0203, 0.4318, 0.0),
      (-0.748030223045761, 0.22650626513655978, 1.1600232456541315, 2.514239547705726, 2.4031872962303913,
       1.0596606155137263)),
-    ("scara_wrist", (0.3, 0.3, 0.1),  # a1 = a2, folded to theta2 = pi + 1e-8
-     (2.7311611234478006, 3.141592663589793, -0.08613585188632233, -0.8779139643328571)),
+    pytest.param("scara_wrist", (0.3, 0.3, 0.1),  # a1 = a2, folded to theta2 = pi + 1e-8
+                 (2.7311611234478006, 3.141592663589793, -0.08613585188632233, -0.8779139643328571),
+                 marks=_FOLDED_SCARA),
 ])
 def test_near_singular_poses_of_degenerate_designs_stay_reachable(name, design, q):
+    """The generating joints are among the sets (the pose determines them: 2e-9 m is 1e7 times the rounding of a
+    metre-sized pose), in C and on numpy."""
     mod = importlib.import_module(f"wristkin.{name}")
+    c = SerialC(name, mod.N_JOINTS, mod.MAX_IK, len(mod.DESIGN_NAMES))
     params = dict(zip(mod.DESIGN_NAMES, design, strict=True))
+    rc, d = c.design([params[n] for n in mod.DESIGN_NAMES])
+    assert rc == 0
     T = ref.fk(name, np.array(q), params)
-    sol = mod.ik(T, params)
-    assert sol.count >= 1
-    assert sol.status == mod.STATUS_INDETERMINATE or min(_dist(mod, q, v) for v in sol.values[sol.valid]) < 1e-6
+    for sol in (mod._ik_numpy(T, mod.make_design(params), None), c.ik(T, d)):
+        assert sol.count >= 1
+        assert min(_dist(mod, q, v) for v in sol.values[sol.valid]) < 1e-6
+        for v in sol.values[sol.valid]:
+            assert ref.pose_error(name, v, T, params) < 1e-9

@@ -215,10 +215,14 @@ def plan_point(g: Geometry, js: list[int], x: np.ndarray) -> list[list[dict]]:
 
 
 def _cost(ops) -> tuple:
+    """Fewest branches, then fewest distance ops, then fewest ops. A distance op reads the target's distance
+    squared, so a small offset that tells its two roots apart (the PUMA's wrist centre 2e-9 m off the shoulder axis)
+    is lost to the rounding of the metre-sized squares: the roots merge to sqrt(eps) and the joint solved after them
+    from that offset becomes a family. A plane op reads the offset linearly and keeps it."""
     b = 1
     for op in ops:
         b *= op_branches(op)
-    return (b, len(ops))
+    return (b, sum(op["op"] in ("first_dist", "last_dist") for op in ops), len(ops))
 
 
 def _x_spec(g: Geometry, fixed: list[int]):
