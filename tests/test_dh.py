@@ -259,14 +259,6 @@ def test_a_stage_left_degenerate_by_an_upstream_double_root_returns_the_family()
             assert ref.pose_error("puma560", v, T, params) < 1e-9
 
 
-# strict: an XPASS fails the suite, so the marker goes once the defect is fixed; the miss is structural (digits
-# lost at 1e-8), not last-ulp rounding: it holds on both backends and with glibc's non-FMA kernels
-_FOLDED_SCARA = pytest.mark.xfail(strict=True, reason="known defect (open): within 1e-8 of the fold, with a1 = a2, the "
-                                  "elbow's distance stage sees the wrist's distance from axis 1 squared next to "
-                                  "a1^2 + a2^2, cos theta2 rounds to -1, and theta1 becomes a family whose "
-                                  "representative fails the FK check (README, Known defects)")
-
-
 @pytest.mark.parametrize("name, design, q", [
     # d3 = 0, wrist centre 2e-9 m from axis 1 (the shoulder singularity): fixed by the planner's preference for a
     # plane op (theta1 from the offset, linear in the wrist centre) over a second distance op (theta2 from the
@@ -274,9 +266,11 @@ _FOLDED_SCARA = pytest.mark.xfail(strict=True, reason="known defect (open): with
     ("puma560", (0.6718, 0.4318, 0.0, 0.0203, 0.4318, 0.0),
      (-0.748030223045761, 0.22650626513655978, 1.1600232456541315, 2.514239547705726, 2.4031872962303913,
       1.0596606155137263)),
-    pytest.param("scara_wrist", (0.3, 0.3, 0.1),  # a1 = a2, folded to theta2 = pi + 1e-8
-                 (2.7311611234478006, 3.141592663589793, -0.08613585188632233, -0.8779139643328571),
-                 marks=_FOLDED_SCARA),
+    # a1 = a2, folded to theta2 = pi + 1e-8: the elbow's distance stage read 1 - u^2 next to a1 a2 = 0.09 and lost
+    # the wrist's 1e-17 m^2 from axis 1, merging both elbows (theta1 after them then a family); it now reads the
+    # factors Dm Dp of its root gap, Dm = |w|^2 - (a1 - a2)^2 to its own relative precision (planned.py)
+    ("scara_wrist", (0.3, 0.3, 0.1),
+     (2.7311611234478006, 3.141592663589793, -0.08613585188632233, -0.8779139643328571)),
 ])
 def test_near_singular_poses_of_degenerate_designs_stay_reachable(name, design, q):
     """The generating joints are among the sets (the pose determines them: 2e-9 m is 1e7 times the rounding of a

@@ -88,6 +88,38 @@ def test_trig_linear_returns_the_generating_root_and_one_double_root_at_a_tangen
     assert q == [0.7]
 
 
+def test_a_distance_stage_keeps_both_roots_of_a_fold_onto_its_centre(py):
+    """Two equal links L folded to pi -+ delta: |w|^2 = 2 L^2 (1 + cos q), so L^2 cos q + (L^2 - |w|^2 / 2) = 0. From
+    u alone the roots merge below delta ~ sqrt(eps) (1 - u^2 = sin^2 delta is lost next to 1); from the factors
+    Dm = |w|^2 - (L - L)^2, Dp = (L + L)^2 - |w|^2 they are the two generating roots to eps relative in delta, down
+    to delta = 1e-12 (|w| is known to eps of itself, so delta is). A fold whose links differ keeps the old band."""
+    st = py.stages
+    for length in (0.3, 1.7):
+        for delta in (1e-4, 1e-8, 1e-12):
+            w = 2.0 * length * math.sin(delta / 2.0)
+            out = (length * length, 0.0, length * length - w * w / 2.0, w * w, 4.0 * length * length - w * w,
+                   w * w + 2.0 * w * w)
+            got = []
+            for sgn in (1.0, -1.0):
+                q, c, s, amp = [0.0], [1.0], [0.0], [1.0]
+                assert st._trig_linear(out, 0, sgn, q, c, s, None, amp) == (True, 0)
+                got.append(abs(math.remainder(q[0] - math.pi, 2 * math.pi)))
+                assert amp[0] == pytest.approx(1.0 / math.sin(delta), rel=1e-9)
+            assert got == pytest.approx([delta, delta], rel=1e-10, abs=1e-16)
+            if delta < 1e-6:  # the same stage read from u alone: one double root
+                q, c, s = [0.0], [1.0], [0.0]
+                assert st._trig_linear(out[:3], 0, -1.0, q, c, s, None, [1.0]) == (False, 0)
+    # unequal links folded to the tangent: the band is DOUBLE_ROOT_TOL's, one root at the centre, flagged
+    a1, a2 = 0.4, 0.3
+    w = a1 - a2
+    out = (a1 * a2, 0.0, (a1 * a1 + a2 * a2 - w * w) / 2.0, w * w - (a1 - a2) ** 2, (a1 + a2) ** 2 - w * w,
+           2 * w * w + 2 * (a1 - a2) ** 2)
+    q, c, s = [0.0], [1.0], [0.0]
+    assert st._trig_linear(out, 0, 1.0, q, c, s, None, [1.0]) == (True, FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE)
+    assert abs(math.remainder(q[0] - math.pi, 2 * math.pi)) <= 1e-7
+    assert st._trig_linear(out, 0, -1.0, q, c, s, None, [1.0]) == (False, 0)
+
+
 def test_rotation2d_is_the_angle_between_the_two_vectors(py):
     rng = case_rng(2241)
     for _ in range(30):

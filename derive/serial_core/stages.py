@@ -34,6 +34,8 @@ class Stage:
 
 
 def stage_output_names(st: Stage) -> list[str]:
+    if st.kind == "trig_linear" and len(st.exprs) == 6:  # a distance stage: its root gap's factors (planned.py)
+        return ["A", "B", "C", "Dm", "Dp", "Em"]
     return {"trig_linear": ["A", "B", "C"], "rotation2d": ["u", "v", "u0", "v0"], "value": ["q"],
             "wrist": [f"m{i}{j}" for i in range(3) for j in range(3)]}[st.kind]
 
@@ -95,12 +97,13 @@ def stage_view(spec) -> list[dict]:
         shift = total - used
         view = {"index": k, "kind": st.kind, "joints": list(st.joints), "branches": st.branches,
                 "bit": shift if st.branches == 2 else None, "shift": shift}
+        # the angle stages before it: their amplification of the input's rounding widens a wrist's family band and
+        # a factored distance stage's double-root band (serial_stages._wrist, _trig_linear)
+        view["amp_joints"] = [j for prior in spec.stages[:k - 1] if prior.kind in ("trig_linear", "rotation2d")
+                              for j in prior.joints]
+        view["factored"] = st.kind == "trig_linear" and len(st.exprs) == 6
         if st.kind == "wrist":
             view["signs"] = list(st.signs)
-            # the angle stages before it: their amplification of the input's rounding widens its family band
-            # (serial_stages._wrist)
-            view["amp_joints"] = [j for prior in spec.stages[:k - 1] if prior.kind in ("trig_linear", "rotation2d")
-                                  for j in prior.joints]
             view["joint_kinds"] = [spec.kinds[j] for j in st.joints]
         else:
             view["joint_kind"] = spec.kinds[st.joints[0]]

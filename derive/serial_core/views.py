@@ -28,7 +28,10 @@ def py_stage_body(st: dict) -> list[str]:
     out = f"_k_stage{st['index']}(pose, q, c, s, dp)"
     j = st["joints"][0]
     if st["kind"] == "trig_linear":
-        return [f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp)"]
+        if not st.get("factored"):
+            return [f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp)"]
+        return [f"a = {_amp_before(st)}  # the angle stages' amplification",
+                f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp, a)"]
     if st["kind"] == "rotation2d":
         return [f"return _rotation2d({out}, {j}, q, c, s, prev, amp)"]
     if st["kind"] == "value":
@@ -45,14 +48,15 @@ def py_stage_body(st: dict) -> list[str]:
 
 def c_stage_body(st: dict) -> list[str]:
     """The body of the generated `sr_solve_stage<k>`: as py_stage_body, on the C runtime's solvers."""
-    size = {"trig_linear": 3, "rotation2d": 4, "value": 1, "wrist": 9}[st["kind"]]
+    size = {"trig_linear": 6 if st.get("factored") else 3, "rotation2d": 4, "value": 1, "wrist": 9}[st["kind"]]
     call = f"sr_k_stage{st['index']}(pose, q, c, s, dp, out);"
     j = st["joints"][0]
     head = [f"double out[{size}];", "(void)k;", "(void)prev; /* a family's representative (trig_linear, "
             "rotation2d stages) */", "(void)amp; /* the angle stages' amplification */",
             "*f = 0u;"]
     if st["kind"] == "trig_linear":
-        return head + [call, f"return sr_trig_linear(out, {j}, sr_sign(k, {st['bit']}), q, c, s, prev, amp, f);"]
+        return head + [call, f"return sr_trig_linear(out, {int(bool(st.get('factored')))}, {j}, sr_sign(k, "
+                             f"{st['bit']}), q, c, s, prev, amp, {_amp_before(st)}, f);"]
     if st["kind"] == "rotation2d":
         return head + [call, f"return sr_rotation2d(out, {j}, q, c, s, prev, amp, f);"]
     if st["kind"] == "value":

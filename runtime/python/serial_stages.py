@@ -40,11 +40,11 @@ def _family_member(j, q, c, s, prev):
     q[j], c[j], s[j] = (v, 1.0, 0.0) if v == 0.0 else (v, math.cos(v), math.sin(v))
 
 
-def _trig_linear(out, j, sgn, q, c, s, prev, amp):
-    """Joint j from A cos q + B sin q + C = 0 (out = (A, B, C)): q = atan2(B, A) + sgn acos(-C / sqrt(A^2 + B^2)),
-    its cos and sin from (A, B, u) without trigonometry; amp[j]: how much its roots amplify the input's rounding.
-    Returns (ok, flags)."""
-    a, b, cc = out
+def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0):
+    """Joint j from A cos q + B sin q + C = 0 (out = (A, B, C), a distance stage's also (Dm, Dp, Em)): q = atan2(B, A)
+    + sgn acos(-C / sqrt(A^2 + B^2)), its cos and sin from (A, B, u) without trigonometry; amp[j]: how much its roots
+    amplify the input's rounding; amp_before: the angle stages' before it. Returns (ok, flags)."""
+    a, b, cc = out[0], out[1], out[2]
     r = math.hypot(a, b)
     if r <= DEGENERATE_EPS:
         # |C| within sqrt(DOUBLE_ROOT_TOL): a double root upstream (resolved to sqrt(eps)) can leave this stage a
@@ -59,18 +59,38 @@ def _trig_linear(out, j, sgn, q, c, s, prev, amp):
     if not abs(u) <= 1.0 + TANGENT_TOL:
         return False, 0
     u = max(-1.0, min(1.0, u))
-    sg = math.sqrt(1.0 - u * u)
-    f = FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE if sg <= math.sqrt(DOUBLE_ROOT_TOL) else 0
+    sg, band = _root_gap(out, r, u, amp_before)
+    f = FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE if sg <= band else 0
     if f and sgn < 0.0:
         return False, 0  # a double root is one solution: reported once, by the + branch
-    # the roots phi +- w amplify the input's rounding by 1 / sin w (a double root: 1 / sqrt(DOUBLE_ROOT_TOL)): a wrist
-    # after them reads its rotation with that much more rounding (seed 627229: a PUMA shoulder 0.0022 from its
-    # double root left |sin theta5| = 1.3e-13 at an exact wrist singularity, which came back as 8 "regular" sets)
-    amp[j] = 1.0 / (math.sqrt(DOUBLE_ROOT_TOL) if f else sg)
+    if f:
+        # at its centre phi: within the band sin w is rounding (Dm's noise reads as sqrt(noise), 6e-9 for a PUMA
+        # elbow folded onto its shoulder), and a stage after it would take that for geometry
+        sg = 0.0
+    # the roots phi +- w amplify the input's rounding by 1 / sin w (a double root: 1 / band): a wrist after them reads
+    # its rotation with that much more rounding (seed 627229: a PUMA shoulder 0.0022 from its double root left
+    # |sin theta5| = 1.3e-13 at an exact wrist singularity, which came back as 8 "regular" sets)
+    amp[j] = 1.0 / (band if f else sg)
     ca, sa = a / r, b / r  # q = atan2(B, A) + sgn acos(u)
     c[j], s[j] = ca * u - sgn * sa * sg, sa * u + sgn * ca * sg
     q[j] = math.atan2(s[j], c[j])
     return True, f
+
+
+def _root_gap(out, r, u, amp_before):
+    """(sin w, band): the half-gap w of the roots phi +- w, and the sin w below which they are one double root.
+
+    From u alone 1 - u^2 carries eps of rounding, so the band is sqrt(DOUBLE_ROOT_TOL). A distance stage gives the
+    factors (Dm, Dp) of 4 R^2 (1 - u^2), each to its own precision, and Em, the scale of Dm's rounding: when Dm is the
+    small factor its rounding is Em / (2 R) of what 1 - u^2 carries (times the angle stages' amplification before
+    it), and the band narrows by its square root (a SCARA with a1 = a2 folded to 1e-8 keeps both elbows)."""
+    if len(out) == 3:
+        return math.sqrt(1.0 - u * u), math.sqrt(DOUBLE_ROOT_TOL)
+    dm, dp, em = out[3], out[4], out[5]
+    # the product and |Dm| <= |Dp|: a length derived as positive and given negative swaps the factors and their signs
+    sg = math.sqrt(max(dm * dp, 0.0)) / (2.0 * r)
+    scale = min(1.0, em * amp_before / (2.0 * r)) if abs(dm) <= abs(dp) else 1.0
+    return sg, math.sqrt(DOUBLE_ROOT_TOL * scale)
 
 
 def _rotation2d(out, j, q, c, s, prev, amp):

@@ -163,7 +163,7 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, T: sp.Matrix) -> None:
             vals = [float(v) for v in fn(*q.values(), *dsn.values())]
             qs = [q[spec.joints[j]] for j in st.joints]
             if st.kind == "trig_linear":
-                a, b, c = vals
+                a, b, c = vals[:3]
                 return abs(a * math.cos(qs[0]) + b * math.sin(qs[0]) + c)
             if st.kind == "rotation2d":
                 u, v, u0, v0 = vals
@@ -181,6 +181,14 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, T: sp.Matrix) -> None:
                  "rotation2d": "(u, v) = Rot(q)(u0, v0) on the FK", "value": "q = expression on the FK",
                  "wrist": "M = wrist rotation on the FK"}[st.kind]
         checks: list[Check] = [numeric_predicate(err, claim, samples=200, tol=1e-9)]
+        if len(st.exprs) == 6:
+            def factors(rng, fn=fn):
+                q = _sample_joints(spec, rng)
+                a, b, c, dm, dp, em = (float(v) for v in fn(*q.values(), *_sample_design(spec, rng).values()))
+                # relative to (A^2 + B^2): both sides are sums of squares of metre-sized terms
+                return abs(dm * dp / 4 - (a * a + b * b - c * c)) / max(a * a + b * b, 1e-300) + (em < abs(dm)) * 1.0
+            checks.append(numeric_predicate(factors, "Dm Dp / 4 = A^2 + B^2 - C^2 and Em >= |Dm| on the FK",
+                                            samples=200, tol=1e-9))
         result = dict(zip(stage_output_names(st), st.exprs, strict=True))
         if st.kind == "wrist":
             result["signs (e0, e1, e2, e3, k00@0, k10@0, k00@pi, k10@pi)"] = sp.Matrix(st.signs)

@@ -19,7 +19,7 @@ from ...identities.dh import chain as dh_chain
 from ...identities.frames import rodrigues
 from ...kinematics.planner import NoClosedForm, find_plan
 from ...kinematics.poe import Chain
-from ...serial_core.stages import P_POSE, R_POSE, Stage
+from ...serial_core.stages import P_POSE, POSE_SYMBOLS, R_POSE, Stage
 from .dh_serial import wrist_stage
 
 SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient"}
@@ -202,15 +202,59 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             a, b = p2.dot(p - h * hp), p2.dot(h.cross(p))
             c = (p.dot(p) + p2.dot(p2) - (fixed - s).dot(fixed - s)) / 2 - hp * h.dot(p2)
             rule = "subproblem 3: |rot(h, q) p1 - p2| = d (the other joints keep the distance to s)"
+            factors = _distance_factors(p, p2, h, fixed - s, y, slides)
+            rule += ("; sin^2 of the half-gap of its roots from the factors Dm Dp / 4 = A^2 + B^2 - C^2, Dm = "
+                     "e^2 - (|p1'| - |p2'|)^2, Dp = (|p1'| + |p2'|)^2 - e^2 (primes: the parts normal to the axis, e: "
+                     "the distance normal to it), Em the scale of Dm's rounding")
         # A cos t + B sin t = C with t = -q (first: the joint is undone from y) or t = q
         a, b, c = (_without_slides(v, slides) for v in (a, b, c))
-        out.append(Stage("trig_linear", (j,), (a, -b if first else b, -c), f"angle {q} ({'two roots'})", rule))
+        extra = factors if not k.endswith("plane") else ()  # slides substituted in their parts, unexpanded
+        out.append(Stage("trig_linear", (j,), (a, -b if first else b, -c, *extra), f"angle {q} ({'two roots'})",
+                         rule))
         e = _screw("R", h, r, q)
         if first:
             y = e.inv().apply(y).applyfunc(sp.expand)
         else:
             x = e.apply(x).applyfunc(sp.expand)
     return out, plan.strategy
+
+
+def _distance_factors(p, p2, h, d, y, slides):
+    """(Dm, Dp, Em) of a distance stage |rot(h, t) p - p2| = |d|: 1 - u^2 of its roots (u = -C / R, R = |p'| |p2'|,
+    primes: the parts normal to the axis h) is Dm Dp / (4 R^2) with Dm = e^2 - (|p'| - |p2'|)^2,
+    Dp = (|p'| + |p2'|)^2 - e^2, e^2 = |d|^2 - (h.(p - p2))^2 (the target's distance normal to the axis: the
+    rotation keeps the axial gap).
+
+    1 - u^2 from u loses everything below eps of R: a SCARA with a1 = a2 folded to 1e-8 has e^2 = 1e-17 next to
+    a1 a2 = 0.09, so its two roots merged at sqrt(eps) and the shoulder after them became a family. Here |p'| - |p2'|
+    is a difference of lengths (exactly 0 for a1 = a2) and e^2, where the axial gap is the target's own component
+    along h identically (the axis stays put: a SCARA's), a sum of squares of d's normal part, so Dm keeps e^2 to its
+    own relative precision. Em is the scale of Dm's rounding: its terms' sizes, and what the pose point's rounding
+    (eps |y|) does to them."""
+    def sub(v):
+        return v.applyfunc(lambda x: sp.expand(sp.sympify(x).subs(slides)) if slides else sp.expand(x))
+
+    def length(v):
+        v = sub(v - h * h.dot(v))
+        if not v.free_symbols & set(POSE_SYMBOLS):  # design and joints only: one exact expression (a1 = a2 gives 0)
+            # sqrt(a^2) is a for a design declared positive; given negative at run time, the two factors trade
+            # places with their signs flipped, so the runtime reads their product and |Dm| <= |Dp|
+            return sp.sqrt(sp.factor(sp.trigsimp(sp.expand(v.dot(v)))))
+        return sp.sqrt(sum(x ** 2 for x in v))
+
+    pn, sn = length(p), length(p2)
+    dv = sub(d)
+    d2 = sum(x ** 2 for x in dv)
+    gap = sp.expand(sp.sympify(h.dot(p - p2)).subs(slides))
+    planar = sum(x ** 2 for x in sub(d - h * h.dot(d)))
+    if sp.expand(planar - (d2 - gap ** 2)) == 0:
+        e2, size, root = planar, planar, sp.sqrt(planar)
+    else:  # the axis moves with unsolved joints: the difference (a true double root's cancellation)
+        e2, size, root = d2 - gap ** 2, d2 + gap ** 2, sp.sqrt(d2) + sp.Abs(gap)
+    ymag = sp.sqrt(sum(x ** 2 for x in sub(y)))
+    diff = pn - sn
+    em = size + diff ** 2 + 2 * (root + sp.Abs(diff)) * ymag
+    return e2 - diff ** 2, (pn + sn) ** 2 - e2, em
 
 
 def _without_slides(expr, slides):

@@ -31,13 +31,33 @@ static double sr_clamp1(double x)
     return x > 1.0 ? 1.0 : (x < -1.0 ? -1.0 : x);
 }
 
-/* Joint j from A cos q + B sin q + C = 0 (out = A, B, C): q = atan2(B, A) + sgn acos(-C / sqrt(A^2 + B^2)).
- * inline: each stage of this kind calls it with its own constant joint and bit, as straight-line code would */
-static inline int sr_trig_linear(const double *out, int j, double sgn, double *q, double *c, double *s,
-                                 const double *prev, double *amp, unsigned *f)
+/* (sin w, band) of the roots phi +- w: below the band they are one double root (Python's _root_gap). From u alone
+ * 1 - u^2 carries eps of rounding (band sqrt(SR_DOUBLE_ROOT_TOL)); a distance stage (factored) gives the factors
+ * Dm, Dp of 4 R^2 (1 - u^2), each to its own precision, and Em, the scale of Dm's rounding */
+static inline void sr_root_gap(const double *out, int factored, double r, double u, double amp_before, double *sg,
+                               double *band)
+{
+    if (!factored) {
+        *sg = sqrt(1.0 - u * u);
+        *band = sqrt(SR_DOUBLE_ROOT_TOL);
+    } else {
+        /* the product and |Dm| <= |Dp|: a length derived as positive and given negative swaps the factors and their
+         * signs (Python's _root_gap) */
+        const double prod = out[3] * out[4];
+        const double scale = fabs(out[3]) <= fabs(out[4]) ? fmin(1.0, out[5] * amp_before / (2.0 * r)) : 1.0;
+        *sg = prod > 0.0 ? sqrt(prod) / (2.0 * r) : 0.0;
+        *band = sqrt(SR_DOUBLE_ROOT_TOL * scale);
+    }
+}
+
+/* Joint j from A cos q + B sin q + C = 0 (out = A, B, C, a distance stage's also Dm, Dp, Em): q = atan2(B, A) +
+ * sgn acos(-C / sqrt(A^2 + B^2)). inline: each stage of this kind calls it with its own constant joint, bit and form,
+ * as straight-line code would */
+static inline int sr_trig_linear(const double *out, int factored, int j, double sgn, double *q, double *c, double *s,
+                                 const double *prev, double *amp, double amp_before, unsigned *f)
 {
     const double r = sqrt(out[0] * out[0] + out[1] * out[1]);
-    double u, sg, ca, sa;
+    double u, sg, band, ca, sa;
     if (r <= SR_DEGENERATE_EPS) {
         /* |C| within sqrt(SR_DOUBLE_ROOT_TOL): an upstream double root's residue (see Python); the FK check decides */
         if (fabs(out[2]) > sqrt(SR_DOUBLE_ROOT_TOL) || sgn < 0.0) return 0;
@@ -49,13 +69,14 @@ static inline int sr_trig_linear(const double *out, int j, double sgn, double *q
     u = -out[2] / r;
     if (!(fabs(u) <= 1.0 + SR_TANGENT_TOL)) return 0;
     u = sr_clamp1(u);
-    sg = sqrt(1.0 - u * u);
-    if (sg <= sqrt(SR_DOUBLE_ROOT_TOL)) {
+    sr_root_gap(out, factored, r, u, amp_before, &sg, &band);
+    if (sg <= band) {
         if (sgn < 0.0) return 0; /* a double root is one solution: reported once, by the + branch */
         *f = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
+        sg = 0.0; /* at its centre: within the band sin w is rounding (see Python) */
     }
-    /* the roots phi +- w amplify the input's rounding by 1 / sin w (a double root: 1 / sqrt(SR_DOUBLE_ROOT_TOL)) */
-    amp[j] = 1.0 / (*f ? sqrt(SR_DOUBLE_ROOT_TOL) : sg);
+    /* the roots phi +- w amplify the input's rounding by 1 / sin w (a double root: 1 / band) */
+    amp[j] = 1.0 / (*f ? band : sg);
     /* q = atan2(B, A) + sgn acos(u): its cos and sin follow from (A, B, u) */
     ca = out[0] / r;
     sa = out[1] / r;
