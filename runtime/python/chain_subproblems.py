@@ -87,12 +87,13 @@ def _sp2_height2(p1, k1, p2, k2, c, a1, a2, den, scale):
 
 def _root_amplification(roots, outer):
     """How much a trig stage's two roots amplify the rounding of its inputs: 1 / |sin w| for roots phi +- w (a
-    root moves by du / |sin w| for a change du of u = cos w), at least `outer` (the stages before); a double root
-    within the band: 1 / sqrt(DOUBLE_ROOT_TOL)."""
+    root moves by du / |sin w| for a change du of u = cos w), times `outer` (the stages before: each reads the joints
+    they solved, so the errors compound, as the serial runtime's wrist band has them); a double root within the
+    band: 1 / sqrt(DOUBLE_ROOT_TOL)."""
     if len(roots) == 2:
-        return max(outer, 1.0 / max(abs(math.sin(0.5 * (roots[0][0] - roots[1][0]))), 1e-300))
+        return outer / max(abs(math.sin(0.5 * (roots[0][0] - roots[1][0]))), 1e-300)
     if len(roots) == 1 and roots[0][1] & FLAG_DOUBLE_ROOT:
-        return max(outer, 1.0 / math.sqrt(DOUBLE_ROOT_TOL))
+        return outer / math.sqrt(DOUBLE_ROOT_TOL)
     return outer
 
 

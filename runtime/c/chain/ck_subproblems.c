@@ -99,17 +99,16 @@ static double ck_sp2_height2(const double *p1, const double *k1, const double *p
 }
 
 /* How much a trig stage's nr roots t amplify the rounding of its inputs: 1 / |sin w| for roots phi +- w, a double
- * root 1 / sqrt(CK_DOUBLE_ROOT_TOL), at least `outer` (Python's _root_amplification) */
+ * root 1 / sqrt(CK_DOUBLE_ROOT_TOL), times `outer` (the stages before: each reads the joints they solved, so the
+ * errors compound, as the serial runtime's wrist band has them; Python's _root_amplification) */
 static double ck_root_amplification(int nr, const double *t, const unsigned *f, double outer)
 {
-    double a = outer;
     if (nr == 2) {
         const double s = fabs(sin(0.5 * (t[0] - t[1])));
-        a = 1.0 / (s > 1e-300 ? s : 1e-300);
-    } else if (nr == 1 && (f[0] & WK_FLAG_DOUBLE_ROOT)) {
-        a = 1.0 / sqrt(CK_DOUBLE_ROOT_TOL);
+        return outer / (s > 1e-300 ? s : 1e-300);
     }
-    return a > outer ? a : outer;
+    if (nr == 1 && (f[0] & WK_FLAG_DOUBLE_ROOT)) return outer / sqrt(CK_DOUBLE_ROOT_TOL);
+    return outer;
 }
 
 /* (t1, t2, flags) with rot(k1, t1) p1 = rot(k2, t2) p2, k1 not parallel to k2 (at most 2). has1[i] = 0 when p1
