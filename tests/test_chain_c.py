@@ -237,9 +237,11 @@ def _assert_same(py, s, c_result, what="", tol=1e-9):
         assert gap <= tol_k, f"{what}: solution {k} differs by {gap:.3g} (tolerance {tol_k:.3g})"
         worst = max(worst, gap)
         assert int(o.flags[k]) == int(s.flags[k]), f"{what}: flags of {k}: {o.flags[k]} != {s.flags[k]}"
-        # the FK residuals: equal to 1e-10, except at a double root (flagged), where each language's polish stops
-        # where its own steps stop improving, at the sqrt(eps) level of a tangent (seed 581528: a PUMA-type arm
-        # with its shoulder at a tangent and its wrist at the family, 7.9e-10 in C and 9.3e-10 in Python)
+        # the FK residuals: equal to 1e-10, except at a double root (flagged): there J is singular, no Gauss-Newton
+        # step improves on the candidate's sqrt(eps) error, and each language's candidate carries its own stages'
+        # rounding, amplified to that level (seed 581528: a PUMA-type arm with its shoulder at a tangent and its
+        # wrist at the family, 7.9e-10 in C and 9.3e-10 in Python, with both polishing through the same kernels by
+        # the same steps)
         tangent = bool(int(s.flags[k]) & FLAG_DOUBLE_ROOT)
         assert o.aux[k][0] <= 1e-9 and (tangent or abs(o.aux[k][0] - s.aux[k, 0]) <= 1e-10), what
     return worst

@@ -384,6 +384,19 @@ def py():
                                 "verify": chain_verify, "api": chain_api})
 
 
+def test_the_python_square_step_is_the_c_one_to_the_bit(py, lib):
+    """chain_verify._solve_square is ck_solve_square step for step (the polish's square step in both languages):
+    equal bits on random 6 x 6 systems, and both refuse a pivot at or below 1e-8 of the largest entry."""
+    rng = case_rng(2215)
+    x = np.zeros(6)
+    for _ in range(100):
+        a, b = rng.normal(size=(6, 6)) * rng.uniform(1e-3, 1e3), rng.normal(size=6)
+        assert lib.wkt_solve_square(_p(a), 6, _p(b), _p(x)) == 1
+        assert py.verify._solve_square(a, b) == list(x)
+    a[:, 5] = a[:, 4] * (1.0 + 1e-12)
+    assert lib.wkt_solve_square(_p(a), 6, _p(b), _p(x)) == 0 and py.verify._solve_square(a, b) is None
+
+
 def test_python_subproblems_return_the_generating_angles_and_c_s_roots(py, lib):
     """The Python kernels on the instances of the C tests: the generating angles among their roots, and the same
     roots as the C kernels (one algorithm in both, operation for operation: equal to a few ulps)."""

@@ -73,7 +73,7 @@ from chain_stand_in import (
     _vector,
     _wrap,
 )
-from chain_verify import _frame_error, _polish, _pose_error, _ratio, _ratio_of
+from chain_verify import _frame_error, _polish, _polish_read, _pose_error, _ratio, _ratio_of
 
 
 # wristkin: inlined from here
@@ -351,6 +351,24 @@ def _ik_numpy(pose, d, previous):
     flags = np.zeros(MAX_IK, dtype=np.int64)
     found = []
 
+    # the true solver chain, read as the C runtime reads it: through the derived kernels where it is the description
+    # with the free joint held (same base and end frame), from the reversed chain's table otherwise
+    def held_fk(qc):
+        full = _full_joints(qc, ideal.index, d)
+        return _rt12(_k_fk(full, *_trig_of(full)))
+
+    def held_jacobian(qc):
+        full = _full_joints(qc, ideal.index, d)
+        return _jacobian_held(full, _trig_of(full))
+
+    def true_error(qc):
+        return _pose_error(true, qc, target_rt)[0] if _REVERSED else _frame_error(held_fk(qc), target_rt)
+
+    def polish(qc):
+        if _REVERSED:
+            return _polish(true, qc, target_rt)
+        return _polish_read(held_fk, held_jacobian, len(true.kinds), qc, target_rt)
+
     def accept(qc, f, dry=False):
         """Verify a candidate on the true chain (polished there when needed), deduplicate, flag, store (`dry`: say
         whether it would be stored)."""
@@ -367,14 +385,14 @@ def _ik_numpy(pose, d, previous):
         err = _frame_error(_fk_full(full, d, trig), target)
         exact = err <= POLISH_TOL
         if not exact:
-            err, _ = _pose_error(true, qc, target_rt)
+            err = true_error(qc)
             if err > IK_VERIFY_TOL:
-                qc, err = _polish(true, qc, target_rt)
+                qc, err = polish(qc)
             if CALIBRATED and not err <= IK_VERIFY_TOL:  # once per candidate: no retry loop (a second and third
                 # compensation found 7 more of 168 near-singular sets of the calibrated KR 6 at 3x the time)
                 near = _compensated(ideal, true, qc, target_rt, prev_c)
                 if near is not None:
-                    qc, err = _polish(true, near, target_rt)
+                    qc, err = polish(near)
             if not err <= IK_VERIFY_TOL:
                 return False
             full = _full_joints(qc, ideal.index, d)
@@ -384,7 +402,7 @@ def _ik_numpy(pose, d, previous):
             # such a set is polished on to POLISH_TOL and kept only if it then meets IK_VERIFY_TOL
             err = _frame_error(_fk_full(full, d), target)
             if err > IK_VERIFY_TOL:
-                qc, _ = _polish(true, qc, target_rt)
+                qc, _ = polish(qc)
                 full = _full_joints(qc, ideal.index, d)
                 err = _frame_error(_fk_full(full, d), target)
                 if not err <= IK_VERIFY_TOL:
@@ -393,7 +411,7 @@ def _ik_numpy(pose, d, previous):
             return False
         # the solver chain's conditioning: read from the kernel where that chain is the description's with the
         # free joint held (same base and end frame), from the reversed chain's table otherwise
-        if (_ratio(true, qc) if _REVERSED or not exact else _ratio_of(_jacobian_held(full, trig))) <= SINGULAR_EPS:
+        if (_ratio(true, qc) if _REVERSED else _ratio_of(held_jacobian(qc))) <= SINGULAR_EPS:
             f |= FLAG_SINGULAR_INVERSE
         if dry:
             return True
