@@ -240,6 +240,35 @@ def test_lstsq_and_spectrum_agree_with_numpy(lib):
         assert math.isclose(man[0], np.prod(s), rel_tol=1e-9 + 64 * np.finfo(float).eps / ratio**2), ratio
 
 
+def test_the_conditioning_bound_decides_all_but_a_narrow_band_around_eps():
+    """wk_conditioning_bound (the shared runtime) proves sigma_min / sigma_max above or below eps, or leaves it to the
+    caller's SVD. Its verdicts are the SVD's wherever it gives one; since the bracket on lambda_max (power steps, then
+    U I - G positive definite) it leaves undecided only ratios within ~12 % of eps = 1e-6 (was: a factor ~7, and the
+    SVD took 2/3 of a near-singular call's time), whatever the spread of the other singular values."""
+    so = compile_shared([RUNTIME_C], [ROOT / "runtime" / "c"], "wk_runtime_bound")
+    lib = load(so)
+    lib.wk_conditioning_bound.argtypes = [D, ctypes.c_int, ctypes.c_double, D]
+    lib.wk_conditioning_bound.restype = ctypes.c_int
+    rng = case_rng(2216)
+    man = np.zeros(1)
+    undecided = 0
+    for ratio in np.concatenate([np.geomspace(1e-8, 1e-4, 161), [1e-6 * 0.87, 1e-6 * 1.13]]):
+        for spread in (1.0, 0.3, 1e-2):
+            u, _ = np.linalg.qr(rng.normal(size=(6, 6)))
+            v, _ = np.linalg.qr(rng.normal(size=(6, 6)))
+            s = np.sort(np.concatenate([[1.0, ratio], rng.uniform(max(ratio, spread), 1.0, 4)]))[::-1]
+            j = u @ np.diag(s * rng.uniform(0.1, 3.0)) @ v.T
+            got = lib.wk_conditioning_bound(_p(j), 6, 1e-6, _p(man))
+            sv = np.linalg.svd(j, compute_uv=False)
+            true = sv[-1] / sv[0]
+            if got:
+                assert (got < 0) == (true <= 1e-6), (ratio, spread, got)
+            else:
+                undecided += 1
+                assert 0.86e-6 <= true <= 1.42e-6, (ratio, spread)
+    assert undecided <= 16
+
+
 def test_perpendicular_transpose_and_points(lib):
     rng = case_rng(2207)
     o = np.zeros(3)
