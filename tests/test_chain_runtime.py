@@ -243,7 +243,7 @@ def test_lstsq_and_spectrum_agree_with_numpy(lib):
 def test_the_conditioning_bound_decides_all_but_a_narrow_band_around_eps():
     """wk_conditioning_bound (the shared runtime) proves sigma_min / sigma_max above or below eps, or leaves it to the
     caller's SVD. Its verdicts are the SVD's wherever it gives one; since the bracket on lambda_max (power steps, then
-    U I - G positive definite) it leaves undecided only ratios within ~12 % of eps = 1e-6 (was: a factor ~7, and the
+    U I - G positive definite) it leaves undecided only ratios within ~5-30 % of eps = 1e-6 (was: a factor ~7, and the
     SVD took 2/3 of a near-singular call's time), whatever the spread of the other singular values."""
     so = compile_shared([RUNTIME_C], [ROOT / "runtime" / "c"], "wk_runtime_bound")
     lib = load(so)
@@ -265,7 +265,7 @@ def test_the_conditioning_bound_decides_all_but_a_narrow_band_around_eps():
                 assert (got < 0) == (true <= 1e-6), (ratio, spread, got)
             else:
                 undecided += 1
-                assert 0.86e-6 <= true <= 1.42e-6, (ratio, spread)
+                assert 0.94e-6 <= true <= 1.33e-6, (ratio, spread)
     assert undecided <= 16
 
 

@@ -296,46 +296,57 @@ static int wk_det_proves_regular(const double *jac, double eps, double *man)
 }
 
 /* The ratio within a factor ~7 of eps (near a singularity, sigma_min ~ eps sigma_max: the sets of a sweep 1e-5 rad
- * from an elbow singularity) leaves [max G_ii, trace G] too loose a bracket on lambda_max: six power steps from
- * G's largest column give L <= lambda_max (a Rayleigh quotient), and U I - G positive definite (U = 1.0625 L, else
- * 1.59 L) proves lambda_max < U. Then G - 1.25 eps^2 U I positive definite proves the ratio above eps, G - 0.8 eps^2 L I
- * not positive definite proves it below: margins of 0.2 eps^2 lambda_max, 20x the rounding of G and of its Cholesky
- * factor (~1e-14 lambda_max against eps^2 = 1e-12; so only for eps >= 1e-6). 1 / -1 / 0 as wk_conditioning_bound;
- * 0 leaves the ratio within ~12 % of eps (~42 % when U is 1.59 L) to the caller's SVD (which took 2/3 of such calls'
- * time before). */
-static int wk_bracket_bound(const double *g, int m, double e2, double dmax)
+ * from an elbow singularity) leaves [max G_ii, trace G] too loose a bracket on lambda_max. Power steps from G's
+ * largest column give L <= lambda_max (a Rayleigh quotient), and U I - G positive definite, U = 1.0625 L, proves
+ * lambda_max < U (up to 24 steps, 6 at a time, then U = 1.59 L: two close largest singular values slow the steps
+ * down). Then G - 1.1 eps^2 U I positive definite proves the ratio above eps, G - 0.9 eps^2 L I not positive
+ * definite proves it below: margins of 0.1 eps^2 lambda_max, ~25x the backward error of G's Cholesky factor
+ * (~4e-15 lambda_max; so only for eps >= 1e-6). 1 / -1 / 0 as wk_conditioning_bound; 0 leaves the ratio within
+ * ~5 % of eps (~30 % when U is 1.59 L) to the caller's SVD, which took 2/3 of such calls' time before. */
+static double wk_power_steps(const double *g, int m, double *v, int steps)
 {
-    double v[WK_MAX_DIM], w[WK_MAX_DIM], h[WK_MAX_DIM * WK_MAX_DIM], lo = dmax, hi, vv, vgv, unused;
-    int i, j, it, top = 0;
-    for (i = 1; i < m; ++i)
-        if (g[i * m + i] > g[top * m + top]) top = i;
-    for (i = 0; i < m; ++i) v[i] = g[i * m + top];
-    for (it = 0; it < 6; ++it) {
+    double w[WK_MAX_DIM], vv = 0.0, vgv = 0.0;
+    int i, j, it;
+    for (it = 0; it < steps; ++it) {
         double norm = 0.0;
         for (i = 0; i < m; ++i) {
             w[i] = 0.0;
             for (j = 0; j < m; ++j) w[i] += g[i * m + j] * v[j];
             norm += w[i] * w[i];
         }
-        if (!(norm > 0.0)) return 0;
+        if (!(norm > 0.0)) return 0.0;
         norm = 1.0 / sqrt(norm);
         for (i = 0; i < m; ++i) v[i] = w[i] * norm;
     }
-    vv = vgv = 0.0;
     for (i = 0; i < m; ++i) {
         double gv = 0.0;
         for (j = 0; j < m; ++j) gv += g[i * m + j] * v[j];
         vv += v[i] * v[i];
         vgv += v[i] * gv;
     }
-    if (vgv / vv > lo) lo = vgv / vv;
+    return vgv / vv; /* the Rayleigh quotient: at most lambda_max */
+}
+
+static int wk_bracket_bound(const double *g, int m, double e2, double dmax)
+{
+    double v[WK_MAX_DIM], h[WK_MAX_DIM * WK_MAX_DIM], lo = dmax, hi = 0.0, unused;
+    int i, chunk, top = 0;
+    for (i = 1; i < m; ++i)
+        if (g[i * m + i] > g[top * m + top]) top = i;
+    for (i = 0; i < m; ++i) v[i] = g[i * m + top];
     for (i = 0; i < m * m; ++i) h[i] = -g[i];
-    /* the first of U = 1.0625 L, 1.25 L, 2 L above lambda_max (two close largest singular values slow the power
-     * steps down; the bracket then widens, and so does the band left to the SVD) */
-    if (!wk_cholesky(g, m, 0.8 * e2 * lo, &unused)) return -1; /* below: L alone suffices */
-    for (hi = 1.0625 * lo; !wk_cholesky(h, m, -hi, &unused); hi *= 1.5)
-        if (hi > 2.0 * lo) return 0;
-    return wk_cholesky(g, m, 1.25 * e2 * hi, &unused) ? 1 : 0;
+    for (chunk = 0; chunk < 4 && hi == 0.0; ++chunk) {
+        const double rq = wk_power_steps(g, m, v, 6);
+        if (!(rq > 0.0)) return 0;
+        if (rq > lo) lo = rq;
+        if (!wk_cholesky(g, m, 0.9 * e2 * lo, &unused)) return -1; /* below: L alone suffices */
+        if (wk_cholesky(h, m, -1.0625 * lo, &unused)) hi = 1.0625 * lo;
+    }
+    if (hi == 0.0) {
+        if (!wk_cholesky(h, m, -1.59 * lo, &unused)) return 0;
+        hi = 1.59 * lo;
+    }
+    return wk_cholesky(g, m, 1.1 * e2 * hi, &unused) ? 1 : 0;
 }
 
 int wk_conditioning_bound(const double *jac, int n, double eps, double *man)
