@@ -181,7 +181,7 @@ def test_sp6_returns_the_generating_pair(lib):
     """Two invariants of a three-joint group (the UR with an offset wrist's subproblem): n . (R0^T y - p0) = d0 and
     n^T R4 R5 h5 = (R0^T g) . n; built from known (q0, q4, q5)."""
     rng = case_rng(2205)
-    q0s, q4s, f = np.zeros(9), np.zeros(9), (ctypes.c_uint * 9)()
+    q0s, q4s, f = np.zeros(17), np.zeros(17), (ctypes.c_uint * 17)()  # CK_SP6_MAX
     for _ in range(60):
         n_, h0, h4, h5 = _unit(rng), _unit(rng), _unit(rng), _unit(rng)
         p0, p4 = rng.normal(size=3), rng.normal(size=3)
@@ -458,7 +458,7 @@ def test_python_subproblems_return_the_generating_angles_and_c_s_roots(py, lib):
 
 def test_python_sp6_and_spatial3_agree_with_c(py, lib):
     rng = case_rng(2211)
-    q0s, q4s, f = np.zeros(9), np.zeros(9), (ctypes.c_uint * 9)()
+    q0s, q4s, f = np.zeros(17), np.zeros(17), (ctypes.c_uint * 17)()  # CK_SP6_MAX
     for _ in range(40):
         n_, h0, h4, h5 = _unit(rng), _unit(rng), _unit(rng), _unit(rng)
         p0, p4 = rng.normal(size=3), rng.normal(size=3)
@@ -468,9 +468,9 @@ def test_python_sp6_and_spatial3_agree_with_c(py, lib):
         out = py.sp6._sp6(*(list(v) for v in (n_, h0, p0, h4, p4)), d0, 0.0, list(g), list(h5))
         nr = lib.wkt_sp6(_p(n_), _p(h0), _p(p0), _p(h4), _p(p4), d0, _p(g), _p(h5), _p(q0s), _p(q4s), f)
         assert len(out) == nr
-        assert all(_angle_gap(x, c0) < 1e-12 and _angle_gap(y, c4) < 1e-12 for (x, y, _), c0, c4 in
+        assert all(_angle_gap(x, c0) < 1e-12 and _angle_gap(y, c4) < 1e-12 for (x, y, _, _), c0, c4 in
                    zip(out, q0s, q4s, strict=False))
-        assert min(_angle_gap(x, a) + _angle_gap(y, b) for x, y, _ in out) < 1e-6
+        assert min(_angle_gap(x, a) + _angle_gap(y, b) for x, y, _, _ in out) < 1e-6
 
 
 def test_the_api_source_solves_the_stand_in_robot(py):

@@ -386,7 +386,8 @@ def _ik_numpy(pose, d, previous):
         exact = err <= POLISH_TOL
         if not exact:
             err = true_error(qc)
-            if err > IK_VERIFY_TOL:
+            if err > POLISH_TOL:  # to rounding, not merely to the tolerance: near a singularity a set within
+                # IK_VERIFY_TOL may be residual / sigma_min off (an offset wrist 1e-6 from its singularity: 2e-6 rad)
                 qc, err = polish(qc)
             if CALIBRATED and not err <= IK_VERIFY_TOL:  # once per candidate: no retry loop (a second and third
                 # compensation found 7 more of 168 near-singular sets of the calibrated KR 6 at 3x the time)

@@ -19,6 +19,7 @@ from chain_stand_in import (
     FLAG_DOUBLE_ROOT,
     FLAG_INDETERMINATE,
     FLAG_SINGULAR_INVERSE,
+    ON_AXIS_TOL,
     SCALE,
     _wrap,
 )
@@ -32,7 +33,7 @@ SP6_AT_PI_TOL = 1e-9
 
 
 def _sp6(nv, h0, p0, h4, p4, d0, e0, g, h5):
-    """(q0, q4, flags) with n.rot(h0, -q0) p0 - n.rot(h4, q4) p4 = d0 and n.rot(h0, -q0) g - n.rot(h4, q4) h5
+    """(q0, q4, flags, order) with n.rot(h0, -q0) p0 - n.rot(h4, q4) p4 = d0 and n.rot(h0, -q0) g - n.rot(h4, q4) h5
     = e0 (subproblem 6: two equations, each linear in the cosines and sines of both angles). (cos q4, sin q4) is
     affine in (cos q0, sin q0) by Cramer's rule; cos^2 + sin^2 = 1 is a quartic in tan(q0 / 2)."""
     def coef(k, p, sign):
@@ -69,15 +70,31 @@ def _sp6(nv, h0, p0, h4, p4, d0, e0, g, h5):
         if abs(math.hypot(cc, ss) - 1.0) > tol:  # the root at infinity, or a poorly resolved one
             continue
         q4 = math.atan2(ss, cc)
-        if not fl:  # a merged double root stays (Newton is ill-conditioned there; its split is the caller's)
-            q0, q4 = _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4)
-        regular.append((q0, q4, fl))
+        near = abs(_dot(nv, _mv(_rot(h4, q4), h5))) >= SP6_NEAR_WRIST
+        if fl and near:  # a merged double root near the wrist singularity: its two roots, each to ~eps (a merged
+            # root 3e-7 rad off the singularity verified within IK_VERIFY_TOL with q5 0.05 rad off)
+            pair = _sp6_split(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4)
+            if pair:
+                regular += [(a, b, (fl & ~FLAG_DOUBLE_ROOT) | fs, 1) for a, b, fs in pair]
+                continue
+        order = 2
+        if not fl:  # a merged double root far from the wrist stays (Newton is ill-conditioned there; its split is
+            # the caller's when it verifies nothing)
+            if near:  # on the second's normal parts: q4 to ~eps
+                q0, q4 = _sp6_newton_perp(nv, h0, p0, h4, p4, d0, g, h5, q0, q4)
+                order = 1
+            else:
+                q0, q4 = _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4)
+        regular.append((q0, q4, fl, order))
     # The wrist singularity: where rot(h4, q4) h5 = +-n the second equation holds for every q0 (its quartic has a
     # double root there, which rounding may hide), so those q4 are tried directly with q0 from the first
-    # equation alone, kept when the second holds within the double-root tolerance of subproblem 4 (the pose's
-    # axis within ~1e-6 rad of +-n); a regular root within 1e-6 of one is the same (singular) configuration and is
-    # dropped.
-    singular = []
+    # equation alone. Where the second then holds to rounding (the pose's axis within ON_AXIS_TOL of +-n, read from
+    # the cross product) the configuration is the singular family; where it holds within the double-root tolerance
+    # of subproblem 4 (within ~1e-6 rad) the pose is near it, and the two roots there come from the split (each to
+    # ~eps; the quartic resolves them to sqrt(eps), and a family member searched over the grid stood in for them,
+    # 2.7 rad off, at 180x the median call). A regular root within 1e-6 of either is the same configuration and
+    # is dropped.
+    singular, split, anchors = [], [], []
     t4 = _sp1(h4, h5, nv, 1.0)
     if t4 is not None:
         for q4 in (t4, t4 + math.pi):
@@ -87,59 +104,72 @@ def _sp6(nv, h0, p0, h4, p4, d0, e0, g, h5):
             for t0, fl in _sp4(nv, h0, p0, d0 + _dot(nv, _mv(_rot(h4, q4), p4)), SCALE):
                 q0 = -t0
                 # the second equation at this q0: n . rot(h0, -q0) g must be n . R4 h5 = side (+-1)
-                dn = _dot(nv, _mtv(_rot(h0, q0), g))
+                w = _mtv(_rot(h0, q0), g)
+                dn = _dot(nv, w)
                 if dn * side > 0.0 and 1.0 - dn * dn <= DOUBLE_ROOT_TOL:
-                    singular.append((q0, _wrap(q4), fl | FLAG_SINGULAR_INVERSE))
-    kept = [r for r in regular if not any(abs(_wrap(r[0] - s[0])) <= 1e-6 and abs(_wrap(r[1] - s[1])) <= 1e-6
-                                          for s in singular)]
-    return kept + singular
+                    anchors.append((q0, q4))
+                    if _norm(_cross(nv, w)) <= ON_AXIS_TOL:  # closed-form inputs: rounding, not FAMILY_TOL's noise
+                        singular.append((q0, _wrap(q4), fl | FLAG_SINGULAR_INVERSE, 2))
+                    else:
+                        split += [(a, b, fl | fs, 1) for a, b, fs in _sp6_split(nv, h0, p0, h4, p4, d0, e0, g, h5, q0,
+                                                                                  q4)]
+    kept = [r for r in regular if not any(abs(_wrap(r[0] - a[0])) <= 1e-6 and abs(_wrap(r[1] - a[1])) <= 1e-6
+                                          for a in anchors)]
+    return kept + split + singular
 
+
+# |n . rot(h4, q4) h5| at or above this: the wrist near its singularity (|n . z5| = 1 there), where a root of the
+# quartic is refined on the second equation's parts normal to n (_sp6_newton_perp); below it their difference
+# |n x w0|^2 - |n x z5|^2 = (n.z5 - n.w0)(n.z5 + n.w0) loses the factor n.z5 + n.w0 ~ 2 n.z5
+SP6_NEAR_WRIST = 0.5
 
 # Newton steps on subproblem 6's equations from a root (quadratic convergence from a root of the quartic or of the
 # local model: 3 suffice)
 SP6_NEWTON_STEPS = 3
 
 
-def _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4, second=False):
-    """(F1, F2) of subproblem 6 without the constants, their gradients and (`second`) their second derivatives."""
+def _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4):
+    """(F1, F2) of subproblem 6 without the constants, and their gradients."""
     r0, r4 = _rot(h0, -q0), _rot(h4, q4)
     w0, wg, z4, z5 = _mv(r0, p0), _mv(r0, g), _mv(r4, p4), _mv(r4, h5)
     f = (_dot(nv, w0) - _dot(nv, z4), _dot(nv, wg) - _dot(nv, z5))
     jac = ((-_dot(nv, _cross(h0, w0)), -_dot(nv, _cross(h4, z4))),
            (-_dot(nv, _cross(h0, wg)), -_dot(nv, _cross(h4, z5))))
-    if not second:
-        return f, jac, None
-    # the mixed derivatives vanish: each equation is a sum of a function of q0 and one of q4
-    hess = ((_dot(nv, _cross(h0, _cross(h0, w0))), -_dot(nv, _cross(h4, _cross(h4, z4)))),
-            (_dot(nv, _cross(h0, _cross(h0, wg))), -_dot(nv, _cross(h4, _cross(h4, z5)))))
-    return f, jac, hess
+    return f, jac
 
 
 def _sp6_split(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
     """The two roots of subproblem 6 near (q0, q4), a merged near-double root (a double root of the quartic, or
-    the wrist singularity's candidate) that verified nothing. Along the first equation's solution curve through
-    it the second is F2(s) = C + B s + A s^2 to third order, and its two roots there, polished by Newton on both
-    equations, are the nearby solutions the quartic resolved as one: a pair ~|q4| apart is resolved by the
-    equations to eps / |q4|, by the squared quartic only to sqrt(eps). None real: []."""
-    (f1, f2), ((a, b), (c, d)), ((g0, g4), (hq0, hq4)) = _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4, True)
+    the wrist singularity's candidate near, not at, it) that verified nothing. Along the first equation's solution
+    curve through it (tangent t, arc s) the second, n.w0 = n.z5 for the unit vectors w0 = rot(h0, -q0) g and
+    z5 = rot(h4, q4) h5, is read as |n x w0|^2 = |n x z5|^2: near the singularity both n-components are stationary
+    at +-1 and their difference (~delta^2) is read only to eps, so its roots to sqrt(eps); the parts normal to n
+    (~delta) are read to eps each. To second order in s that is qa s^2 + qb s + qc = 0 with u = n x w0, r = n x z5
+    and their derivatives along t; its two roots, polished by Newton on both equations, are the nearby solutions,
+    ~delta apart and each to ~eps (Newton on the same normal parts: _sp6_newton_perp). None real: []."""
+    (f1, _f2), ((a, b), _) = _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4)
     gn = math.hypot(a, b)
     if gn <= DEGENERATE_EPS * SCALE:
         return []
-    # onto the first equation's curve (one Newton step along its gradient), then along its tangent t; the curve
-    # bends off t by -(1/2) F1_tt s^2 / |grad F1| along the gradient, which F2 sees through its own gradient
+    # onto the first equation's curve (one Newton step along its gradient), then along its tangent t
     r = -(f1 - d0) / gn
     q0, q4 = q0 + r * a / gn, q4 + r * b / gn
     t0, t4 = -b / gn, a / gn
-    qa = 0.5 * (hq0 * t0 * t0 + hq4 * t4 * t4) - 0.5 * (g0 * t0 * t0 + g4 * t4 * t4) * (c * a + d * b) / (gn * gn)
-    qb = c * t0 + d * t4
-    qc = f2 - e0
+    w0, z5 = _mv(_rot(h0, -q0), g), _mv(_rot(h4, q4), h5)
+    u, rz = _cross(nv, w0), _cross(nv, z5)
+    # d w0 / d q0 = -h0 x w0, d z5 / d q4 = h4 x z5
+    du = _scale(_cross(nv, _cross(h0, w0)), -t0)
+    dr = _scale(_cross(nv, _cross(h4, z5)), t4)
+    qa = _dot(du, du) - _dot(dr, dr)
+    qb = 2.0 * (_dot(u, du) - _dot(rz, dr))
+    qc = _dot(u, u) - _dot(rz, rz)
     disc = qb * qb - 4.0 * qa * qc
-    if qa == 0.0 or disc <= 0.0:
+    if qa == 0.0 or not disc > 0.0:
         return []
+    qq = -0.5 * (qb + math.copysign(math.sqrt(disc), qb))  # the larger root's numerator: no cancellation
     out = []
-    for sgn in (1.0, -1.0):
-        s = (-qb + sgn * math.sqrt(disc)) / (2.0 * qa)
-        x0, x4 = _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0 + s * t0, q4 + s * t4)
+    for s_ in (qq / qa, qc / qq):
+        x0, x4 = _sp6_newton_perp(nv, h0, p0, h4, p4, d0, g, h5, q0 + s_ * t0, q4 + s_ * t4)
         out.append((_wrap(x0), _wrap(x4), FLAG_SINGULAR_INVERSE))
     return out
 
@@ -148,7 +178,7 @@ def _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
     """(q0, q4) after Newton steps on both equations of subproblem 6, each kept only when it lowers the residual:
     the quartic resolves two roots ~delta apart only to ~sqrt(eps) in tan(q0 / 2), the equations to eps / delta
     in the angles, and the decomposition's later ops need the better one near the wrist singularity."""
-    (f1, f2), jac, _ = _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4)
+    (f1, f2), jac = _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4)
     res = max(abs(f1 - d0), abs(f2 - e0))
     for _ in range(SP6_NEWTON_STEPS):
         (ja, jb), (jc, jd) = jac
@@ -157,8 +187,40 @@ def _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
             break
         r1, r2 = f1 - d0, f2 - e0
         n0, n4 = q0 - (jd * r1 - jb * r2) / dt, q4 - (ja * r2 - jc * r1) / dt
-        (f1, f2), jac, _ = _sp6_eval(nv, h0, p0, h4, p4, g, h5, n0, n4)
+        (f1, f2), jac = _sp6_eval(nv, h0, p0, h4, p4, g, h5, n0, n4)
         new = max(abs(f1 - d0), abs(f2 - e0))
+        if not new < res:
+            break
+        q0, q4, res = n0, n4, new
+    return q0, q4
+
+
+def _sp6_newton_perp(nv, h0, p0, h4, p4, d0, g, h5, q0, q4):
+    """(q0, q4) after Newton steps on the first equation and the second read as |n x w0|^2 - |n x z5|^2 (its parts
+    normal to n: _sp6_split), each kept only when it lowers the residuals measured over their gradients (metres and
+    a squared sine: compared raw, the first's rounding stopped the steps with q4 1e-11 off at delta = 3e-6). Near the wrist singularity the second's
+    n-components are stationary, so Newton on them moves q4 by eps / delta (3.8e-10 at delta = 3e-7, which turned
+    q5's angle 1e-4 off); the normal parts' residual is eps delta against a gradient ~delta: q4 to ~eps."""
+    def resid(a0, a4):
+        r0, r4 = _rot(h0, -a0), _rot(h4, a4)
+        w0, z5, w, z4 = _mv(r0, g), _mv(r4, h5), _mv(r0, p0), _mv(r4, p4)
+        u, rz = _cross(nv, w0), _cross(nv, z5)
+        f = (_dot(nv, w) - _dot(nv, z4) - d0, _dot(u, u) - _dot(rz, rz))
+        jac = ((-_dot(nv, _cross(h0, w)), -_dot(nv, _cross(h4, z4))),
+               (-2.0 * _dot(u, _cross(nv, _cross(h0, w0))), -2.0 * _dot(rz, _cross(nv, _cross(h4, z5)))))
+        return f, jac
+    def size(f, jac):  # each residual over its gradient: a distance in radians (the two differ in units)
+        return max(abs(f[0]) / max(math.hypot(*jac[0]), 1e-300), abs(f[1]) / max(math.hypot(*jac[1]), 1e-300))
+    f, jac = resid(q0, q4)
+    res = size(f, jac)
+    for _ in range(SP6_NEWTON_STEPS):
+        (ja, jb), (jc, jd) = jac
+        dt = ja * jd - jb * jc
+        if res == 0.0 or dt == 0.0:
+            break
+        n0, n4 = q0 - (jd * f[0] - jb * f[1]) / dt, q4 - (ja * f[1] - jc * f[0]) / dt
+        f, jac = resid(n0, n4)
+        new = size(f, jac)
         if not new < res:
             break
         q0, q4, res = n0, n4, new
@@ -174,7 +236,7 @@ def _sp6_stage(ch, g, prev, op, x, y, q, count, go_on, family):
     rg = g[0]
     p0, p4, d0, g5 = _sub(y, r0), _sub(x, r4), _dot(nv, r4) - _dot(nv, r0), _mv(rg, h5)  # g5: the group's axis
 
-    def sp6_set(q0, q4, f, may_split=True):
+    def sp6_set(q0, q4, f, order, may_split=True):
         # the group keeps n: n^T R4 R5 = n^T R0^T Rg, so rot(h5, -q5) (R4^T n) = (R0^T Rg)^T n
         a = _mtv(_rot(h4, q4), nv)
         t5 = _sp1(h5, a, _mtv(_mm(_mt(_rot(h0, q0)), rg), nv), 1.0)
@@ -182,24 +244,26 @@ def _sp6_stage(ch, g, prev, op, x, y, q, count, go_on, family):
         before = count()
         if t5 is not None:
             q[ll] = -t5
-            # near the wrist singularity (a = R4^T n near h5, g = |h5 x a|) q4 carries eps / g and q5, read from a's
-            # small part off h5, eps / g^2: the later stages' bands grow by 1 / g^2 (was: an elbow 9.4e-5 rad from
-            # straight behind |sin q5| = 3e-6 saw u 1.3e-7 beyond its band, and the pose was called unreachable)
+            # near the wrist singularity (a = R4^T n near h5, g = |h5 x a|) q5, read from a's small part off h5,
+            # carries q4's error over g: q4 from the quartic and Newton on its equations carries eps / g, so q5
+            # eps / g^2 (`order` 2), and the later stages' bands grow by 1 / g^2 (was: an elbow 9.4e-5 rad from
+            # straight behind |sin q5| = 3e-6 saw u 1.3e-7 beyond its band, and the pose was called unreachable);
+            # q4 from the split carries ~eps, q5 eps / g (`order` 1: a band of 1 / g^2 there merged the elbow's two
+            # branches 1e-9 rad from the singularity)
             g_rel = _norm(_cross(h5, a))
-            go_on(f, 1.0 / max(g_rel * g_rel, 1e-300))
+            go_on(f, 1.0 / max(g_rel ** order, 1e-300))
         else:  # the wrist singularity: q5 and the group turn about one direction (a family); q5 from
             # `previous`, else the first of FAMILY_ANGLES with a verified set (it moves the position)
             def place(angle):
                 q[ll] = angle
             family(f | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE, place, None if prev is None else prev[ll])
         if count() == before and may_split and f & FLAG_SINGULAR_INVERSE:
-            # a merged near-double root (or the singularity's candidate near, not at, the singularity)
-            # that verified nothing: the two roots it merged
+            # a merged near-double root that verified nothing: the two roots it merged
             for s0, s4, fs in _sp6_split(nv, h0, p0, h4, p4, d0, 0.0, g5, h5, q0, q4):
-                sp6_set(s0, s4, (f & ~FLAG_DOUBLE_ROOT) | fs, may_split=False)
+                sp6_set(s0, s4, (f & ~FLAG_DOUBLE_ROOT) | fs, 1, may_split=False)
 
-    for q0, q4, f in _sp6(nv, h0, p0, h4, p4, d0, 0.0, g5, h5):
-        sp6_set(q0, q4, f)
+    for q0, q4, f, order in _sp6(nv, h0, p0, h4, p4, d0, 0.0, g5, h5):
+        sp6_set(q0, q4, f, order)
 
 
 _OP_STAGES["sp6"] = _sp6_stage

@@ -121,7 +121,8 @@ int wkt_sp4(const double *h, const double *k, const double *p, double d, double 
 int wkt_sp6(const double *n, const double *h0, const double *p0, const double *h4, const double *p4, double d0,
             const double *g, const double *h5, double *q0, double *q4, unsigned *f)
 {
-    return ck_sp6(n, h0, p0, h4, p4, d0, 0.0, g, h5, q0, q4, f);
+    int ord[CK_SP6_MAX];
+    return ck_sp6(n, h0, p0, h4, p4, d0, 0.0, g, h5, q0, q4, f, ord);
 }
 
 void wkt_lstsq(const double *a, int m, int n, const double *b, double *x)
@@ -214,7 +215,7 @@ void wkt_transpose(const double *r, double *o)
 int wkt_sp6_split(const double *n, const double *h0, const double *p0, const double *h4, const double *p4, double d0,
                   const double *g, const double *h5, double q0, double q4, double *s0, double *s4)
 {
-    return ck_sp6_split(n, h0, p0, h4, p4, d0, 0.0, g, h5, q0, q4, s0, s4);
+    return ck_sp6_split(n, h0, p0, h4, p4, d0, g, h5, q0, q4, s0, s4);
 }
 
 /* the point (CK_MEET, CK_ON) or direction (CK_DIR, CK_CROSS) an op's spec names on a 3-joint chain, joints j0, j1 */

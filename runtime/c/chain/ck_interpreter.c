@@ -278,7 +278,10 @@ static void ck_candidate(ck_ctx *c, unsigned flags)
     if (!(ck_candidate_exact(c, qc, full, cs, sn, &err) && err <= CK_POLISH_TOL)) {
         ck_candidate_jacobian(c, qc, jac, &t);
         err = ck_frame_error(&t, &c->target);
-        if (err > CK_IK_VERIFY_TOL) {
+        /* polished to CK_POLISH_TOL, not merely to the tolerance: near a singularity a set within CK_IK_VERIFY_TOL
+         * may be residual / sigma_min off (5e-12 / 1e-6: an offset wrist 1e-6 from its singularity came back 2e-6
+         * rad off) */
+        if (err > CK_POLISH_TOL) {
             err = ck_polish_candidate(c, qc);
 #if CK_CALIBRATED
             if (!(err <= CK_IK_VERIFY_TOL) && ck_compensated(c, qc)) /* once per candidate: no retry loop */
@@ -422,7 +425,7 @@ typedef struct {
 /* One candidate (q0, q4) of subproblem 6: q5 from the group's invariant, then the rest of the plan; a merged
  * near-double root that verified nothing is split into its two roots (may_split: not a split root itself) */
 static void ck_sp6_set(ck_ctx *c, int k, const double *x, const double *y, unsigned flags, const ck_sp6_in *in,
-                       double q0, double q4, unsigned f, int may_split)
+                       double q0, double q4, unsigned f, int order, int may_split)
 {
     const ck_chain *ch = c->ideal;
     const double *h0 = ch->axis[in->j0], *h4 = ch->axis[in->j4], *h5 = ch->axis[in->j5];
@@ -439,14 +442,15 @@ static void ck_sp6_set(ck_ctx *c, int k, const double *x, const double *y, unsig
     c->q[in->j0] = q0;
     c->q[in->j4] = q4;
     if (ck_sp1(h5, a, b, 1.0, &t5)) {
-        /* near the wrist singularity q5 carries eps / g^2 (g = |h5 x R4^T n|): the later stages' bands grow by
-         * 1 / g^2 (Python's sp6_set) */
+        /* near the wrist singularity q5 carries q4's error over g = |h5 x R4^T n|: eps / g^2 after the quartic
+         * (order 2), eps / g after the split (order 1); the later stages' bands grow by as much (Python's
+         * sp6_set) */
         const double outer = c->noise;
-        double cr[3], g2;
+        double cr[3], gg;
         ck_cross(h5, a, cr);
-        g2 = ck_dot(cr, cr);
+        gg = ck_norm(cr);
         c->q[in->j5] = -t5;
-        c->noise = fmax(outer, 1.0 / fmax(g2, 1e-300));
+        c->noise = fmax(outer, 1.0 / fmax(order == 1 ? gg : gg * gg, 1e-300));
         ck_run(c, k + 1, x, y, flags | f);
         c->noise = outer;
     } else {
@@ -463,11 +467,10 @@ static void ck_sp6_set(ck_ctx *c, int k, const double *x, const double *y, unsig
                       c->prev ? &c->prev[in->j5] : NULL);
     }
     if (ck_count(c) > before || !may_split || !(f & WK_FLAG_SINGULAR_INVERSE)) return;
-    /* a merged near-double root (or the singularity's candidate near, not at, the singularity) that verified
-     * nothing: the two roots it merged */
-    ns = ck_sp6_split(in->n, h0, in->p0, h4, in->p4, in->d0, 0.0, in->g, h5, q0, q4, s0, s4);
+    /* a merged near-double root that verified nothing: the two roots it merged */
+    ns = ck_sp6_split(in->n, h0, in->p0, h4, in->p4, in->d0, in->g, h5, q0, q4, s0, s4);
     for (i = 0; i < ns; ++i)
-        ck_sp6_set(c, k, x, y, flags, in, s0[i], s4[i], (f & ~WK_FLAG_DOUBLE_ROOT) | WK_FLAG_SINGULAR_INVERSE, 0);
+        ck_sp6_set(c, k, x, y, flags, in, s0[i], s4[i], (f & ~WK_FLAG_DOUBLE_ROOT) | WK_FLAG_SINGULAR_INVERSE, 1, 0);
 }
 #endif
 
@@ -670,7 +673,7 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         ck_sp6_in in;
         double q0[CK_SP6_MAX], q4[CK_SP6_MAX];
         unsigned f6[CK_SP6_MAX];
-        int i, nr;
+        int i, nr, o6[CK_SP6_MAX];
         in.j0 = op->j;
         in.j4 = op->k;
         in.j5 = op->js[0];
@@ -680,8 +683,8 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         in.d0 = ck_dot(n, ch->point[in.j4]) - ck_dot(n, ch->point[in.j0]);
         ck_mv(c->g.r, ch->axis[in.j5], in.g);
         nr = ck_sp6(n, ch->axis[in.j0], in.p0, ch->axis[in.j4], in.p4, in.d0, 0.0, in.g, ch->axis[in.j5], q0, q4,
-                    f6);
-        for (i = 0; i < nr; ++i) ck_sp6_set(c, k, x, y, flags, &in, q0[i], q4[i], f6[i], 1);
+                    f6, o6);
+        for (i = 0; i < nr; ++i) ck_sp6_set(c, k, x, y, flags, &in, q0[i], q4[i], f6[i], o6[i], 1);
         break;
     }
 #endif

@@ -25,18 +25,22 @@ static void ck_trig_coef(const double *n, const double *k, const double *p, doub
 /* q0 = pi (tan(q0 / 2) infinite) is a candidate of subproblem 6 when cos^2 + sin^2 of the q4 it gives is 1 within
  * this (the Python module's SP6_AT_PI_TOL) */
 #define CK_SP6_AT_PI_TOL 1e-9
-/* at most 4 roots and q0 = pi, and 2 x 2 singular candidates */
-#define CK_SP6_MAX 9
+/* at most 4 roots (each split in two when merged near the wrist singularity) and q0 = pi, and 2 x 2 singular
+ * candidates, each split in two near the singularity */
+#define CK_SP6_MAX 17
+
+/* |n . rot(h4, q4) h5| at or above this: the wrist near its singularity, where a root of the quartic is refined on
+ * the second equation's parts normal to n (the Python module's SP6_NEAR_WRIST) */
+#define CK_SP6_NEAR_WRIST 0.5
 
 /* Newton steps on subproblem 6's equations from a root (quadratic convergence from a root of the quartic or of the
  * local model: 3 suffice; the Python module's SP6_NEWTON_STEPS) */
 #define CK_SP6_NEWTON_STEPS 3
 
-/* f = (F1, F2) of subproblem 6 without the constants, jac their gradients (row-major), hs their second derivatives
- * ((F1_00, F1_44), (F2_00, F2_44)); the mixed ones vanish (each equation is a function of q0 plus one of q4).
- * The Python module's _sp6_eval. */
+/* f = (F1, F2) of subproblem 6 without the constants, jac their gradients (row-major). The Python module's
+ * _sp6_eval. */
 static void ck_sp6_eval(const double *n, const double *h0, const double *p0, const double *h4, const double *p4,
-                        const double *g, const double *h5, double q0, double q4, double *f, double *jac, double *hs)
+                        const double *g, const double *h5, double q0, double q4, double *f, double *jac)
 {
     double r0[9], r4[9], w[4][3], a[3], b[3];
     int i;
@@ -53,13 +57,6 @@ static void ck_sp6_eval(const double *n, const double *h0, const double *p0, con
         ck_cross(h4, wb, b);
         jac[2 * i] = -ck_dot(n, a);
         jac[2 * i + 1] = -ck_dot(n, b);
-        if (hs) {
-            double aa[3], bb[3];
-            ck_cross(h0, a, aa);
-            ck_cross(h4, b, bb);
-            hs[2 * i] = ck_dot(n, aa);
-            hs[2 * i + 1] = -ck_dot(n, bb);
-        }
     }
 }
 
@@ -71,7 +68,7 @@ static void ck_sp6_newton(const double *n, const double *h0, const double *p0, c
 {
     double f[2], jac[4], res;
     int it;
-    ck_sp6_eval(n, h0, p0, h4, p4, g, h5, *q0, *q4, f, jac, NULL);
+    ck_sp6_eval(n, h0, p0, h4, p4, g, h5, *q0, *q4, f, jac);
     res = fmax(fabs(f[0] - d0), fabs(f[1] - e0));
     for (it = 0; it < CK_SP6_NEWTON_STEPS; ++it) {
         const double dt = jac[0] * jac[3] - jac[1] * jac[2];
@@ -80,7 +77,7 @@ static void ck_sp6_newton(const double *n, const double *h0, const double *p0, c
         if (res == 0.0 || dt == 0.0) break;
         n0 = *q0 - (jac[3] * r1 - jac[1] * r2) / dt;
         n4 = *q4 - (jac[0] * r2 - jac[2] * r1) / dt;
-        ck_sp6_eval(n, h0, p0, h4, p4, g, h5, n0, n4, f, jac, NULL);
+        ck_sp6_eval(n, h0, p0, h4, p4, g, h5, n0, n4, f, jac);
         nres = fmax(fabs(f[0] - d0), fabs(f[1] - e0));
         if (!(nres < res)) break;
         *q0 = n0;
@@ -89,39 +86,128 @@ static void ck_sp6_newton(const double *n, const double *h0, const double *p0, c
     }
 }
 
-/* The two roots of subproblem 6 near (q0, q4), a merged near-double root that verified nothing (the Python
- * module's _sp6_split): along the first equation's solution curve the second is quadratic to third order; its two
- * roots, polished by Newton on both equations. Returns 0 or 2. */
-static int ck_sp6_split(const double *n, const double *h0, const double *p0, const double *h4, const double *p4,
-                        double d0, double e0, const double *g, const double *h5, double q0, double q4, double *s0,
-                        double *s4)
+/* Residuals and Jacobian of the first equation and of the second read as |n x w0|^2 - |n x z5|^2 (its parts
+ * normal to n) at (q0, q4) (Python's _sp6_newton_perp.resid) */
+static void ck_sp6_perp_eval(const double *n, const double *h0, const double *p0, const double *h4, const double *p4,
+                             double d0, const double *g, const double *h5, double q0, double q4, double *f,
+                             double *jac)
 {
-    double f[2], jac[4], hs[4], gn, r, t0, t4, qa, qb, qc, disc;
+    double r0[9], r4[9], w0[3], z5[3], w[3], z4[3], u[3], rz[3], x[3], y[3];
+    ck_rot(h0, -q0, r0);
+    ck_rot(h4, q4, r4);
+    ck_mv(r0, g, w0);
+    ck_mv(r4, h5, z5);
+    ck_mv(r0, p0, w);
+    ck_mv(r4, p4, z4);
+    ck_cross(n, w0, u);
+    ck_cross(n, z5, rz);
+    f[0] = ck_dot(n, w) - ck_dot(n, z4) - d0;
+    f[1] = ck_dot(u, u) - ck_dot(rz, rz);
+    ck_cross(h0, w, x);
+    jac[0] = -ck_dot(n, x);
+    ck_cross(h4, z4, x);
+    jac[1] = -ck_dot(n, x);
+    ck_cross(h0, w0, x);
+    ck_cross(n, x, y);
+    jac[2] = -2.0 * ck_dot(u, y);
+    ck_cross(h4, z5, x);
+    ck_cross(n, x, y);
+    jac[3] = -2.0 * ck_dot(rz, y);
+}
+
+/* each residual over its gradient: a distance in radians (metres and a squared sine compared raw stopped the steps
+ * on the first's rounding; Python's _sp6_newton_perp.size) */
+static double ck_sp6_perp_size(const double *f, const double *jac)
+{
+    return fmax(fabs(f[0]) / fmax(hypot(jac[0], jac[1]), 1e-300), fabs(f[1]) / fmax(hypot(jac[2], jac[3]), 1e-300));
+}
+
+/* (q0, q4) after Newton steps on the first equation and the second's normal parts, each kept only when it lowers the
+ * residual: near the wrist singularity the n-components are stationary and Newton on them moves q4 by eps / delta
+ * (Python's _sp6_newton_perp) */
+static void ck_sp6_newton_perp(const double *n, const double *h0, const double *p0, const double *h4,
+                               const double *p4, double d0, const double *g, const double *h5, double *q0,
+                               double *q4)
+{
+    double f[2], jac[4], res;
+    int it;
+    ck_sp6_perp_eval(n, h0, p0, h4, p4, d0, g, h5, *q0, *q4, f, jac);
+    res = ck_sp6_perp_size(f, jac);
+    for (it = 0; it < CK_SP6_NEWTON_STEPS; ++it) {
+        const double dt = jac[0] * jac[3] - jac[1] * jac[2];
+        const double r1 = f[0], r2 = f[1];
+        double n0, n4, nres;
+        if (res == 0.0 || dt == 0.0) break;
+        n0 = *q0 - (jac[3] * r1 - jac[1] * r2) / dt;
+        n4 = *q4 - (jac[0] * r2 - jac[2] * r1) / dt;
+        ck_sp6_perp_eval(n, h0, p0, h4, p4, d0, g, h5, n0, n4, f, jac);
+        nres = ck_sp6_perp_size(f, jac);
+        if (!(nres < res)) break;
+        *q0 = n0;
+        *q4 = n4;
+        res = nres;
+    }
+}
+
+/* The two roots of subproblem 6 near (q0, q4), a merged near-double root that verified nothing (the Python
+ * module's _sp6_split): along the first equation's solution curve (tangent t, arc s) the second is read as
+ * |n x w0|^2 = |n x z5|^2, its parts normal to n (~delta, each read to eps) instead of its n-components (stationary
+ * at +-1, their difference read to eps and so its roots to sqrt(eps)); to second order in s a quadratic, its two
+ * roots polished by Newton on both equations. Returns 0 or 2. */
+static int ck_sp6_split(const double *n, const double *h0, const double *p0, const double *h4, const double *p4,
+                        double d0, const double *g, const double *h5, double q0, double q4, double *s0, double *s4)
+{
+    double f[2], jac[4], gn, r, t0, t4, r0[9], r4[9], w0[3], z5[3], u[3], rz[3], du[3], dr[3], x[3];
+    double qa, qb, qc, disc, qq, s[2];
     int i;
-    ck_sp6_eval(n, h0, p0, h4, p4, g, h5, q0, q4, f, jac, hs);
+    ck_sp6_eval(n, h0, p0, h4, p4, g, h5, q0, q4, f, jac);
     gn = hypot(jac[0], jac[1]);
     if (gn <= CK_DEGENERATE_EPS * CK_SCALE) return 0;
-    /* onto the first equation's curve, then along its tangent; the curve's bend seen through F2's gradient */
+    /* onto the first equation's curve, then along its tangent */
     r = -(f[0] - d0) / gn;
     q0 += r * jac[0] / gn;
     q4 += r * jac[1] / gn;
     t0 = -jac[1] / gn;
     t4 = jac[0] / gn;
-    qa = 0.5 * (hs[2] * t0 * t0 + hs[3] * t4 * t4)
-         - 0.5 * (hs[0] * t0 * t0 + hs[1] * t4 * t4) * (jac[2] * jac[0] + jac[3] * jac[1]) / (gn * gn);
-    qb = jac[2] * t0 + jac[3] * t4;
-    qc = f[1] - e0;
+    ck_rot(h0, -q0, r0);
+    ck_rot(h4, q4, r4);
+    ck_mv(r0, g, w0);
+    ck_mv(r4, h5, z5);
+    ck_cross(n, w0, u);
+    ck_cross(n, z5, rz);
+    /* d w0 / d q0 = -h0 x w0, d z5 / d q4 = h4 x z5 */
+    ck_cross(h0, w0, x);
+    ck_cross(n, x, du);
+    ck_scale(du, -t0, du);
+    ck_cross(h4, z5, x);
+    ck_cross(n, x, dr);
+    ck_scale(dr, t4, dr);
+    qa = ck_dot(du, du) - ck_dot(dr, dr);
+    qb = 2.0 * (ck_dot(u, du) - ck_dot(rz, dr));
+    qc = ck_dot(u, u) - ck_dot(rz, rz);
     disc = qb * qb - 4.0 * qa * qc;
     if (qa == 0.0 || !(disc > 0.0)) return 0;
+    qq = -0.5 * (qb + copysign(sqrt(disc), qb)); /* the larger root's numerator: no cancellation */
+    s[0] = qq / qa;
+    s[1] = qc / qq;
     for (i = 0; i < 2; ++i) {
-        const double s = (-qb + (i ? -1.0 : 1.0) * sqrt(disc)) / (2.0 * qa);
-        s0[i] = q0 + s * t0;
-        s4[i] = q4 + s * t4;
-        ck_sp6_newton(n, h0, p0, h4, p4, d0, e0, g, h5, &s0[i], &s4[i]);
+        s0[i] = q0 + s[i] * t0;
+        s4[i] = q4 + s[i] * t4;
+        ck_sp6_newton_perp(n, h0, p0, h4, p4, d0, g, h5, &s0[i], &s4[i]);
         s0[i] = ck_wrap(s0[i]);
         s4[i] = ck_wrap(s4[i]);
     }
     return 2;
+}
+
+/* 1 when (q0, q4) is within 1e-6 of one of the wrist singularity's candidates (at or near it): the same
+ * configuration */
+static int ck_sp6_near_anchor(double q0, double q4, const double *aq0, const double *aq4, int n)
+{
+    int j;
+    for (j = 0; j < n; ++j)
+        if (fabs(ck_wrap(q0 - aq0[j])) <= 1e-6 && fabs(ck_wrap(q4 - aq4[j])) <= 1e-6) return 1;
+    return 0;
 }
 
 /* (q0, q4, flags) with n.rot(h0, -q0) p0 - n.rot(h4, q4) p4 = d0 and n.rot(h0, -q0) gv - n.rot(h4, q4) h5 = e0
@@ -129,13 +215,13 @@ static int ck_sp6_split(const double *n, const double *h0, const double *p0, con
  * cos^2 + sin^2 = 1 a quartic in tan(q0 / 2); then the wrist singularity (rot(h4, q4) h5 = +-n) tried directly.
  * At most CK_SP6_MAX candidates, the regular ones first. */
 static int ck_sp6(const double *n, const double *h0, const double *p0, const double *h4, const double *p4, double d0,
-                  double e0, const double *gv, const double *h5, double *q0, double *q4, unsigned *fl)
+                  double e0, const double *gv, const double *h5, double *q0, double *q4, unsigned *fl, int *ord)
 {
     static const double apoly[3][3] = { {1.0, 0.0, 1.0}, {1.0, 0.0, -1.0}, {0.0, 2.0, 0.0} };
     double k1[3], m1[3], k2[3], m2[3], e1, e2, det, al[3], be[3], pa[3], pb[3], pd[3], poly[5], sq[5];
-    double roots[8], ang[5], tol[5], sq0[4], sq4[4], t4 = 0.0;
-    unsigned rf[8], af[5], sfl[4];
-    int i, j, nroot, status = 0, na = 0, out = 0, ns = 0;
+    double roots[8], ang[5], tol[5], sq0[4], sq4[4], aq0[4], aq4[4], pq0[8], pq4[8], t4 = 0.0;
+    unsigned rf[8], af[5], sfl[4], pfl[8];
+    int i, j, nroot, status = 0, na = 0, out = 0, ns = 0, nanchor = 0, nsplit = 0;
     ck_trig_coef(n, h0, p0, -1.0, k1);
     ck_trig_coef(n, h4, p4, 1.0, m1);
     ck_trig_coef(n, h0, gv, -1.0, k2);
@@ -170,7 +256,9 @@ static int ck_sp6(const double *n, const double *h0, const double *p0, const dou
     tol[na] = CK_SP6_AT_PI_TOL;
     af[na++] = 0u;
     /* the wrist singularity: where rot(h4, q4) h5 = +-n the second equation holds for every q0, so those q4 are tried
-     * with q0 from the first equation alone, kept when the second holds within the double-root tolerance */
+     * with q0 from the first equation alone: the singular family where the second then holds to rounding (|n x w|
+     * within CK_ON_AXIS_TOL), the two roots from the split where it holds within the double-root tolerance (near the
+     * singularity; Python's _sp6) */
     if (ck_sp1(h4, h5, n, 1.0, &t4)) {
         for (j = 0; j < 2; ++j) {
             const double a4 = t4 + (j ? CK_PI : 0.0);
@@ -184,14 +272,26 @@ static int ck_sp6(const double *n, const double *h0, const double *p0, const dou
             ck_mv(r4, p4, v);
             n0 = ck_sp4(n, h0, p0, d0 + ck_dot(n, v), CK_SCALE, 1.0, t0, f0);
             for (m = 0; m < n0; ++m) {
-                double r0[9], w[3], dn;
+                double r0[9], w[3], x[3], dn, b0[2], b4[2];
+                int nb, b;
                 ck_rot(h0, -t0[m], r0);
                 ck_mtv(r0, gv, w);
                 dn = ck_dot(n, w);
-                if (dn * side > 0.0 && 1.0 - dn * dn <= CK_DOUBLE_ROOT_TOL) {
+                if (!(dn * side > 0.0 && 1.0 - dn * dn <= CK_DOUBLE_ROOT_TOL)) continue;
+                aq0[nanchor] = -t0[m];
+                aq4[nanchor++] = a4;
+                ck_cross(n, w, x);
+                if (ck_norm(x) <= CK_ON_AXIS_TOL) { /* closed-form inputs: rounding, not CK_FAMILY_TOL's noise */
                     sq0[ns] = -t0[m];
                     sq4[ns] = ck_wrap(a4);
                     sfl[ns++] = f0[m] | WK_FLAG_SINGULAR_INVERSE;
+                    continue;
+                }
+                nb = ck_sp6_split(n, h0, p0, h4, p4, d0, gv, h5, -t0[m], a4, b0, b4);
+                for (b = 0; b < nb; ++b) {
+                    pq0[nsplit] = b0[b];
+                    pq4[nsplit] = b4[b];
+                    pfl[nsplit++] = f0[m] | WK_FLAG_SINGULAR_INVERSE;
                 }
             }
         }
@@ -200,22 +300,54 @@ static int ck_sp6(const double *n, const double *h0, const double *p0, const dou
         const double c0 = cos(ang[i]), s0 = sin(ang[i]);
         const double cc = (al[0] + al[1] * c0 + al[2] * s0) / det, ss = (be[0] + be[1] * c0 + be[2] * s0) / det;
         double a0 = ang[i], a4 = atan2(ss, cc);
-        int dup = 0;
         if (fabs(hypot(cc, ss) - 1.0) > tol[i]) continue; /* the root at infinity, or a poorly resolved one */
-        /* a merged double root stays (Newton is ill-conditioned there; its split is the caller's) */
-        if (!af[i]) ck_sp6_newton(n, h0, p0, h4, p4, d0, e0, gv, h5, &a0, &a4);
-        for (j = 0; j < ns; ++j) /* the same (singular) configuration as a singular candidate */
-            if (fabs(ck_wrap(a0 - sq0[j])) <= 1e-6 && fabs(ck_wrap(a4 - sq4[j])) <= 1e-6) dup = 1;
-        if (dup) continue;
+        int order = 2, near;
+        double r4[9], z5[3];
+        ck_rot(h4, a4, r4);
+        ck_mv(r4, h5, z5);
+        near = fabs(ck_dot(n, z5)) >= CK_SP6_NEAR_WRIST;
+        if (af[i] && near) { /* a merged double root near the wrist singularity: its two roots (Python's _sp6) */
+            double b0[2], b4[2];
+            const int nb = ck_sp6_split(n, h0, p0, h4, p4, d0, gv, h5, a0, a4, b0, b4);
+            for (j = 0; j < nb; ++j)
+                if (!ck_sp6_near_anchor(b0[j], b4[j], aq0, aq4, nanchor)) {
+                    q0[out] = b0[j];
+                    q4[out] = b4[j];
+                    fl[out] = (af[i] & ~WK_FLAG_DOUBLE_ROOT) | WK_FLAG_SINGULAR_INVERSE;
+                    ord[out] = 1;
+                    ++out;
+                }
+            if (nb) continue;
+        }
+        /* a merged double root far from the wrist stays (Newton is ill-conditioned there; its split is the caller's
+         * when it verifies nothing); near the wrist a root is refined on the second equation's normal parts */
+        if (!af[i]) {
+            if (near) {
+                ck_sp6_newton_perp(n, h0, p0, h4, p4, d0, gv, h5, &a0, &a4);
+                order = 1;
+            } else {
+                ck_sp6_newton(n, h0, p0, h4, p4, d0, e0, gv, h5, &a0, &a4);
+            }
+        }
+        if (ck_sp6_near_anchor(a0, a4, aq0, aq4, nanchor)) continue;
         q0[out] = a0;
         q4[out] = a4;
         fl[out] = af[i];
+        ord[out] = order;
+        ++out;
+    }
+    for (j = 0; j < nsplit; ++j) {
+        q0[out] = pq0[j];
+        q4[out] = pq4[j];
+        fl[out] = pfl[j];
+        ord[out] = 1;
         ++out;
     }
     for (j = 0; j < ns; ++j) {
         q0[out] = sq0[j];
         q4[out] = sq4[j];
         fl[out] = sfl[j];
+        ord[out] = 2;
         ++out;
     }
     return out;
