@@ -198,9 +198,10 @@ def _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
 def _sp6_newton_perp(nv, h0, p0, h4, p4, d0, g, h5, q0, q4):
     """(q0, q4) after Newton steps on the first equation and the second read as |n x w0|^2 - |n x z5|^2 (its parts
     normal to n: _sp6_split), each kept only when it lowers the residuals measured over their gradients (metres and
-    a squared sine: compared raw, the first's rounding stopped the steps with q4 1e-11 off at delta = 3e-6). Near the wrist singularity the second's
-    n-components are stationary, so Newton on them moves q4 by eps / delta (3.8e-10 at delta = 3e-7, which turned
-    q5's angle 1e-4 off); the normal parts' residual is eps delta against a gradient ~delta: q4 to ~eps."""
+    a squared sine: compared raw, the first's rounding stopped the steps with q4 1e-11 off at delta = 3e-6). Near
+    the wrist singularity the second's n-components are stationary, so Newton on them moves q4 by eps / delta
+    (3.8e-10 at delta = 3e-7, which turned q5's angle 1e-4 off); the normal parts' residual is eps delta against a
+    gradient ~delta: q4 to ~eps."""
     def resid(a0, a4):
         r0, r4 = _rot(h0, -a0), _rot(h4, a4)
         w0, z5, w, z4 = _mv(r0, g), _mv(r4, h5), _mv(r0, p0), _mv(r4, p4)
