@@ -297,12 +297,13 @@ static int wk_det_proves_regular(const double *jac, double eps, double *man)
 
 /* The ratio within a factor ~7 of eps (near a singularity, sigma_min ~ eps sigma_max: the sets of a sweep 1e-5 rad
  * from an elbow singularity) leaves [max G_ii, trace G] too loose a bracket on lambda_max. Power steps from G's
- * largest column give L <= lambda_max (a Rayleigh quotient), and U I - G positive definite, U = 1.0625 L, proves
- * lambda_max < U (up to 24 steps, 6 at a time, then U = 1.59 L: two close largest singular values slow the steps
- * down). Then G - 1.1 eps^2 U I positive definite proves the ratio above eps, G - 0.9 eps^2 L I not positive
- * definite proves it below: margins of 0.1 eps^2 lambda_max, ~25x the backward error of G's Cholesky factor
- * (~4e-15 lambda_max; so only for eps >= 1e-6). 1 / -1 / 0 as wk_conditioning_bound; 0 leaves the ratio within
- * ~5 % of eps (~30 % when U is 1.59 L) to the caller's SVD, which took 2/3 of such calls' time before. */
+ * largest column give L <= lambda_max (a Rayleigh quotient), and U I - G positive definite proves lambda_max < U
+ * (U = 1.01 L after up to 24 steps, 6 at a time; else 1.0625 L, 1.59 L: two close largest singular values slow the
+ * steps down). Then G - 1.05 eps^2 U I positive definite proves the ratio above eps, G - 0.95 eps^2 L I not
+ * positive definite proves it below: margins of 0.05 eps^2 lambda_max, ~12x the backward error of G's Cholesky
+ * factor (~4e-15 lambda_max; so only for eps >= 1e-6). 1 / -1 / 0 as wk_conditioning_bound; 0 leaves the ratio
+ * within ~3 % of eps (~30 % when U is 1.59 L) to the caller's SVD, which took 2/3 of such calls' time before (a
+ * tx2_60's sets 3.4 % from eps still went there with 5 % margins). */
 static double wk_power_steps(const double *g, int m, double *v, int steps)
 {
     double w[WK_MAX_DIM], vv = 0.0, vgv = 0.0;
@@ -339,14 +340,15 @@ static int wk_bracket_bound(const double *g, int m, double e2, double dmax)
         const double rq = wk_power_steps(g, m, v, 6);
         if (!(rq > 0.0)) return 0;
         if (rq > lo) lo = rq;
-        if (!wk_cholesky(g, m, 0.9 * e2 * lo, &unused)) return -1; /* below: L alone suffices */
-        if (wk_cholesky(h, m, -1.0625 * lo, &unused)) hi = 1.0625 * lo;
+        if (!wk_cholesky(g, m, 0.95 * e2 * lo, &unused)) return -1; /* below: L alone suffices */
+        if (wk_cholesky(h, m, -1.01 * lo, &unused)) hi = 1.01 * lo;
     }
+    if (hi == 0.0 && wk_cholesky(h, m, -1.0625 * lo, &unused)) hi = 1.0625 * lo;
     if (hi == 0.0) {
         if (!wk_cholesky(h, m, -1.59 * lo, &unused)) return 0;
         hi = 1.59 * lo;
     }
-    return wk_cholesky(g, m, 1.1 * e2 * hi, &unused) ? 1 : 0;
+    return wk_cholesky(g, m, 1.05 * e2 * hi, &unused) ? 1 : 0;
 }
 
 int wk_conditioning_bound(const double *jac, int n, double eps, double *man)
