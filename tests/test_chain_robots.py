@@ -449,6 +449,29 @@ def _dh_spec(name, rows) -> str:
     return text
 
 
+def test_a_scara_with_equal_links_folded_keeps_both_elbows(tmp_path):
+    """A SCARA with a1 = a2 folded to pi -+ 1e-6 ... 1e-12: the flange lies |w| = a delta from axis 1, known to eps of
+    itself, so the pose fixes both elbows and the first joint (to 1e-6 + 1e-13 / delta). Its elbow is a planar
+    distance op: 1 - u^2 is read from the factors (|w|^2 - (a1 - a2)^2)((a1 + a2)^2 - |w|^2), not next to a1 a2. Was:
+    24 of 40 poses missing the generating joints (the elbows merged, the first joint a family, some unreachable),
+    in C and numpy alike."""
+    rows = [("revolute", 0.3, "0", 0.4, 0.0), ("revolute", 0.3, "pi", 0.0, 0.0),
+            ("prismatic", 0.0, "0", 0.0, 0.0), ("revolute", 0.0, "0", 0.1, 0.0)]
+    spec = tmp_path / "scara_eq.toml"
+    spec.write_text(_dh_spec("scara_eq", rows))
+    own_robot.derive(spec, tmp_path / "out", progress=lambda _: None)
+    r = ref.load(spec)
+    for backend in ("numpy", None):
+        m = own_robot.import_solver(tmp_path / "out", "scara_eq", backend)
+        rng = case_rng(20)
+        for i in range(24):
+            delta = (1e-6, 1e-8, 1e-10, 1e-12)[i % 4] * (1.0 if i % 8 < 4 else -1.0)
+            q = np.array([rng.uniform(-3.0, 3.0), math.pi + delta, rng.uniform(-0.3, 0.3), rng.uniform(-3.0, 3.0)])
+            sol = m.ik(r(q))
+            gaps = [_gap(v, q, m.JOINT_KINDS) for v in sol]
+            assert gaps and min(gaps) <= 1e-6 + 1e-13 / abs(delta), (backend, i, delta, sol.reason, gaps)
+
+
 @pytest.mark.parametrize("name", sorted(SMALL))
 def test_chains_with_fewer_joints_and_slides(name, tmp_path):
     rows, words, max_sets = SMALL[name]

@@ -498,7 +498,7 @@ def test_the_api_source_solves_the_stand_in_robot(py):
 @pytest.mark.parametrize("name", ["puma_t", "ur_t", "skew3", "ur_off"])
 def test_the_stages_of_a_plan_set_every_joint_and_print_ck_op_rows(name, tmp_path):
     """derive/families/chain/stages.py: every op of the planner's decomposition is a Stage; together they set every
-    joint of the solver's chain, and each prints one ck_op initializer of its 14 fields."""
+    joint of the solver's chain, and each prints one ck_op initializer of its 15 fields."""
     sys.path.insert(0, str(ROOT / "tests"))
     from test_chain_c import SPECS
 
@@ -514,9 +514,9 @@ def test_the_stages_of_a_plan_set_every_joint_and_print_ck_op_rows(name, tmp_pat
     assert {j for s in stages for j in s.solved} == set(range(solver.n))
     for s in stages:
         row = s.c_row()
-        # 14 fields at the top level of the initializer (braces nest the arrays)
+        # 15 fields at the top level of the initializer (braces nest the arrays)
         depth, fields = 0, 1
         for ch in row:
             depth += (ch == "{") - (ch == "}")
             fields += ch == "," and depth == 0
-        assert depth == 0 and fields == 14, row
+        assert depth == 0 and fields == 15, row

@@ -167,6 +167,12 @@ def _plane_ok(g: Geometry, j, nspec) -> bool:
     return abs(float(np.dot(g.c.axes[j], n))) > 10 * g.tol
 
 
+def _planar(g: Geometry, j, others) -> bool:
+    """A distance op's other joints all turn or slide along joint j's axis: they keep every point's part normal to
+    it, so the runtime reads the target's distance there as a sum of squares (a SCARA folded onto its first axis)."""
+    return all(g.parallel([i, j]) for i in others)
+
+
 def plan_point(g: Geometry, js: list[int], x: np.ndarray) -> list[list[dict]]:
     """Every op sequence solving e_js x = y (x at home), best first."""
     if not js:
@@ -191,15 +197,15 @@ def plan_point(g: Geometry, js: list[int], x: np.ndarray) -> list[list[dict]]:
     if sspec is not None:
         s = g.point(sspec)
         if not g.rev(c) or (not g.on_axis(s, c) and not g.on_axis(x, c)):
-            step = {"op": "last_dist", "j": c, "kind": g.c.kinds[c], "s": sspec}
+            step = {"op": "last_dist", "j": c, "kind": g.c.kinds[c], "s": sspec, "planar": _planar(g, c, js[:-1])}
             # x moves with joint c at run time; the structural checks below read it at home, where it is x
             out += [[step] + rest for rest in plan_point(g, js[:-1], x)]
     sspec = _invariant_point(g, js[1:])
     if sspec is not None:
         s = g.point(sspec)
         if not g.rev(a) or not g.on_axis(s, a):
-            out += [[{"op": "first_dist", "j": a, "kind": g.c.kinds[a], "s": sspec}] + rest
-                    for rest in plan_point(g, js[1:], x)]
+            out += [[{"op": "first_dist", "j": a, "kind": g.c.kinds[a], "s": sspec, "planar": _planar(g, a, js[1:])}]
+                    + rest for rest in plan_point(g, js[1:], x)]
     nspec = _invariant_direction(g, js[1:])
     if nspec is not None and _plane_ok(g, a, nspec):
         out += [[{"op": "first_plane", "j": a, "kind": g.c.kinds[a], "n": nspec}] + rest

@@ -169,7 +169,7 @@ def _solve(ch, g, prev, accept):
                 amp[0] = outer
             _with_split(plane_roots, plane_run)
         elif kind in ("first_dist", "last_dist"):
-            _, j, jk, ss = op
+            _, j, jk, ss, planar = op
             s = _point(ch, ss)
             h, r = ch.axes[j], ch.points[j]
             first = kind == "first_dist"
@@ -204,7 +204,8 @@ def _solve(ch, g, prev, accept):
                     else:
                         run(k + 1, _apply(e, x), y, flags | f)
                 amp[0] = outer
-            _with_split(lambda band: _sp3(h, _sub(moving, r), _sub(s, r), d, SCALE, band), dist_run)
+            target = _sub(other, s) if planar else None  # the parts normal to h: a sum of squares (_sp3)
+            _with_split(lambda band: _sp3(h, _sub(moving, r), _sub(s, r), d, SCALE, band, target, amp[0]), dist_run)
         elif kind == "pair":  # rot_j rot_k (x - s) = y - s
             _, j, kk, ss = op
             s = _point(ch, ss)

@@ -167,7 +167,7 @@ _PLAN = (
     ("first_plane", 0, "R", ('dir', 1)),
     ("orient", ((1, 2, 3), (4,), (5,)), 1, 5),
     ("begin", ('on', 3), 1, 3),
-    ("last_dist", 2, "R", ('on', 1)),
+    ("last_dist", 2, "R", ('on', 1), True),
     ("single", 1, "R"),
     ("group_rest", 3, (1, 2, 3)),
 )

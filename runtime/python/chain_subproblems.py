@@ -25,10 +25,11 @@ from chain_stand_in import (
 
 # wristkin: inlined from here
 # ---------------------------------------------------------------------------- subproblems
-def _trig(a, b, c, scale, noise=1.0):
+def _trig(a, b, c, scale, noise=1.0, gap=None):
     """Roots t of a cos t + b sin t = c: a list of (t, flags); a double root once (flagged), a vanishing
     equation one representative t = 0 (flagged indeterminate). `noise`: 1 / g of an upstream near-singular
-    orientation (STAGE_NOISE), else 1."""
+    orientation (STAGE_NOISE), else 1. `gap`: a planar distance stage's (Dm, Dp, narrow) (_sp3): 1 - u^2 read as
+    Dm Dp / (4 R^2), each factor to its own precision, and its double-root band times `narrow`."""
     r = math.hypot(a, b)
     if r <= ON_AXIS_TOL * scale:
         return [(0.0, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE)] if abs(c) <= ON_AXIS_TOL * scale else []
@@ -37,9 +38,11 @@ def _trig(a, b, c, scale, noise=1.0):
         return []
     u = max(-1.0, min(1.0, u))
     phi = math.atan2(b, a)
-    if 1.0 - u * u <= max(DOUBLE_ROOT_TOL, 2.0 * STAGE_NOISE * noise):
+    band = max(DOUBLE_ROOT_TOL, 2.0 * STAGE_NOISE * noise)
+    s2 = 1.0 - u * u if gap is None else max(gap[0] * gap[1], 0.0) / (4.0 * r * r)
+    if s2 <= band * (1.0 if gap is None else gap[2]):
         return [(phi + (0.0 if u > 0.0 else math.pi), FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE)]
-    w = math.acos(u)
+    w = math.acos(u) if gap is None else math.atan2(math.sqrt(s2), u)
     return [(phi + w, 0), (phi - w, 0)]
 
 
@@ -53,13 +56,27 @@ def _sp1(k, p, q, scale):
     return math.atan2(_dot(k, _cross(pp, qq)), _dot(pp, qq))
 
 
-def _sp3(k, p1, p2, d, scale, noise=1.0):
+def _sp3(k, p1, p2, d, scale, noise=1.0, target=None, amp=1.0):
     """t with |rot(k, t) p1 - p2| = d: (p2 . p1_perp) cos t + (p2 . k x p1) sin t = (|p1|^2 + |p2|^2 - d^2) / 2
-    - (k.p1)(k.p2)."""
+    - (k.p1)(k.p2). `target`: the vector of length d when the stage is planar (the other joints keep parts normal to
+    k): then 1 - u^2 = Dm Dp / (4 R^2) with Dm = e^2 - (l1 - l2)^2, Dp = (l1 + l2)^2 - e^2 (l1, l2 the lever arms
+    |p1'|, |p2'|, e = |target'|, primes: normal to k), each to its own precision: a SCARA with equal links folded
+    1e-8 rad read 1 - u^2 next to l1 l2 and merged its elbows (its first joint then a family). The double-root band
+    narrows by Em amp / (2R) where Dm is the small factor (Em: the size of Dm's terms and what the inputs' rounding
+    at `scale` does to them; amp: the angle stages' amplification before it)."""
     kp1 = _dot(k, p1)
     perp = _sub(p1, _scale(k, kp1))
     c = 0.5 * (_dot(p1, p1) + _dot(p2, p2) - d * d) - kp1 * _dot(k, p2)
-    return _trig(_dot(p2, perp), _dot(p2, _cross(k, p1)), c, scale * scale, noise)
+    a, b = _dot(p2, perp), _dot(p2, _cross(k, p1))
+    gap = None
+    if target is not None:
+        l1, l2 = _norm(perp), _norm(_sub(p2, _scale(k, _dot(k, p2))))
+        e = _norm(_sub(target, _scale(k, _dot(k, target))))
+        diff = abs(l1 - l2)
+        dm, dp = (e - diff) * (e + diff), (l1 + l2 - e) * (l1 + l2 + e)
+        em = e * e + diff * diff + 2.0 * (e + diff) * scale
+        gap = (dm, dp, min(1.0, em * amp / (2.0 * math.hypot(a, b))) if abs(dm) <= abs(dp) else 1.0)
+    return _trig(a, b, c, scale * scale, noise, gap)
 
 
 def _sp4(h, k, p, d, scale, noise=1.0):

@@ -110,7 +110,7 @@ int wkt_sp2(const double *p1, const double *k1, const double *p2, const double *
 
 int wkt_sp3(const double *k, const double *p1, const double *p2, double d, double *t, unsigned *f)
 {
-    return ck_sp3(k, p1, p2, d, CK_SCALE, 1.0, t, f);
+    return ck_sp3(k, p1, p2, d, CK_SCALE, 1.0, NULL, 1.0, t, f);
 }
 
 int wkt_sp4(const double *h, const double *k, const double *p, double d, double *t, unsigned *f)

@@ -462,7 +462,7 @@ def _plan_literal(plan: Plan) -> str:
         elif k in ("first_plane", "last_plane"):
             rows.append(f'("{k}", {op["j"]}, "{op["kind"]}", {_spec_literal(op["n"])})')
         elif k in ("first_dist", "last_dist"):
-            rows.append(f'("{k}", {op["j"]}, "{op["kind"]}", {_spec_literal(op["s"])})')
+            rows.append(f'("{k}", {op["j"]}, "{op["kind"]}", {_spec_literal(op["s"])}, {bool(op.get("planar"))})')
         elif k == "pair":
             rows.append(f'("pair", {op["j"]}, {op["k"]}, {_spec_literal(op["s"])})')
         elif k == "single":

@@ -36,6 +36,7 @@ class Stage:
     units: tuple[tuple[int, ...], ...] = ()  # orient: one joint, or a parallel group turning as one
     js: tuple[int, ...] = ()                  # linear: its slides; spatial3: its joints; sp6: the group's axis
                                               # joint; group_rest: the group
+    planar: bool = False  # first/last_dist: the other joints keep the parts normal to j's axis (planner._planar)
 
     @property
     def solved(self) -> tuple[int, ...]:
@@ -49,12 +50,12 @@ class Stage:
         return tuple(x for x in (self.j, self.k, *(self.js if self.op == "sp6" else ())) if x >= 0)
 
     def c_row(self) -> str:
-        """The ck_op initializer: op, j, k, prismatic, spec, lo, hi, units, js."""
+        """The ck_op initializer: op, j, k, prismatic, spec, lo, hi, units, js, planar."""
         spec = self.spec.c() if self.spec else "CK_NONE, 0, { 0 }"
         units = (f"{len(self.units)}, {_c_list([len(u) for u in self.units])},\n      "
                  f"{{ {', '.join(_c_list(u) for u in self.units)} }}") if self.units else "0, { 0 }, { { 0 } }"
         return (f"CK_{self.op.upper()}, {self.j}, {self.k}, {int(self.slide)}, {spec}, {self.lo}, {self.hi}, {units}, "
-                f"{len(self.js)}, {_c_list(self.js or (0,))}")
+                f"{len(self.js)}, {_c_list(self.js or (0,))}, {int(self.planar)}")
 
 
 def _c_list(v) -> str:
@@ -74,7 +75,7 @@ def stage(index: int, op: dict) -> Stage:
     if o in ("first_plane", "last_plane"):
         return Stage(index, o, j=op["j"], slide=slide, spec=_spec(op["n"]))
     if o in ("first_dist", "last_dist"):
-        return Stage(index, o, j=op["j"], slide=slide, spec=_spec(op["s"]))
+        return Stage(index, o, j=op["j"], slide=slide, spec=_spec(op["s"]), planar=bool(op.get("planar")))
     if o == "pair":
         return Stage(index, o, j=op["j"], k=op["k"], spec=_spec(op["s"]))
     if o == "single":

@@ -561,6 +561,7 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         const double *s = c->spec[k], *h = ch->axis[j], *r = ch->point[j];
         const double *moving = first ? y : x, *other = first ? x : y;
         double d3[3], ms[3], sr[3], mr[3], moved[3], dist, t[2], t2[2], outer, bands[2];
+        const double *tg;
         unsigned f2[2];
         int pass, npass, before;
         unsigned f[2];
@@ -601,10 +602,12 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         ck_sub(moving, r, mr);
         ck_sub(s, r, sr);
         before = ck_count(c);
-        nr = ck_sp3(h, mr, sr, dist, CK_SCALE, c->noise, t, f);
-        npass = ck_stage_bands(c, nr, f, c->noise > 1.0 ? ck_sp3(h, mr, sr, dist, CK_SCALE, 1.0, t2, f2) : 0, bands);
+        tg = op->planar ? d3 : NULL; /* the parts normal to h: a sum of squares (ck_sp3) */
+        nr = ck_sp3(h, mr, sr, dist, CK_SCALE, c->noise, tg, c->amp, t, f);
+        npass = ck_stage_bands(c, nr, f, c->noise > 1.0 ? ck_sp3(h, mr, sr, dist, CK_SCALE, 1.0, tg, c->amp, t2, f2) : 0,
+                               bands);
         for (pass = 0; pass < npass && !(pass && ck_count(c) > before); ++pass) {
-            nr = ck_sp3(h, mr, sr, dist, CK_SCALE, bands[pass], t, f);
+            nr = ck_sp3(h, mr, sr, dist, CK_SCALE, bands[pass], tg, c->amp, t, f);
             outer = c->amp;
             c->amp = ck_root_amplification(nr, t, f, outer);
             for (i = 0; i < nr; ++i) {

@@ -2,14 +2,15 @@
  * (a wristkin runtime source, inlined whole into every user robot's generated C, after the robot's CK_*
  * constants; derive/runtime_files.py, tests/test_chain_runtime.py) */
 /* ------------------------------------------------------------------ subproblems */
-/* Roots t of a cos t + b sin t = c (at most 2): a double root once (flagged), a vanishing equation one
- * representative t = 0 (flagged indeterminate). */
-static int ck_trig(double a, double b, double c, double scale, double noise, double *t, unsigned *f)
+/* Roots t of a cos t + b sin t = c (at most 2), gap: NULL, or a planar distance stage's (Dm, Dp, narrow): 1 - u^2
+ * read as Dm Dp / (4 R^2) and its double-root band times narrow (Python's _trig) */
+static int ck_trig_gap(double a, double b, double c, double scale, double noise, const double *gap, double *t,
+                       unsigned *f)
 {
     const double r = hypot(a, b);
     const double tangent = fmax(CK_TANGENT_TOL, CK_STAGE_NOISE * noise);
     const double dbl = fmax(CK_DOUBLE_ROOT_TOL, 2.0 * CK_STAGE_NOISE * noise);
-    double u, phi, w;
+    double u, phi, w, s2;
     if (r <= CK_ON_AXIS_TOL * scale) {
         if (fabs(c) <= CK_ON_AXIS_TOL * scale) {
             t[0] = 0.0;
@@ -22,16 +23,24 @@ static int ck_trig(double a, double b, double c, double scale, double noise, dou
     if (!(fabs(u) <= 1.0 + tangent)) return 0;
     u = u > 1.0 ? 1.0 : (u < -1.0 ? -1.0 : u);
     phi = atan2(b, a);
-    if (1.0 - u * u <= dbl) {
+    s2 = gap ? fmax(gap[0] * gap[1], 0.0) / (4.0 * r * r) : 1.0 - u * u;
+    if (s2 <= dbl * (gap ? gap[2] : 1.0)) {
         t[0] = phi + (u > 0.0 ? 0.0 : CK_PI);
         f[0] = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
         return 1;
     }
-    w = acos(u);
+    w = gap ? atan2(sqrt(s2), u) : acos(u);
     t[0] = phi + w;
     t[1] = phi - w;
     f[0] = f[1] = 0u;
     return 2;
+}
+
+/* Roots t of a cos t + b sin t = c (Python's _trig): a double root once (flagged), a vanishing equation one
+ * representative t = 0 (flagged indeterminate); noise: 1 / g of an upstream near-singular orientation, else 1 */
+static int ck_trig(double a, double b, double c, double scale, double noise, double *t, unsigned *f)
+{
+    return ck_trig_gap(a, b, c, scale, noise, NULL, t, f);
 }
 
 /* t with rot(k, t) p = q (least squares); 0 when p or q is on the axis (within CK_DEGENERATE_EPS of `scale`:
@@ -51,15 +60,34 @@ static int ck_sp1(const double *k, const double *p, const double *q, double scal
 
 /* t with |rot(k, t) p1 - p2| = d */
 static int ck_sp3(const double *k, const double *p1, const double *p2, double d, double scale, double noise,
-                  double *t, unsigned *f)
+                  const double *target, double amp, double *t, unsigned *f)
 {
     const double kp1 = ck_dot(k, p1);
-    double perp[3], kx[3], c;
+    double perp[3], kx[3], c, a, b, gap[3];
     ck_scale(k, kp1, perp);
     ck_sub(p1, perp, perp);
     c = 0.5 * (ck_dot(p1, p1) + ck_dot(p2, p2) - d * d) - kp1 * ck_dot(k, p2);
     ck_cross(k, p1, kx);
-    return ck_trig(ck_dot(p2, perp), ck_dot(p2, kx), c, scale * scale, noise, t, f);
+    a = ck_dot(p2, perp);
+    b = ck_dot(p2, kx);
+    if (target) { /* planar: 1 - u^2 from its factors (Python's _sp3) */
+        double p2n[3], tn[3];
+        double l1, l2, e, diff, em;
+        ck_scale(k, ck_dot(k, p2), p2n);
+        ck_sub(p2, p2n, p2n);
+        ck_scale(k, ck_dot(k, target), tn);
+        ck_sub(target, tn, tn);
+        l1 = ck_norm(perp);
+        l2 = ck_norm(p2n);
+        e = ck_norm(tn);
+        diff = fabs(l1 - l2);
+        gap[0] = (e - diff) * (e + diff);
+        gap[1] = (l1 + l2 - e) * (l1 + l2 + e);
+        em = e * e + diff * diff + 2.0 * (e + diff) * scale;
+        gap[2] = fabs(gap[0]) <= fabs(gap[1]) ? fmin(1.0, em * amp / (2.0 * hypot(a, b))) : 1.0;
+        return ck_trig_gap(a, b, c, scale * scale, noise, gap, t, f);
+    }
+    return ck_trig(a, b, c, scale * scale, noise, t, f);
 }
 
 /* t with h . rot(k, t) p = d */

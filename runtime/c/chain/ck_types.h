@@ -31,4 +31,6 @@ typedef struct {
     int units[3][CK_N];
     int n_js;          /* linear: its slides; group_rest: the group */
     int js[CK_N];
+    int planar;        /* first/last_dist: the other joints keep the parts normal to j's axis (the target's distance
+                        * there read as a sum of squares) */
 } ck_op;
