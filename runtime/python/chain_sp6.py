@@ -138,6 +138,13 @@ def _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4):
     return f, jac
 
 
+def _sp6_normal_parts(nv, h0, h4, g, h5, q0, q4):
+    """The second equation's parts normal to n at (q0, q4): u = n x w0, r = n x z5 (w0 = rot(h0, -q0) g,
+    z5 = rot(h4, q4) h5) and their derivatives -n x (h0 x w0) along q0, n x (h4 x z5) along q4 (without the sign)."""
+    w0, z5 = _mv(_rot(h0, -q0), g), _mv(_rot(h4, q4), h5)
+    return (_cross(nv, w0), _cross(nv, z5), _cross(nv, _cross(h0, w0)), _cross(nv, _cross(h4, z5)))
+
+
 def _sp6_split(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
     """The two roots of subproblem 6 near (q0, q4), a merged near-double root (a double root of the quartic, or
     the wrist singularity's candidate near, not at, it) that verified nothing. Along the first equation's solution
@@ -155,11 +162,8 @@ def _sp6_split(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
     r = -(f1 - d0) / gn
     q0, q4 = q0 + r * a / gn, q4 + r * b / gn
     t0, t4 = -b / gn, a / gn
-    w0, z5 = _mv(_rot(h0, -q0), g), _mv(_rot(h4, q4), h5)
-    u, rz = _cross(nv, w0), _cross(nv, z5)
-    # d w0 / d q0 = -h0 x w0, d z5 / d q4 = h4 x z5
-    du = _scale(_cross(nv, _cross(h0, w0)), -t0)
-    dr = _scale(_cross(nv, _cross(h4, z5)), t4)
+    u, rz, du0, dr4 = _sp6_normal_parts(nv, h0, h4, g, h5, q0, q4)
+    du, dr = _scale(du0, -t0), _scale(dr4, t4)  # along the tangent: d w0 / d q0 = -h0 x w0, d z5 / d q4 = h4 x z5
     qa = _dot(du, du) - _dot(dr, dr)
     qb = 2.0 * (_dot(u, du) - _dot(rz, dr))
     qc = _dot(u, u) - _dot(rz, rz)
@@ -203,12 +207,10 @@ def _sp6_newton_perp(nv, h0, p0, h4, p4, d0, g, h5, q0, q4):
     (3.8e-10 at delta = 3e-7, which turned q5's angle 1e-4 off); the normal parts' residual is eps delta against a
     gradient ~delta: q4 to ~eps."""
     def resid(a0, a4):
-        r0, r4 = _rot(h0, -a0), _rot(h4, a4)
-        w0, z5, w, z4 = _mv(r0, g), _mv(r4, h5), _mv(r0, p0), _mv(r4, p4)
-        u, rz = _cross(nv, w0), _cross(nv, z5)
+        u, rz, du0, dr4 = _sp6_normal_parts(nv, h0, h4, g, h5, a0, a4)
+        w, z4 = _mv(_rot(h0, -a0), p0), _mv(_rot(h4, a4), p4)
         f = (_dot(nv, w) - _dot(nv, z4) - d0, _dot(u, u) - _dot(rz, rz))
-        jac = ((-_dot(nv, _cross(h0, w)), -_dot(nv, _cross(h4, z4))),
-               (-2.0 * _dot(u, _cross(nv, _cross(h0, w0))), -2.0 * _dot(rz, _cross(nv, _cross(h4, z5)))))
+        jac = ((-_dot(nv, _cross(h0, w)), -_dot(nv, _cross(h4, z4))), (-2.0 * _dot(u, du0), -2.0 * _dot(rz, dr4)))
         return f, jac
     def size(f, jac):  # each residual over its gradient: a distance in radians (the two differ in units)
         return max(abs(f[0]) / max(math.hypot(*jac[0]), 1e-300), abs(f[1]) / max(math.hypot(*jac[1]), 1e-300))

@@ -86,33 +86,46 @@ static void ck_sp6_newton(const double *n, const double *h0, const double *p0, c
     }
 }
 
+/* The second equation's parts normal to n at (q0, q4): u = n x w0, rz = n x z5 (w0 = rot(h0, -q0) g,
+ * z5 = rot(h4, q4) h5) and their derivatives -n x (h0 x w0) along q0, n x (h4 x z5) along q4 (as du0, dr4 without
+ * the sign) */
+static void ck_sp6_normal_parts(const double *n, const double *h0, const double *h4, const double *g,
+                                const double *h5, double q0, double q4, double *u, double *rz, double *du0,
+                                double *dr4)
+{
+    double r0[9], r4[9], w0[3], z5[3], x[3];
+    ck_rot(h0, -q0, r0);
+    ck_rot(h4, q4, r4);
+    ck_mv(r0, g, w0);
+    ck_mv(r4, h5, z5);
+    ck_cross(n, w0, u);
+    ck_cross(n, z5, rz);
+    ck_cross(h0, w0, x);
+    ck_cross(n, x, du0);
+    ck_cross(h4, z5, x);
+    ck_cross(n, x, dr4);
+}
+
 /* Residuals and Jacobian of the first equation and of the second read as |n x w0|^2 - |n x z5|^2 (its parts
  * normal to n) at (q0, q4) (Python's _sp6_newton_perp.resid) */
 static void ck_sp6_perp_eval(const double *n, const double *h0, const double *p0, const double *h4, const double *p4,
                              double d0, const double *g, const double *h5, double q0, double q4, double *f,
                              double *jac)
 {
-    double r0[9], r4[9], w0[3], z5[3], w[3], z4[3], u[3], rz[3], x[3], y[3];
+    double r0[9], r4[9], w[3], z4[3], u[3], rz[3], du0[3], dr4[3], x[3];
+    ck_sp6_normal_parts(n, h0, h4, g, h5, q0, q4, u, rz, du0, dr4);
     ck_rot(h0, -q0, r0);
     ck_rot(h4, q4, r4);
-    ck_mv(r0, g, w0);
-    ck_mv(r4, h5, z5);
     ck_mv(r0, p0, w);
     ck_mv(r4, p4, z4);
-    ck_cross(n, w0, u);
-    ck_cross(n, z5, rz);
     f[0] = ck_dot(n, w) - ck_dot(n, z4) - d0;
     f[1] = ck_dot(u, u) - ck_dot(rz, rz);
     ck_cross(h0, w, x);
     jac[0] = -ck_dot(n, x);
     ck_cross(h4, z4, x);
     jac[1] = -ck_dot(n, x);
-    ck_cross(h0, w0, x);
-    ck_cross(n, x, y);
-    jac[2] = -2.0 * ck_dot(u, y);
-    ck_cross(h4, z5, x);
-    ck_cross(n, x, y);
-    jac[3] = -2.0 * ck_dot(rz, y);
+    jac[2] = -2.0 * ck_dot(u, du0);
+    jac[3] = -2.0 * ck_dot(rz, dr4);
 }
 
 /* each residual over its gradient: a distance in radians (metres and a squared sine compared raw stopped the steps
@@ -157,7 +170,7 @@ static void ck_sp6_newton_perp(const double *n, const double *h0, const double *
 static int ck_sp6_split(const double *n, const double *h0, const double *p0, const double *h4, const double *p4,
                         double d0, const double *g, const double *h5, double q0, double q4, double *s0, double *s4)
 {
-    double f[2], jac[4], gn, r, t0, t4, r0[9], r4[9], w0[3], z5[3], u[3], rz[3], du[3], dr[3], x[3];
+    double f[2], jac[4], gn, r, t0, t4, u[3], rz[3], du[3], dr[3];
     double qa, qb, qc, disc, qq, s[2];
     int i;
     ck_sp6_eval(n, h0, p0, h4, p4, g, h5, q0, q4, f, jac);
@@ -169,18 +182,8 @@ static int ck_sp6_split(const double *n, const double *h0, const double *p0, con
     q4 += r * jac[1] / gn;
     t0 = -jac[1] / gn;
     t4 = jac[0] / gn;
-    ck_rot(h0, -q0, r0);
-    ck_rot(h4, q4, r4);
-    ck_mv(r0, g, w0);
-    ck_mv(r4, h5, z5);
-    ck_cross(n, w0, u);
-    ck_cross(n, z5, rz);
-    /* d w0 / d q0 = -h0 x w0, d z5 / d q4 = h4 x z5 */
-    ck_cross(h0, w0, x);
-    ck_cross(n, x, du);
-    ck_scale(du, -t0, du);
-    ck_cross(h4, z5, x);
-    ck_cross(n, x, dr);
+    ck_sp6_normal_parts(n, h0, h4, g, h5, q0, q4, u, rz, du, dr);
+    ck_scale(du, -t0, du); /* along the tangent: d w0 / d q0 = -h0 x w0, d z5 / d q4 = h4 x z5 */
     ck_scale(dr, t4, dr);
     qa = ck_dot(du, du) - ck_dot(dr, dr);
     qb = 2.0 * (ck_dot(u, du) - ck_dot(rz, dr));
