@@ -63,6 +63,7 @@ def lib():
     L.wkt_sp3.argtypes = [D, D, D, ctypes.c_double, D, U]
     L.wkt_sp4.argtypes = [D, D, D, ctypes.c_double, D, U]
     L.wkt_sp6.argtypes = [D, D, D, D, D, ctypes.c_double, D, D, D, D, U]
+    L.wkt_sp6_split.argtypes = [D, D, D, D, D, ctypes.c_double, D, D, ctypes.c_double, ctypes.c_double, D, D]
     L.wkt_lstsq.argtypes = [D, ctypes.c_int, ctypes.c_int, D, D]
     L.wkt_solve_square.argtypes = [D, ctypes.c_int, D, D]
     L.wkt_spectrum.argtypes = [D, ctypes.c_int, D]
@@ -474,6 +475,32 @@ def test_python_sp6_and_spatial3_agree_with_c(py, lib):
         assert all(_angle_gap(x, c0) < 1e-12 and _angle_gap(y, c4) < 1e-12 for (x, y, _, _), c0, c4 in
                    zip(out, q0s, q4s, strict=False))
         assert min(_angle_gap(x, a) + _angle_gap(y, b) for x, y, _, _ in out) < 1e-6
+
+
+def test_the_sp6_split_resolves_a_near_wrist_pair_to_eps(lib, py):
+    """Subproblem 6 with joint 5 delta = 1e-3 .. 1e-10 off the wrist singularity (h5 and n normal to h4, so
+    rot(h4, q4*) h5 = n at one q4*): from the singular point (a, q4*) the split returns the generating (a, q4* + delta)
+    among its two roots, to ~eps / |h4 x n|-scale (the quartic alone: sqrt(eps)), and C returns Python's roots."""
+    rng = case_rng(2217)
+    s0, s4 = np.zeros(2), np.zeros(2)
+    for i in range(40):
+        h4 = _unit(rng)
+        n_ = np.cross(h4, _unit(rng))
+        n_ /= np.linalg.norm(n_)
+        h5 = _rot(h4, rng.uniform(-math.pi, math.pi)) @ n_  # normal to h4: some q4* turns it onto n
+        q4s = math.atan2(float(h4 @ np.cross(h5, n_)), float(h5 @ n_))
+        h0, p0, p4 = _unit(rng), rng.normal(size=3), rng.normal(size=3)
+        a, delta = rng.uniform(-math.pi, math.pi), (1.0 if i % 2 else -1.0) * 10.0 ** -(3 + i % 8)
+        b = q4s + delta
+        d0 = float(n_ @ _rot(h0, -a) @ p0 - n_ @ _rot(h4, b) @ p4)
+        g = _rot(h0, a) @ _rot(h4, b) @ h5
+        args = [list(v) for v in (n_, h0, p0, h4, p4)] + [d0, list(g), list(h5)]
+        out = py.sp6._sp6_split(*args[:6], *args[6:], a, q4s)
+        nc = lib.wkt_sp6_split(_p(n_), _p(h0), _p(p0), _p(h4), _p(p4), d0, _p(g), _p(h5), a, q4s, _p(s0), _p(s4))
+        assert nc == len(out) == 2, (i, delta)
+        assert min(_angle_gap(x, a) + _angle_gap(y, b) for x, y in out) <= 1e-12, (i, delta, out)
+        assert all(_angle_gap(x, c0) <= 1e-13 and _angle_gap(y, c4) <= 1e-13
+                   for (x, y), c0, c4 in zip(out, s0, s4, strict=True))
 
 
 def test_the_api_source_solves_the_stand_in_robot(py):

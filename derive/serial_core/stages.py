@@ -32,9 +32,14 @@ class Stage:
     def branches(self) -> int:
         return 2 if self.kind in ("trig_linear", "wrist") else 1
 
+    @property
+    def factored(self) -> bool:
+        """A distance stage: A, B, C and its root gap's factors Dm, Dp, Em (planned._distance_factors)."""
+        return self.kind == "trig_linear" and len(self.exprs) == 6
+
 
 def stage_output_names(st: Stage) -> list[str]:
-    if st.kind == "trig_linear" and len(st.exprs) == 6:  # a distance stage: its root gap's factors (planned.py)
+    if st.factored:
         return ["A", "B", "C", "Dm", "Dp", "Em"]
     return {"trig_linear": ["A", "B", "C"], "rotation2d": ["u", "v", "u0", "v0"], "value": ["q"],
             "wrist": [f"m{i}{j}" for i in range(3) for j in range(3)]}[st.kind]
@@ -101,7 +106,7 @@ def stage_view(spec) -> list[dict]:
         # a factored distance stage's double-root band (serial_stages._wrist, _trig_linear)
         view["amp_joints"] = [j for prior in spec.stages[:k - 1] if prior.kind in ("trig_linear", "rotation2d")
                               for j in prior.joints]
-        view["factored"] = st.kind == "trig_linear" and len(st.exprs) == 6
+        view["factored"] = st.factored
         if st.kind == "wrist":
             view["signs"] = list(st.signs)
             view["joint_kinds"] = [spec.kinds[j] for j in st.joints]

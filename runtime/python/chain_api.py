@@ -397,22 +397,24 @@ def _ik_numpy(pose, d, previous):
             if not err <= IK_VERIFY_TOL:
                 return False
             full = _full_joints(qc, ideal.index, d)
+            trig = _trig_of(full)
             # the residual reported and checked is the module's own FK (fk_matrix) of the returned set: the
             # solver's chain (held, maybe reversed: T^-1's entries) and base . chain . tool round differently, and
             # the tool's lever scales an orientation error, so a set within IK_VERIFY_TOL there can miss it here;
             # such a set is polished on to POLISH_TOL and kept only if it then meets IK_VERIFY_TOL
-            err = _frame_error(_fk_full(full, d), target)
+            err = _frame_error(_fk_full(full, d, trig), target)
             if err > IK_VERIFY_TOL:
                 qc, _ = polish(qc)
                 full = _full_joints(qc, ideal.index, d)
-                err = _frame_error(_fk_full(full, d), target)
+                trig = _trig_of(full)
+                err = _frame_error(_fk_full(full, d, trig), target)
                 if not err <= IK_VERIFY_TOL:
                     return False
         if any(_same(full, other) for other, _, _ in found):
             return False
         # the solver chain's conditioning: read from the kernel where that chain is the description's with the
         # free joint held (same base and end frame), from the reversed chain's table otherwise
-        if (_ratio(true, qc) if _REVERSED else _ratio_of(held_jacobian(qc))) <= SINGULAR_EPS:
+        if (_ratio(true, qc) if _REVERSED else _ratio_of(_jacobian_held(full, trig))) <= SINGULAR_EPS:
             f |= FLAG_SINGULAR_INVERSE
         if dry:
             return True

@@ -73,9 +73,9 @@ def _sp6(nv, h0, p0, h4, p4, d0, e0, g, h5):
         near = abs(_dot(nv, _mv(_rot(h4, q4), h5))) >= SP6_NEAR_WRIST
         if fl and near:  # a merged double root near the wrist singularity: its two roots, each to ~eps (a merged
             # root 3e-7 rad off the singularity verified within IK_VERIFY_TOL with q5 0.05 rad off)
-            pair = _sp6_split(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4)
+            pair = _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4)
             if pair:
-                regular += [(a, b, (fl & ~FLAG_DOUBLE_ROOT) | fs, 1) for a, b, fs in pair]
+                regular += [(a, b, (fl & ~FLAG_DOUBLE_ROOT) | FLAG_SINGULAR_INVERSE, 1) for a, b in pair]
                 continue
         order = 2
         if not fl:  # a merged double root far from the wrist stays (Newton is ill-conditioned there; its split is
@@ -111,8 +111,8 @@ def _sp6(nv, h0, p0, h4, p4, d0, e0, g, h5):
                     if _norm(_cross(nv, w)) <= ON_AXIS_TOL:  # closed-form inputs: rounding, not FAMILY_TOL's noise
                         singular.append((q0, _wrap(q4), fl | FLAG_SINGULAR_INVERSE, 2))
                     else:
-                        split += [(a, b, fl | fs, 1) for a, b, fs in _sp6_split(nv, h0, p0, h4, p4, d0, e0, g, h5, q0,
-                                                                                  q4)]
+                        split += [(a, b, fl | FLAG_SINGULAR_INVERSE, 1)
+                                  for a, b in _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4)]
     kept = [r for r in regular if not any(abs(_wrap(r[0] - a[0])) <= 1e-6 and abs(_wrap(r[1] - a[1])) <= 1e-6
                                           for a in anchors)]
     return kept + split + singular
@@ -145,7 +145,7 @@ def _sp6_normal_parts(nv, h0, h4, g, h5, q0, q4):
     return (_cross(nv, w0), _cross(nv, z5), _cross(nv, _cross(h0, w0)), _cross(nv, _cross(h4, z5)))
 
 
-def _sp6_split(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
+def _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4):
     """The two roots of subproblem 6 near (q0, q4), a merged near-double root (a double root of the quartic, or
     the wrist singularity's candidate near, not at, it) that verified nothing. Along the first equation's solution
     curve through it (tangent t, arc s) the second, n.w0 = n.z5 for the unit vectors w0 = rot(h0, -q0) g and
@@ -174,7 +174,7 @@ def _sp6_split(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
     out = []
     for s_ in (qq / qa, qc / qq):
         x0, x4 = _sp6_newton_perp(nv, h0, p0, h4, p4, d0, g, h5, q0 + s_ * t0, q4 + s_ * t4)
-        out.append((_wrap(x0), _wrap(x4), FLAG_SINGULAR_INVERSE))
+        out.append((_wrap(x0), _wrap(x4)))
     return out
 
 
@@ -262,8 +262,8 @@ def _sp6_stage(ch, g, prev, op, x, y, q, count, go_on, family):
             family(f | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE, place, None if prev is None else prev[ll])
         if count() == before and may_split and f & FLAG_SINGULAR_INVERSE:
             # a merged near-double root that verified nothing: the two roots it merged
-            for s0, s4, fs in _sp6_split(nv, h0, p0, h4, p4, d0, 0.0, g5, h5, q0, q4):
-                sp6_set(s0, s4, (f & ~FLAG_DOUBLE_ROOT) | fs, 1, may_split=False)
+            for s0, s4 in _sp6_split(nv, h0, p0, h4, p4, d0, g5, h5, q0, q4):
+                sp6_set(s0, s4, (f & ~FLAG_DOUBLE_ROOT) | FLAG_SINGULAR_INVERSE, 1, may_split=False)
 
     for q0, q4, f, order in _sp6(nv, h0, p0, h4, p4, d0, 0.0, g5, h5):
         sp6_set(q0, q4, f, order)

@@ -181,7 +181,7 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, T: sp.Matrix) -> None:
                  "rotation2d": "(u, v) = Rot(q)(u0, v0) on the FK", "value": "q = expression on the FK",
                  "wrist": "M = wrist rotation on the FK"}[st.kind]
         checks: list[Check] = [numeric_predicate(err, claim, samples=200, tol=1e-9)]
-        if len(st.exprs) == 6:
+        if st.factored:
             def factors(rng, fn=fn):
                 q = _sample_joints(spec, rng)
                 a, b, c, dm, dp, em = (float(v) for v in fn(*q.values(), *_sample_design(spec, rng).values()))

@@ -196,19 +196,19 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             a, b = nv.dot(p - h * hp), nv.dot(h.cross(p))
             c = nv.dot(fixed - r) - hp * nv.dot(h)
             rule = "subproblem 4: n . rot(h, q) p = d (the other joints keep the component along n)"
+            extra = ()
         else:
             s = distance_point(op["s"], j)
             p2 = s - r
             a, b = p2.dot(p - h * hp), p2.dot(h.cross(p))
             c = (p.dot(p) + p2.dot(p2) - (fixed - s).dot(fixed - s)) / 2 - hp * h.dot(p2)
             rule = "subproblem 3: |rot(h, q) p1 - p2| = d (the other joints keep the distance to s)"
-            factors = _distance_factors(p, p2, h, fixed - s, y, slides)
+            extra = _distance_factors(p, p2, h, fixed - s, y, slides)  # slides substituted in their parts
             rule += ("; sin^2 of the half-gap of its roots from the factors Dm Dp / 4 = A^2 + B^2 - C^2, Dm = "
                      "e^2 - (|p1'| - |p2'|)^2, Dp = (|p1'| + |p2'|)^2 - e^2 (primes: the parts normal to the axis, e: "
                      "the distance normal to it), Em the scale of Dm's rounding")
         # A cos t + B sin t = C with t = -q (first: the joint is undone from y) or t = q
         a, b, c = (_without_slides(v, slides) for v in (a, b, c))
-        extra = factors if not k.endswith("plane") else ()  # slides substituted in their parts, unexpanded
         out.append(Stage("trig_linear", (j,), (a, -b if first else b, -c, *extra), f"angle {q} ({'two roots'})",
                          rule))
         e = _screw("R", h, r, q)
