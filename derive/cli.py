@@ -144,7 +144,7 @@ def cmd_derive(args) -> int:
         from . import own_robot
     except ImportError as exc:
         raise _stack_missing(exc) from exc
-    from .model import DescriptionError, NoDecomposition
+    from .model import CheckFailed, DescriptionError, NoDecomposition
 
     if not Path(args.source).is_file():
         raise _Error(f"{args.source}: no such file (a URDF, a xacro file or a spec file)", EXIT_USAGE)
@@ -154,6 +154,9 @@ def cmd_derive(args) -> int:
                          packages=_pairs(args.packages, "--package", "DIR"))
     except NoDecomposition as exc:
         raise _Error(str(exc), EXIT_FAILED) from None
+    except CheckFailed as exc:  # the robot's derivation did not prove out: no solver is written for it
+        raise _Error(f"{args.source}: refused, the derivation for this robot failed a check ({exc}); "
+                     "see docs/specs.md, section chain", EXIT_FAILED) from None
     except DescriptionError as exc:
         raise _Error(str(exc), EXIT_USAGE) from None
     return EXIT_OK

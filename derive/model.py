@@ -23,6 +23,11 @@ class NoDecomposition(ValueError):
     """No closed form fits the mechanism (a family's planner refuses it); the message names what prevents it."""
 
 
+class CheckFailed(AssertionError):
+    """A derivation step failed its checks: nothing built on it is emitted. The message names the step and the
+    claims that failed (`wristkin derive` prints it as a refusal of the robot, not a traceback)."""
+
+
 @dataclass(frozen=True)
 class Check:
     """Evidence that a step is right: a symbolic identity or a sampled numeric check."""
@@ -94,7 +99,7 @@ class Derivation:
             raise ValueError(f"duplicate step {step.name!r}")
         if not step.passed:
             failed = [c.claim for c in step.checks if not c.passed]
-            raise AssertionError(f"derivation step {step.name!r} failed its checks: {failed}")
+            raise CheckFailed(f"derivation step {step.name!r} failed its checks: {failed}")
         self.steps.append(step)
         return step
 

@@ -734,7 +734,7 @@ def test_panda_with_joint2_held_is_solved_away_from_its_self_motion(tmp_path):
     py = own_robot.import_solver(tmp_path, "panda_j2", backend="numpy")
     if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
         assert m.BACKEND == "c"
-    assert m._DEGENERATE_HELD == (0.0, math.pi)
+    assert tuple(v for v, _ in m._DEGENERATE_HELD) == (0.0, math.pi)
     rng = case_rng(35)
     for i in range(12):
         q = rng.uniform(-math.pi, math.pi, 7)
@@ -749,6 +749,45 @@ def test_panda_with_joint2_held_is_solved_away_from_its_self_motion(tmp_path):
             s = mod.ik(T, [q[1]])
             assert min(_gap(v, q, mod.JOINT_KINDS) for v in s.values[s.valid]) < 1e-6, (i, s.reason)
 
+
+
+def test_panda_with_joint6_held_is_solved_where_its_joints_5_and_7_meet(tmp_path):
+    """Franka Panda with joint6 held: joints 1-3 meet (a spherical shoulder) and joints 5 and 7 meet wherever joint6
+    is held away from 0 and pi. Was refused: planned at the held value 0 only, where 5 and 7 are parallel, no
+    decomposition fit, and the general 6R's reading (a spherical shoulder makes it degenerate) missed solutions,
+    which its audit caught (a traceback from `wristkin derive`). Now planned at the sampled held values: the tool
+    side's meeting point placed by joints 7, 5, 4 and the shoulder's orientation; at joint6 within GEOMETRY_TOL of
+    0 or pi (the meeting point at infinity) ik refuses the held value with InvalidDesign, naming the axes. Sets equal
+    the multistart reference's (none missing, none spurious), C and numpy, also 1e-4 from the refused values (the
+    meeting point 880 m away)."""
+    own_robot.derive(_file("panda", "dh"), tmp_path, name="panda_j6", free="joint6", progress=lambda _: None)
+    m = own_robot.import_solver(tmp_path, "panda_j6")
+    py = own_robot.import_solver(tmp_path, "panda_j6", backend="numpy")
+    if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
+        assert m.BACKEND == "c"
+    assert "spherical wrist" in m.DECOMPOSITION and "general 6R" not in m.DECOMPOSITION
+    assert tuple(v for v, _ in m._DEGENERATE_HELD) == (0.0, math.pi)
+    r = reference("panda", "dh")
+    rng = case_rng(36)
+    held = (0.0, math.pi, 4e-7, 1e-4, math.pi - 1e-4, 0.7, 2.0, -0.017)
+    for i, h in enumerate(held):
+        q = rng.uniform(-math.pi, math.pi, 7)
+        q[5] = h
+        T = m.fk_matrix(q, [h])
+        if i < 3:
+            for mod in (m, py):
+                with pytest.raises(mod.InvalidDesign, match="joint7 and joint5 turn parallel"):
+                    mod.ik(T, [h])
+            continue
+        found = ref.ik_all(r, 7, T, fixed={5: h}, seed=i)
+        for mod in (m, py):
+            s = mod.ik(T, [h])
+            assert min(_gap(v, q, mod.JOINT_KINDS) for v in s.values[s.valid]) < 1e-6, (h, s.reason)
+            assert s.count == len(found), (h, s.count, len(found))
+            for v in found:
+                assert min(_gap(v, w, mod.JOINT_KINDS) for w in s.values[s.valid]) < 1e-6, h
+            for v in s.values[s.valid]:
+                assert np.max(np.abs(mod.fk_matrix(v, [h]) - T)) <= mod.IK_VERIFY_TOL
 
 # ------------------------------------------------------------------------------------------------ near-singular wrists
 def _backends(robot, fmt):

@@ -223,7 +223,8 @@ def test_cli_names_options_and_the_free_joints_that_work(tmp_path):
     assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr
     text = " ".join((tmp_path / "p" / "python" / "panda.py").read_text().split())
     assert "free joint panda_joint4 chosen (no --free given)" in text
-    assert "the other choices that work: panda_joint7, panda_joint1" in text.replace("' '", "")
+    others = "the other choices that work: panda_joint5, panda_joint6, panda_joint7, panda_joint1"
+    assert others in text.replace("' '", "")
     # a joint the planner refuses to hold (no decomposition is left): the general 6R solves the rest
     r = _cli("derive", panda, "--tip", "panda_hand", "--free", "panda_joint1", "--out", tmp_path / "q",
              "--no-native")
@@ -237,3 +238,18 @@ def test_cli_names_options_and_the_free_joints_that_work(tmp_path):
     assert r.returncode == 0, r.stderr
     r = _cli("derive", panda, "--xacro-arg", "novalue", "--out", tmp_path / "p")
     assert r.returncode == 2 and "--xacro-arg 'novalue': expected NAME=VALUE" in r.stderr
+
+
+def test_a_derivation_check_that_fails_is_a_one_line_refusal(monkeypatch, capsys, tmp_path):
+    """A robot whose derivation fails a check (the Panda with joint6 held once failed the elimination's audit) is
+    refused in one line naming the step, exit 1, no traceback: it was an AssertionError's traceback."""
+    from derive import cli, own_robot
+    from derive.model import CheckFailed
+
+    def fail(*_args, **_kwargs):
+        raise CheckFailed("derivation step 'g6_solutions' failed its checks: ['no pose of 16 where ...']")
+    monkeypatch.setattr(own_robot, "derive", fail)
+    src = Path(__file__).parent / "robots" / "panda" / "panda_dh.toml"
+    assert cli.main(["derive", str(src), "--out", str(tmp_path)]) == cli.EXIT_FAILED
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "refused" in err and "g6_solutions" in err and "Traceback" not in err

@@ -334,11 +334,10 @@ def _ik_numpy(pose, d, previous):
     """ik on the numpy path (also what words the reason of an answer from C that needs one)."""
     target, dev = _pose(pose)
     prev = None if previous is None else _joints(previous, "previous")
-    for v in _DEGENERATE_HELD:
+    for v, why in _DEGENERATE_HELD:
         if abs(_wrap(d.params[0] - v)) <= GEOMETRY_TOL:
             raise InvalidDesign(f"{JOINT_NAMES[_FREE]} = {d.params[0]!r} (held): within {GEOMETRY_TOL:g} of {v!r}, "
-                                "where the other six joints are a self-motion (two of them line up), so every pose "
-                                "has infinitely many solutions; hold it further from that value")
+                                f"where {why}; hold it further from that value")
     base, tool = _frames(d)
     g_chain = _compose(_compose(_inverse(base), target), _inverse(tool))  # the chain's end frame
     ideal, true = _solver_chains(d)

@@ -98,7 +98,7 @@ POLISH_TOL = 1e-12 * max(1.0, SCALE)
 GEOMETRY_TOL = 1e-06  # the planner's tolerance on parallel / intersecting axes
 GEOMETRY_DEVIATION = 2.7755575615628914e-17  # largest deviation of the true axes from the ideal ones used
 CALIBRATED = False
-_DEGENERATE_HELD = ()  # the true axes off the ideal ones by more than rounding: candidates are compensated
+_DEGENERATE_HELD = ()  # (held value, why) pairs the IK refuses: a self-motion, or a relation of the plan broken
 
 # The chain at q = 0, base frame: axis, a point on it (revolute), end frame M. _IDEAL_*: the same with the
 # relations the decomposition relies on made exact (equal to the true data when they already were).

@@ -68,19 +68,69 @@ class ChainMechanism(MechanismDefaults):
             def holds(_c, plan):
                 ideal = self.idealise(plan)
                 rng = np.random.default_rng(7)
-                for v in samples:
+                kept = self.plan_samples(plan)
+                if len(kept) < min(2, len(samples)):
+                    return False
+                for v in kept:  # a value where a relation across the held joint breaks is refused at run time
                     c = self.solver_chain(ideal, v, plan.reversed)
                     for _ in range(20):
                         q = _random_joints(c, rng)
                         if max(replay(c, replace(plan, reversed=False), q)) > 1e-9 * scale:
                             return False
                 return True
-            try:
-                self._plan = find_plan(base, self.desc.geometry_tol, holds)
-            except NoClosedForm as exc:
-                self._plan = self._general_plan(base, exc)
+            self._plan = None
+            refused = None
+            # planned at each held value in turn until one plans: at a special value two axes can line up (the
+            # Panda's joints 5 and 7 are parallel with joint6 held at 0), which rules out the op (subproblem 5) every
+            # other value needs; the plan must still hold at every value (holds)
+            for v in samples:
+                try:
+                    self._plan = find_plan(self.solver_chain(self.chain, v), self.desc.geometry_tol, holds)
+                    break
+                except NoClosedForm as exc:
+                    refused = refused or exc
+            if self._plan is None:
+                self._plan = self._general_plan(base, refused)
             self._ideal = self.idealise(self._plan)
         return self._plan, self._ideal
+
+    def _spanning(self, plan: Plan) -> list:
+        """The plan's relations between joints on both sides of the held one (solver-chain indices)."""
+        free, n = self.desc.free, self.chain.n - 1
+        if free < 0:
+            return []
+        reduced_to_full = [i for i in range(self.chain.n) if i != free]
+
+        def full(j):
+            return reduced_to_full[n - 1 - j if plan.reversed else j]
+        return [r for r in plan.relations if min(full(j) for j in r.joints) < free < max(full(j) for j in r.joints)]
+
+    def _relations_hold(self, plan: Plan, v: float) -> bool:
+        """Whether the plan's relations across the held joint hold on the true chain with it held at v."""
+        g = Geometry(self.solver_chain(self.chain, v, plan.reversed), self.desc.geometry_tol)
+        return all((g.meet(r.joints) if r.kind == "meet" else (True if g.parallel(r.joints) else None)) is not None
+                   for r in self._spanning(plan))
+
+    def plan_samples(self, plan: Plan | None = None) -> tuple[float, ...]:
+        """The held values the plan is checked at: _held_samples without those where a relation across the held
+        joint breaks (refused at run time: degenerate_held_reasons)."""
+        plan = plan or self.plan()[0]
+        return tuple(v for v in self._held_samples() if self._relations_hold(plan, v))
+
+    def _breaking_held(self, plan: Plan) -> tuple[float, ...]:
+        """The held values (in (-pi, pi]) at which axes that meet across the held joint turn parallel (the Panda's
+        joints 5 and 7 with joint6 at 0 or pi): their meeting point, which the decomposition places, goes to
+        infinity there. The smallest sine of the angle between two of them, scanned on a 720-point grid and each
+        local minimum below 1e-2 refined by golden section, kept when it reaches the geometry tolerance."""
+        meets = [r.joints for r in self._spanning(plan) if r.kind == "meet"]
+        if not meets:
+            return ()
+
+        def sine(v):
+            c = self.solver_chain(self.chain, v, plan.reversed)
+            return min(float(np.linalg.norm(np.cross(c.axes[a], c.axes[b])))
+                       for js in meets for i, a in enumerate(js) for b in js[i + 1:])
+        return _isolated_minima(sine, self.desc.geometry_tol)
 
     def _held_samples(self) -> tuple[float, ...]:
         """The free joint's values the decomposition is planned at and must hold at: FREE_SAMPLES, without a value
@@ -92,39 +142,30 @@ class ChainMechanism(MechanismDefaults):
         return tuple(v for v in FREE_SAMPLES if self._self_motion_ratio([v], 2) > SELF_MOTION_RATIO)
 
     def degenerate_held(self) -> tuple[float, ...]:
-        """The free joint's values (in (-pi, pi]) at which the held chain is a self-motion (two joints on either side
-        line up: the Panda's joint2 at 0): the largest sigma_min / sigma_max over two random configurations, scanned
-        on a 720-point grid and each local minimum below 1e-2 refined by golden section; kept when it reaches
-        SELF_MOTION_RATIO. The emitted IK refuses these values (InvalidDesign / WK_ERR_DESIGN): every pose there
-        has infinitely many solutions."""
+        """The free joint's values the emitted IK refuses (InvalidDesign / WK_ERR_DESIGN), sorted: see
+        degenerate_held_reasons."""
+        return tuple(v for v, _ in self.degenerate_held_reasons())
+
+    def degenerate_held_reasons(self) -> tuple[tuple[float, str], ...]:
+        """(value, why) for each free joint value (in (-pi, pi]) the emitted IK refuses:
+        - a self-motion: two joints on either side line up (the Panda's joint2 at 0) and every pose there has
+          infinitely many solutions; found as the largest sigma_min / sigma_max over two random configurations
+          reaching SELF_MOTION_RATIO (_isolated_minima);
+        - a value where axes the decomposition meets across the held joint turn parallel (_breaking_held)."""
         if self.desc.free < 0 or self.chain.n != 7:
             return ()
         if self._degenerate is None:
-            def ratio(v):
-                return self._self_motion_ratio([v], 2)
-            grid = np.linspace(-math.pi, math.pi, 720, endpoint=False)
-            vals = [ratio(v) for v in grid]
-            found = []
-            step = grid[1] - grid[0]
-            for i in range(len(grid)):  # cyclic: -pi is pi
-                before, after = vals[i - 1], vals[(i + 1) % len(grid)]
-                if not (vals[i] <= before and vals[i] < after and vals[i] < 1e-2):
-                    continue
-                lo, hi = grid[i] - step, grid[i] + step
-                g = (math.sqrt(5.0) - 1.0) / 2.0
-                for _ in range(80):  # golden section: the bracket shrinks to ~1e-17
-                    a, b = hi - g * (hi - lo), lo + g * (hi - lo)
-                    if ratio(a) < ratio(b):
-                        hi = b
-                    else:
-                        lo = a
-                v = math.remainder(0.5 * (lo + hi), 2.0 * math.pi)
-                for exact in (0.0, math.pi, -math.pi, 0.5 * math.pi, -0.5 * math.pi):
-                    if abs(v - exact) <= 1e-7 and ratio(exact) <= SELF_MOTION_RATIO:
-                        v = exact  # the value a description's zero convention gives
-                if ratio(v) <= SELF_MOTION_RATIO:
-                    found.append(math.pi if v == -math.pi else float(v))
-            self._degenerate = tuple(sorted(set(found)))
+            motion = _isolated_minima(lambda v: self._self_motion_ratio([v], 2), SELF_MOTION_RATIO)
+            plan, _ = self.plan()
+            names = self.solver_chain(self.chain, 0.0, plan.reversed).joint_names
+            meets = ", ".join(" and ".join(names[j] for j in r.joints) for r in self._spanning(plan)
+                              if r.kind == "meet")
+            why = {v: "the other six joints are a self-motion (two of them line up), so every pose has infinitely "
+                      "many solutions" for v in motion}
+            for v in self._breaking_held(plan):
+                why.setdefault(v, f"axes {meets} turn parallel, so the point where they meet, which the "
+                                  "decomposition places, is at infinity")
+            self._degenerate = tuple(sorted(why.items()))
         return self._degenerate
 
     def _self_motion_ratio(self, values, per_value: int) -> float:
@@ -180,7 +221,14 @@ class ChainMechanism(MechanismDefaults):
             r = n_solver - 1 - j if plan.reversed else j
             return reduced_to_full[r]
         axes, points = c.axes.copy(), c.points.copy()
-        for rel in plan.relations:
+        free = self.desc.free
+        # a relation across the held joint (the Panda's joints 5 and 7 meet with joint6 held anywhere but 0 and pi)
+        # holds on the held chain, not on the full chain at home (there joint6 is 0, the lines are parallel and
+        # their "common point" is anywhere): it is left as it is, and the plan's check (holds) reads it at every
+        # held value sampled
+        relations = [r for r in plan.relations
+                     if free < 0 or not min(full(j) for j in r.joints) < free < max(full(j) for j in r.joints)]
+        for rel in relations:
             js = [full(j) for j in rel.joints]
             if rel.kind == "parallel":
                 ref = axes[js[0]]
@@ -188,7 +236,7 @@ class ChainMechanism(MechanismDefaults):
                 mean /= np.linalg.norm(mean)
                 for j in js:
                     axes[j] = np.sign(np.dot(ref, axes[j])) * mean
-        for rel in plan.relations:
+        for rel in relations:
             if rel.kind == "meet":
                 js = [full(j) for j in rel.joints]
                 w, _ = common_point([points[j] for j in js], [axes[j] for j in js])
@@ -238,7 +286,7 @@ class ChainMechanism(MechanismDefaults):
         dv.add(Step("decomposition", "Decomposition found from the axes", plan.strategy, ("axes",),
                     {"ops": " -> ".join(_op_text(op, names) for op in plan.ops), "branches (max IK sets)":
                      str(plan.branches), "controls": self.controls()}, ()))
-        rng_free = self._held_samples()
+        rng_free = self.plan_samples()
         chains = {v: self.solver_chain(ideal, v, plan.reversed) for v in rng_free}
         residuals: dict = {}  # every op's check draws the same seeded samples: each replayed once
 
@@ -329,7 +377,7 @@ class ChainMechanism(MechanismDefaults):
                 "scale": repr(self.scale()), "geometry_tol": repr(self.desc.geometry_tol),
                 "geometry_deviation": repr(deviation),
                 "calibrated": calibrated,
-                "degenerate_held": repr(self.degenerate_held()),
+                "degenerate_held": repr(self.degenerate_held_reasons()),
                 "tangent_tol": repr(max(float(TOLERANCES["stage_tangent"]),
                                         8.0 * deviation / min(1.0, self.scale()))),
                 "axes": _vectors(c.axes), "points": _vectors(c.points), "home": _matrix(c.home),
@@ -603,3 +651,32 @@ def _roles(plan: Plan, ch: Chain):
         labels[name] = lab
         roles.append((name, kind, j, ref))
     return roles, labels
+
+
+def _isolated_minima(f, level: float) -> tuple[float, ...]:
+    """The values v in (-pi, pi] at which f(v) >= 0 reaches `level`: f scanned on a 720-point grid (cyclic), each
+    local minimum below 1e-2 refined by golden section (the bracket shrinks to ~1e-17), snapped to 0, +-pi/2 or pi
+    when within 1e-7 of one where f reaches the level too (the value a description's zero convention gives)."""
+    grid = np.linspace(-math.pi, math.pi, 720, endpoint=False)
+    vals = [f(v) for v in grid]
+    found = []
+    step = grid[1] - grid[0]
+    gold = (math.sqrt(5.0) - 1.0) / 2.0
+    for i in range(len(grid)):  # cyclic: -pi is pi
+        before, after = vals[i - 1], vals[(i + 1) % len(grid)]
+        if not (vals[i] <= before and vals[i] < after and vals[i] < 1e-2):
+            continue
+        lo, hi = grid[i] - step, grid[i] + step
+        for _ in range(80):
+            a, b = hi - gold * (hi - lo), lo + gold * (hi - lo)
+            if f(a) < f(b):
+                hi = b
+            else:
+                lo = a
+        v = math.remainder(0.5 * (lo + hi), 2.0 * math.pi)
+        for exact in (0.0, math.pi, -math.pi, 0.5 * math.pi, -0.5 * math.pi):
+            if abs(v - exact) <= 1e-7 and f(exact) <= level:
+                v = exact
+        if f(v) <= level:
+            found.append(math.pi if v == -math.pi else float(v))
+    return tuple(sorted(set(found)))
