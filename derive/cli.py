@@ -155,8 +155,8 @@ def cmd_derive(args) -> int:
     except NoDecomposition as exc:
         raise _Error(str(exc), EXIT_FAILED) from None
     except CheckFailed as exc:  # the robot's derivation did not prove out: no solver is written for it
-        raise _Error(f"{args.source}: refused, the derivation for this robot failed a check ({exc}); "
-                     "see docs/specs.md, section chain", EXIT_FAILED) from None
+        raise _Error(f"{args.source}: refused, the derivation for this robot failed a check ({exc}), so no "
+                     "solver is written", EXIT_FAILED) from None
     except DescriptionError as exc:
         raise _Error(str(exc), EXIT_USAGE) from None
     return EXIT_OK

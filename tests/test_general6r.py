@@ -227,6 +227,25 @@ def test_the_panda_with_a_free_joint_the_planner_refuses(free):
         _check_pose(chain, labelling, reference, q, fixed={free: q[free]}, seed=int(rng.integers(1 << 30)))
 
 
+
+def test_the_elimination_reads_the_panda_with_joint5_held_past_a_singular_leading_coefficient():
+    """Joint 5 held: at one phi the deflated leading coefficient is exactly singular (numpy's solve raised
+    LinAlgError inside ik, and derive crashed with "Singular matrix"); the next phi serves. (`wristkin derive` now
+    solves this arm by a decomposition, planned at a held value other than 0; the elimination must still read it.)"""
+    from derive.families.chain import description
+    from derive.spec import Spec
+
+    path = ROOT / "tests/robots/panda/panda_dh.toml"
+    import tomllib
+
+    chain = description.read(Spec(tomllib.loads(path.read_text()), path)).chain
+    rng = case_rng(625)
+    labelling = g6.choose_labelling([reduce_free(chain, 4, v) for v in (0.0, 0.7, -1.9, 2.6)], rng)
+    reference = reference_of(chain)
+    for _ in range(3):
+        q = rng.uniform(-2.5, 2.5, 7)
+        _check_pose(chain, labelling, reference, q, fixed={4: q[4]}, seed=int(rng.integers(1 << 30)))
+
 # ------------------------------------------------------------------------------------------------ the C twin
 @pytest.fixture(scope="module")
 def clib():
