@@ -29,6 +29,9 @@ COMMANDS = (
       (("--tip",), {"metavar": "LINK", "help": "URDF: the tip link (default: the only leaf)"}),
       (("--free",), {"metavar": "JOINT", "help": "a redundant arm's joint held as a run-time parameter (without it, "
                                                  "a 7-joint arm's error lists the joints that work)"}),
+      (("--redundancy",), {"choices": ["joint", "arm-angle"],
+                           "help": "a 7-joint arm's run-time parameter: a held joint (joint, the default: --free) or "
+                                   "the arm angle of an arm with a spherical shoulder and wrist (arm-angle)"}),
       (("--xacro-arg",), {"action": "append", "metavar": "NAME=VALUE", "dest": "xacro_args",
                           "help": "a .xacro file's $(arg NAME) (repeat for more)"}),
       (("--package",), {"action": "append", "metavar": "NAME=DIR", "dest": "packages",

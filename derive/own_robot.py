@@ -24,16 +24,17 @@ from .spec import Spec, SpecError
 
 
 def load(source: str | Path, name=None, base=None, tip=None, free=None, geometry_tol=None, xacro_args=None,
-         packages=None):
+         packages=None, redundancy=None):
     """The mechanism of a URDF / xacro or a spec file (command-line options override the spec's own fields)."""
     path = Path(source)
     readers = [f for f in FAMILIES.values() if path.suffix.lower() in f.SOURCE_SUFFIXES]
     if readers:  # a description file a family reads itself (a URDF, a xacro file)
         spec = readers[0].spec_for_file(path, name=name, base=base, tip=tip, free=free, geometry_tol=geometry_tol,
-                                        xacro_args=xacro_args, packages=packages)
+                                        xacro_args=xacro_args, packages=packages, redundancy=redundancy)
     else:
         spec = Spec.load(path)
         for key, option, value in (("name", "--name", name), ("free", "--free", free),
+                                   ("redundancy", "--redundancy", redundancy),
                                    ("geometry_tol", "--geometry-tol", geometry_tol)):
             if value is not None:
                 spec.given(key, value, option)
@@ -95,7 +96,7 @@ def _extension(out: Path, progress) -> list[Path]:
 
 
 def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=None, progress=print,
-           native: bool = True, xacro_args=None, packages=None) -> list[Path]:
+           native: bool = True, xacro_args=None, packages=None, redundancy=None) -> list[Path]:
     """Derive, emit and audit one description into `out`; returns the files written. `native`: also compile the
     folder's C into the Python extension the solvers call (skipped with native=False: they run on numpy)."""
     from . import audit
@@ -109,7 +110,7 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
         progress(f"  {text} ({now - last[0]:.1f} s)")
         last[0] = now
 
-    mech = load(source, name, base, tip, free, geometry_tol, xacro_args, packages)
+    mech = load(source, name, base, tip, free, geometry_tol, xacro_args, packages, redundancy)
     out = Path(out)
     nm = mech.NAME
     progress(f"wristkin derive: {nm} from {source}")

@@ -757,9 +757,9 @@ def test_panda_with_joint6_held_is_solved_where_its_joints_5_and_7_meet(tmp_path
     decomposition fit, and the general 6R's reading (a spherical shoulder makes it degenerate) missed solutions,
     which its audit caught (a traceback from `wristkin derive`). Now planned at the sampled held values: the tool
     side's meeting point placed by joints 7, 5, 4 and the shoulder's orientation; at joint6 within GEOMETRY_TOL of
-    0 or pi (the meeting point at infinity) ik refuses the held value with InvalidDesign, naming the axes. Sets equal
-    the multistart reference's (none missing, none spurious), C and numpy, also 1e-4 from the refused values (the
-    meeting point 880 m away)."""
+    0 or pi (the meeting point at infinity) ik refuses the held value with InvalidDesign, naming the axes. None of the
+    multistart reference's sets missing, none spurious (each distinct and reaching the pose on the description's own
+    products), C and numpy, also 1e-4 from the refused values (the meeting point 880 m away)."""
     own_robot.derive(_file("panda", "dh"), tmp_path, name="panda_j6", free="joint6", progress=lambda _: None)
     m = own_robot.import_solver(tmp_path, "panda_j6")
     py = own_robot.import_solver(tmp_path, "panda_j6", backend="numpy")
@@ -782,12 +782,13 @@ def test_panda_with_joint6_held_is_solved_where_its_joints_5_and_7_meet(tmp_path
         found = ref.ik_all(r, 7, T, fixed={5: h}, seed=i)
         for mod in (m, py):
             s = mod.ik(T, [h])
-            assert min(_gap(v, q, mod.JOINT_KINDS) for v in s.values[s.valid]) < 1e-6, (h, s.reason)
-            assert s.count == len(found), (h, s.count, len(found))
-            for v in found:
-                assert min(_gap(v, w, mod.JOINT_KINDS) for w in s.values[s.valid]) < 1e-6, h
-            for v in s.values[s.valid]:
-                assert np.max(np.abs(mod.fk_matrix(v, [h]) - T)) <= mod.IK_VERIFY_TOL
+            sets = s.values[s.valid]
+            assert min(_gap(v, q, mod.JOINT_KINDS) for v in sets) < 1e-6, (h, s.reason)
+            for v in found:  # none missing (the multistart may miss some itself: seed 11 under Haswell found 6 of 8)
+                assert min(_gap(v, w, mod.JOINT_KINDS) for w in sets) < 1e-6, h
+            for k, v in enumerate(sets):  # none spurious: each reaches the pose on the description's own products
+                assert np.max(np.abs(r(v) - T)) <= mod.IK_VERIFY_TOL
+                assert all(_gap(v, w, mod.JOINT_KINDS) > 1e-6 for w in sets[:k])
 
 # ------------------------------------------------------------------------------------------------ near-singular wrists
 def _backends(robot, fmt):

@@ -16,7 +16,7 @@ import pytest
 from cbuild import RUNTIME_C, compile_shared, compiler, load
 from seeding import case_rng
 
-from derive import pipeline, runtime_files
+from derive import own_robot, pipeline, runtime_files
 from derive.catalogue import load as load_spec
 from derive.render import environment
 
@@ -397,6 +397,15 @@ def test_every_source_compiles_strictly_where_a_robot_includes_it(tmp_path, monk
                             str(tmp_path / f"{name}.c"), f"-I{tmp_path}", "-o", str(tmp_path / f"{name}.o")],
                            capture_output=True, text=True)
         assert r.returncode == 0, r.stderr
+    # an arm whose run-time parameter is its arm angle (ck_arm_angle.c)
+    mech = own_robot.load(ROOT / "tests" / "robots" / "iiwa14" / "iiwa14.urdf", name="iiwa_psi",
+                          redundancy="arm-angle")
+    pipeline.emit_solvers("iiwa_psi", mech, mech.kernels(mech.derive()), tmp_path, tmp_path)
+    assert f'#include "{CHAIN_C / "ck_arm_angle.c"}"' in (tmp_path / "iiwa_psi.c").read_text()
+    r = subprocess.run([compiler(), "-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-c",
+                        str(tmp_path / "iiwa_psi.c"), f"-I{tmp_path}", "-o", str(tmp_path / "iiwa_psi.o")],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
 
 
 # ------------------------------------------------------------------------------------------------ Python sources

@@ -80,6 +80,8 @@ def op_branches(op: dict) -> int:
         return 4  # two equations linear in (cos, sin) of two angles: a quartic
     if op["op"] == "orient":
         return 2 if len(op["units"]) == 3 else 1
+    if op["op"] == "arm_angle":
+        return 4  # the elbow bent either way, two shoulder sets for each
     if op["op"] == "general6r":
         return 16  # the general 6R has at most 16 solutions (Lee and Liang; Raghavan and Roth)
     return 1
@@ -336,6 +338,44 @@ def _x_text(g: Geometry, xspec) -> str:
     return "the end frame's origin"
 
 
+_SHOULDER, _ELBOW, _WRIST = (0, 1, 2), 3, (4, 5, 6)  # an S-R-S arm's joints (arm_angle.py)
+
+
+def arm_angle_plan(c: Chain, tol: float) -> Plan:
+    """The plan of an S-R-S arm whose run-time parameter is its arm angle (derive/kinematics/arm_angle.py): the
+    wrist centre placed by the whole chain, the shoulder and the elbow from it and psi, then the wrist's orientation.
+    Refused (NoClosedForm, naming what is missing) unless the chain is S-R-S."""
+    if c.n != 7 or any(k != "R" for k in c.kinds):
+        raise NoClosedForm(f"the arm angle needs 7 revolute joints (this chain: {c.n} joints, {''.join(c.kinds)})")
+    g = Geometry(c, tol)
+    names = c.joint_names
+    missing = [f"axes {', '.join(names[j] for j in js)} meet in no point (a spherical {what})"
+               for js, what in ((_SHOULDER, "shoulder"), (_WRIST, "wrist")) if g.meet(js) is None]
+    if missing:
+        raise NoClosedForm("the arm angle needs a spherical shoulder and a spherical wrist: " + "; ".join(missing))
+    s, w = g.point(("meet", *_SHOULDER)), g.point(("meet", *_WRIST))
+    he, pe = c.axes[_ELBOW], c.points[_ELBOW]
+    offset = abs(float(np.dot(he, s - pe) - np.dot(he, w - pe)))
+    if offset > tol:
+        raise NoClosedForm(f"the arm angle needs the shoulder and wrist centres level along the elbow axis "
+                           f"{names[_ELBOW]} (an S-R-S arm): they are {offset:.3g} m apart along it")
+    e = pe + np.dot(he, s - pe) * he
+    d_se, d_ew = float(np.linalg.norm(s - e)), float(np.linalg.norm(w - e))
+    if min(d_se, d_ew) <= 10 * tol:
+        raise NoClosedForm(f"the arm angle needs the shoulder and wrist centres off the elbow axis {names[_ELBOW]} "
+                           f"(upper arm {d_se:.3g} m, forearm {d_ew:.3g} m)")
+    ops = [{"op": "begin", "x": ("meet", *_WRIST), "lo": 0, "hi": 6},
+           {"op": "arm_angle", "shoulder": list(_SHOULDER), "elbow": _ELBOW, "s": ("meet", *_SHOULDER)},
+           {"op": "orient", "units": [[j] for j in _WRIST], "lo": 4, "hi": 6}]
+    strategy = (f"the arm angle (an S-R-S arm: axes {', '.join(names[j] for j in _SHOULDER)} meet at the shoulder, "
+                f"{', '.join(names[j] for j in _WRIST)} at the wrist, elbow {names[_ELBOW]}; upper arm {d_se:.4g} m, "
+                f"forearm {d_ew:.4g} m): the wrist centre from the pose, the elbow on its circle about the "
+                f"shoulder-wrist line at the design's arm angle (0: in the plane of {names[0]}'s axis), "
+                f"{names[_ELBOW]} from the distance, the shoulder's rotation from two directions, then the wrist's "
+                "orientation")
+    return Plan(ops, False, strategy, list(g.used.values()))
+
+
 def find_plan(chain: Chain, tol: float = DEFAULT_GEOMETRY_TOL, check=None) -> Plan:
     """The best decomposition (fewest branches, then from the base) whose ops pass `check(chain, plan)`."""
     tried = []
@@ -435,6 +475,9 @@ def replay(chain: Chain, plan: Plan, q) -> list[float]:
         elif kind == "general6r":
             from .general6r import equation_residual
             out.append(equation_residual(c, op, qv))
+        elif kind == "arm_angle":
+            from .arm_angle import residual
+            out.append(residual(c, e, x, y))
         elif kind == "sp6":
             n = g.direction(op["n"])
             y = app(np.linalg.inv(e[op["j"]]), y)

@@ -11,11 +11,13 @@ import math
 
 import _runtime
 import numpy as np
+from chain_arm_angle import _arm_angle_at
 from chain_design import _JOINT_SHAPE, _POSE_SHAPES, _design
 from chain_poe import _fk_chain, _full_chain, _held, _product, _reversed
 from chain_rigid import _apply, _as_rt, _compose, _dot, _inverse, _mm, _mv, _rot, _scale, _sub, _to_matrix
 from chain_solve import _solve
 from chain_stand_in import (
+    _ARM_ANGLE,
     _AXES,
     _C_FK,
     _C_FK_BATCH,
@@ -31,6 +33,7 @@ from chain_stand_in import (
     _IDEAL_HOME,
     _IDEAL_POINTS,
     _IK_RESULT,
+    _PLAN,
     _POINTS,
     _REVERSED,
     _ROLES,
@@ -256,6 +259,15 @@ def jacobian(joints, design=None) -> np.ndarray:
     return _jacobian_full(_joints(joints), d)
 
 
+
+if _ARM_ANGLE:  # an S-R-S arm whose run-time parameter is its arm angle (chain_arm_angle.py)
+    def arm_angle(joints, design=None) -> float:
+        """The arm angle of joint values: where they put the elbow on its circle about the shoulder-wrist line (0 in
+        the plane of the first axis and that line, on the side the axis points to; positive about the line from the
+        shoulder to the wrist). ik(fk_matrix(q), [arm_angle(q)]) returns q among its sets."""
+        q = _joints(joints)
+        return _arm_angle_at(_solver_chains(_design(design))[0], _PLAN[1], q)
+
 # ---------------------------------------------------------------------------- inverse kinematics
 def _solver_chains(d):
     """(ideal chain, true chain) the decomposition reads: free joint held, maybe reversed (built once when no
@@ -420,7 +432,7 @@ def _ik_numpy(pose, d, previous):
         found.append((full, f, err))
         return True
 
-    reached = _solve(ideal, g, prev_c, accept)
+    reached = _solve(ideal, g, prev_c, accept, d.params)
     for k, (full, f, err) in enumerate(found[:MAX_IK]):
         values[k], valid[k], flags[k], aux[k] = full, True, f | (FLAG_PROJECTED if dev else 0), err
     note = _projected_note(dev)
@@ -506,11 +518,11 @@ def _cli_joints(values, free, deg):
     joint from --free."""
     kinds = [k for i, k in enumerate(JOINT_KINDS) if i != _FREE] if len(values) == N_JOINTS - 1 else JOINT_KINDS
     q = [math.radians(v) if deg and kind == "R" else v for v, kind in zip(values, kinds, strict=False)]
-    if DESIGN_NAMES and len(q) == N_JOINTS - 1:
+    if _FREE >= 0 and len(q) == N_JOINTS - 1:
         if free is None:
             raise InvalidInput(f"joints: {len(q)} values given: give all {N_JOINTS}, or --free for {DESIGN_NAMES[0]}")
         q.insert(_FREE, free)
-    elif DESIGN_NAMES and free is not None and len(q) == N_JOINTS and q[_FREE] != free:
+    elif _FREE >= 0 and free is not None and len(q) == N_JOINTS and q[_FREE] != free:
         raise InvalidInput(f"joints: {DESIGN_NAMES[0]} differs between --joints and --free: give it once (--joints "
                            "without it, or the same value)")
     return q
@@ -543,20 +555,24 @@ def main(argv=None) -> int:
         units.add_argument("--rad", action="store_true", help="angles in and out in radians (the default)")
         units.add_argument("--deg", action="store_true", help="angles in and out in degrees")
         s.add_argument("--json", action="store_true", help="print one JSON object")
-        if DESIGN_NAMES:
+        if _FREE >= 0:
             s.add_argument("--free", type=float, default=None,
                            help=f"the free joint {DESIGN_NAMES[0]} (default 0; radians unless --deg)")
+        elif _ARM_ANGLE and verb == "ik":
+            s.add_argument("--arm-angle", type=float, default=0.0, dest="free",
+                           help="the arm angle: the elbow's place on its circle about the shoulder-wrist line (default "
+                                "0: in the plane of the first axis; radians unless --deg)")
     args = p.parse_args(argv)
     deg = args.deg
-    free = None if not DESIGN_NAMES or args.free is None else (
-        math.radians(args.free) if deg and JOINT_KINDS[_FREE] == "R" else args.free)
+    free = None if not DESIGN_NAMES or getattr(args, "free", None) is None else (
+        math.radians(args.free) if deg and (_ARM_ANGLE or JOINT_KINDS[_FREE] == "R") else args.free)
     try:
         if args.verb == "ik":
             design = [0.0 if free is None else free] if DESIGN_NAMES else None
             out = ik(_cli_pose(args.pose, deg), design)
         else:
             q = _cli_joints(args.joints, free, deg)
-            design = [q[_FREE]] if DESIGN_NAMES else None
+            design = [q[_FREE]] if _FREE >= 0 else ([arm_angle(q)] if _ARM_ANGLE else None)
             out = fk(q, design)
     except WristkinError as exc:
         print(f"{NAME}: error: {exc}", file=sys.stderr)

@@ -14,7 +14,7 @@ from general6r import g6_solve, g6_z_frames
 
 
 # wristkin: inlined from here
-def _general6r_stage(ch, g, prev, op, x, y, q, count, go_on, family):
+def _general6r_stage(ch, g, prev, op, x, y, q, count, go_on, family, params=()):
     """Every candidate of the elimination for the product of exponentials g (the home frame removed): the loop read
     from joint op[1], backwards when op[2], op[3] the hidden angle. Each goes on to the verification."""
     _, shift, reverse, hidden = op

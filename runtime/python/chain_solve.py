@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import math
 
-import chain_sp6  # noqa: F401  (registers its stage, as inlining it does)
+import chain_arm_angle  # noqa: F401  (registers its stage, as inlining it does)
+import chain_sp6  # noqa: F401
 import chain_spatial3  # noqa: F401
 import numpy as np
 from chain_poe import _between
@@ -52,10 +53,11 @@ def _orient_rest(u, rd, t1, t2):
     return [-t1, 0.0 if t2b is None else t2b]
 
 
-def _solve(ch, g, prev, accept):
+def _solve(ch, g, prev, accept, params=(0.0,)):
     """Run the decomposition on exp(S_1 q_1) ... exp(S_n q_n) = g, handing every candidate (q in the chain's
     order, flags) to `accept`, which verifies and stores it (True when stored). `prev`: the previous solution in
-    the chain's order (places a singular family's free angle), or None. Returns whether any op had a root."""
+    the chain's order (places a singular family's free angle), or None; `params`: the design's values (an arm
+    angle op reads its angle there). Returns whether any op had a root."""
     n = len(ch.kinds)
     q = [0.0] * n
     theta = {}
@@ -241,7 +243,7 @@ def _solve(ch, g, prev, accept):
                 run(k + 1, x, y, flags | f)
                 noise[0] = outer
             _OP_STAGES[kind](ch, g, prev, op, x, y, q, count, go_on,
-                             lambda f, place, angle: run_family(k, x, y, flags | f, place, angle))
+                             lambda f, place, angle: run_family(k, x, y, flags | f, place, angle), params)
         elif kind == "linear":
             _, js = op
             a = np.array([ch.axes[j] for j in js]).T

@@ -230,7 +230,7 @@ def _sp6_newton_perp(nv, h0, p0, h4, p4, d0, g, h5, q0, q4):
     return q0, q4
 
 
-def _sp6_stage(ch, g, prev, op, x, y, q, count, go_on, family):
+def _sp6_stage(ch, g, prev, op, x, y, q, count, go_on, family, params=()):
     """Joints j and k of subproblem 6 (the op ("sp6", j, k, l, n)), then l about the group's axis; a merged
     near-double root that verified nothing is split into its two roots."""
     _, j, kk, ll, ns = op

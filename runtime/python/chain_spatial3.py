@@ -120,7 +120,7 @@ def _spatial3_refine(ch, ja, jb, jc, x, y, qa, qb, qc):
 
 
 
-def _spatial3_stage(ch, g, prev, op, x, y, q, count, go_on, family):
+def _spatial3_stage(ch, g, prev, op, x, y, q, count, go_on, family, params=()):
     """The op ("spatial3", a, b, c): every real root of the polynomial."""
     _, ja, jb, jc = op
     for qa, qb, qc, f in _spatial3(ch, ja, jb, jc, x, y):

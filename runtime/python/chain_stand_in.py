@@ -159,6 +159,7 @@ _TOOL = (
     (0.0, 0.0, 0.0, 1.0),
 )
 _FREE = -1  # index of the free joint, or -1
+_ARM_ANGLE = False  # the run-time parameter is the arm angle of an S-R-S arm (chain_arm_angle.py)
 _REVERSED = False  # the decomposition reads the chain from the tool
 # (op, args...): the decomposition as data; _solve below interprets it (see the module docstring of
 # derive/families/chain/planner.py for each op's equation)

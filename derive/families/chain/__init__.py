@@ -4,7 +4,7 @@ templates/{python,c}/chain.*.jinja.
 
 Spec fields (docs/specs.md, "chain"): `convention` (standard | modified | poe | urdf), `[[joint]]` rows (DH:
 name, type, a, alpha, d, theta, direction, lower, upper; POE: name, type, axis, point, lower, upper), `[home]`
-(POE), `urdf`, `base_link`, `tip_link` (URDF), `[base]`, `[tool]`, `free`, `geometry_tol`."""
+(POE), `urdf`, `base_link`, `tip_link` (URDF), `[base]`, `[tool]`, `free`, `redundancy`, `geometry_tol`."""
 
 from dataclasses import replace
 from pathlib import Path
@@ -30,7 +30,7 @@ def solver_name(path: Path) -> str:
 
 
 def spec_for_file(path: Path, name=None, base=None, tip=None, free=None, geometry_tol=None, xacro_args=None,
-                  packages=None) -> Spec:
+                  packages=None, redundancy=None) -> Spec:
     """The spec of a URDF (or xacro) file given on the command line (its links and options as the spec's fields)."""
     path = Path(path)
     kind = "xacro" if path.suffix.lower() == ".xacro" else "URDF"
@@ -39,8 +39,10 @@ def spec_for_file(path: Path, name=None, base=None, tip=None, free=None, geometr
             "source": f"{kind} {path.name}", "convention": "urdf", "urdf": str(path.resolve())}
     # every field of this spec stands for a command-line option: its errors name the option
     spec = Spec(data, path, options={"base_link": "--base", "tip_link": "--tip", "free": "--free",
+                                     "redundancy": "--redundancy",
                                      "geometry_tol": "--geometry-tol", "name": "--name"})
     for key, option, value in (("base_link", "--base", base), ("tip_link", "--tip", tip), ("free", "--free", free),
+                               ("redundancy", "--redundancy", redundancy),
                                ("geometry_tol", "--geometry-tol", geometry_tol),
                                ("xacro_args", "--xacro-arg", xacro_args or None),
                                ("packages", "--package", packages or None)):
@@ -73,7 +75,9 @@ def from_spec(spec: Spec) -> ChainMechanism:
     desc = read(spec)
     head = common(spec)
     mech = ChainMechanism(head["name"], head["title"], desc)
-    if desc.chain.n <= 6 and desc.free < 0:
+    if (desc.chain.n <= 6 and desc.free < 0) or desc.redundancy == "arm-angle":
+        if desc.redundancy == "arm-angle":
+            mech.plan()  # an arm that is no S-R-S: refused here, naming what is missing
         return mech
     if desc.free < 0:
         choices = free_joint_choices(head["name"], head["title"], desc)

@@ -16,8 +16,8 @@ from ...spec import COMMON_FIELDS, Spec, common
 from . import urdf
 from .description_names import JOINT_NAME
 
-SPEC_FIELDS = ("convention", "unit", "joint", "home", "base", "tool", "free", "geometry_tol", "urdf", "base_link",
-               "tip_link", "xacro_args", "packages")
+SPEC_FIELDS = ("convention", "unit", "joint", "home", "base", "tool", "free", "redundancy", "geometry_tol", "urdf",
+               "base_link", "tip_link", "xacro_args", "packages")
 DH_FIELDS = ("name", "type", "a", "alpha", "d", "theta", "direction", "lower", "upper")
 POE_FIELDS = ("name", "type", "axis", "point", "lower", "upper")
 _ALLOWED = set("0123456789.+-*/() epi")
@@ -31,6 +31,7 @@ class Description:
     free: int  # index of the free joint, or -1
     geometry_tol: float
     source: str
+    redundancy: str = "joint"  # a 7-joint arm's run-time parameter: a held joint (free), or "arm-angle"
 
 
 def number(spec: Spec, field: str, default=0.0) -> float:
@@ -176,8 +177,16 @@ def read(spec: Spec, path_hint: Path | None = None) -> Description:
         if fname not in chain.joint_names:
             raise spec.error("free", f"one of the joints ({', '.join(chain.joint_names)})", fname)
         free = chain.joint_names.index(fname)
+    redundancy = spec.choice("redundancy", ("joint", "arm-angle"), "joint")
+    if redundancy == "arm-angle":
+        if free >= 0:
+            raise spec.error("redundancy", "either a free joint or the arm angle as the run-time parameter, not both",
+                             redundancy)
+        if chain.n != 7 or any(k != "R" for k in chain.kinds):
+            raise spec.error("redundancy", f"arm-angle for a 7-joint revolute arm (this chain has {chain.n} joints)",
+                             redundancy)
     # more than 6 joints and no free joint: the family names the joints that would work (it needs the planner)
-    return Description(chain, lambda q: base @ fk_desc(q) @ tool, rule, free, tol, head["source"])
+    return Description(chain, lambda q: base @ fk_desc(q) @ tool, rule, free, tol, head["source"], redundancy)
 
 
 def _poe_fk(kinds, pairs, home):

@@ -12,7 +12,7 @@ import numpy as np
 from ...checks import numeric_predicate
 from ...kinematics import general6r
 from ...kinematics.geometry import common_point
-from ...kinematics.planner import Geometry, NoClosedForm, Plan, find_plan, op_branches, replay
+from ...kinematics.planner import Geometry, NoClosedForm, Plan, arm_angle_plan, find_plan, op_branches, replay
 from ...kinematics.poe import Chain, normalised, reduce_free, reverse
 from ...kinematics.subproblems import subproblem_checks
 from ...mechanism import MechanismDefaults
@@ -59,6 +59,12 @@ class ChainMechanism(MechanismDefaults):
 
     def plan(self) -> tuple[Plan, Chain]:
         """The decomposition and the ideal chain it runs on (cached)."""
+        if self._plan is None and self.desc.redundancy == "arm-angle":
+            self._plan = arm_angle_plan(self.chain, self.desc.geometry_tol)
+            self._ideal = self.idealise(self._plan)
+            if self.deviation() > CALIBRATED_DEVIATION:
+                raise NoClosedForm(f"the arm angle needs an exact S-R-S arm: its axes are {self.deviation():.2g} off "
+                                   "meeting (a calibrated arm: hold a joint instead, --free)")
         if self._plan is None:
             self._refuse_self_motion()
             samples = self._held_samples()
@@ -110,6 +116,11 @@ class ChainMechanism(MechanismDefaults):
         g = Geometry(self.solver_chain(self.chain, v, plan.reversed), self.desc.geometry_tol)
         return all((g.meet(r.joints) if r.kind == "meet" else (True if g.parallel(r.joints) else None)) is not None
                    for r in self._spanning(plan))
+
+    @property
+    def arm_angle(self) -> bool:
+        """The run-time parameter is the arm angle (an S-R-S arm, derive/kinematics/arm_angle.py)."""
+        return self.desc.redundancy == "arm-angle"
 
     def plan_samples(self, plan: Plan | None = None) -> tuple[float, ...]:
         """The held values the plan is checked at: _held_samples without those where a relation across the held
@@ -370,8 +381,9 @@ class ChainMechanism(MechanismDefaults):
         calibrated = deviation > CALIBRATED_DEVIATION
         return {"name": self.NAME, "title": self.title, "joint_names": list(c.joint_names),
                 "joint_kinds": list(c.kinds), "n_joints": c.n, "max_ik": plan.branches,
-                "design_names": [c.joint_names[free]] if free >= 0 else [],
-                "design_values": ["0.0"] if free >= 0 else [],
+                "design_names": [c.joint_names[free]] if free >= 0 else (["arm_angle"] if self.arm_angle else []),
+                "design_values": ["0.0"] if free >= 0 or self.arm_angle else [],
+                "arm_angle": self.arm_angle,
                 "lower": [_num(v) for v in c.lower], "upper": [_num(v) for v in c.upper],
                 "strategy": plan.strategy, "controls": self.controls(), "branch_names": branch_names,
                 "scale": repr(self.scale()), "geometry_tol": repr(self.desc.geometry_tol),
@@ -425,7 +437,7 @@ class ChainMechanism(MechanismDefaults):
         free = self.desc.free
         for _ in range(n):
             q = _random_joints(c, rng)
-            design = [q[free]] if free >= 0 else None
+            design = [q[free]] if free >= 0 else ([solver.arm_angle(q)] if self.arm_angle else None)
             sol = solver.ik(solver.fk_matrix(q), design)
             counts[sol.count] = counts.get(sol.count, 0) + 1
             for v in sol:
@@ -441,15 +453,19 @@ class ChainMechanism(MechanismDefaults):
                                              for nm, k in zip(c.joint_names, c.kinds, strict=True))),
                         ("description", c.source_format), ("decomposition", self.plan()[0].strategy),
                         ("controls", self.controls()),
-                        ("free joint", c.joint_names[free] if free >= 0 else "none"),
+                        ("run-time parameter", f"the free joint {c.joint_names[free]}" if free >= 0 else
+                         ("the arm angle psi (derive/kinematics/arm_angle.py)" if self.arm_angle else "none")),
                         ("IK solution sets per pose (max)", str(solver.MAX_IK))],
             "sections": [{"title": "Round trips through the generated solver",
                           "body": f"{n} seeded random joint vectors (revolute in (-pi, pi], prismatic in (-0.5, 0.5) m"
-                                  f"{', the free joint drawn too' if free >= 0 else ''}): IK solution counts "
+                                  f"{', the free joint drawn too' if free >= 0 else ''}"
+                                  f"{'; IK at the arm angle of the drawn joints' if self.arm_angle else ''}): IK "
+                                  "solution counts "
                                   f"{dict(sorted(counts.items()))}; the generating joints were among the solutions "
                                   f"{contains} of {n} times; largest pose error of a returned solution "
                                   f"{error_bucket(worst)} (tolerance 1e-9). The comparison with an independent "
-                                  "numeric multistart reference is in tests/test_chain_robots.py."},
+                                  f"numeric multistart reference is in tests/"
+                                  f"{'test_arm_angle.py' if self.arm_angle else 'test_chain_robots.py'}."},
                          {"title": "Ideal versus true geometry",
                           "body": f"The decomposition runs on the chain with its relations made exact (largest change "
                                   f"of an axis or point {error_bucket(self.deviation())}); at the same joint values "
@@ -529,6 +545,8 @@ def _plan_literal(plan: Plan) -> str:
             rows.append(f'("group_rest", {op["j"]}, {_spec_literal(op["group"])})')
         elif k == "general6r":
             rows.append(f'("general6r", {op["shift"]}, {op["reverse"]}, {op["hidden"]})')
+        elif k == "arm_angle":
+            rows.append(f'("arm_angle", {_spec_literal(op["shoulder"])}, {op["elbow"]}, {_spec_literal(op["s"])})')
     return "(\n    " + ",\n    ".join(rows) + ",\n)"
 
 
@@ -584,6 +602,12 @@ def _op_text(op, names) -> str:
         return f"{units} = R_d"
     if k == "general6r":
         return "all six joints from the loop's 14 equations: the real eigenvalues of a 24 x 24 companion matrix"
+    if k == "arm_angle":
+        return (f"{nm(op['elbow'])} from |e_{nm(op['elbow'])} x - s| = |y - s| (s = {_x_words(op['s'], names)}); "
+                f"{', '.join(nm(j) for j in op['shoulder'])} from the rotation about s taking the home side's "
+                "directions (s -> the turned wrist centre, that line -> the elbow point) to the target's (s -> y, "
+                "E(psi)): E(psi) = s + d_se (cos a u + sin a (cos psi n1 + sin psi n2)), u = (y - s) / |y - s|, n1 the "
+                f"axis of {nm(op['shoulder'][0])} normal to u, n2 = u x n1")
     return f"{nm(op['j'])} = the parallel group's sum minus the others"
 
 
@@ -609,7 +633,10 @@ def _op_rule(op, names) -> str:
                         "first joint, bilinear in the other two; every real root of the resulting polynomial",
             "orient": "subproblem 2 on the last unit's axis, then subproblem 1 about it (fewer units: subproblem 1)",
             "group_rest": "rotations about parallel axes add: the last one is the sum minus the others",
-            "general6r": "Raghavan-Roth elimination, Manocha-Canny eigenproblem (derive/kinematics/general6r.py)"}[
+            "general6r": "Raghavan-Roth elimination, Manocha-Canny eigenproblem (derive/kinematics/general6r.py)",
+            "arm_angle": "the arm angle psi places the elbow on its circle about the shoulder-wrist line "
+                         "(derive/kinematics/arm_angle.py); subproblem 3 for the elbow, the rotation of two "
+                         "directions and subproblems 2 and 1 for the shoulder"}[
         op["op"]]
 
 
@@ -623,7 +650,7 @@ def _roles(plan: Plan, ch: Chain):
         if op["op"] == "begin":
             x_home = geometry.point(op["x"])
             place_end = op["hi"] + 1
-        if op_branches(op) < 2 or op["op"] == "general6r":  # the elimination's sets have no geometric names
+        if op_branches(op) < 2 or op["op"] in ("general6r", "arm_angle"):  # no one geometric name for their sets
             continue
         count += 1
         if op["op"] == "orient":

@@ -26,7 +26,7 @@ class Stage:
 
     index: int
     op: str               # begin, first_plane, last_plane, first_dist, last_dist, pair, single, linear, sp6,
-                          # spatial3, orient, group_rest, general6r
+                          # spatial3, orient, group_rest, general6r, arm_angle
     j: int = -1           # its joint(s) in the solver's chain (pair, sp6: j then k)
     k: int = -1
     slide: bool = False   # joint j is prismatic (linear: all its joints are)
@@ -47,6 +47,8 @@ class Stage:
             return tuple(u[0] for u in self.units)
         if self.op in ("linear", "spatial3", "general6r"):
             return self.js
+        if self.op == "arm_angle":
+            return (*self.js, self.j)
         return tuple(x for x in (self.j, self.k, *(self.js if self.op == "sp6" else ())) if x >= 0)
 
     def c_row(self) -> str:
@@ -90,6 +92,8 @@ def stage(index: int, op: dict) -> Stage:
         return Stage(index, o, lo=op["lo"], hi=op["hi"], units=tuple(tuple(u) for u in op["units"]))
     if o == "group_rest":
         return Stage(index, o, j=op["j"], js=tuple(op["group"]))
+    if o == "arm_angle":  # j: the elbow; js: the shoulder's three joints; spec: their common point
+        return Stage(index, o, j=op["elbow"], spec=_spec(op["s"]), js=tuple(op["shoulder"]))
     if o == "general6r":  # j: the loop's first joint, k: the hidden angle, lo: read backwards; it sets all six
         return Stage(index, o, j=op["shift"], k=op["hidden"], lo=int(op["reverse"]), js=tuple(range(6)))
     raise ValueError(f"no stage for the planner op {o!r}")

@@ -26,7 +26,8 @@ def c_runtime_files(ops) -> list[str]:
     kinds = _kinds(ops)
     poly = ["c/poly_real_roots.c", "c/chain/ck_poly.c"] if kinds & {"spatial3", "sp6"} else []
     return [*_C_CORE, *poly, *(["c/chain/ck_spatial3.c"] if "spatial3" in kinds else []),
-            *(["c/chain/ck_sp6.c"] if "sp6" in kinds else []), *_C_TAIL]
+            *(["c/chain/ck_sp6.c"] if "sp6" in kinds else []),
+            *(["c/chain/ck_arm_angle.c"] if "arm_angle" in kinds else []), *_C_TAIL]
 
 
 def py_runtime_files(ops) -> list[str]:
@@ -37,6 +38,7 @@ def py_runtime_files(ops) -> list[str]:
     return [*(f"python/chain_{n}.py" for n in ("design", "rigid", "poe", "subproblems", "points", "stages")), *poly,
             *(["python/chain_spatial3.py"] if "spatial3" in kinds else []),
             *(["python/chain_sp6.py"] if "sp6" in kinds else []),
+            *(["python/chain_arm_angle.py"] if "arm_angle" in kinds else []),
             *(["python/general6r.py", "python/chain_general6r.py"] if "general6r" in kinds else []),
             *(f"python/chain_{n}.py" for n in ("solve", "verify", "api"))]
 
@@ -50,7 +52,8 @@ def c_flags(ops, free: int, reversed_: bool, calibrated: bool = False, degenerat
     return {**held, "CK_N_DEGENERATE_HELD": len(degenerate_held), "CK_GEOMETRY_TOL": repr(float(geometry_tol)),
             "CK_FREE": free, "CK_REVERSED": int(bool(reversed_)), "CK_CALIBRATED": int(bool(calibrated)),
             "CK_HAS_SP6": int("sp6" in kinds),
-            "CK_HAS_SPATIAL3": int("spatial3" in kinds), "CK_HAS_GENERAL6R": int("general6r" in kinds)}
+            "CK_HAS_SPATIAL3": int("spatial3" in kinds), "CK_HAS_GENERAL6R": int("general6r" in kinds),
+            "CK_HAS_ARM_ANGLE": int("arm_angle" in kinds)}
 
 
 def stage_tolerances(ops) -> dict:

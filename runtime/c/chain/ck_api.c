@@ -36,8 +36,8 @@ static int ck_api_design_init(const double *params, ck_design *design)
     if (!design) return WK_ERR_NULL;
     if (params && !wk_all_finite(params, CK_N_PARAMS)) return WK_ERR_NONFINITE;
     *design = ck_default_design;
-#if CK_FREE >= 0
-    if (params) design->params[0] = params[0];
+#if CK_N_PARAMS > 0
+    if (params) design->params[0] = params[0]; /* the free joint's value, or the arm angle */
 #endif
     return WK_OK;
 }

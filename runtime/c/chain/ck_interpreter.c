@@ -705,6 +705,21 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
         break;
     }
 #endif
+#if CK_HAS_ARM_ANGLE
+    case CK_ARM_ANGLE: { /* the shoulder and the elbow from the wrist centre y and the design's arm angle */
+        double sets[4][4];
+        unsigned fa[4];
+        int i, nr = ck_arm_angle(ch, op, c->spec[k], x, y, c->design->params[0], c->prev, sets, fa);
+        for (i = 0; i < nr; ++i) {
+            c->q[op->js[0]] = sets[i][0];
+            c->q[op->js[1]] = sets[i][1];
+            c->q[op->js[2]] = sets[i][2];
+            c->q[op->j] = sets[i][3];
+            ck_run(c, k + 1, x, y, flags | fa[i]);
+        }
+        break;
+    }
+#endif
 #if CK_HAS_GENERAL6R
     case CK_GENERAL6R: { /* no decomposition: the general 6R by elimination (wk_general6r.c), every candidate */
         double axes[18], points[18], frames[96], g4[16], cand[WK_G6_MAX_CANDIDATES * 6];

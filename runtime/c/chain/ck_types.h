@@ -13,7 +13,7 @@ typedef struct {
 } ck_chain;
 /* ------------------------------------------------------------------ the decomposition as data */
 enum { CK_BEGIN, CK_FIRST_PLANE, CK_LAST_PLANE, CK_FIRST_DIST, CK_LAST_DIST, CK_PAIR, CK_SINGLE, CK_LINEAR,
-       CK_ORIENT, CK_GROUP_REST, CK_SPATIAL3, CK_SP6, CK_GENERAL6R };
+       CK_ORIENT, CK_GROUP_REST, CK_SPATIAL3, CK_SP6, CK_GENERAL6R, CK_ARM_ANGLE };
 /* a point x / s: where axes meet, a point on an axis, the end frame's origin; a direction n: an axis, or the
  * normal of two (slide) axes */
 enum { CK_NONE, CK_MEET, CK_ON, CK_HOME, CK_DIR, CK_CROSS };
@@ -29,7 +29,7 @@ typedef struct {
     int n_units;       /* orient: its units (one joint, or a parallel group turning as one) */
     int unit_len[3];
     int units[3][CK_N];
-    int n_js;          /* linear: its slides; group_rest: the group */
+    int n_js;          /* linear: its slides; group_rest: the group; arm_angle: the shoulder (j: the elbow) */
     int js[CK_N];
     int planar;        /* first/last_dist: the other joints keep the parts normal to j's axis (the target's distance
                         * there read as a sum of squares) */

@@ -1,0 +1,203 @@
+"""The arm angle as a 7R S-R-S arm's redundancy parameter (`wristkin derive --redundancy arm-angle`, issue 23):
+the iiwa14's URDF derived as a user would, its solvers (C extension and numpy) checked against an independent
+reference: the URDF's own transforms (tests/reference/chain.py) give each joint's world axis and point, the arm
+angle is read from them geometrically, and a multistart Levenberg-Marquardt on the pose and the arm angle (seven
+equations in seven joints) counts the solutions."""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from reference import chain as ref
+from scipy.optimize import least_squares
+from seeding import case_rng
+
+from derive import own_robot
+from derive.kinematics.planner import NoClosedForm
+from derive.model import NoDecomposition
+
+ROBOTS = Path(__file__).parent / "robots"
+IIWA = ROBOTS / "iiwa14" / "iiwa14.urdf"
+_CACHE: dict = {}
+
+
+def solver():
+    if "m" not in _CACHE:
+        out = Path(tempfile.mkdtemp(prefix="wk_arm_angle_"))
+        own_robot.derive(IIWA, out, name="iiwa_psi", redundancy="arm-angle", progress=lambda _: None)
+        _CACHE["m"] = own_robot.import_solver(out, "iiwa_psi")
+        _CACHE["py"] = own_robot.import_solver(out, "iiwa_psi", backend="numpy")
+        _CACHE["out"] = out
+    return _CACHE["m"], _CACHE["py"], _CACHE["out"]
+
+
+def _common_point(points, axes):
+    """The least-squares common point of lines (point, unit axis)."""
+    m = sum(np.eye(3) - np.outer(a, a) for a in axes)
+    v = sum((np.eye(3) - np.outer(a, a)) @ p for p, a in zip(points, axes, strict=True))
+    return np.linalg.solve(m, v)
+
+
+def reference_angle(chain, q) -> float:
+    """The arm angle from the reference's world axes and points at q: shoulder and wrist centres where their axes
+    meet, the elbow point on its axis nearest the shoulder, the angle about the shoulder-wrist line from the first
+    axis's part normal to it."""
+    _, axes, points = chain.axes_points(q)
+    s = _common_point(points[:3], axes[:3])
+    w = _common_point(points[4:], axes[4:])
+    e = points[3] + np.dot(axes[3], s - points[3]) * axes[3]
+    u = (w - s) / np.linalg.norm(w - s)
+    n1 = axes[0] - np.dot(axes[0], u) * u
+    n1 /= np.linalg.norm(n1)
+    side = (e - s) - np.dot(e - s, u) * u
+    return math.atan2(float(np.dot(side, np.cross(u, n1))), float(np.dot(side, n1)))
+
+
+def _gap(a, b) -> float:
+    return float(np.max(np.abs(ref.wrap_angle(np.asarray(a) - np.asarray(b)))))
+
+
+def multistart(chain, T, psi, seed, starts=60):
+    """Every distinct solution of FK(q) = T with arm angle psi that LM finds from `starts` random starts."""
+    rng = np.random.default_rng(seed)
+
+    def residual(q):
+        t = chain(q)
+        return np.r_[t[:3, 3] - T[:3, 3], ref.log_rot(t[:3, :3] @ T[:3, :3].T),
+                     math.remainder(reference_angle(chain, q) - psi, 2 * math.pi)]
+    found = []
+    for _ in range(starts):
+        r = least_squares(residual, rng.uniform(-math.pi, math.pi, 7), method="lm", xtol=1e-15, ftol=1e-15,
+                          gtol=1e-15, max_nfev=400)
+        if np.max(np.abs(residual(r.x))) < 1e-10:
+            q = ref.wrap_angle(r.x)
+            if all(_gap(q, f) > 1e-6 for f in found):
+                found.append(q)
+    return found
+
+
+def test_an_srs_arm_is_solved_at_its_arm_angle():
+    """Random poses of the iiwa14 at the arm angle of the joints that made them: the generating joints among the
+    sets, every set reaching the pose on the URDF's own transforms at that arm angle (read geometrically), and the
+    sets equal to the multistart reference's (none missing, none spurious), in C and on numpy."""
+    m, py, _ = solver()
+    if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
+        assert m.BACKEND == "c"
+    assert m.DESIGN_NAMES == ("arm_angle",) and m.MAX_IK == 8 and "arm angle" in m.DECOMPOSITION
+    chain = ref.load(IIWA)
+    rng = case_rng(2300)
+    for k in range(6):
+        q = rng.uniform(-math.pi, math.pi, 7)
+        T = chain(q)
+        psi = reference_angle(chain, q)
+        assert abs(math.remainder(m.arm_angle(q) - psi, 2 * math.pi)) < 1e-12
+        found = multistart(chain, T, psi, seed=k) if k < 2 else None
+        for mod in (m, py):
+            s = mod.ik(T, [psi])
+            assert s.status == mod.STATUS_OK, s.reason
+            sets = s.values[s.valid]
+            assert min(_gap(v, q) for v in sets) < 1e-9
+            for v in sets:
+                assert np.max(np.abs(chain(v) - T)) < 1e-9
+                assert abs(math.remainder(reference_angle(chain, v) - psi, 2 * math.pi)) < 1e-9
+            assert len(sets) == 8 and all(_gap(v, w) > 1e-6 for i, v in enumerate(sets) for w in sets[:i])
+            if found is not None:  # none missing (none spurious: each set checked on the reference above)
+                for f in found:
+                    assert min(_gap(f, v) for v in sets) < 1e-6
+
+
+def test_any_arm_angle_gives_eight_sets_with_the_elbow_there():
+    """One pose, the arm angle swept over the circle: every set reaches the pose at that arm angle, 8 of them."""
+    m, py, _ = solver()
+    chain = ref.load(IIWA)
+    q = case_rng(2301).uniform(-2.0, 2.0, 7)
+    T = chain(q)
+    for psi in np.linspace(-math.pi, math.pi, 13):
+        for mod in (m, py):
+            s = mod.ik(T, [psi])
+            assert s.count == 8, (psi, s.reason)
+            for v in s.values[s.valid]:
+                assert np.max(np.abs(chain(v) - T)) < 1e-9
+                assert abs(math.remainder(reference_angle(chain, v) - psi, 2 * math.pi)) < 1e-9
+
+
+def test_the_arm_angle_singularities_are_flagged():
+    """The wrist centre on the first axis (the reference plane undefined): valid sets, status indeterminate. The arm
+    stretched (the elbow on the shoulder-wrist line: every arm angle is that configuration): the sets flagged
+    singular."""
+    m, py, _ = solver()
+    chain = ref.load(IIWA)
+    for mod in (m, py):
+        q = np.array([0.3, 0.2, 0.4, 1.2, 0.0, -1.2, 0.5])  # a regular configuration next to them
+        q_on = np.array([0.3, 0.0, 0.0, 0.0, 0.0, 0.7, 0.5])  # straight up: the wrist centre on the first axis
+        s = mod.ik(chain(q_on), [0.4])
+        assert s.count >= 1 and s.status == mod.STATUS_INDETERMINATE, s.reason
+        for v in s.values[s.valid]:
+            assert np.max(np.abs(chain(v) - chain(q_on))) < 1e-9
+        stretched = np.array([0.3, 0.9, 0.2, 0.0, 0.4, 0.7, 0.5])
+        s = mod.ik(chain(stretched), [mod.arm_angle(stretched)])
+        assert s.count >= 1 and all(f & mod.FLAG_SINGULAR_INVERSE for f in s.flags[s.valid]), s.reason
+        assert min(_gap(v, stretched) for v in s.values[s.valid]) < 1e-6
+        s = mod.ik(chain(q), [mod.arm_angle(q)])
+        assert min(_gap(v, q) for v in s.values[s.valid]) < 1e-9
+
+
+def test_the_c_verb_reads_the_arm_angle_as_python_does(tmp_path):
+    """wk_NAME_arm_angle (the C header's verb) equals the module's arm_angle and the reference's."""
+    m, _, out = solver()
+    chain = ref.load(IIWA)
+    rng = case_rng(2302)
+    qs = rng.uniform(-math.pi, math.pi, (20, 7))
+    src = tmp_path / "main.c"
+    src.write_text('#include <stdio.h>\n#include "iiwa_psi.h"\nint main(void) {\n  double q[7], psi;\n'
+                   '  while (scanf("%lf %lf %lf %lf %lf %lf %lf", q, q + 1, q + 2, q + 3, q + 4, q + 5, q + 6)'
+                   ' == 7) {\n'
+                   '    if (wk_iiwa_psi_arm_angle(q, NULL, &psi) != 0) return 1;\n    printf("%.17g\\n", psi);\n  }\n'
+                   '  return wk_iiwa_psi_arm_angle(NULL, NULL, &psi) == 0;\n}\n')
+    exe = tmp_path / "psi"
+    c_dir = out / "c"
+    r = subprocess.run(["gcc", "-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-o", str(exe), str(src),
+                        *map(str, sorted(c_dir.glob("*.c"))), f"-I{c_dir}", "-lm"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    r = subprocess.run([str(exe)], input="\n".join(" ".join(repr(float(v)) for v in q) for q in qs),
+                       capture_output=True, text=True)
+    assert r.returncode == 0
+    for q, line in zip(qs, r.stdout.split(), strict=True):
+        assert abs(math.remainder(float(line) - reference_angle(chain, q), 2 * math.pi)) < 1e-12
+        assert abs(math.remainder(float(line) - m.arm_angle(q), 2 * math.pi)) < 1e-12
+
+
+def test_arms_that_are_no_s_r_s_are_refused_with_the_reason(tmp_path):
+    """The Panda (its wrist axes meet in no point) and a 6-joint arm are refused, naming what is missing; --free
+    with it too."""
+    with pytest.raises((NoClosedForm, NoDecomposition), match="joint5, joint6, joint7 meet in no point"):
+        own_robot.load(ROBOTS / "panda" / "panda_dh.toml", redundancy="arm-angle")
+    from derive.spec import SpecError
+
+    with pytest.raises(SpecError, match="7-joint revolute arm"):
+        own_robot.load(ROBOTS / "ur5e" / "ur5e.urdf", base="base_link", tip="tool0", redundancy="arm-angle")
+    with pytest.raises(SpecError, match="not both"):
+        own_robot.load(IIWA, free="a3", redundancy="arm-angle")
+
+
+def test_the_module_command_takes_the_arm_angle(tmp_path):
+    m, _, out = solver()
+    chain = ref.load(IIWA)
+    q = case_rng(2303).uniform(-2.0, 2.0, 7)
+    psi = m.arm_angle(q)
+    T = chain(q)
+    r = subprocess.run([sys.executable, str(out / "python" / "iiwa_psi.py"), "ik", "--pose",
+                        *map(repr, T[:3].ravel().tolist()), "--arm-angle", repr(psi), "--json"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    import json
+
+    sets = [s["values"] for s in json.loads(r.stdout)["solutions"]]
+    assert len(sets) == 8 and min(_gap(v, q) for v in sets) < 1e-9
