@@ -8,10 +8,38 @@ A family is a package under derive/families/ (found by discovery) that satisfies
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, ClassVar, Protocol, runtime_checkable
 
 from .model import Derivation
+
+
+@dataclass(frozen=True)
+class CApi:
+    """The verbs a mechanism's C header declares beyond the ones every mechanism has (design, ik, fk, ik_batch,
+    fk_batch), as its family's templates emit them: the CPython binding (templates/c/native.c.jinja) is rendered
+    from these records, never from reading a generated header (tests/test_native_api.py holds each record equal to
+    its header)."""
+
+    pose12: bool = False  # ik takes a 12-number pose (else the mechanism's own input)
+    ik_near: bool = False  # ik_near(pose, design, previous)
+    jacobian: bool = False
+    fk_matrix: bool = False
+    frames: bool = False  # design_set_frames (base and tool)
+    atlas: bool = False  # atlas_batch and max_swing (the 3-RSR wrist)
+    atlas_conditioning: bool = False
+    atlas_home: bool = False
+
+    def methods(self) -> list[str]:
+        """The extension's functions for it, in its method table's order."""
+        optional = [(self.jacobian, ["jacobian"]), (self.fk_matrix, ["fk_matrix"]),
+                    (self.atlas, ["atlas_batch", "max_swing"]), (self.atlas_conditioning, ["atlas_conditioning"]),
+                    (self.atlas_home, ["atlas_home_batch"])]
+        return ["design", "ik", "fk", "ik_batch", "fk_batch"] + [f for on, fs in optional if on for f in fs]
+
+
+SERIAL_C_API = CApi(pose12=True, ik_near=True, jacobian=True, fk_matrix=True, atlas_conditioning=True)
 
 
 @runtime_checkable
@@ -25,6 +53,7 @@ class Mechanism(Protocol):
     DERIVE_GROUP: str | None  # mechanisms sharing a cached derivation run in one process (None: on its own)
     CASADI_DESIGN_NAMES: tuple[str, ...] | None  # the CasADi functions' design inputs (None: the solver's)
     CASADI_DOCS: dict[str, str] | None  # the CasADi index's function texts
+    C_API: CApi  # the optional C verbs its templates emit
 
     def derive(self) -> Derivation: ...
 
@@ -47,6 +76,7 @@ class MechanismDefaults:
     DERIVE_GROUP: ClassVar[str | None] = None
     CASADI_DESIGN_NAMES: ClassVar[tuple[str, ...] | None] = None
     CASADI_DOCS: ClassVar[dict[str, str] | None] = None
+    C_API: ClassVar[CApi] = CApi()
 
     def audit_numbers(self, dv: Derivation, solver: Any, audit_dir: Path) -> dict:
         """Numeric findings for the audit beyond the derivation's own records (none by default)."""

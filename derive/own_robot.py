@@ -10,7 +10,9 @@ Progress goes to `progress` (one line per stage, with the seconds it took)."""
 
 from __future__ import annotations
 
+import dataclasses
 import importlib.util
+import json
 import os
 import sys
 import sysconfig
@@ -79,20 +81,28 @@ def import_solver(out: Path, name: str, backend: str | None = None):
                 os.environ["WRISTKIN_BACKEND"] = env
 
 
-def _extension(out: Path, progress) -> list[Path]:
+def _extension(out: Path, mech, progress) -> list[Path]:
     """OUT/native/_native.c over every solver in OUT/c, compiled into OUT/python/_wristkin_native: the Python
-    solvers then run the C. Without a compiler they run on numpy (said, not an error)."""
+    solvers then run the C. Without a compiler they run on numpy (said, not an error). A folder may hold robots
+    derived one command at a time: OUT/native/api.json keeps each one's declared C verbs (Mechanism.C_API), so the
+    binding is rendered from declarations, not from reading the headers."""
+    from .mechanism import CApi
     from .native_build import BuildError, build
-    from .pipeline import native_binding
+    from .pipeline import native_binding, solver_names, write_file
 
-    binding = native_binding(out, "_wristkin_native")
+    record = out / "native" / "api.json"
+    known = json.loads(record.read_text()) if record.is_file() else {}
+    known[mech.NAME] = dataclasses.asdict(mech.C_API)
+    known = {n: known[n] for n in solver_names(out) if n in known}
+    api_file = write_file(record, json.dumps(known, indent=1, sort_keys=True) + "\n")
+    binding = native_binding(out, {n: CApi(**v) for n, v in known.items()}, "_wristkin_native")
     target = out / "python" / f"_wristkin_native{sysconfig.get_config_var('EXT_SUFFIX') or '.so'}"
     try:
         build(out, target=target)
     except BuildError as exc:
         progress(f"  no C extension ({str(exc).splitlines()[0]}): the Python solvers run on numpy")
-        return [binding]
-    return [binding, target]
+        return [api_file, binding]
+    return [api_file, binding, target]
 
 
 def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=None, progress=print,
@@ -124,7 +134,7 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
                *emit_c_runtime(out / "c", mech.c_shared_files())]
     stage("emitted Python and C")
     if native:
-        written += _extension(out, progress)
+        written += _extension(out, mech, progress)
         stage("compiled the C into the folder's Python extension (_wristkin_native)")
     solver = import_solver(out, nm, backend="numpy")
     written += emit_casadi(nm, mech, dv, ks, out / "casadi", solver)

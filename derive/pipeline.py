@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import filecmp
 import hashlib
@@ -121,31 +122,28 @@ def _shared_files(out: Path, catalogue: Path = CATALOGUE) -> list[Path]:
     return files
 
 
-def _c_api(header: str, name: str) -> dict:
-    """What the C binding needs to know of a mechanism, read from its generated header (its API, not its family)."""
-    def has(fn: str) -> bool:
-        return f"wk_{name}_{fn}(" in header
-    api = {"name": name, "pose12": f"#define WK_{name.upper()}_N_POSE 12" in header, "ik_near": has("ik_near"),
-           "jacobian": has("jacobian"), "fk_matrix": has("fk_matrix"), "frames": has("design_set_frames"),
-           "atlas": has("atlas_batch"), "atlas_conditioning": has("atlas_conditioning"),
-           "atlas_home": has("atlas_home_batch")}
-    # the extension's functions for it, in its method table's order
-    optional = [("jacobian", ["jacobian"]), ("fk_matrix", ["fk_matrix"]), ("atlas", ["atlas_batch", "max_swing"]),
-                ("atlas_conditioning", ["atlas_conditioning"]), ("atlas_home", ["atlas_home_batch"])]
-    return {**api, "methods": ["design", "ik", "fk", "ik_batch", "fk_batch"] +
-            [f for key, fs in optional if api[key] for f in fs]}
+def _c_api(name: str, api) -> dict:
+    """What the binding's template prints for a mechanism: its name, its declared C verbs (Mechanism.C_API) and the
+    extension's functions for it."""
+    return {"name": name, **dataclasses.asdict(api), "methods": api.methods()}
 
 
 # the binding's hand-written helpers (compiled and tested as they are: tests/test_native_helpers.py)
 NATIVE_RUNTIME_FILES = ("c/native/wkn_inputs.c", "c/native/wkn_results.c")
 
 
-def native_binding(out: Path, module_path: str = "wristkin._native") -> Path:
-    """The CPython extension source over every mechanism whose C is in out/c (setup.py compiles it); `module_path`:
-    the extension's import name (a `wristkin derive` folder's is the top-level _wristkin_native)."""
-    runtime_headers = {p.name for p in (runtime_files.RUNTIME / "c").glob("*.h")}  # copies, not mechanisms
-    headers = sorted(p for p in (out / "c").glob("*.h") if p.name not in runtime_headers)
-    mechs = [_c_api(p.read_text(), p.stem) for p in headers]
+def solver_names(out: Path) -> list[str]:
+    """The mechanisms whose C is in out/c: their headers' names (the runtime's own headers are copies, not
+    mechanisms)."""
+    runtime_headers = {p.name for p in (runtime_files.RUNTIME / "c").glob("*.h")}
+    return sorted(p.stem for p in (out / "c").glob("*.h") if p.name not in runtime_headers)
+
+
+def native_binding(out: Path, apis: dict, module_path: str = "wristkin._native") -> Path:
+    """The CPython extension source over the mechanisms `apis` names (name -> its declared Mechanism.C_API; their
+    C in out/c; setup.py compiles it); `module_path`: the extension's import name (a `wristkin derive` folder's is
+    the top-level _wristkin_native)."""
+    mechs = [_c_api(name, apis[name]) for name in sorted(apis)]
     return write_file(out / "native" / "_native.c", render("c/native.c.jinja", header_lines=header_lines(), mechs=mechs,
                                                         inputs_hash=input_hash(), row_tol="WK_ROTATION_PROJECT_TOL",
                                                         runtime_sources=NATIVE_RUNTIME_FILES,
@@ -171,7 +169,9 @@ def generate(out: Path, names=None, jobs: int | None = None, catalogue: Path = C
         with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
             results = list(pool.map(_job, work))
     written = shared + [p for r in results for p in r]
-    return written + [native_binding(out)]
+    # the binding covers every mechanism whose C the folder holds (a partial regeneration rewrites some of them)
+    reg = registry(catalogue)
+    return written + [native_binding(out, {n: reg[n].C_API for n in solver_names(out) if n in reg})]
 
 
 BUILD_OUTPUTS = (".so", ".pyd", ".o")  # the compiled extension an editable install puts beside the modules

@@ -201,3 +201,23 @@ def test_the_module_command_takes_the_arm_angle(tmp_path):
 
     sets = [s["values"] for s in json.loads(r.stdout)["solutions"]]
     assert len(sets) == 8 and min(_gap(v, q) for v in sets) < 1e-9
+
+
+def test_the_arm_angle_solver_is_clean_under_asan_ubsan():
+    """The sanitizer driver of every chain solver (tests/c/chain_sanitize.c: random, special and hostile inputs, every
+    returned set reproducing the pose) on the arm-angle solver, at arm angle 0.4."""
+    from cbuild import SANITIZE_FLAGS, compile_executable
+    from test_chain_c import CHAIN_SANITIZE, _sanitizer_available
+
+    if not _sanitizer_available():
+        pytest.skip("compiler has no ASan/UBSan runtime")
+    m, _, out = solver()
+    cdir = out / "c"
+    flags = [*SANITIZE_FLAGS, "-DMECH=iiwa_psi", '-DMECH_H="iiwa_psi.h"', f"-DN={m.N_JOINTS}", f"-DMAX_IK={m.MAX_IK}"]
+    exe = compile_executable([CHAIN_SANITIZE, cdir / "iiwa_psi.c", cdir / "wristkin_runtime.c"], [cdir],
+                             "chain_iiwa_psi_sanitize", extra_flags=flags)
+    run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300,
+                         env={"ASAN_OPTIONS": "detect_leaks=1:abort_on_error=1",
+                              "UBSAN_OPTIONS": "halt_on_error=1:print_stacktrace=1"})
+    assert run.returncode == 0, (run.returncode, run.stderr[-4000:])
+    assert "runtime error" not in run.stderr and "AddressSanitizer" not in run.stderr

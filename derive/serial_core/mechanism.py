@@ -4,11 +4,13 @@ CasADi functions every serial arm has. Each family subclasses it with its own de
 
 from __future__ import annotations
 
-from ..mechanism import MechanismDefaults
+from ..mechanism import SERIAL_C_API, MechanismDefaults
 
 
 class SerialArm(MechanismDefaults):
     """A serial arm's spec (joints, kinds, design, IK stages) behind the interface the pipeline expects."""
+
+    C_API = SERIAL_C_API
 
     TEMPLATES = ("python/serial.py.jinja", "c/serial.h.jinja", "c/serial.c.jinja")
     VECTORISED_KERNELS = ("fk",)

@@ -11,11 +11,11 @@ import math
 
 import _runtime
 import numpy as np
-from chain_arm_angle import _arm_angle_at
 from chain_design import _JOINT_SHAPE, _POSE_SHAPES, _design
 from chain_poe import _fk_chain, _full_chain, _held, _product, _reversed
 from chain_rigid import _apply, _as_rt, _compose, _dot, _inverse, _mm, _mv, _rot, _scale, _sub, _to_matrix
 from chain_solve import _solve
+from chain_stages import _OP_READERS
 from chain_stand_in import (
     _ARM_ANGLE,
     _AXES,
@@ -266,7 +266,7 @@ if _ARM_ANGLE:  # an S-R-S arm whose run-time parameter is its arm angle (chain_
         the plane of the first axis and that line, on the side the axis points to; positive about the line from the
         shoulder to the wrist). ik(fk_matrix(q), [arm_angle(q)]) returns q among its sets."""
         q = _joints(joints)
-        return _arm_angle_at(_solver_chains(_design(design))[0], _PLAN[1], q)
+        return _OP_READERS["arm_angle"](_solver_chains(_design(design))[0], _PLAN[1], q)
 
 # ---------------------------------------------------------------------------- inverse kinematics
 def _solver_chains(d):

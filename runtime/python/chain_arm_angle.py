@@ -17,7 +17,7 @@ import math
 
 from chain_points import _point
 from chain_rigid import _add, _apply, _compose, _cross, _dot, _mm, _mt, _mtv, _mv, _norm, _rot, _scale, _screw, _sub
-from chain_stages import _OP_STAGES
+from chain_stages import _OP_READERS, _OP_STAGES
 from chain_stand_in import (
     DOUBLE_ROOT_TOL,
     FLAG_DOUBLE_ROOT,
@@ -126,3 +126,4 @@ def _arm_angle_stage(ch, g, prev, op, x, y, q, count, go_on, family, params=(0.0
 
 
 _OP_STAGES["arm_angle"] = _arm_angle_stage
+_OP_READERS["arm_angle"] = _arm_angle_at

@@ -12,3 +12,5 @@ other sources (chain_stand_in.py: a stand-in robot), so that it is linted and te
 # which widens the later stages' tangent and double-root bands, STAGE_NOISE), or family(flags, place, previous
 # angle) for a one-parameter family; params: the design's values (the arm angle op reads its angle)
 _OP_STAGES = {}
+# kind -> reader(ch, op, q): the op's design parameter read back from joint values (the arm angle)
+_OP_READERS = {}

@@ -15,7 +15,7 @@ from ...kinematics.geometry import common_point
 from ...kinematics.planner import Geometry, NoClosedForm, Plan, arm_angle_plan, find_plan, op_branches, replay
 from ...kinematics.poe import Chain, normalised, reduce_free, reverse
 from ...kinematics.subproblems import subproblem_checks
-from ...mechanism import MechanismDefaults
+from ...mechanism import CApi, MechanismDefaults
 from ...model import Check, Derivation, Finding, NoDecomposition, Step
 from ...tolerances import TOLERANCES
 from . import views
@@ -34,6 +34,8 @@ SELF_MOTION_RATIO = 1e-9
 
 class ChainMechanism(MechanismDefaults):
     """A serial chain from a description (DH, POE, URDF), solved by the planner's decomposition."""
+
+    C_API = CApi(pose12=True, ik_near=True, jacobian=True, fk_matrix=True, frames=True)
 
     TEMPLATES = ("python/chain.py.jinja", "c/chain.h.jinja", "c/chain.c.jinja")
     VECTORISED_KERNELS = ()

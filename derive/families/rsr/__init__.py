@@ -30,6 +30,7 @@ class RsrMechanism(MechanismDefaults):
         self.TEMPLATES, self.VECTORISED_KERNELS = module.TEMPLATES, module.VECTORISED_KERNELS
         self.DERIVE_SECONDS, self.DERIVE_GROUP = module.DERIVE_SECONDS, module.DERIVE_GROUP
         self.CASADI_DESIGN_NAMES = module.CASADI_DESIGN_NAMES
+        self.C_API = module.C_API
 
     def derive(self):
         return dataclasses.replace(self.module.derive(), mechanism=self.NAME, title=self.title, seed=self.source)

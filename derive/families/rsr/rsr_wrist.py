@@ -15,6 +15,7 @@ import numpy as np
 import sympy as sp
 
 from ...checks import Check, numeric_identity, numeric_predicate, sampler, symbolic_identity
+from ...mechanism import CApi
 from ...model import Derivation, Finding, Step
 from ...report_numbers import measured
 from . import rsr_geometry as g
@@ -26,6 +27,7 @@ VECTORISED_KERNELS = ("atlas_rates",)  # the atlas's numpy path (no C extension)
 DERIVE_SECONDS = 5  # a scheduling hint for parallel regeneration (seconds on a 2-core 2026 EPYC)
 DERIVE_GROUP = "rsr"  # the hybrid builds on this derivation (cached per process): one process for both
 TEMPLATES = ("python/rsr_wrist.py.jinja", "c/rsr_wrist.h.jinja", "c/rsr_wrist.c.jinja")
+C_API = CApi(jacobian=True, atlas=True)
 # Design: link length and the workspace limits the middle curve is taken between (explicit, not published).
 DESIGN_NAMES = ("L", "phi_min", "phi_max", "lbw_min", "lbw_max")
 CASADI_DESIGN_NAMES = ("L",)  # the CasADi functions take the platform link length only (limits do not enter)

@@ -17,6 +17,7 @@ import sympy as sp
 from ...checks import numeric_predicate, symbolic_identity
 from ...identities.dh import dh_modified
 from ...identities.frames import rot_x, rot_z
+from ...mechanism import CApi
 from ...model import Derivation, Finding, Step
 from ...report_numbers import measured
 from . import rsr_geometry as g
@@ -29,6 +30,7 @@ VECTORISED_KERNELS = ()
 DERIVE_GROUP = "rsr"  # regenerated in the wrist's process: it builds on the wrist's cached derivation
 DERIVE_SECONDS = 3
 TEMPLATES = ("python/scara_rsr.py.jinja", "c/scara_rsr.h.jinja", "c/scara_rsr.c.jinja")
+C_API = CApi(jacobian=True, fk_matrix=True)
 CASADI_DESIGN_NAMES = None  # the solver's DESIGN_NAMES
 TH1, TH2, D3, TH4 = sp.symbols("theta1 theta2 d3 theta4", real=True)
 L1, L2, D, DF = sp.symbols("L1 L2 d d_f", real=True)

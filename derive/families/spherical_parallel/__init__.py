@@ -11,7 +11,7 @@ from __future__ import annotations
 import dataclasses
 import math
 
-from ...mechanism import MechanismDefaults
+from ...mechanism import CApi, MechanismDefaults
 from ...spec import COMMON_FIELDS, Spec, common
 from . import underactuated_wrist as uw
 
@@ -31,6 +31,7 @@ class SphericalParallelWrist(MechanismDefaults):
                  "c/underactuated_wrist.c.jinja")
     VECTORISED_KERNELS = uw.VECTORISED_KERNELS
     CASADI_DOCS = uw.CASADI_DOCS
+    C_API = CApi(atlas_home=True)
     DERIVE_SECONDS = uw.DERIVE_SECONDS
     DESIGN_CONSTANTS = uw.DESIGN_CONSTANTS
 
