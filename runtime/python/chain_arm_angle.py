@@ -102,7 +102,16 @@ def _arm_angle_stage(ch, g, prev, op, x, y, q, count, go_on, family, params=(0.0
     side = _add(_scale(n1, math.cos(psi)), _scale(n2, math.sin(psi)))  # the elbow's side of the line s -> w
     target = _frame_of(u, side)
     elbow = _add(pe, _scale(he, _dot(he, _sub(s, pe))))  # the elbow point: on its axis, nearest the shoulder
-    for t, f in _sp3(he, _sub(x, pe), _sub(s, pe), length, SCALE):
+    roots = _sp3(he, _sub(x, pe), _sub(s, pe), length, SCALE)
+    if len(roots) == 1 and roots[0][1] & FLAG_DOUBLE_ROOT:
+        # the arm (nearly) stretched or folded: the distance fixes the elbow only to ~sqrt(eps), and its two roots,
+        # merged, are the elbow bent to either side of the line, where the shoulder and wrist differ by a half turn
+        # (q3 and q5 of an iiwa): both sides, each a band's width off the line, so that the elbow's side (and the
+        # arm angle read back) is defined; the pose does not tell them apart beyond its rounding
+        t, f = roots[0]
+        band = math.sqrt(DOUBLE_ROOT_TOL)
+        roots = [(t + band, f), (t - band, f)]
+    for t, f in roots:
         q[je] = t
         v = _sub(_apply(_screw("R", he, pe, t), x), s)  # the wrist centre with the elbow turned, shoulder at home
         v = _scale(v, 1.0 / _norm(v))

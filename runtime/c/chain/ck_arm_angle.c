@@ -84,6 +84,16 @@ static int ck_arm_angle(const ck_chain *ch, const ck_op *op, const double *s, co
     ck_add(pe, elbow, elbow); /* the elbow point: on its axis, nearest the shoulder */
     ck_sub(x, pe, xe);
     ne = ck_sp3(he, xe, se, length, CK_SCALE, 1.0, NULL, 1.0, te, fe);
+    if (ne == 1 && (fe[0] & WK_FLAG_DOUBLE_ROOT)) {
+        /* the arm (nearly) stretched or folded: the merged roots are the elbow bent to either side of the line,
+         * where the shoulder and wrist differ by a half turn: both sides, a band's width off the line (Python's
+         * _arm_angle_stage) */
+        const double band = sqrt(CK_DOUBLE_ROOT_TOL);
+        te[1] = te[0] - band;
+        te[0] += band;
+        fe[1] = fe[0];
+        ne = 2;
+    }
     for (i = 0; i < ne; ++i) {
         ck_rt e;
         double v[3], off[3], home_side[3], home[9], r[9], rc[3], t1[2], t2[2];
