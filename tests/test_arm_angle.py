@@ -243,3 +243,21 @@ def test_near_its_singularities_the_generating_joints_are_returned():
                 for mod in (m, py):
                     s = mod.ik(T, [psi])
                     assert min(_gap(v, q) for v in s.values[s.valid]) <= 1e-6 + 1e-13 / delta, (joint, delta, k)
+
+
+def test_the_sets_are_named_by_their_branches():
+    """BRANCHES names the elbow's and the shoulder's choice (their joints' signs) and the wrist's; the 8 sets of a
+    regular pose carry the 8 combinations, and select(branch=...) picks the one asked for."""
+    m, _, _ = solver()
+    assert m.BRANCHES == {"elbow": ["positive", "negative"], "shoulder": ["positive", "negative"],
+                          "wrist": ["noflip", "flip"]}
+    q = case_rng(2305).uniform(-2.0, 2.0, 7)
+    s = m.ik(m.fk_matrix(q), [m.arm_angle(q)])
+    names = {tuple(sorted(m.branch_of(v).items())) for v in s.values[s.valid]}
+    assert len(names) == 8
+    wide = (np.full(7, -10.0), np.full(7, 10.0))  # no joint limits: every set may be picked
+    for v in s.values[s.valid]:
+        want = m.branch_of(v)
+        k = m.select(s, lower=wide[0], upper=wide[1], branch=want)
+        assert np.array_equal(s.values[k], v)
+        assert (v[3] >= 0) == (want["elbow"] == "positive") and (v[1] >= 0) == (want["shoulder"] == "positive")

@@ -474,7 +474,7 @@ def branch_of(joints, design=None) -> dict:
     out = {}
     for name, kind, j, ref in _ROLES:
         labels = BRANCHES[name]
-        if kind == "wrist":  # the middle wrist joint's sign
+        if kind in ("wrist", "sign"):  # the middle wrist joint's sign; a joint's sign (the arm angle's elbow, shoulder)
             out[name] = labels[0] if math.sin(qc[j]) >= 0.0 else labels[1]
         elif kind == "elbow":  # the elbow axis above / below the line shoulder -> placed point (along ref)
             s, e, w = (_apply(_product(ideal, qc, range(i)), p) for i, p in

@@ -652,7 +652,12 @@ def _roles(plan: Plan, ch: Chain):
         if op["op"] == "begin":
             x_home = geometry.point(op["x"])
             place_end = op["hi"] + 1
-        if op_branches(op) < 2 or op["op"] in ("general6r", "arm_angle"):  # no one geometric name for their sets
+        if op["op"] == "arm_angle":  # the elbow bent either way, the shoulder's two sets: their joints' signs
+            roles += [("elbow", "sign", op["elbow"], ()), ("shoulder", "sign", op["shoulder"][1], ())]
+            labels.update({"elbow": ("positive", "negative"), "shoulder": ("positive", "negative")})
+            count += 1
+            continue
+        if op_branches(op) < 2 or op["op"] == "general6r":  # the elimination's sets have no geometric names
             continue
         count += 1
         if op["op"] == "orient":
