@@ -129,6 +129,9 @@ def _pose(pose):
     return (*_rotation12(a), None)
 
 
+GIMBAL_ALPHAS = tuple(k * math.pi / 6.0 for k in range(6))  # the family's members tried at beta = pi, 0 first
+
+
 def _split_orientation(p):
     """(theta, alpha1, beta, gimbal) of R = Rz(theta) C Rz(alpha1) Ry(beta) Rz(-alpha1) (step orientation_split)."""
     ax, ay, az = p[2], p[6], p[10]
@@ -302,14 +305,26 @@ def _ik_numpy(pose, d):
                          "pose not reachable: " + reason + (f"; {note}" if note else ""))
 
     theta, alpha1, beta, gimbal = _split_orientation(p)
-    if lbw is None:
-        span = _workspace(alpha1, beta, w)
-        if span is None:
+    given = lbw
+    # at beta = pi only theta + 2 alpha1 is fixed (a family): the split's member alpha1 = 0 puts leg i's coefficient
+    # sin(alpha1 - a_i) at 0 for a leg at azimuth a_i = 0, which then cannot reach a centre distance near 0 (a
+    # reachable pose was called unreachable); the family's other members are tried, each moving theta by 2 alpha1
+    # (GIMBAL_ALPHAS: every 30 degrees in [0, pi), where the sines of the three legs' offsets stay apart)
+    for a1 in GIMBAL_ALPHAS if gimbal and beta > 0.5 * math.pi else (alpha1,):
+        lbw = given
+        if lbw is None:
+            span = _workspace(a1, beta, w)
+            if span is None:
+                continue
+            lbw = 0.5 * (span[0] + span[1])
+        wpose = (a1, beta, lbw)
+        roots, lflags, conds, reason = _legs(wpose, w)
+        if all(r is not None for r in roots):
+            theta, alpha1 = _wrap(theta + 2.0 * (a1 - alpha1)), a1
+            break
+    else:
+        if lbw is None:
             return empty(f"no centre distance within the wrist limits at swing {math.degrees(beta):.4g} deg")
-        lbw = 0.5 * (span[0] + span[1])
-    wpose = (alpha1, beta, lbw)
-    roots, lflags, conds, reason = _legs(wpose, w)
-    if any(r is None for r in roots):
         return empty("wrist " + reason)
     ox, oy, oz = _k_wrist_offset((theta, alpha1, beta, lbw), dp)
     x4, y4, z4 = p[3] - ox, p[7] - oy, p[11] - oz

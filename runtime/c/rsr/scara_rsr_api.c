@@ -159,7 +159,16 @@ static int hy_api_middle_lbw(const double pose12[12], const hy_design *design, d
     if (!pose12 || !lbw) return WK_ERR_NULL;
     if (!wk_all_finite(pose12, 12)) return WK_ERR_NONFINITE;
     if (!hy_projected_pose(pose12, p, &dev)) return WK_ERR_RANGE;
-    (void)hy_split(p, &theta, &alpha1, &beta);
+    if (hy_split(p, &theta, &alpha1, &beta) && beta > 0.5 * RSR_PI) {
+        /* the family's members every 30 degrees at beta = pi, the split's 0 first (hy_api_ik) */
+        int k;
+        for (k = 0; k < 6; ++k)
+            if (rsr_workspace(k * RSR_PI / 6.0, beta, (design ? design : &hy_default_design)->params + 4, span)) {
+                *lbw = 0.5 * (span[0] + span[1]);
+                return WK_OK;
+            }
+        return WK_STATUS_UNREACHABLE;
+    }
     if (!rsr_workspace(alpha1, beta, (design ? design : &hy_default_design)->params + 4, span))
         return WK_STATUS_UNREACHABLE;
     *lbw = 0.5 * (span[0] + span[1]);
@@ -204,7 +213,20 @@ static int hy_api_ik(const double pose_in[13], const hy_design *design, hy_ik_so
     wpose[0] = alpha1;
     wpose[1] = beta;
     wpose[2] = pose[12];
-    if (!rsr_legs(wpose, dp + 4, leg, lflags, &lcond)) return WK_OK;
+    if (!rsr_legs(wpose, dp + 4, leg, lflags, &lcond)) {
+        /* at beta = pi only theta - 2 alpha1 is fixed (a family): the split's member alpha1 = 0 may leave a leg short
+         * (its coefficient sin(alpha1 - a_i) is 0 for a leg at azimuth 0); the family's other members, every 30
+         * degrees, each moving theta by 2 alpha1 (Python's GIMBAL_ALPHAS) */
+        int k, ok = 0;
+        if (!(gimbal && beta > 0.5 * RSR_PI)) return WK_OK;
+        for (k = 1; k < 6 && !ok; ++k) {
+            wpose[0] = k * RSR_PI / 6.0;
+            ok = rsr_legs(wpose, dp + 4, leg, lflags, &lcond);
+        }
+        if (!ok) return WK_OK;
+        theta = wk_wrap(theta + 2.0 * (wpose[0] - alpha1));
+        alpha1 = wpose[0];
+    }
     off[0] = theta;
     off[1] = alpha1;
     off[2] = beta;
