@@ -113,16 +113,13 @@ static int ck_arm_angle(const ck_chain *ch, const ck_op *op, const double *s, co
             ck_scale(home_side, 1.0 / ck_norm(home_side), home_side);
             f |= WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
         }
-        ck_frame_of(v, home_side, home);
-        { /* r = target home^T */
-            int a, b, c;
-            for (a = 0; a < 3; ++a)
-                for (b = 0; b < 3; ++b) {
-                    double acc = 0.0;
-                    for (c = 0; c < 3; ++c) acc += target[3 * a + c] * home[3 * b + c];
-                    r[3 * a + b] = acc;
-                }
+        /* r = target home^T: home's transpose has rows v, home_side, v x home_side */
+        ck_cross(v, home_side, home + 6);
+        for (m = 0; m < 3; ++m) {
+            home[m] = v[m];
+            home[3 + m] = home_side[m];
         }
+        ck_mm(target, home, r);
         ck_mv(r, hc, rc);
         ns = ck_sp2(rc, ha, hc, hb, 1.0, 0, 1.0, CK_FAMILY_TOL, t1, has1, t2, f2);
         for (m = 0; m < ns && count < 4; ++m) {
