@@ -3,7 +3,8 @@ ik-geo on the same robots, in one run.
 
 Run from the repository root:  .venv/bin/python bench/own_robots.py [--n 200] [--json PATH]
 
-For every URDF in tests/robots/ (the free joint of the 7-joint arm held, as IKFast does):
+For every URDF in tests/robots/ (the free joint of the 7-joint arm held, as IKFast does; the iiwa14 also with its
+arm angle as the parameter, solved at 0.3 rad):
 
 * derive        wall time of own_robot.derive (read, derive with every check, emit Python + C + CasADi, audit
                 with its 100 round trips), one run; IKFast's published generation times (16 s to 950 s per robot,
@@ -38,6 +39,8 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 ROBOTS = ROOT / "tests" / "robots"
 FREE = {"iiwa14": "a3"}
+ARM_ANGLE_ROBOTS = ("iiwa14",)  # also benched with --redundancy arm-angle
+ARM_ANGLE = 0.3  # rad: the arm angle every such pose is solved at
 C_FLAGS = ["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 
 
@@ -187,18 +190,23 @@ def c_loop(out: Path, name: str, poses, free_value) -> float | None:
     return float(run.stdout.split()[0]) if run.returncode == 0 else None
 
 
-def bench_robot(urdf: Path, n: int) -> dict:
+def bench_robot(urdf: Path, n: int, arm_angle: bool = False) -> dict:
+    """One robot's row; `arm_angle`: derived with --redundancy arm-angle and solved at arm angle ARM_ANGLE for every
+    pose (8 sets each; no peer has this IK)."""
     from derive import own_robot
 
     robot = urdf.stem
     out = Path(tempfile.mkdtemp(prefix=f"wk_bench_{robot}_"))
     t0 = time.perf_counter()
-    own_robot.derive(urdf, out, free=FREE.get(robot), progress=lambda _: None)
+    if arm_angle:
+        own_robot.derive(urdf, out, redundancy="arm-angle", progress=lambda _: None)
+    else:
+        own_robot.derive(urdf, out, free=FREE.get(robot), progress=lambda _: None)
     derive_s = time.perf_counter() - t0
     m = own_robot.import_solver(out, robot)
     rng = np.random.default_rng(7)
     joints = rng.uniform(-math.pi, math.pi, (n, m.N_JOINTS))
-    free_value = 0.0
+    free_value = ARM_ANGLE if arm_angle else 0.0
     if m._FREE >= 0:
         joints[:, m._FREE] = free_value
     design = [free_value] if m.DESIGN_NAMES else None
@@ -206,7 +214,12 @@ def bench_robot(urdf: Path, n: int) -> dict:
     ours = [m.ik(T, design).count for T in poses]
     py_us = per_call(lambda T: m.ik(T, design), poses[: min(n, 100)], 3, warmup=5) * 1e6
     c_us = c_loop(out, robot, poses, free_value)
-    peers = {"EAIK": peer_eaik(m, joints, poses, free_value), "ik-geo": peer_ik_geo(m, joints, poses, free_value)}
+    if arm_angle:
+        peers = {k: {"note": "no arm-angle IK"} for k in ("EAIK", "ik-geo")}
+        robot += " (arm angle)"
+    else:
+        peers = {"EAIK": peer_eaik(m, joints, poses, free_value),
+                 "ik-geo": peer_ik_geo(m, joints, poses, free_value)}
     for p in peers.values():
         if "counts" in p:
             p["same_counts"] = sum(a == b for a, b in zip(p.pop("counts"), ours, strict=True))
@@ -222,6 +235,7 @@ def report(n: int = 200, json_path: Path = ROOT / "build" / "bench" / "own_robot
     """Derive every test robot's URDF, time its IK against the peers, and return the Markdown table (ratios
     first); the numbers also go to `json_path`."""
     rows = [bench_robot(p, n) for p in sorted(ROBOTS.glob("*/*.urdf"))]
+    rows += [bench_robot(ROBOTS / r / f"{r}.urdf", n, arm_angle=True) for r in ARM_ANGLE_ROBOTS]
     versions = {}
     for mod in ("eaik", "ik_geo"):
         try:

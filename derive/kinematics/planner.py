@@ -367,7 +367,7 @@ def arm_angle_plan(c: Chain, tol: float) -> Plan:
     ops = [{"op": "begin", "x": ("meet", *_WRIST), "lo": 0, "hi": 6},
            {"op": "arm_angle", "shoulder": list(_SHOULDER), "elbow": _ELBOW, "s": ("meet", *_SHOULDER)},
            {"op": "orient", "units": [[j] for j in _WRIST], "lo": 4, "hi": 6}]
-    strategy = (f"the arm angle (an S-R-S arm: axes {', '.join(names[j] for j in _SHOULDER)} meet at the shoulder, "
+    strategy = (f"the arm angle of an S-R-S arm (axes {', '.join(names[j] for j in _SHOULDER)} meet at the shoulder, "
                 f"{', '.join(names[j] for j in _WRIST)} at the wrist, elbow {names[_ELBOW]}; upper arm {d_se:.4g} m, "
                 f"forearm {d_ew:.4g} m): the wrist centre from the pose, the elbow on its circle about the "
                 f"shoulder-wrist line at the design's arm angle (0: in the plane of {names[0]}'s axis), "
