@@ -261,3 +261,29 @@ def test_the_sets_are_named_by_their_branches():
         k = m.select(s, lower=wide[0], upper=wide[1], branch=want)
         assert np.array_equal(s.values[k], v)
         assert (v[3] >= 0) == (want["elbow"] == "positive") and (v[1] >= 0) == (want["shoulder"] == "positive")
+
+
+def test_description_files_as_shipped(tmp_path):
+    """pybullet's iiwa (kuka_iiwa/model.urdf as shipped: its axes 5e-13 off an exact S-R-S arm, from rounded
+    angles) is solved at its arm angle, polished on its true axes (was refused: only an exact arm was taken); the
+    ROS-Industrial kuka_lbr_iiwa xacro, whose joint a2 and a3 stand 0.44 mm off axis a1, is refused naming the
+    shoulder (the arm angle would be read 1e-3 rad off: hold a joint instead)."""
+    import pybullet_data
+    import rtbdata
+
+    urdf = Path(pybullet_data.getDataPath()) / "kuka_iiwa" / "model.urdf"
+    own_robot.derive(urdf, tmp_path, name="pb_iiwa", redundancy="arm-angle", progress=lambda _: None)
+    m = own_robot.import_solver(tmp_path, "pb_iiwa")
+    py = own_robot.import_solver(tmp_path, "pb_iiwa", backend="numpy")
+    assert m.CALIBRATED
+    rng = case_rng(2306)
+    for _ in range(10):
+        q = rng.uniform(-math.pi, math.pi, 7)
+        T = m.fk_matrix(q)
+        for mod in (m, py):
+            s = mod.ik(T, [mod.arm_angle(q)])
+            assert s.count == 8 and min(_gap(v, q) for v in s.values[s.valid]) < 1e-9
+    kuka = Path(rtbdata.__file__).parent / "xacro" / "kuka_description" / "kuka_lbr_iiwa"
+    with pytest.raises((NoClosedForm, NoDecomposition), match="joint_a1, joint_a2, joint_a3 meet in no point"):
+        own_robot.load(kuka / "urdf" / "lbr_iiwa_14_r820.xacro", tip="tool0", redundancy="arm-angle",
+                       packages={"kuka_lbr_iiwa_support": str(kuka)})
