@@ -37,3 +37,20 @@ def test_a_derived_robot_declares_the_verbs_its_header_has(tmp_path):
     api = ChainMechanism.C_API
     header = (tmp_path / "c" / "ur.h").read_text()
     assert {f: getattr(api, f) for f in api.__dataclass_fields__} == declared_in(header, "ur")
+
+
+def test_a_derive_folder_keeps_every_robots_declared_verbs(tmp_path):
+    """Two robots derived one command at a time into one folder: native/api.json holds both records, and the
+    folder's extension, rendered from them, serves both (the second derive used to re-read every header)."""
+    import json
+    import os
+
+    for robot in ("ur5e", "kr6"):
+        own_robot.derive(ROOT / "tests" / "robots" / robot / f"{robot}.urdf", tmp_path, progress=lambda _: None)
+    assert sorted(json.loads((tmp_path / "native" / "api.json").read_text())) == ["kr6", "ur5e"]
+    for robot in ("ur5e", "kr6"):
+        m = own_robot.import_solver(tmp_path, robot)
+        if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
+            assert m.BACKEND == "c"
+        q = [0.3] * 6
+        assert m.ik(m.fk_matrix(q)).count >= 1
