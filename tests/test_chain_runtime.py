@@ -76,6 +76,7 @@ def lib():
     L.wkt_held_reversed_fk.argtypes = [ctypes.c_int, IP, D, D, D, ctypes.c_double, D, D]
     L.wkt_spatial3.argtypes = [D, D, D, D, D, D, D, U]
     L.wkt_perpendicular.argtypes = [D, D]
+    L.wkt_orient_rest.argtypes = [D, D, ctypes.c_double, ctypes.c_double, D]
     L.wkt_transpose.argtypes = [D, D]
     L.wkt_meet_point.argtypes = [D, D, ctypes.c_int, ctypes.c_int, ctypes.c_int, D]
     return L
@@ -271,6 +272,24 @@ def test_the_conditioning_bound_decides_all_but_a_narrow_band_around_eps():
                 undecided += 1
                 assert 0.97e-6 <= true <= 1.28e-6, (ratio, spread)
     assert undecided <= 16
+
+
+def test_three_axes_read_a_rotation_as_the_orientation_op_and_the_arm_angle_do(lib, py):
+    """ck_orient_rest / _orient_rest (the orientation op's and the arm angle's shoulder reading, one source each
+    since the arm angle reuses it): from subproblem 2's (t1, t2) of R(u0, a0) R(u1, a1) R(u2, a2) = rd, the three
+    angles rebuild rd (an independent product of axis-angle rotations), C equal to Python."""
+    rng = case_rng(2216)
+    out = np.zeros(3)
+    for _ in range(50):
+        u = np.array([_unit(rng) for _ in range(3)])
+        a = rng.uniform(-math.pi, math.pi, 3)
+        rd = _rot(u[0], a[0]) @ _rot(u[1], a[1]) @ _rot(u[2], a[2])
+        for t1, t2, _f in py.sub._sp2(tuple(rd @ u[2]), tuple(u[0]), tuple(u[2]), tuple(u[1]), 1.0):
+            angles = py.sub._orient_rest([tuple(v) for v in u], tuple(map(tuple, rd)), t1, t2)
+            lib.wkt_orient_rest(_p(np.ascontiguousarray(u)), _p(np.ascontiguousarray(rd)), t1, t2, _p(out))
+            assert np.allclose(out, angles, atol=1e-14)
+            got = _rot(u[0], angles[0]) @ _rot(u[1], angles[1]) @ _rot(u[2], angles[2])
+            assert np.max(np.abs(got - rd)) < 1e-12
 
 
 def test_perpendicular_transpose_and_points(lib):

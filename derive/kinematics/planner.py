@@ -31,6 +31,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..model import NoDecomposition
+from .arm_angle import ELBOW, SHOULDER, WRIST, centres
+from .arm_angle import residual as arm_angle_residual
 from .geometry import common_point, line_distance, parallel_deviation
 from .poe import Chain, reverse, screw
 
@@ -338,9 +340,6 @@ def _x_text(g: Geometry, xspec) -> str:
     return "the end frame's origin"
 
 
-_SHOULDER, _ELBOW, _WRIST = (0, 1, 2), 3, (4, 5, 6)  # an S-R-S arm's joints (arm_angle.py)
-
-
 def arm_angle_plan(c: Chain, tol: float) -> Plan:
     """The plan of an S-R-S arm whose run-time parameter is its arm angle (derive/kinematics/arm_angle.py): the
     wrist centre placed by the whole chain, the shoulder and the elbow from it and psi, then the wrist's orientation.
@@ -350,28 +349,26 @@ def arm_angle_plan(c: Chain, tol: float) -> Plan:
     g = Geometry(c, tol)
     names = c.joint_names
     missing = [f"axes {', '.join(names[j] for j in js)} meet in no point (a spherical {what})"
-               for js, what in ((_SHOULDER, "shoulder"), (_WRIST, "wrist")) if g.meet(js) is None]
+               for js, what in ((SHOULDER, "shoulder"), (WRIST, "wrist")) if g.meet(js) is None]
     if missing:
         raise NoClosedForm("the arm angle needs a spherical shoulder and a spherical wrist: " + "; ".join(missing))
-    s, w = g.point(("meet", *_SHOULDER)), g.point(("meet", *_WRIST))
-    he, pe = c.axes[_ELBOW], c.points[_ELBOW]
-    offset = abs(float(np.dot(he, s - pe) - np.dot(he, w - pe)))
+    s, e, w = centres(c)
+    offset = abs(float(np.dot(c.axes[ELBOW], w - e)))  # e is the elbow axis's point nearest s
     if offset > tol:
         raise NoClosedForm(f"the arm angle needs the shoulder and wrist centres level along the elbow axis "
-                           f"{names[_ELBOW]} (an S-R-S arm): they are {offset:.3g} m apart along it")
-    e = pe + np.dot(he, s - pe) * he
+                           f"{names[ELBOW]} (an S-R-S arm): they are {offset:.3g} m apart along it")
     d_se, d_ew = float(np.linalg.norm(s - e)), float(np.linalg.norm(w - e))
     if min(d_se, d_ew) <= 10 * tol:
-        raise NoClosedForm(f"the arm angle needs the shoulder and wrist centres off the elbow axis {names[_ELBOW]} "
+        raise NoClosedForm(f"the arm angle needs the shoulder and wrist centres off the elbow axis {names[ELBOW]} "
                            f"(upper arm {d_se:.3g} m, forearm {d_ew:.3g} m)")
-    ops = [{"op": "begin", "x": ("meet", *_WRIST), "lo": 0, "hi": 6},
-           {"op": "arm_angle", "shoulder": list(_SHOULDER), "elbow": _ELBOW, "s": ("meet", *_SHOULDER)},
-           {"op": "orient", "units": [[j] for j in _WRIST], "lo": 4, "hi": 6}]
-    strategy = (f"the arm angle of an S-R-S arm (axes {', '.join(names[j] for j in _SHOULDER)} meet at the shoulder, "
-                f"{', '.join(names[j] for j in _WRIST)} at the wrist, elbow {names[_ELBOW]}; upper arm {d_se:.4g} m, "
+    ops = [{"op": "begin", "x": ("meet", *WRIST), "lo": 0, "hi": 6},
+           {"op": "arm_angle", "shoulder": list(SHOULDER), "elbow": ELBOW, "s": ("meet", *SHOULDER)},
+           {"op": "orient", "units": [[j] for j in WRIST], "lo": 4, "hi": 6}]
+    strategy = (f"the arm angle of an S-R-S arm (axes {', '.join(names[j] for j in SHOULDER)} meet at the shoulder, "
+                f"{', '.join(names[j] for j in WRIST)} at the wrist, elbow {names[ELBOW]}; upper arm {d_se:.4g} m, "
                 f"forearm {d_ew:.4g} m): the wrist centre from the pose, the elbow on its circle about the "
                 f"shoulder-wrist line at the design's arm angle (0: in the plane of {names[0]}'s axis), "
-                f"{names[_ELBOW]} from the distance, the shoulder's rotation from two directions, then the wrist's "
+                f"{names[ELBOW]} from the distance, the shoulder's rotation from two directions, then the wrist's "
                 "orientation")
     return Plan(ops, False, strategy, list(g.used.values()))
 
@@ -476,8 +473,7 @@ def replay(chain: Chain, plan: Plan, q) -> list[float]:
             from .general6r import equation_residual
             out.append(equation_residual(c, op, qv))
         elif kind == "arm_angle":
-            from .arm_angle import residual
-            out.append(residual(c, e, x, y))
+            out.append(arm_angle_residual(c, e, x, y))
         elif kind == "sp6":
             n = g.direction(op["n"])
             y = app(np.linalg.inv(e[op["j"]]), y)

@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 
 from chain_points import _point
-from chain_rigid import _add, _apply, _compose, _cross, _dot, _mm, _mt, _mtv, _mv, _norm, _rot, _scale, _screw, _sub
+from chain_rigid import _add, _apply, _compose, _cross, _dot, _mm, _mt, _mv, _norm, _scale, _screw, _sub
 from chain_stages import _OP_READERS, _OP_STAGES
 from chain_stand_in import (
     DOUBLE_ROOT_TOL,
@@ -26,7 +26,7 @@ from chain_stand_in import (
     ON_AXIS_TOL,
     SCALE,
 )
-from chain_subproblems import _perpendicular, _sp1, _sp2, _sp3
+from chain_subproblems import _orient_rest, _perpendicular, _sp2, _sp3
 
 # wristkin: inlined from here
 # ---------------------------------------------------------------------------- the arm angle (an S-R-S arm)
@@ -62,6 +62,12 @@ def _arm_angle_of(h1, s, e, w, axis):
     return math.atan2(_dot(side, n2), _dot(side, n1))
 
 
+def _elbow_point(ch, je, s):
+    """The elbow point: on the elbow axis je, nearest the shoulder centre s."""
+    he, pe = ch.axes[je], ch.points[je]
+    return _add(pe, _scale(he, _dot(he, _sub(s, pe))))
+
+
 def _arm_angle_at(ch, op, q):
     """psi of the chain's joints q (the op ("arm_angle", (a, b, c), e, s) names the shoulder, the elbow and the
     shoulder centre; the wrist centre is the point the plan's first op places): where the joints put the elbow
@@ -69,7 +75,7 @@ def _arm_angle_at(ch, op, q):
     _, (ja, jb, jc), je, ss = op
     s = _point(ch, ss)
     he, pe = ch.axes[je], ch.points[je]
-    elbow = _add(pe, _scale(he, _dot(he, _sub(s, pe))))
+    elbow = _elbow_point(ch, je, s)
     shoulder = _compose(_compose(_screw("R", ch.axes[ja], ch.points[ja], q[ja]),
                                  _screw("R", ch.axes[jb], ch.points[jb], q[jb])),
                         _screw("R", ch.axes[jc], ch.points[jc], q[jc]))
@@ -101,7 +107,7 @@ def _arm_angle_stage(ch, g, prev, op, x, y, q, count, go_on, family, params=(0.0
     u, n1, n2, plane_flags = _arm_plane(ha, s, w)
     side = _add(_scale(n1, math.cos(psi)), _scale(n2, math.sin(psi)))  # the elbow's side of the line s -> w
     target = _frame_of(u, side)
-    elbow = _add(pe, _scale(he, _dot(he, _sub(s, pe))))  # the elbow point: on its axis, nearest the shoulder
+    elbow = _elbow_point(ch, je, s)
     roots = _sp3(he, _sub(x, pe), _sub(s, pe), length, SCALE)
     if len(roots) == 1 and roots[0][1] & FLAG_DOUBLE_ROOT:
         # the arm (nearly) stretched or folded: the distance fixes the elbow only to ~sqrt(eps), and its two roots,
@@ -128,9 +134,7 @@ def _arm_angle_stage(ch, g, prev, op, x, y, q, count, go_on, family, params=(0.0
             if t1 is None:  # a and c line up: the family's q_a from previous, else 0
                 t1 = -(prev[ja] if prev is not None else 0.0)
                 f2 |= FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE
-            wv = _perpendicular(hc)
-            t3 = _sp1(hc, wv, _mtv(_mm(_rot(ha, -t1), _rot(hb, t2)), _mv(r, wv)), 1.0)
-            q[ja], q[jb], q[jc] = -t1, t2, 0.0 if t3 is None else t3
+            q[ja], q[jb], q[jc] = _orient_rest((ha, hb, hc), r, t1, t2)  # as the orientation op reads its units
             go_on(f | f2 | plane_flags)
 
 

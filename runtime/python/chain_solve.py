@@ -15,7 +15,7 @@ import chain_spatial3  # noqa: F401
 import numpy as np
 from chain_poe import _between
 from chain_points import _direction, _point
-from chain_rigid import _add, _apply, _cross, _dot, _inverse, _mm, _mtv, _mv, _norm, _rot, _scale, _screw, _sub
+from chain_rigid import _add, _apply, _cross, _dot, _inverse, _mv, _norm, _rot, _scale, _screw, _sub
 from chain_stages import _OP_STAGES
 from chain_stand_in import (
     _PLAN,
@@ -29,7 +29,7 @@ from chain_stand_in import (
     SCALE,
     TANGENT_TOL,
 )
-from chain_subproblems import _perpendicular, _root_amplification, _sp1, _sp2, _sp3, _sp4
+from chain_subproblems import _orient_rest, _perpendicular, _root_amplification, _sp1, _sp2, _sp3, _sp4
 
 
 # wristkin: inlined from here
@@ -38,19 +38,6 @@ def _unit_angle(ch, unit, prev):
     """The angle of an orientation unit (one joint, or a parallel group turning as one) at `prev`."""
     u = ch.axes[unit[0]]
     return sum(math.copysign(1.0, _dot(u, ch.axes[m])) * prev[m] for m in unit)
-
-
-def _orient_rest(u, rd, t1, t2):
-    """The unit angles of R(u0, a0) R(u1, a1) [R(u2, a2)] = rd given a0 = -t1 (and a1 = t2 for three units)."""
-    r1 = _rot(u[0], -t1)
-    if len(u) == 3:
-        r12 = _mm(r1, _rot(u[1], t2))
-        w = _perpendicular(u[2])
-        t3 = _sp1(u[2], w, _mtv(r12, _mv(rd, w)), 1.0)
-        return [-t1, t2, 0.0 if t3 is None else t3]
-    w = _perpendicular(u[1])
-    t2b = _sp1(u[1], w, _mtv(r1, _mv(rd, w)), 1.0)
-    return [-t1, 0.0 if t2b is None else t2b]
 
 
 def _solve(ch, g, prev, accept, params=(0.0,)):

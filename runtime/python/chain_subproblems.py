@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 
-from chain_rigid import _add, _cross, _dot, _norm, _scale, _sub
+from chain_rigid import _add, _cross, _dot, _mm, _mtv, _mv, _norm, _rot, _scale, _sub
 from chain_stand_in import (
     DEGENERATE_EPS,
     DOUBLE_ROOT_TOL,
@@ -167,5 +167,18 @@ def _perpendicular(k):
         (0.0, 1.0, 0.0) if abs(k[1]) <= abs(k[2]) else (0.0, 0.0, 1.0))
     v = _cross(k, e)
     return _scale(v, 1.0 / _norm(v))
+
+
+def _orient_rest(u, rd, t1, t2):
+    """The unit angles of R(u0, a0) R(u1, a1) [R(u2, a2)] = rd given a0 = -t1 (and a1 = t2 for three units)."""
+    r1 = _rot(u[0], -t1)
+    if len(u) == 3:
+        r12 = _mm(r1, _rot(u[1], t2))
+        w = _perpendicular(u[2])
+        t3 = _sp1(u[2], w, _mtv(r12, _mv(rd, w)), 1.0)
+        return [-t1, t2, 0.0 if t3 is None else t3]
+    w = _perpendicular(u[1])
+    t2b = _sp1(u[1], w, _mtv(r1, _mv(rd, w)), 1.0)
+    return [-t1, 0.0 if t2b is None else t2b]
 
 

@@ -139,7 +139,7 @@ def _split_orientation(p):
     beta = math.atan2(sb, -az)
     if sb <= GIMBAL_EPS and az <= 0.0:  # beta = 0: the wrist does not depend on alpha1 (set 0); R = Rz(theta) C
         return math.atan2(p[4], -p[5]), 0.0, beta, True
-    if sb <= GIMBAL_EPS:  # beta = pi: R = Rz(theta + 2 alpha1) C Ry(pi) = Rz(theta + 2 alpha1 + pi): alpha1 := 0
+    if sb <= GIMBAL_EPS:  # beta = pi: R = Rz(theta - 2 alpha1) C Ry(pi) = Rz(theta - 2 alpha1 + pi): alpha1 := 0
         return math.atan2(-p[4], -p[0]), 0.0, beta, True
     alpha = math.atan2(ay, ax)
     ca, sa = ax / sb, ay / sb
@@ -306,10 +306,11 @@ def _ik_numpy(pose, d):
 
     theta, alpha1, beta, gimbal = _split_orientation(p)
     given = lbw
-    # at beta = pi only theta + 2 alpha1 is fixed (a family): the split's member alpha1 = 0 puts leg i's coefficient
+    # at beta = pi only theta - 2 alpha1 is fixed (a family): the split's member alpha1 = 0 puts leg i's coefficient
     # sin(alpha1 - a_i) at 0 for a leg at azimuth a_i = 0, which then cannot reach a centre distance near 0 (a
     # reachable pose was called unreachable); the family's other members are tried, each moving theta by 2 alpha1
     # (GIMBAL_ALPHAS: every 30 degrees in [0, pi), where the sines of the three legs' offsets stay apart)
+    reason = f"no centre distance within the wrist limits at swing {math.degrees(beta):.4g} deg"
     for a1 in GIMBAL_ALPHAS if gimbal and beta > 0.5 * math.pi else (alpha1,):
         lbw = given
         if lbw is None:
@@ -317,15 +318,13 @@ def _ik_numpy(pose, d):
             if span is None:
                 continue
             lbw = 0.5 * (span[0] + span[1])
-        wpose = (a1, beta, lbw)
-        roots, lflags, conds, reason = _legs(wpose, w)
+        roots, lflags, conds, why = _legs((a1, beta, lbw), w)
         if all(r is not None for r in roots):
             theta, alpha1 = _wrap(theta + 2.0 * (a1 - alpha1)), a1
             break
+        reason = "wrist " + why
     else:
-        if lbw is None:
-            return empty(f"no centre distance within the wrist limits at swing {math.degrees(beta):.4g} deg")
-        return empty("wrist " + reason)
+        return empty(reason)
     ox, oy, oz = _k_wrist_offset((theta, alpha1, beta, lbw), dp)
     x4, y4, z4 = p[3] - ox, p[7] - oy, p[11] - oz
     elbows, eflag = _scara_roots(x4, y4, dp)

@@ -61,6 +61,7 @@ static void wkt_chain(int n, const int *kinds, const double *axes, const double 
 int wkt_trig(double a, double b, double c, double *t, unsigned *f);
 int wkt_conditioning(const double *jac, int n, double *man);
 void wkt_perpendicular(const double *k, double *o);
+void wkt_orient_rest(const double *u, const double *rd, double t1, double t2, double *angles);
 void wkt_transpose(const double *r, double *o);
 int wkt_sp6_split(const double *n, const double *h0, const double *p0, const double *h4, const double *p4, double d0,
                   const double *g, const double *h5, double q0, double q4, double *s0, double *s4);
@@ -205,6 +206,12 @@ int wkt_conditioning(const double *jac, int n, double *man)
 void wkt_perpendicular(const double *k, double *o)
 {
     ck_perpendicular(k, o);
+}
+
+void wkt_orient_rest(const double *u, const double *rd, double t1, double t2, double *angles)
+{
+    const double *const units[3] = {u, u + 3, u + 6};
+    ck_orient_rest(3, units, rd, t1, t2, angles);
 }
 
 void wkt_transpose(const double *r, double *o)

@@ -49,7 +49,8 @@ class ChainMechanism(MechanismDefaults):
         self._plan: Plan | None = None
         self._ideal: Chain | None = None
         self._labelling: general6r.Labelling | None = None
-        self._degenerate: tuple[float, ...] | None = None
+        self._degenerate: tuple[tuple[float, str], ...] | None = None
+        self._samples: tuple[float, ...] | None = None  # _held_samples, computed once
         self._kernels: list | None = None  # derive's FK / Jacobian kernels, emitted as they were checked
         self.free_note = ""  # how the free joint was chosen when the user gave none
 
@@ -67,10 +68,10 @@ class ChainMechanism(MechanismDefaults):
         if self._plan is None and self.desc.redundancy == "arm-angle":
             self._plan = arm_angle_plan(self.chain, self.desc.geometry_tol)
             self._ideal = self.idealise(self._plan)
-            if self.deviation() > ARM_ANGLE_DEVIATION:
+            deviation = self.deviation()
+            if deviation > ARM_ANGLE_DEVIATION:
                 raise NoClosedForm(f"the arm angle needs an S-R-S arm within {ARM_ANGLE_DEVIATION:g}: its axes are "
-                                   f"{self.deviation():.2g} off meeting (a calibrated arm: hold a joint instead, "
-                                   "--free)")
+                                   f"{deviation:.2g} off meeting (a calibrated arm: hold a joint instead, --free)")
         if self._plan is None:
             self._refuse_self_motion()
             samples = self._held_samples()
@@ -80,7 +81,7 @@ class ChainMechanism(MechanismDefaults):
             def holds(_c, plan):
                 ideal = self.idealise(plan)
                 rng = np.random.default_rng(7)
-                kept = self.plan_samples(plan)
+                kept = [v for v in samples if self._relations_hold(plan, v)]
                 if len(kept) < min(2, len(samples)):
                     return False
                 for v in kept:  # a value where a relation across the held joint breaks is refused at run time
@@ -90,7 +91,6 @@ class ChainMechanism(MechanismDefaults):
                         if max(replay(c, replace(plan, reversed=False), q)) > 1e-9 * scale:
                             return False
                 return True
-            self._plan = None
             refused = None
             # planned at each held value in turn until one plans: at a special value two axes can line up (the
             # Panda's joints 5 and 7 are parallel with joint6 held at 0), which rules out the op (subproblem 5) every
@@ -120,7 +120,7 @@ class ChainMechanism(MechanismDefaults):
     def _relations_hold(self, plan: Plan, v: float) -> bool:
         """Whether the plan's relations across the held joint hold on the true chain with it held at v."""
         g = Geometry(self.solver_chain(self.chain, v, plan.reversed), self.desc.geometry_tol)
-        return all((g.meet(r.joints) if r.kind == "meet" else (True if g.parallel(r.joints) else None)) is not None
+        return all(g.meet(r.joints) is not None if r.kind == "meet" else g.parallel(r.joints)
                    for r in self._spanning(plan))
 
     @property
@@ -156,7 +156,9 @@ class ChainMechanism(MechanismDefaults):
         degenerate for every value and refused it)."""
         if self.desc.free < 0:
             return (0.0,)
-        return tuple(v for v in FREE_SAMPLES if self._self_motion_ratio([v], 2) > SELF_MOTION_RATIO)
+        if self._samples is None:  # two SVDs per value: read by the plan, its checks and the derivation
+            self._samples = tuple(v for v in FREE_SAMPLES if self._self_motion_ratio([v], 2) > SELF_MOTION_RATIO)
+        return self._samples
 
     def degenerate_held(self) -> tuple[float, ...]:
         """The free joint's values the emitted IK refuses (InvalidDesign / WK_ERR_DESIGN), sorted: see
@@ -238,13 +240,12 @@ class ChainMechanism(MechanismDefaults):
             r = n_solver - 1 - j if plan.reversed else j
             return reduced_to_full[r]
         axes, points = c.axes.copy(), c.points.copy()
-        free = self.desc.free
         # a relation across the held joint (the Panda's joints 5 and 7 meet with joint6 held anywhere but 0 and pi)
         # holds on the held chain, not on the full chain at home (there joint6 is 0, the lines are parallel and
         # their "common point" is anywhere): it is left as it is, and the plan's check (holds) reads it at every
         # held value sampled
-        relations = [r for r in plan.relations
-                     if free < 0 or not min(full(j) for j in r.joints) < free < max(full(j) for j in r.joints)]
+        spanning = self._spanning(plan)
+        relations = [r for r in plan.relations if r not in spanning]
         for rel in relations:
             js = [full(j) for j in rel.joints]
             if rel.kind == "parallel":

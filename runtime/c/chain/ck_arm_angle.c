@@ -45,6 +45,15 @@ static double ck_arm_angle_of(const double *h1, const double *s, const double *e
     return atan2(ck_dot(side, n2), ck_dot(side, n1));
 }
 
+/* The elbow point: on the elbow axis je, nearest the shoulder centre s (Python's _elbow_point) */
+static void ck_elbow_point(const ck_chain *ch, int je, const double *s, double *o)
+{
+    double se[3];
+    ck_sub(s, ch->point[je], se);
+    ck_scale(ch->axis[je], ck_dot(ch->axis[je], se), o);
+    ck_add(ch->point[je], o, o);
+}
+
 /* r = the rotation with columns a, b, a x b (row-major) */
 static void ck_frame_of(const double *a, const double *b, double *r)
 {
@@ -68,6 +77,7 @@ static int ck_arm_angle(const ck_chain *ch, const ck_op *op, const double *s, co
 {
     const int ja = op->js[0], jb = op->js[1], jc = op->js[2], je = op->j;
     const double *ha = ch->axis[ja], *hb = ch->axis[jb], *hc = ch->axis[jc], *he = ch->axis[je], *pe = ch->point[je];
+    const double *const units[3] = {ha, hb, hc};
     double u[3], n1[3], n2[3], side[3], target[9], elbow[3], xe[3], se[3], sw[3], te[2], length, tmp[3];
     unsigned fe[2];
     int plane, ne, i, count = 0;
@@ -79,9 +89,8 @@ static int ck_arm_angle(const ck_chain *ch, const ck_op *op, const double *s, co
     ck_scale(n2, sin(psi), tmp);
     ck_add(side, tmp, side);
     ck_frame_of(u, side, target);
+    ck_elbow_point(ch, je, s, elbow);
     ck_sub(s, pe, se);
-    ck_scale(he, ck_dot(he, se), elbow);
-    ck_add(pe, elbow, elbow); /* the elbow point: on its axis, nearest the shoulder */
     ck_sub(x, pe, xe);
     ne = ck_sp3(he, xe, se, length, CK_SCALE, 1.0, NULL, 1.0, te, fe);
     if (ne == 1 && (fe[0] & WK_FLAG_DOUBLE_ROOT)) {
@@ -123,22 +132,12 @@ static int ck_arm_angle(const ck_chain *ch, const ck_op *op, const double *s, co
         ck_mv(r, hc, rc);
         ns = ck_sp2(rc, ha, hc, hb, 1.0, 0, 1.0, CK_FAMILY_TOL, t1, has1, t2, f2);
         for (m = 0; m < ns && count < 4; ++m) {
-            double ra[9], rb[9], r12[9], wv[3], rw[3], t3 = 0.0;
             unsigned g = f2[m];
             if (!has1[m]) { /* a and c line up: the family's q_a from prev, else 0 */
                 t1[m] = -(prev ? prev[ja] : 0.0);
                 g |= WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
             }
-            ck_rot(ha, -t1[m], ra);
-            ck_rot(hb, t2[m], rb);
-            ck_mm(ra, rb, r12);
-            ck_perpendicular(hc, wv);
-            ck_mv(r, wv, rw);
-            ck_mtv(r12, rw, rw);
-            if (!ck_sp1(hc, wv, rw, 1.0, &t3)) t3 = 0.0;
-            out[count][0] = -t1[m];
-            out[count][1] = t2[m];
-            out[count][2] = t3;
+            ck_orient_rest(3, units, r, t1[m], t2[m], out[count]); /* as the orientation op reads its units */
             out[count][3] = te[i];
             flags[count] = f | g | (unsigned)plane;
             ++count;
@@ -152,9 +151,9 @@ static int ck_arm_angle(const ck_chain *ch, const ck_op *op, const double *s, co
 static int ck_api_arm_angle(const double *joints, const void *design, double *psi)
 {
     const ck_chain *ch = &ck_ideal_chain;
-    const ck_op *op = &ck_plan[1];
+    const ck_op *op = &ck_plan[1]; /* arm_angle_plan: begin, arm_angle, orient */
     const int wrist[3] = {op->j + 1, op->j + 2, op->j + 3};
-    double s[3], w0[3], elbow[3], se[3], e[3], w[3], axis[3];
+    double s[3], w0[3], elbow[3], e[3], w[3], axis[3];
     ck_rt shoulder, t;
     int i;
     (void)design;
@@ -162,9 +161,7 @@ static int ck_api_arm_angle(const double *joints, const void *design, double *ps
     if (!wk_all_finite(joints, CK_N)) return WK_ERR_NONFINITE;
     ck_point(ch, op, s);
     ck_meet(ch, wrist, 3, w0);
-    ck_sub(s, ch->point[op->j], se);
-    ck_scale(ch->axis[op->j], ck_dot(ch->axis[op->j], se), elbow);
-    ck_add(ch->point[op->j], elbow, elbow);
+    ck_elbow_point(ch, op->j, s, elbow);
     ck_identity(&shoulder);
     for (i = 0; i < 3; ++i) {
         ck_screw(0, ch->axis[op->js[i]], ch->point[op->js[i]], joints[op->js[i]], &t);

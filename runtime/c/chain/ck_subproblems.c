@@ -210,6 +210,29 @@ static void ck_perpendicular(const double *k, double *o)
     ck_scale(o, 1.0 / ck_norm(o), o);
 }
 
+/* The unit angles of R(u0, a0) R(u1, a1) [R(u2, a2)] = rd given a0 = -t1 (and a1 = t2 for three units). */
+static void ck_orient_rest(int nu, const double *const *u, const double *rd, double t1, double t2, double *angles)
+{
+    double r1[9], w[3], rw[3], a = 0.0;
+    ck_rot(u[0], -t1, r1);
+    angles[0] = -t1;
+    if (nu == 3) {
+        double r2[9];
+        ck_rot(u[1], t2, r2);
+        ck_mm(r1, r2, r2);
+        ck_perpendicular(u[2], w);
+        ck_mv(rd, w, rw);
+        ck_mtv(r2, rw, rw);
+        angles[1] = t2;
+        angles[2] = ck_sp1(u[2], w, rw, 1.0, &a) ? a : 0.0;
+    } else {
+        ck_perpendicular(u[1], w);
+        ck_mv(rd, w, rw);
+        ck_mtv(r1, rw, rw);
+        angles[1] = ck_sp1(u[1], w, rw, 1.0, &a) ? a : 0.0;
+    }
+}
+
 /* x with m x = v (3 x 3, row-major) by Gaussian elimination with partial pivoting; 0 when a pivot is below
  * 1e-12 of the largest entry (then the caller takes the least-squares path) */
 static int ck_solve3(const double *m_in, const double *v_in, double *x)

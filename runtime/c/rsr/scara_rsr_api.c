@@ -32,7 +32,8 @@ static int hy_split(const double *p, double *theta, double *alpha1, double *beta
     double ca, sa;
     *beta = atan2(sb, -az);
     if (sb <= RSR_GIMBAL_EPS) {
-        /* beta = 0: R = Rz(theta) C; beta = pi: R = Rz(theta + 2 alpha1 + pi): alpha1 := 0 either way */
+        /* beta = 0: R = Rz(theta) C; beta = pi: R = Rz(theta - 2 alpha1 + pi) (C Rz(a) = Rz(-a) C): alpha1 := 0
+         * either way */
         *theta = az <= 0.0 ? atan2(p[4], -p[5]) : atan2(-p[4], -p[0]);
         *alpha1 = 0.0;
         return 1;
