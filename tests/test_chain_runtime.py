@@ -505,10 +505,30 @@ def test_python_sp6_and_spatial3_agree_with_c(py, lib):
         assert min(_angle_gap(x, a) + _angle_gap(y, b) for x, y, _, _ in out) < 1e-6
 
 
+def _sp6_split_allowance(n_, h0, p0, h4, p4, d0, g, h5, a, b):
+    """What the split's root at the true (a, b) may be off, from the conditioning there: the first equation (metres)
+    and the second read on its parts normal to n, |n x w0|^2 - |n x z5|^2 (~delta, each read to eps), each scaled
+    to a distance by its gradient, then through the inverse of the two unit gradients (kappa: large where the two
+    curves cross at a small angle; where they touch the pair merges, a double root, read to sqrt(eps))."""
+    eps = np.finfo(float).eps
+    w, z4 = _rot(h0, -a) @ p0, _rot(h4, b) @ p4
+    w0, z5 = _rot(h0, -a) @ g, _rot(h4, b) @ h5
+    u, r = np.cross(n_, w0), np.cross(n_, z5)
+    g1 = np.array([-n_ @ np.cross(h0, w), -n_ @ np.cross(h4, z4)])
+    g2 = 2.0 * np.array([-u @ np.cross(n_, np.cross(h0, w0)), -r @ np.cross(n_, np.cross(h4, z5))])
+    scale = max(np.linalg.norm(p0), np.linalg.norm(p4), abs(d0))
+    kappa = 1.0 / np.linalg.svd(np.array([g1 / np.linalg.norm(g1), g2 / np.linalg.norm(g2)]), compute_uv=False)[-1]
+    reach = max(scale / np.linalg.norm(g1), np.linalg.norm(u) / np.linalg.norm(g2))
+    return eps * kappa * reach, math.sqrt(eps) * reach  # a simple root, a merged (double) one
+
+
 def test_the_sp6_split_resolves_a_near_wrist_pair_to_eps(lib, py):
-    """Subproblem 6 with joint 5 delta = 1e-3 .. 1e-10 off the wrist singularity (h5 and n normal to h4, so
-    rot(h4, q4*) h5 = n at one q4*): from the singular point (a, q4*) the split returns the generating (a, q4* + delta)
-    among its two roots, to ~eps / |h4 x n|-scale (the quartic alone: sqrt(eps)), and C returns Python's roots."""
+    """Subproblem 6 with joint 5 delta = 1e-5 .. 1e-12 off the wrist singularity (h5 and n normal to h4, so
+    rot(h4, q4*) h5 = n at one q4*; the split is called up to ~1e-6, where the quartic merges the pair or the
+    singular candidate's |n x w| is below sqrt(DOUBLE_ROOT_TOL)): from the singular point (a, q4*) the split
+    returns the generating (a, q4* + delta) among its two roots within 16 x the conditioning's allowance (seen:
+    4.9 x over 250 seeds; the quartic alone: sqrt(eps)); where the two curves touch it returns the merged pair,
+    one root, within 16 sqrt(eps) x the same scale (a double root's accuracy). C returns Python's roots."""
     rng = case_rng(2217)
     s0, s4 = np.zeros(2), np.zeros(2)
     for i in range(40):
@@ -518,17 +538,18 @@ def test_the_sp6_split_resolves_a_near_wrist_pair_to_eps(lib, py):
         h5 = _rot(h4, rng.uniform(-math.pi, math.pi)) @ n_  # normal to h4: some q4* turns it onto n
         q4s = math.atan2(float(h4 @ np.cross(h5, n_)), float(h5 @ n_))
         h0, p0, p4 = _unit(rng), rng.normal(size=3), rng.normal(size=3)
-        a, delta = rng.uniform(-math.pi, math.pi), (1.0 if i % 2 else -1.0) * 10.0 ** -(3 + i % 8)
+        a, delta = rng.uniform(-math.pi, math.pi), (1.0 if i % 2 else -1.0) * 10.0 ** -(5 + i % 8)
         b = q4s + delta
         d0 = float(n_ @ _rot(h0, -a) @ p0 - n_ @ _rot(h4, b) @ p4)
         g = _rot(h0, a) @ _rot(h4, b) @ h5
         args = [list(v) for v in (n_, h0, p0, h4, p4)] + [d0, list(g), list(h5)]
         out = py.sp6._sp6_split(*args[:6], *args[6:], a, q4s)
         nc = lib.wkt_sp6_split(_p(n_), _p(h0), _p(p0), _p(h4), _p(p4), d0, _p(g), _p(h5), a, q4s, _p(s0), _p(s4))
-        assert nc == len(out) == 2, (i, delta)
-        assert min(_angle_gap(x, a) + _angle_gap(y, b) for x, y in out) <= 1e-12, (i, delta, out)
+        assert nc == len(out) and len(out) in (1, 2), (i, delta)
+        allowance = 16.0 * _sp6_split_allowance(n_, h0, p0, h4, p4, d0, g, h5, a, b)[len(out) == 1]
+        assert min(_angle_gap(x, a) + _angle_gap(y, b) for x, y in out) <= allowance, (i, delta, out, allowance)
         assert all(_angle_gap(x, c0) <= 1e-13 and _angle_gap(y, c4) <= 1e-13
-                   for (x, y), c0, c4 in zip(out, s0, s4, strict=True))
+                   for (x, y), c0, c4 in zip(out, s0[:nc], s4[:nc], strict=True))
 
 
 def test_the_api_source_solves_the_stand_in_robot(py):

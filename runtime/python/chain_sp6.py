@@ -75,7 +75,8 @@ def _sp6(nv, h0, p0, h4, p4, d0, e0, g, h5):
             # root 3e-7 rad off the singularity verified within IK_VERIFY_TOL with q5 0.05 rad off)
             pair = _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4)
             if pair:
-                regular += [(a, b, (fl & ~FLAG_DOUBLE_ROOT) | FLAG_SINGULAR_INVERSE, 1) for a, b in pair]
+                regular += [(a, b, (fl & ~FLAG_DOUBLE_ROOT) | _merged(pair) | FLAG_SINGULAR_INVERSE, 1)
+                            for a, b in pair]
                 continue
         order = 2
         if not fl:  # a merged double root far from the wrist stays (Newton is ill-conditioned there; its split is
@@ -111,8 +112,8 @@ def _sp6(nv, h0, p0, h4, p4, d0, e0, g, h5):
                     if _norm(_cross(nv, w)) <= ON_AXIS_TOL:  # closed-form inputs: rounding, not FAMILY_TOL's noise
                         singular.append((q0, _wrap(q4), fl | FLAG_SINGULAR_INVERSE, 2))
                     else:
-                        split += [(a, b, fl | FLAG_SINGULAR_INVERSE, 1)
-                                  for a, b in _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4)]
+                        pair = _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4)
+                        split += [(a, b, fl | _merged(pair) | FLAG_SINGULAR_INVERSE, 1) for a, b in pair]
     kept = [r for r in regular if not any(abs(_wrap(r[0] - a[0])) <= 1e-6 and abs(_wrap(r[1] - a[1])) <= 1e-6
                                           for a in anchors)]
     return kept + split + singular
@@ -153,7 +154,8 @@ def _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4):
     at +-1 and their difference (~delta^2) is read only to eps, so its roots to sqrt(eps); the parts normal to n
     (~delta) are read to eps each. To second order in s that is qa s^2 + qb s + qc = 0 with u = n x w0, r = n x z5
     and their derivatives along t; its two roots, polished by Newton on both equations, are the nearby solutions,
-    ~delta apart and each to ~eps (Newton on the same normal parts: _sp6_newton_perp). None real: []."""
+    ~delta apart and each to ~eps (Newton on the same normal parts: _sp6_newton_perp). Where the two curves are
+    near tangent the pair merges: one root, a double one (callers keep FLAG_DOUBLE_ROOT)."""
     (f1, _f2), ((a, b), _) = _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4)
     gn = math.hypot(a, b)
     if gn <= DEGENERATE_EPS * SCALE:
@@ -168,14 +170,24 @@ def _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4):
     qb = 2.0 * (_dot(u, du) - _dot(rz, dr))
     qc = _dot(u, u) - _dot(rz, rz)
     disc = qb * qb - 4.0 * qa * qc
-    if qa == 0.0 or not disc > 0.0:
+    if qa == 0.0 or not math.isfinite(disc):
         return []
-    qq = -0.5 * (qb + math.copysign(math.sqrt(disc), qb))  # the larger root's numerator: no cancellation
+    if disc > 0.0:
+        qq = -0.5 * (qb + math.copysign(math.sqrt(disc), qb))  # the larger root's numerator: no cancellation
+        steps = (qq / qa, qc / qq)
+    else:  # the curve's tangent touches the second's pair of lines: one double root at the vertex (the model's
+        # cubic term, ~|s|^3, moved the discriminant below 0 by 3e-6 of qb^2 at delta = 1e-6)
+        steps = (-0.5 * qb / qa,)
     out = []
-    for s_ in (qq / qa, qc / qq):
+    for s_ in steps:
         x0, x4 = _sp6_newton_perp(nv, h0, p0, h4, p4, d0, g, h5, q0 + s_ * t0, q4 + s_ * t4)
         out.append((_wrap(x0), _wrap(x4)))
     return out
+
+
+def _merged(pair):
+    """FLAG_DOUBLE_ROOT when the split returned its pair merged (one root), else 0."""
+    return FLAG_DOUBLE_ROOT if len(pair) == 1 else 0
 
 
 def _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
@@ -262,8 +274,9 @@ def _sp6_stage(ch, g, prev, op, x, y, q, count, go_on, family, params=()):
             family(f | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE, place, None if prev is None else prev[ll])
         if count() == before and may_split and f & FLAG_SINGULAR_INVERSE:
             # a merged near-double root that verified nothing: the two roots it merged
-            for s0, s4 in _sp6_split(nv, h0, p0, h4, p4, d0, g5, h5, q0, q4):
-                sp6_set(s0, s4, (f & ~FLAG_DOUBLE_ROOT) | FLAG_SINGULAR_INVERSE, 1, may_split=False)
+            pair = _sp6_split(nv, h0, p0, h4, p4, d0, g5, h5, q0, q4)
+            for s0, s4 in pair:
+                sp6_set(s0, s4, (f & ~FLAG_DOUBLE_ROOT) | _merged(pair) | FLAG_SINGULAR_INVERSE, 1, may_split=False)
 
     for q0, q4, f, order in _sp6(nv, h0, p0, h4, p4, d0, 0.0, g5, h5):
         sp6_set(q0, q4, f, order)

@@ -447,7 +447,8 @@ static void ck_sp6_set(ck_ctx *c, int k, const double *x, const double *y, unsig
     /* a merged near-double root that verified nothing: the two roots it merged */
     ns = ck_sp6_split(in->n, h0, in->p0, h4, in->p4, in->d0, in->g, h5, q0, q4, s0, s4);
     for (i = 0; i < ns; ++i)
-        ck_sp6_set(c, k, x, y, flags, in, s0[i], s4[i], (f & ~WK_FLAG_DOUBLE_ROOT) | WK_FLAG_SINGULAR_INVERSE, 1, 0);
+        ck_sp6_set(c, k, x, y, flags, in, s0[i], s4[i],
+                   (f & ~WK_FLAG_DOUBLE_ROOT) | ck_sp6_merged(ns) | WK_FLAG_SINGULAR_INVERSE, 1, 0);
 }
 #endif
 

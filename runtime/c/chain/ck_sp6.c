@@ -166,13 +166,14 @@ static void ck_sp6_newton_perp(const double *n, const double *h0, const double *
  * module's _sp6_split): along the first equation's solution curve (tangent t, arc s) the second is read as
  * |n x w0|^2 = |n x z5|^2, its parts normal to n (~delta, each read to eps) instead of its n-components (stationary
  * at +-1, their difference read to eps and so its roots to sqrt(eps)); to second order in s a quadratic, its two
- * roots polished by Newton on both equations. Returns 0 or 2. */
+ * roots polished by Newton on both equations. Returns 0, 2, or 1 where the two curves are near tangent and the pair
+ * merges (a double root: callers keep WK_FLAG_DOUBLE_ROOT, ck_sp6_merged). */
 static int ck_sp6_split(const double *n, const double *h0, const double *p0, const double *h4, const double *p4,
                         double d0, const double *g, const double *h5, double q0, double q4, double *s0, double *s4)
 {
     double f[2], jac[4], gn, r, t0, t4, u[3], rz[3], du[3], dr[3];
     double qa, qb, qc, disc, qq, s[2];
-    int i;
+    int i, ns;
     ck_sp6_eval(n, h0, p0, h4, p4, g, h5, q0, q4, f, jac);
     gn = hypot(jac[0], jac[1]);
     if (gn <= CK_DEGENERATE_EPS * CK_SCALE) return 0;
@@ -189,18 +190,30 @@ static int ck_sp6_split(const double *n, const double *h0, const double *p0, con
     qb = 2.0 * (ck_dot(u, du) - ck_dot(rz, dr));
     qc = ck_dot(u, u) - ck_dot(rz, rz);
     disc = qb * qb - 4.0 * qa * qc;
-    if (qa == 0.0 || !(disc > 0.0)) return 0;
-    qq = -0.5 * (qb + copysign(sqrt(disc), qb)); /* the larger root's numerator: no cancellation */
-    s[0] = qq / qa;
-    s[1] = qc / qq;
-    for (i = 0; i < 2; ++i) {
+    if (qa == 0.0 || !isfinite(disc)) return 0;
+    if (disc > 0.0) {
+        qq = -0.5 * (qb + copysign(sqrt(disc), qb)); /* the larger root's numerator: no cancellation */
+        s[0] = qq / qa;
+        s[1] = qc / qq;
+        ns = 2;
+    } else { /* the curve's tangent touches the second's pair of lines: one double root at the vertex */
+        s[0] = -0.5 * qb / qa;
+        ns = 1;
+    }
+    for (i = 0; i < ns; ++i) {
         s0[i] = q0 + s[i] * t0;
         s4[i] = q4 + s[i] * t4;
         ck_sp6_newton_perp(n, h0, p0, h4, p4, d0, g, h5, &s0[i], &s4[i]);
         s0[i] = ck_wrap(s0[i]);
         s4[i] = ck_wrap(s4[i]);
     }
-    return 2;
+    return ns;
+}
+
+/* WK_FLAG_DOUBLE_ROOT when the split returned its pair merged (one root), else 0 (Python's _merged) */
+static unsigned ck_sp6_merged(int ns)
+{
+    return ns == 1 ? WK_FLAG_DOUBLE_ROOT : 0u;
 }
 
 /* 1 when (q0, q4) is within 1e-6 of one of the wrist singularity's candidates (at or near it): the same
@@ -294,7 +307,7 @@ static int ck_sp6(const double *n, const double *h0, const double *p0, const dou
                 for (b = 0; b < nb; ++b) {
                     pq0[nsplit] = b0[b];
                     pq4[nsplit] = b4[b];
-                    pfl[nsplit++] = f0[m] | WK_FLAG_SINGULAR_INVERSE;
+                    pfl[nsplit++] = f0[m] | ck_sp6_merged(nb) | WK_FLAG_SINGULAR_INVERSE;
                 }
             }
         }
@@ -316,7 +329,7 @@ static int ck_sp6(const double *n, const double *h0, const double *p0, const dou
                 if (!ck_sp6_near_anchor(b0[j], b4[j], aq0, aq4, nanchor)) {
                     q0[out] = b0[j];
                     q4[out] = b4[j];
-                    fl[out] = (af[i] & ~WK_FLAG_DOUBLE_ROOT) | WK_FLAG_SINGULAR_INVERSE;
+                    fl[out] = (af[i] & ~WK_FLAG_DOUBLE_ROOT) | ck_sp6_merged(nb) | WK_FLAG_SINGULAR_INVERSE;
                     ord[out] = 1;
                     ++out;
                 }
