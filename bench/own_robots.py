@@ -11,6 +11,8 @@ arm angle as the parameter, solved at 0.3 rad):
                 UR5 55 min, some never finish) are quoted, not measured here
 * wristkin py   the emitted Python solver's ik(T) (numpy / math only), best of 3, microseconds per call
 * wristkin C    the emitted C solver called in a C loop (bench/bench_chain.c, -O2), best of 5
+* (derived)     the robots --stages derived covers, derived that way: straight-line stages instead of the plan
+                interpreter, timed on the same poses, against the interpreted row's peers
 * EAIK          eaik.IK_HP.HPRobot(H, P) (its own decomposition from the same axes), ik(T) from Python
 * ik-geo        ik_geo.Robot.<family>(H, P) chosen by the decomposition wristkin found (6R only)
 
@@ -41,6 +43,7 @@ ROBOTS = ROOT / "tests" / "robots"
 FREE = {"iiwa14": "a3"}
 ARM_ANGLE_ROBOTS = ("iiwa14",)  # also benched with --redundancy arm-angle
 ARM_ANGLE = 0.3  # rad: the arm angle every such pose is solved at
+DERIVED_ROBOTS = ("irb120", "kr6", "lrmate", "tx2_60")  # also benched with --stages derived (the ones it covers)
 C_FLAGS = ["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 
 
@@ -155,7 +158,7 @@ int main(int argc, char **argv) {
     if (fread(free_value, sizeof(double), 1, f) != 1) free_value[0] = 0.0;
     fclose(f);
     wk_NAME_design d;
-    wk_NAME_design_init(free_value, &d);
+    wk_NAME_design_init(PARAMS, &d);
     wk_NAME_ik_solutions s;
     double best = 1e30;
     long total = 0;
@@ -173,9 +176,10 @@ int main(int argc, char **argv) {
 """
 
 
-def c_loop(out: Path, name: str, poses, free_value) -> float | None:
+def c_loop(out: Path, name: str, poses, free_value, params: bool = True) -> float | None:
+    """`params`: the solver takes the held value as its design (the interpreted chain); else its defaults."""
     src = out / "c" / "bench_main.c"
-    src.write_text(BENCH_C.replace("NAME", name))
+    src.write_text(BENCH_C.replace("NAME", name).replace("PARAMS", "free_value" if params else "NULL"))
     exe = out / "c" / "bench"
     # the robot's C and every runtime file written beside it (wristkin_runtime.c; the general 6R's wk_*.c)
     others = sorted(str(f) for f in (out / "c").glob("*.c") if f.name != src.name)
@@ -190,9 +194,10 @@ def c_loop(out: Path, name: str, poses, free_value) -> float | None:
     return float(run.stdout.split()[0]) if run.returncode == 0 else None
 
 
-def bench_robot(urdf: Path, n: int, arm_angle: bool = False) -> dict:
+def bench_robot(urdf: Path, n: int, arm_angle: bool = False, derived: bool = False) -> dict:
     """One robot's row; `arm_angle`: derived with --redundancy arm-angle and solved at arm angle ARM_ANGLE for every
-    pose (8 sets each; no peer has this IK)."""
+    pose (8 sets each; no peer has this IK); `derived`: with --stages derived (straight-line stages, its design the
+    table's lengths at their defaults), on the same poses as the interpreted row (the peers are timed there)."""
     from derive import own_robot
 
     robot = urdf.stem
@@ -200,6 +205,8 @@ def bench_robot(urdf: Path, n: int, arm_angle: bool = False) -> dict:
     t0 = time.perf_counter()
     if arm_angle:
         own_robot.derive(urdf, out, redundancy="arm-angle", progress=lambda _: None)
+    elif derived:
+        own_robot.derive(urdf, out, stages="derived", progress=lambda _: None)
     else:
         own_robot.derive(urdf, out, free=FREE.get(robot), progress=lambda _: None)
     derive_s = time.perf_counter() - t0
@@ -207,13 +214,18 @@ def bench_robot(urdf: Path, n: int, arm_angle: bool = False) -> dict:
     rng = np.random.default_rng(7)
     joints = rng.uniform(-math.pi, math.pi, (n, m.N_JOINTS))
     free_value = ARM_ANGLE if arm_angle else 0.0
-    if m._FREE >= 0:
-        joints[:, m._FREE] = free_value
-    design = [free_value] if m.DESIGN_NAMES else None
+    held = getattr(m, "_FREE", -1)  # the derived stages' module has no held joint
+    if held >= 0:
+        joints[:, held] = free_value
+    design = [free_value] if m.DESIGN_NAMES and not derived else None
     poses = [m.fk_matrix(q, design) for q in joints]
     ours = [m.ik(T, design).count for T in poses]
     py_us = per_call(lambda T: m.ik(T, design), poses[: min(n, 100)], 3, warmup=5) * 1e6
-    c_us = c_loop(out, robot, poses, free_value)
+    c_us = c_loop(out, robot, poses, free_value, params=not derived)
+    if derived:
+        return {"robot": robot + " (derived)", "decomposition": "derived straight-line stages (--stages derived)",
+                "derive_s": derive_s, "py_us": py_us, "c_us": c_us, "sets": sum(ours) / len(ours),
+                "peers": {}, "n": n}
     if arm_angle:
         peers = {k: {"note": "no arm-angle IK"} for k in ("EAIK", "ik-geo")}
         robot += " (arm angle)"
@@ -236,6 +248,7 @@ def report(n: int = 200, json_path: Path = ROOT / "build" / "bench" / "own_robot
     first); the numbers also go to `json_path`."""
     rows = [bench_robot(p, n) for p in sorted(ROBOTS.glob("*/*.urdf"))]
     rows += [bench_robot(ROBOTS / r / f"{r}.urdf", n, arm_angle=True) for r in ARM_ANGLE_ROBOTS]
+    rows += [bench_robot(ROBOTS / r / f"{r}.urdf", n, derived=True) for r in DERIVED_ROBOTS]
     versions = {}
     for mod in ("eaik", "ik_geo"):
         try:
@@ -250,7 +263,18 @@ def report(n: int = 200, json_path: Path = ROOT / "build" / "bench" / "own_robot
              "| robot | C loop / EAIK | decomposition | derive s | IK sets/pose | wristkin C loop us | "
              "EAIK us (Python) | ik-geo us (Python) | wristkin Python us | peers' sets equal / N |",
              "|---|---:|---|---:|---:|---:|---:|---:|---:|---|"]
+    interpreted = {r["robot"]: r for r in rows}
     for r in rows:
+        if r["robot"].endswith(" (derived)"):  # the peers as timed on the interpreted row's same poses
+            twin = interpreted[r["robot"].removesuffix(" (derived)")]
+            e, g = twin["peers"]["EAIK"], twin["peers"]["ik-geo"]
+            ratio = r["c_us"] / e["us"] if r["c_us"] and e.get("us") else None
+            py_ratio = r["py_us"] / e["us"] if e.get("us") else None
+            lines.append(f"| {r['robot']} | {_f(ratio, '{:.2f}x')} | {r['decomposition']}; Python / EAIK "
+                         f"{_f(py_ratio, '{:.2f}x')}; interpreted C loop {_f(twin['c_us'])} us | "
+                         f"{r['derive_s']:.1f} | {r['sets']:.2f} | {_f(r['c_us'])} | {_f(e.get('us'))} | "
+                         f"{_f(g.get('us'))} | {r['py_us']:.1f} | the interpreted row's peers, same poses |")
+            continue
         e, g = r["peers"]["EAIK"], r["peers"]["ik-geo"]
         ratio = r["c_us"] / e["us"] if r["c_us"] and e.get("us") else None
         same = "; ".join(f"{k} {p['same_counts']}/{r['n']} (err {p['err']:.0e})" if "same_counts" in p else

@@ -32,6 +32,11 @@ COMMANDS = (
       (("--redundancy",), {"choices": ["joint", "arm-angle"],
                            "help": "a 7-joint arm's run-time parameter: a held joint (joint, the default: --free) or "
                                    "the arm angle of an arm with a spherical shoulder and wrist (arm-angle)"}),
+      (("--stages",), {"choices": ["interpreted", "derived"],
+                       "help": "the IK as the plan interpreter (interpreted, the default: every robot wristkin solves) "
+                               "or derived as straight-line code like the catalogue's PUMA-560 (derived: six or "
+                               "fewer revolute joints with exact axes whose decomposition the derived stages cover; "
+                               "others are refused with the reason)"}),
       (("--xacro-arg",), {"action": "append", "metavar": "NAME=VALUE", "dest": "xacro_args",
                           "help": "a .xacro file's $(arg NAME) (repeat for more)"}),
       (("--package",), {"action": "append", "metavar": "NAME=DIR", "dest": "packages",

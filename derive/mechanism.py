@@ -63,6 +63,8 @@ class Mechanism(Protocol):
 
     def casadi_functions(self, dv: Derivation, kernels: Sequence) -> dict: ...
 
+    def robot_table(self) -> Any: ...  # the robot as a RobotTable for `--stages derived`, else NotDerivable
+
     def audit_numbers(self, dv: Derivation, solver: Any, audit_dir: Path) -> dict: ...
 
     def c_shared_files(self) -> list[str]: ...
@@ -77,6 +79,14 @@ class MechanismDefaults:
     CASADI_DESIGN_NAMES: ClassVar[tuple[str, ...] | None] = None
     CASADI_DOCS: ClassVar[dict[str, str] | None] = None
     C_API: ClassVar[CApi] = CApi()
+
+    def robot_table(self) -> Any:
+        """The mechanism as a DH table for `--stages derived` (kinematics/dh_table.RobotTable); a mechanism that
+        is no user's robot description refuses."""
+        from .model import NotDerivable
+
+        raise NotDerivable(f"{self.NAME}: --stages derived takes a robot description "
+                           "(URDF, DH or POE); a catalogue mechanism's stages are derived already")
 
     def audit_numbers(self, dv: Derivation, solver: Any, audit_dir: Path) -> dict:
         """Numeric findings for the audit beyond the derivation's own records (none by default)."""
@@ -96,3 +106,7 @@ class Family(Protocol):
     SOURCE_SUFFIXES: tuple[str, ...]  # description files `wristkin derive` hands to it as they are (".urdf")
 
     def from_spec(self, spec: Any) -> Mechanism: ...  # reads and validates its fields, SpecError naming them
+
+    # a robot's DH table (kinematics/dh_table.RobotTable) -> a Mechanism with derived stages, or None: the family
+    # that emits `--stages derived` (one does)
+    from_table: Any

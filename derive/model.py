@@ -23,6 +23,10 @@ class NoDecomposition(ValueError):
     """No closed form fits the mechanism (a family's planner refuses it); the message names what prevents it."""
 
 
+class NotDerivable(NoDecomposition):
+    """`--stages derived` does not cover the robot (the message says why, and that the plan interpreter solves it)."""
+
+
 class CheckFailed(AssertionError):
     """A derivation step failed its checks: nothing built on it is emitted. The message names the step and the
     claims that failed (`wristkin derive` prints it as a refusal of the robot, not a traceback)."""

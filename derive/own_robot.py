@@ -26,17 +26,21 @@ from .spec import Spec, SpecError
 
 
 def load(source: str | Path, name=None, base=None, tip=None, free=None, geometry_tol=None, xacro_args=None,
-         packages=None, redundancy=None):
-    """The mechanism of a URDF / xacro or a spec file (command-line options override the spec's own fields)."""
+         packages=None, redundancy=None, stages=None):
+    """The mechanism of a URDF / xacro or a spec file (command-line options override the spec's own fields).
+    `stages` "derived" (or the spec's `stages` field): the robot's IK derived as straight-line code (its
+    mechanism's robot_table, handed to the family with from_table) instead of the plan interpreter ("interpreted",
+    the default)."""
     path = Path(source)
     readers = [f for f in FAMILIES.values() if path.suffix.lower() in f.SOURCE_SUFFIXES]
     if readers:  # a description file a family reads itself (a URDF, a xacro file)
         spec = readers[0].spec_for_file(path, name=name, base=base, tip=tip, free=free, geometry_tol=geometry_tol,
-                                        xacro_args=xacro_args, packages=packages, redundancy=redundancy)
+                                        xacro_args=xacro_args, packages=packages, redundancy=redundancy,
+                                        stages=stages)
     else:
         spec = Spec.load(path)
         for key, option, value in (("name", "--name", name), ("free", "--free", free),
-                                   ("redundancy", "--redundancy", redundancy),
+                                   ("redundancy", "--redundancy", redundancy), ("stages", "--stages", stages),
                                    ("geometry_tol", "--geometry-tol", geometry_tol)):
             if value is not None:
                 spec.given(key, value, option)
@@ -52,7 +56,12 @@ def load(source: str | Path, name=None, base=None, tip=None, free=None, geometry
     family = FAMILIES.get(spec.data.get("family"))
     if family is None:
         raise spec.error("family", f"one of the families {', '.join(sorted(FAMILIES))}", spec.data.get("family"))
-    return family.from_spec(spec)
+    derived = spec.has("stages") and spec.choice("stages", ("interpreted", "derived")) == "derived"
+    mech = family.from_spec(spec)
+    if derived:  # the robot's DH table, derived by the family that emits straight-line stages
+        emitter = next(f for f in FAMILIES.values() if f.from_table is not None)
+        return emitter.from_table(mech.robot_table())
+    return mech
 
 
 def import_solver(out: Path, name: str, backend: str | None = None):
@@ -106,7 +115,7 @@ def _extension(out: Path, mech, progress) -> list[Path]:
 
 
 def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=None, progress=print,
-           native: bool = True, xacro_args=None, packages=None, redundancy=None) -> list[Path]:
+           native: bool = True, xacro_args=None, packages=None, redundancy=None, stages=None) -> list[Path]:
     """Derive, emit and audit one description into `out`; returns the files written. `native`: also compile the
     folder's C into the Python extension the solvers call (skipped with native=False: they run on numpy)."""
     from . import audit
@@ -120,7 +129,7 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
         progress(f"  {text} ({now - last[0]:.1f} s)")
         last[0] = now
 
-    mech = load(source, name, base, tip, free, geometry_tol, xacro_args, packages, redundancy)
+    mech = load(source, name, base, tip, free, geometry_tol, xacro_args, packages, redundancy, stages)
     out = Path(out)
     nm = mech.NAME
     progress(f"wristkin derive: {nm} from {source}")

@@ -75,9 +75,11 @@ class DHRow:
         raise ValueError(f"unknown DH convention {convention!r}")
 
 
-def chain(rows, convention: str = "standard", tool: sp.Matrix | None = None) -> list[sp.Matrix]:
-    """Cumulative transforms T_1^0 .. T_n^0 (the last one times the constant tool transform, if any)."""
-    out, t = [], sp.eye(4)
+def chain(rows, convention: str = "standard", tool: sp.Matrix | None = None,
+          base: sp.Matrix | None = None) -> list[sp.Matrix]:
+    """Cumulative transforms T_1^0 .. T_n^0 (the last one times the constant tool transform, if any; each after the
+    constant base transform, if any: frame 0 in the world)."""
+    out, t = [], sp.eye(4) if base is None else base
     for row in rows:
         t = t * row.transform(convention)
         out.append(t)

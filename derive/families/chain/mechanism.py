@@ -262,6 +262,31 @@ class ChainMechanism(MechanismDefaults):
                     points[j] = w
         return normalised(replace(c, axes=axes, points=points))
 
+    def robot_table(self):
+        """The robot as a DH table for `--stages derived` (kinematics/dh_table.RobotTable) on its ideal axes; a
+        held joint, the arm angle, more than six joints, a calibrated robot or a slide refused with the reason."""
+        from ...kinematics.dh_table import NoDHTable, RobotTable, standard_dh
+        from ...model import NotDerivable
+
+        def refuse(why):
+            return NotDerivable(f"{self.NAME}: --stages derived does not cover this robot ({why}); without --stages "
+                                "derived the plan interpreter solves it")
+        desc = self.desc
+        if desc.free >= 0 or desc.redundancy != "joint":
+            raise refuse("a held joint or the arm angle as a run-time parameter")
+        if self.chain.n > 6:
+            raise refuse(f"{self.chain.n} joints")
+        plan, ideal = self.plan()
+        if self.deviation() > CALIBRATED_DEVIATION:
+            raise refuse(f"a calibrated robot: its axes are {self.deviation():.2g} off the ideal ones")
+        try:
+            table = standard_dh(ideal)
+        except NoDHTable as exc:
+            raise refuse(str(exc)) from None
+        return RobotTable(self.NAME, self.title, desc.source, desc.rule, self.chain.joint_names, table,
+                          self.chain.base @ table.frame0, desc.fk, self.scale(), plan.strategy,
+                          frozenset(o["op"] for o in plan.ops), plan.reversed)
+
     def scale(self) -> float:
         c = self.chain
         return max(1e-3, float(np.max(np.linalg.norm(c.points, axis=1))), float(np.linalg.norm(c.home[:3, 3])))

@@ -17,6 +17,7 @@ from . import rsr_wrist, scara_rsr
 
 SPEC_FIELDS = ("kind", "wrist", "arm", "seed")
 SOURCE_SUFFIXES = ()
+from_table = None  # `--stages derived` is the serial family's (Family.from_table)
 SEEDS = ("002",)
 KINDS = {"wrist": rsr_wrist, "scara_hybrid": scara_rsr}
 

@@ -16,6 +16,7 @@ from .screw_serial import DESIGN_UNIT_TOL
 
 SPEC_FIELDS = ("structure", "joint", "seed")
 SOURCE_SUFFIXES = ()
+from_table = None  # `--stages derived` is the serial family's (Family.from_table)
 SEEDS = ("003",)
 
 

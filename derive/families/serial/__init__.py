@@ -9,9 +9,10 @@ import dataclasses
 
 from ...spec import Spec
 from .dh_spec import SPEC_FIELDS, load
+from .from_table import from_table
 from .mechanism import SerialMechanism
 
-__all__ = ["SOURCE_SUFFIXES", "SPEC_FIELDS", "from_spec"]
+__all__ = ["SOURCE_SUFFIXES", "SPEC_FIELDS", "from_spec", "from_table"]
 
 SOURCE_SUFFIXES = ()  # spec files only
 

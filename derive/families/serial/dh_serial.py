@@ -42,6 +42,7 @@ class SerialSpec:
     notes: str = ""
     convention: str = "standard"  # or "modified" (Craig): A_i = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta_i) Tz(d_i)
     tool: sp.Matrix | None = None  # constant end transform (e.g. the last Tx(a_n) Rx(alpha_n) of a modified table)
+    base: sp.Matrix | None = None  # constant frame 0 in the world (a robot whose first axis is off the world's z)
 
 
 # ------------------------------------------------------------------------------------------- checks
@@ -73,7 +74,7 @@ def wrist_signs(m: sp.Matrix, q4, q5, q6) -> tuple[int, int, int, int]:
 def derive_spec(spec: SerialSpec) -> Derivation:
     syms = {s.name: s for s in (*spec.joints, *spec.design)}
     dv = Derivation(spec.name, spec.title, spec.seed, syms)
-    ts = chain(spec.rows, spec.convention, spec.tool)
+    ts = chain(spec.rows, spec.convention, spec.tool, spec.base)
     rule = ("standard DH: A = Rz(theta) Tz(d) Tx(a) Rx(alpha)" if spec.convention == "standard" else
             "modified (Craig) DH: A = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta) Tz(d)")
     for i, row in enumerate(spec.rows, start=1):
@@ -97,7 +98,7 @@ def derive_spec(spec: SerialSpec) -> Derivation:
                                    "symbolic identity (simplify of the difference is zero)" if ok else
                                    _mismatch(ours, printed)))
     dv.findings.extend(spec.findings)
-    _jacobian_step(dv, spec, ts if spec.tool is None else chain(spec.rows, spec.convention), ts[-1])
+    _jacobian_step(dv, spec, ts if spec.tool is None else chain(spec.rows, spec.convention, None, spec.base), ts[-1])
     _ik_steps(dv, spec, T)
     dv.exports["T"] = T
     dv.exports["frames"] = ts
@@ -119,7 +120,7 @@ def _jacobian_step(dv: Derivation, spec: SerialSpec, ts, t_end) -> None:
         if spec.convention == "modified":
             prev = ts[i]
         else:
-            prev = sp.eye(4) if i == 0 else ts[i - 1]
+            prev = (sp.eye(4) if spec.base is None else spec.base) if i == 0 else ts[i - 1]
         z, o = prev[:3, 2], prev[:3, 3]
         cols.append(sp.Matrix.vstack(z.cross(p_end - o), z) if kind == "R" else sp.Matrix.vstack(z, sp.zeros(3, 1)))
     J = sp.Matrix.hstack(*cols)

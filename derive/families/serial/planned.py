@@ -65,24 +65,27 @@ def _perp(h):
     return sp.simplify(v / sp.sqrt(v.dot(v)))
 
 
-def stages(rows, joints, kinds, design, defaults, convention="standard", names=None):
-    """(stages, strategy) for the DH rows: the planner's decomposition as symbolic stages."""
+def stages(rows, joints, kinds, design, defaults, convention="standard", names=None, base=None, tool=None):
+    """(stages, strategy) for the DH rows (after the constant `base`, before the constant `tool`, 4x4 each): the
+    planner's decomposition as symbolic stages."""
     if convention != "standard":
         raise PlanError("the serial family's stages are built for standard DH tables")
-    ts = dh_chain(rows, convention)
+    ts = dh_chain(rows, convention, None, base)
     zero = {q: 0 for q in joints}
-    frames = [sp.eye(4)] + [sp.simplify(t.subs(zero)) for t in ts]
+    frames = [sp.eye(4) if base is None else base] + [sp.simplify(t.subs(zero)) for t in ts]
     axes = [sp.simplify(frames[i][:3, 2]) for i in range(len(rows))]
     points = [frames[i][:3, 3] for i in range(len(rows))]
-    home = _Motion(frames[-1][:3, :3], frames[-1][:3, 3])
+    end = frames[-1] if tool is None else sp.simplify(frames[-1] * tool)
+    home = _Motion(end[:3, :3], end[:3, 3])
+    untool = sp.eye(3) if tool is None else tool[:3, :3].T  # R_POSE = R_n R_tool
     at = dict(zip(design, defaults, strict=True))
 
     def num(v):
         return np.array([float(sp.sympify(x).subs(at)) for x in v])
     numeric = Chain("dh", tuple(names or (str(q) for q in joints)), tuple(kinds),
                     np.array([num(a) for a in axes]), np.array([num(p) for p in points]),
-                    np.vstack([np.hstack([np.array(frames[-1][:3, :3].subs(at), dtype=float),
-                                          num(frames[-1][:3, 3])[:, None]]), [0, 0, 0, 1]]))
+                    np.vstack([np.hstack([np.array(end[:3, :3].subs(at), dtype=float),
+                                          num(end[:3, 3])[:, None]]), [0, 0, 0, 1]]))
     try:
         plan = find_plan(numeric, 1e-9, lambda _c, p: not p.reversed and all(o["op"] in SUPPORTED for o in p.ops)
                          and all(o["op"] != "orient" or len(o["units"]) in (1, 3) for o in p.ops))
@@ -160,7 +163,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                                  "for w normal to h"))
             else:
                 lo = op["lo"]
-                m = R_POSE if lo == 0 else ts[lo - 1][:3, :3].T * R_POSE
+                m = (frames[0][:3, :3].T if lo == 0 else ts[lo - 1][:3, :3].T) * R_POSE * untool
                 out.append(wrist_stage(list(rows[lo:]), joints[lo:], tuple(m), "spherical wrist from R_6^3 = "
                                        "(R_3^0)^T R (flip / no flip)" if lo else "spherical wrist from R",
                                        "kinematic decoupling at the wrist centre" if lo else "three intersecting "

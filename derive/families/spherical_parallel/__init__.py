@@ -17,6 +17,7 @@ from . import underactuated_wrist as uw
 
 SPEC_FIELDS = ("design", "seed")
 SOURCE_SUFFIXES = ()
+from_table = None  # `--stages derived` is the serial family's (Family.from_table)
 SEEDS = ("000",)
 # the hand-written numerics the generated files inline (runtime/python/uw_*.py, runtime/c/underactuated_wrist/),
 # in the order their definitions need: compiled, linted and tested as they are (tests/test_uw_runtime.py)

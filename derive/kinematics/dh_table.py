@@ -1,0 +1,125 @@
+"""A serial chain's standard DH table, read from its axes (a product of exponentials) by common normals.
+
+Frame k has its z axis on joint k's axis (k = 0 .. n-1) and its x axis along the common normal from axis k-1 to
+axis k; row k carries frame k to frame k+1: A_k = Rz(q_k + theta_k) Tz(d_k) Tx(a_k) Rx(alpha_k). The last frame
+is frame n-1 turned by q_{n-1} (its row has a = alpha = d = theta = 0): whatever the end frame adds is the
+constant `tool`. Frame 0 sits in the chain's base frame at `frame0`: the identity when axis 0 runs along the base
+z axis through the base origin (the usual URDF and DH robot), else a constant the caller carries as the base.
+
+Where the common normal is not unique (parallel axes) it is taken through the previous frame's origin (d = 0);
+where two axes coincide the frame is the previous one. Revolute joints only: a slide's axis has no position, so
+its frame's origin is a choice this reader does not make yet (the caller keeps such chains on the plan
+interpreter)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from .poe import Chain
+
+# |z_{k} x z_{k+1}| below this: parallel axes (the common normal through the previous origin); a distance below it
+# (metres, relative to the chain's size): the axes meet
+PARALLEL_TOL = 1e-12
+
+
+class NoDHTable(ValueError):
+    """The chain has no standard DH table this reader builds (a prismatic joint)."""
+
+
+@dataclass(frozen=True)
+class DHTable:
+    rows: tuple[tuple[float, float, float, float], ...]  # (a, alpha, d, theta offset) per joint
+    frame0: np.ndarray  # 4x4: frame 0 in the chain's base frame
+    tool: np.ndarray  # 4x4: the chain's end frame (its home and tool) in frame n at every q
+
+    def fk(self, q) -> np.ndarray:
+        """The end frame in the chain's base frame (before the chain's own base transform)."""
+        t = self.frame0.copy()
+        for (a, alpha, d, theta), v in zip(self.rows, q, strict=True):
+            t = t @ link(a, alpha, d, theta + v)
+        return t @ self.tool
+
+
+def link(a: float, alpha: float, d: float, theta: float) -> np.ndarray:
+    """Rz(theta) Tz(d) Tx(a) Rx(alpha)."""
+    ct, st, ca, sa = math.cos(theta), math.sin(theta), math.cos(alpha), math.sin(alpha)
+    return np.array([[ct, -st * ca, st * sa, a * ct], [st, ct * ca, -ct * sa, a * st], [0.0, sa, ca, d],
+                     [0.0, 0.0, 0.0, 1.0]])
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    return v / np.linalg.norm(v)
+
+
+def _angle(u: np.ndarray, v: np.ndarray, about: np.ndarray) -> float:
+    """The angle turning unit u onto unit v about the unit axis normal to both."""
+    return math.atan2(float(np.dot(np.cross(u, v), about)), float(np.dot(u, v)))
+
+
+def standard_dh(chain: Chain) -> DHTable:
+    """The chain's standard DH table (module docstring): frame0 @ A_0(q_0) ... A_{n-1}(q_{n-1}) @ tool equals
+    chain.fk(q) @ chain.tool at every q (checked by the callers' derivation on sampled joints)."""
+    if any(k != "R" for k in chain.kinds):
+        raise NoDHTable("a prismatic joint (its axis has no position to place a DH frame on)")
+    size = max(1.0, float(np.max(np.abs(chain.points))), float(np.max(np.abs(chain.home[:3, 3]))))
+    axes = [_unit(np.asarray(h, float)) for h in chain.axes]
+    z = axes[0]
+    o = chain.points[0] - np.dot(chain.points[0], z) * z  # the base origin's foot on axis 0
+    if np.linalg.norm(np.cross(z, [0.0, 0.0, 1.0])) <= PARALLEL_TOL:
+        x = np.array([1.0, 0.0, 0.0])  # axis 0 along +-z: x as the base's (frame 0 = the base when on it)
+        x = x - np.dot(x, z) * z
+    else:
+        x = _unit(np.cross([0.0, 0.0, 1.0], z))
+    frame0 = np.eye(4)
+    frame0[:3, :3] = np.column_stack([x, np.cross(z, x), z])
+    frame0[:3, 3] = o
+    rows = []
+    for k in range(chain.n - 1):
+        zn, rn = axes[k + 1], chain.points[k + 1]
+        c = np.cross(z, zn)
+        w = rn - o
+        if np.linalg.norm(c) <= PARALLEL_TOL:  # parallel: the normal through o (d = 0)
+            perp = w - np.dot(w, z) * z
+            t = 0.0
+            xn = _unit(perp) if np.linalg.norm(perp) > PARALLEL_TOL * size else x
+            on = o + perp
+        else:  # the feet of the common normal: o + t z on axis k, rn + s zn on axis k+1
+            zz = float(np.dot(z, zn))
+            t = (np.dot(w, z) - zz * np.dot(w, zn)) / (1.0 - zz * zz)
+            s = (zz * np.dot(w, z) - np.dot(w, zn)) / (1.0 - zz * zz)
+            foot, on = o + t * z, rn + s * zn
+            gap = on - foot
+            xn = _unit(gap) if np.linalg.norm(gap) > PARALLEL_TOL * size else _unit(c)
+        a = float(np.dot(on - (o + t * z), xn))
+        rows.append((a, _angle(z, zn, xn), float(t), _angle(x, xn, z)))
+        z, x, o = zn, xn, on
+    rows.append((0.0, 0.0, 0.0, 0.0))
+    last = np.eye(4)
+    last[:3, :3] = np.column_stack([x, np.cross(z, x), z])
+    last[:3, 3] = o
+    tool = np.linalg.inv(last) @ chain.home @ chain.tool
+    return DHTable(tuple(rows), frame0, tool)
+
+
+@dataclass(frozen=True)
+class RobotTable:
+    """A user's robot as the derived stages take it (a robot family's Mechanism.robot_table): its DH table, the
+    constant base in the world, its description's own FK (for the proof that the table is the robot) and what
+    its own decomposition needs (to say why where the derived stages do not cover it)."""
+
+    name: str
+    title: str
+    source: str
+    rule: str  # how the description composes
+    joint_names: tuple[str, ...]
+    table: DHTable
+    base: np.ndarray  # 4x4: the world frame's base times frame0
+    description_fk: Callable  # q -> 4x4, the description's own products, base and tool included
+    size: float  # metres: the robot's scale (lengths below LENGTH_ZERO of it are 0)
+    strategy: str  # the interpreter's decomposition, in words
+    ops: frozenset  # its op kinds
+    reversed_: bool  # solved from the tool

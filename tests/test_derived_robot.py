@@ -1,0 +1,226 @@
+"""`wristkin derive --stages derived` (issue 22, deliverable 1): a user's robot read as a standard DH table (its
+family's robot_table) and its IK derived as straight-line stages (derive/families/serial/from_table.py), checked
+against an independent reference: the description's own transforms (tests/reference/chain.py: the URDF's joint
+origins, the DH matrices, the POE exponentials, each composed there) and its multistart Levenberg-Marquardt for the
+solution count."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from cbuild import SANITIZE_FLAGS, STRICT_FLAGS, compiler
+from reference import chain as ref
+from seeding import case_rng
+
+from derive import own_robot
+from derive.kinematics.dh_table import PARALLEL_TOL, NoDHTable, standard_dh
+from derive.kinematics.poe import Chain
+from derive.model import NotDerivable
+
+ROBOTS = Path(__file__).parent / "robots"
+ROOT = Path(__file__).resolve().parent.parent
+DERIVED = ("irb120", "kr6", "lrmate", "tx2_60")  # the fixtures whose decomposition the derived stages cover
+CASES = [(r, "urdf") for r in DERIVED] + [("irb120", "dh"), ("kr6", "poe")]
+_CACHE: dict = {}
+
+
+def _file(robot: str, fmt: str) -> Path:
+    return ROBOTS / robot / (f"{robot}.urdf" if fmt == "urdf" else f"{robot}_{fmt}.toml")
+
+
+def derived(robot: str, fmt: str = "urdf"):
+    """(C-backed or numpy solver, numpy solver, folder): the URDF's with the folder's extension, the others numpy."""
+    key = (robot, fmt)
+    if key not in _CACHE:
+        out = Path(tempfile.mkdtemp(prefix=f"wk_derived_{robot}_{fmt}_"))
+        name = f"{robot}_{fmt}_derived"
+        own_robot.derive(_file(robot, fmt), out, name=name, stages="derived", native=fmt == "urdf",
+                         progress=lambda _: None)
+        _CACHE[key] = (own_robot.import_solver(out, name), own_robot.import_solver(out, name, backend="numpy"), out)
+    return _CACHE[key]
+
+
+def _gap(a, b) -> float:
+    return max(abs(math.remainder(x - y, 2 * math.pi)) for x, y in zip(a, b, strict=True))
+
+
+# ------------------------------------------------------------------------------------------------ the DH table
+@pytest.mark.parametrize("path", sorted(p for p in ROBOTS.glob("*/*") if p.suffix in (".urdf", ".toml")),
+                         ids=lambda p: p.name)
+def test_the_dh_table_is_the_description_at_every_joint(path):
+    """kinematics/dh_table.py on every fixture description (URDF, DH, POE; bases, tools, a calibrated arm, a tilted
+    axis, a 5-joint and a 7-joint arm): base @ frame0 @ A_0 ... A_{n-1} @ tool equals the independent reference's
+    product to rounding: 1e-15 m per unit of the robot's size, x 20 for the products' depth, over the smallest sine
+    between consecutive axes not parallel (the common normal's feet divide by it: the calibrated KR 6's axes 2 and
+    3 are 2e-7 rad apart, and its table is 1.3e-10 m off)."""
+    chain = own_robot.load(path).desc.chain
+    table = standard_dh(chain)
+    reference = ref.load(path)
+    rng = case_rng(2301)
+    size = max(1.0, float(np.max(np.abs(chain.points))))
+    sines = [float(np.linalg.norm(np.cross(a, b))) for a, b in zip(chain.axes, chain.axes[1:], strict=False)]
+    s_min = min([s for s in sines if s > PARALLEL_TOL] + [1.0])
+    for _ in range(20):
+        q = rng.uniform(-math.pi, math.pi, chain.n)
+        assert np.max(np.abs(chain.base @ table.fk(q) - reference(q))) <= 20 * 1e-15 * size * chain.n / s_min
+
+
+def test_a_prismatic_joint_has_no_table_and_the_robot_is_refused_with_the_reason(tmp_path):
+    """A slide's axis has no position to put a DH frame on: NoDHTable, and `--stages derived` names it."""
+    c = Chain("rp", ("a", "b"), ("R", "P"), np.array([[0, 0, 1.0], [1.0, 0, 0]]), np.zeros((2, 3)), np.eye(4))
+    with pytest.raises(NoDHTable, match="prismatic"):
+        standard_dh(c)
+    spec = tmp_path / "rpp.toml"
+    spec.write_text('family = "chain"\nname = "rpp"\ntitle = "R P P"\nsource = "a test"\nconvention = "poe"\n'
+                    'stages = "derived"\n'
+                    '[[joint]]\nname = "a"\ntype = "revolute"\naxis = [0, 0, 1]\npoint = [0, 0, 0]\n'
+                    '[[joint]]\nname = "b"\ntype = "prismatic"\naxis = [0, 0, 1]\npoint = [0, 0, 0]\n'
+                    '[[joint]]\nname = "c"\ntype = "prismatic"\naxis = [1, 0, 0]\npoint = [0, 0, 0]\n'
+                    "[home]\nposition = [0.2, 0, 0]\n")
+    with pytest.raises(NotDerivable, match="prismatic"):
+        own_robot.load(spec)
+
+
+# ------------------------------------------------------------------------------------------------ the solvers
+@pytest.mark.parametrize("robot,fmt", CASES)
+def test_the_derived_solver_returns_every_set_and_only_true_ones(robot, fmt):
+    """60 random poses of the reference's FK: the generating joints among the sets (1e-9 rad), every set
+    reproducing the pose on the reference (1e-9), and on 4 of them exactly the multistart's solutions (none
+    missing, none spurious)."""
+    m, _, _ = derived(robot, fmt)
+    reference = ref.load(_file(robot, fmt))
+    rng = case_rng(2302)
+    for k in range(60):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        T = reference(q)
+        sol = m.ik(T)
+        assert sol.status == m.STATUS_OK and 1 <= sol.count <= m.MAX_IK
+        assert min(_gap(v, q) for v in sol) <= 1e-9
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+        if k < 4:
+            found = ref.ik_all(reference, 6, T, seed=k)
+            assert len(found) == sol.count
+            assert all(min(_gap(v, f) for v in sol) <= 1e-6 for f in found)
+
+
+@pytest.mark.parametrize("robot", DERIVED)
+def test_c_returns_the_numpy_sets(robot):
+    """The folder's C extension and the numpy path return the same sets (1e-12) and flags."""
+    m, py, _ = derived(robot)
+    assert m.BACKEND == "c" and py.BACKEND == "numpy"
+    rng = case_rng(2303)
+    for _ in range(30):
+        T = m.fk_matrix(rng.uniform(-math.pi, math.pi, 6))
+        a, b = m.ik(T), py.ik(T)
+        assert a.count == b.count and list(a.valid) == list(b.valid) and list(a.flags) == list(b.flags)
+        assert np.max(np.abs(np.asarray(a.values)[a.valid] - np.asarray(b.values)[b.valid])) <= 1e-12
+
+
+@pytest.mark.parametrize("robot", ("irb120", "kr6"))
+def test_near_the_wrist_singularity_the_generating_joints_come_back(robot):
+    """q5 delta off its singularity, delta = 1e-3 .. 1e-10: the generating joints within the conditioning's
+    allowance 1e-6 + 1e-13 / delta rad (q4 and q6 are read from a sine of size delta), flagged singular below
+    the flag's threshold; at q5 = 0 the family, flagged indeterminate, every set on the pose."""
+    m, _, _ = derived(robot)
+    reference = ref.load(_file(robot, "urdf"))
+    rng = case_rng(2304)
+    for delta in (1e-3, 1e-5, 1e-7, 1e-8, 1e-10):
+        for _ in range(10):
+            q = rng.uniform(-math.pi, math.pi, 6)
+            q[4] = delta * rng.choice([-1.0, 1.0])
+            sol = m.ik(reference(q))
+            assert min(_gap(v, q) for v in sol) <= 1e-6 + 1e-13 / delta, (delta, q)
+    q = rng.uniform(-math.pi, math.pi, 6)
+    q[4] = 0.0
+    T = reference(q)
+    sol = m.ik(T)
+    assert sol.status == m.STATUS_INDETERMINATE and sol.count >= 1
+    assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+
+
+def test_the_design_is_the_table_s_lengths_and_moves_the_robot():
+    """The table's lengths are the module's design parameters (defaults: the robot's): a changed upper arm gives
+    a different robot that its own IK solves."""
+    m, _, _ = derived("irb120")
+    assert len(m.DESIGN_NAMES) == len(m.DESIGN_DEFAULT) >= 4
+    d = list(m.DESIGN_DEFAULT)
+    k = int(np.argmax(np.abs(d)))
+    d[k] *= 1.25
+    q = case_rng(2305).uniform(-math.pi, math.pi, 6)
+    T = m.fk_matrix(q, d)
+    assert np.max(np.abs(T - m.fk_matrix(q))) > 1e-3
+    assert min(_gap(v, q) for v in m.ik(T, d)) <= 1e-9
+
+
+# ------------------------------------------------------------------------------------------------ refusals
+@pytest.mark.parametrize("path,why", [
+    (ROBOTS / "kr6_calibrated" / "kr6_calibrated.urdf", "calibrated"),
+    (ROBOTS / "ur5e" / "ur5e.urdf", "three parallel axes .* needs the ops .*which the derived stages do not have"),
+    (ROBOTS / "iiwa14" / "iiwa14.urdf", "held joint"),
+], ids=lambda v: v.name if isinstance(v, Path) else v)
+def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, why):
+    with pytest.raises(NotDerivable, match=why) as exc:
+        own_robot.load(path, stages="derived")
+    assert "without --stages derived the plan interpreter solves it" in str(exc.value)
+
+
+def test_the_command_refuses_in_one_line_and_writes_nothing(tmp_path):
+    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(ROBOTS / "ur5e" / "ur5e.urdf"), "--out",
+                        str(tmp_path / "out"), "--stages", "derived"], capture_output=True, text=True, cwd=ROOT,
+                       timeout=300)
+    assert r.returncode == 1 and len(r.stderr.strip().splitlines()) == 1 and "--stages derived" in r.stderr
+    assert not (tmp_path / "out" / "python").exists()
+
+
+# ------------------------------------------------------------------------------------------------ the C
+DRIVER = r"""
+#include <stdio.h>
+#include "NAME.h"
+int main(void) {
+    double pose[12];
+    wk_NAME_design d;
+    wk_NAME_ik_solutions s;
+    if (wk_NAME_design_init(NULL, &d) != 0) return 2;
+    while (1) {
+        int i;
+        for (i = 0; i < 12; ++i) if (scanf("%lf", &pose[i]) != 1) return 0;
+        wk_NAME_ik(pose, &d, &s);
+        printf("%d %d\n", s.count, s.status);
+    }
+}
+"""
+
+
+def test_the_emitted_c_is_strict_c99_and_clean_under_the_sanitizers():
+    """The derived irb120's C under -std=c99 -Wall -Wextra -Werror -pedantic, run under ASan/UBSan on random,
+    singular, unreachable and non-finite poses: the counts the Python module returns, nothing reported."""
+    m, _, out = derived("irb120")
+    name = m.NAME
+    src = out / "c" / "driver.c"
+    src.write_text(DRIVER.replace("NAME", name))
+    exe = out / "c" / "driver"
+    cmd = [compiler(), *STRICT_FLAGS, *SANITIZE_FLAGS, "-o", str(exe), str(src), str(out / "c" / f"{name}.c"),
+           str(out / "c" / "wristkin_runtime.c"), f"-I{out / 'c'}", "-lm"]
+    subprocess.run(cmd, check=True, capture_output=True, text=True)
+    rng = case_rng(2306)
+    poses = [m.fk_matrix(rng.uniform(-math.pi, math.pi, 6))[:3].ravel() for _ in range(20)]
+    poses.append(m.fk_matrix([0.3, 0.2, -0.1, 0.5, 0.0, 0.4])[:3].ravel())  # the wrist singularity
+    far = m.fk_matrix(np.zeros(6))[:3].ravel().copy()
+    far[3] += 5.0
+    poses.append(far)  # out of reach
+    nan = far.copy()
+    nan[0] = float("nan")
+    poses.append(nan)
+    text = "\n".join(" ".join(repr(float(v)) for v in p) for p in poses)
+    r = subprocess.run([str(exe)], input=text, capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0 and not r.stderr, r.stderr
+    counts = [tuple(map(int, line.split())) for line in r.stdout.split("\n") if line]
+    for p, (count, _status) in zip(poses[:-1], counts[:-1], strict=True):
+        assert count == m.ik(np.vstack([p.reshape(3, 4), [0, 0, 0, 1]])).count
+    assert counts[-1][0] == 0
