@@ -43,7 +43,7 @@ ROBOTS = ROOT / "tests" / "robots"
 FREE = {"iiwa14": "a3"}
 ARM_ANGLE_ROBOTS = ("iiwa14",)  # also benched with --redundancy arm-angle
 ARM_ANGLE = 0.3  # rad: the arm angle every such pose is solved at
-DERIVED_ROBOTS = ("irb120", "kr6", "lrmate", "tx2_60")  # also benched with --stages derived (the ones it covers)
+DERIVED_ROBOTS = ("irb120", "kr6", "lrmate", "tx2_60", "ur5e")  # also benched with --stages derived (those it covers)
 C_FLAGS = ["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 
 

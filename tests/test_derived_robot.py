@@ -25,8 +25,8 @@ from derive.model import NotDerivable
 
 ROBOTS = Path(__file__).parent / "robots"
 ROOT = Path(__file__).resolve().parent.parent
-DERIVED = ("irb120", "kr6", "lrmate", "tx2_60")  # the fixtures whose decomposition the derived stages cover
-CASES = [(r, "urdf") for r in DERIVED] + [("irb120", "dh"), ("kr6", "poe")]
+DERIVED = ("irb120", "kr6", "lrmate", "tx2_60", "ur5e")  # the fixtures whose decomposition the derived stages cover
+CASES = [(r, "urdf") for r in DERIVED] + [("irb120", "dh"), ("kr6", "poe"), ("ur5e", "poe")]
 _CACHE: dict = {}
 
 
@@ -122,26 +122,28 @@ def test_c_returns_the_numpy_sets(robot):
         assert np.max(np.abs(np.asarray(a.values)[a.valid] - np.asarray(b.values)[b.valid])) <= 1e-12
 
 
-@pytest.mark.parametrize("robot", ("irb120", "kr6"))
-def test_near_the_wrist_singularity_the_generating_joints_come_back(robot):
-    """q5 delta off its singularity, delta = 1e-3 .. 1e-10: the generating joints within the conditioning's
-    allowance 1e-6 + 1e-13 / delta rad (q4 and q6 are read from a sine of size delta), flagged singular below
-    the flag's threshold; at q5 = 0 the family, flagged indeterminate, every set on the pose."""
+@pytest.mark.parametrize("robot,joint", [("irb120", 4), ("kr6", 4), ("ur5e", 4), ("ur5e", 2)],
+                         ids=["irb120-wrist", "kr6-wrist", "ur5e-wrist", "ur5e-elbow"])
+def test_near_a_singularity_the_generating_joints_come_back(robot, joint):
+    """The wrist (q5) or the UR's elbow (q3, the arm stretched) delta off its singularity, delta = 1e-3 .. 1e-10:
+    the generating joints within the conditioning's allowance 1e-6 + 1e-13 / delta rad (the joints read from a
+    sine of size delta); at the singularity itself every set is on the pose (the wrist: the family, flagged
+    indeterminate)."""
     m, _, _ = derived(robot)
     reference = ref.load(_file(robot, "urdf"))
     rng = case_rng(2304)
     for delta in (1e-3, 1e-5, 1e-7, 1e-8, 1e-10):
         for _ in range(10):
             q = rng.uniform(-math.pi, math.pi, 6)
-            q[4] = delta * rng.choice([-1.0, 1.0])
+            q[joint] = delta * rng.choice([-1.0, 1.0])
             sol = m.ik(reference(q))
             assert min(_gap(v, q) for v in sol) <= 1e-6 + 1e-13 / delta, (delta, q)
     q = rng.uniform(-math.pi, math.pi, 6)
-    q[4] = 0.0
+    q[joint] = 0.0
     T = reference(q)
     sol = m.ik(T)
-    assert sol.status == m.STATUS_INDETERMINATE and sol.count >= 1
-    assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+    assert sol.count >= 1 and all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+    assert joint != 4 or sol.status == m.STATUS_INDETERMINATE
 
 
 def test_the_design_is_the_table_s_lengths_and_moves_the_robot():
@@ -161,7 +163,7 @@ def test_the_design_is_the_table_s_lengths_and_moves_the_robot():
 # ------------------------------------------------------------------------------------------------ refusals
 @pytest.mark.parametrize("path,why", [
     (ROBOTS / "kr6_calibrated" / "kr6_calibrated.urdf", "calibrated"),
-    (ROBOTS / "ur5e" / "ur5e.urdf", "three parallel axes .* needs the ops .*which the derived stages do not have"),
+    (ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml", "offset wrist.* needs the ops sp6, which the derived stages"),
     (ROBOTS / "iiwa14" / "iiwa14.urdf", "held joint"),
 ], ids=lambda v: v.name if isinstance(v, Path) else v)
 def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, why):
@@ -171,7 +173,7 @@ def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, w
 
 
 def test_the_command_refuses_in_one_line_and_writes_nothing(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(ROBOTS / "ur5e" / "ur5e.urdf"), "--out",
+    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(ROBOTS / "youbot" / "youbot.urdf"), "--out",
                         str(tmp_path / "out"), "--stages", "derived"], capture_output=True, text=True, cwd=ROOT,
                        timeout=300)
     assert r.returncode == 1 and len(r.stderr.strip().splitlines()) == 1 and "--stages derived" in r.stderr

@@ -8,6 +8,8 @@ relation that held only at the defaults fails there, with the stage named.
   single (revolute)                             -> rotation2d   (subproblem 1)
   prismatic ops, orient (one axis)              -> value
   orient (three axes at the end)                -> wrist        (dh_serial.wrist_stage)
+  orient (a parallel group, then two axes)      -> trig_linear + rotation2d  (_GroupThenTwo: the UR type)
+  group_rest (the group's last joint)           -> rotation2d   (from the group's rotation)
 """
 
 from __future__ import annotations
@@ -22,7 +24,8 @@ from ...kinematics.poe import Chain
 from ...serial_core.stages import P_POSE, POSE_SYMBOLS, R_POSE, Stage
 from .dh_serial import wrist_stage
 
-SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient"}
+SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient",
+             "group_rest"}
 
 
 class PlanError(ValueError):
@@ -63,6 +66,57 @@ def _perp(h):
         sp.Matrix([0, 1, 0]) if abs(hn[1]) <= abs(hn[2]) + 1e-12 else sp.Matrix([0, 0, 1]))
     v = h.cross(e)
     return sp.simplify(v / sp.sqrt(v.dot(v)))
+
+
+class _GroupThenTwo:
+    """The orientation R_d = rot(h_g, phi) rot(h_a, q_a) rot(h_b, q_b) of three parallel axes (the group, one
+    direction h_g) followed by two axes a, b (a UR-type arm), read without the group's sum phi:
+
+    - q_a from h_g . rot(h_a, q_a) h_b = h_g . R_d h_b (the group and b turn about h_g and h_b, which they keep:
+      subproblem 4 on unit vectors, two roots);
+    - q_b from rot(h_b, q_b) (R_d^T h_g) = rot(h_a, -q_a) h_g (subproblem 1; a family where R_d^T h_g is on h_b,
+      the wrist singularity sin q_a = 0);
+    - the group's last joint, once the planar pair set the others, from the group's rotation
+      R_g = R_d rot(h_b, q_b)^T rot(h_a, q_a)^T (subproblem 1 about its axis)."""
+
+    def __init__(self, rd, grp, ja, jb, axes, joints):
+        self.rd, self.grp, self.ja, self.jb, self.axes, self.joints = rd, list(grp), ja, jb, axes, joints
+        hg, ha, hb = axes[grp[0]], axes[ja], axes[jb]
+        hab = ha.dot(hb)
+        a, b = hg.dot(hb - ha * hab), hg.dot(ha.cross(hb))
+        c = hg.dot(rd * hb) - hab * hg.dot(ha)
+        e1 = _perp(hb)
+        e2 = hb.cross(e1)
+        p0, p1 = rd.T * hg, _rodrigues(ha, -joints[ja]) * hg
+        exprs, rule = (a, b, -c), ("subproblem 4 on the rotation: h_g . rot(h_a, q) h_b = h_g . R_d h_b (the "
+                                   "parallel group and the last axis keep their own axes)")
+        if sp.simplify(hg.dot(ha)) == 0 and sp.simplify(hab) == 0:
+            # h_a normal to both (the UR type): A^2 + B^2 = 1 and A^2 + B^2 - C^2 = |h_g x w|^2, w = R_d h_b, the sine
+            # of the roots' half-gap to eps (from the cosine alone: sqrt(eps), and a wrist 1e-7 rad from singular
+            # read as singular); Dm = 2 |h_g x w|^2 with Dp = 2, its rounding 4 |h_g x w| eps
+            cross = hg.cross(rd * hb)
+            sq = sum(x ** 2 for x in cross)
+            exprs += (2 * sq, sp.Integer(2), 4 * sp.sqrt(sq))
+            rule += "; the roots' half-gap from |h_g x R_d h_b| (A^2 + B^2 - C^2 = |h_g x R_d h_b|^2)"
+        self.stages = [
+            Stage("trig_linear", (ja,), exprs, f"angle {joints[ja]} (two roots)", rule),
+            Stage("rotation2d", (jb,), (e1.dot(p1), e2.dot(p1), e1.dot(p0), e2.dot(p0)), f"angle {joints[jb]}",
+                  "subproblem 1: rot(h_b, q) (R_d^T h_g) = rot(h_a, -q_a) h_g in the plane normal to h_b")]
+
+    def rest(self, j) -> Stage:
+        """The group's joint j from its rotation, the group's other joints solved."""
+        axes, joints = self.axes, self.joints
+        m = self.rd * _rodrigues(axes[self.jb], joints[self.jb]).T * _rodrigues(axes[self.ja], joints[self.ja]).T
+        for o in self.grp[:self.grp.index(j)]:
+            m = _rodrigues(axes[o], joints[o]).T * m
+        for o in reversed(self.grp[self.grp.index(j) + 1:]):
+            m = m * _rodrigues(axes[o], joints[o]).T
+        e1 = _perp(axes[j])
+        e2 = axes[j].cross(e1)
+        v = m * e1
+        return Stage("rotation2d", (j,), (e1.dot(v), e2.dot(v), sp.Integer(1), sp.Integer(0)),
+                     f"angle {joints[j]}", "subproblem 1: the parallel group's rotation R_d rot(h_b, q_b)^T "
+                     "rot(h_a, q_a)^T with its other joints undone, about the joint's axis")
 
 
 def stages(rows, joints, kinds, design, defaults, convention="standard", names=None, base=None, tool=None):
@@ -154,6 +208,10 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         if k == "orient":
             units = [u[0] for u in op["units"]]
             rd = (prefix(range(op["lo"])).inv() * target * prefix(range(op["hi"] + 1, n)).inv()).r
+            if len(op["units"]) == 3 and len(op["units"][0]) == 3:  # a parallel group, then two axes (UR type)
+                group = _GroupThenTwo(rd, op["units"][0], units[1], units[2], axes, joints)
+                out += group.stages
+                continue
             if len(units) == 1:
                 h = axes[units[0]]
                 w = _perp(h)
@@ -168,6 +226,9 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                                        "(R_3^0)^T R (flip / no flip)" if lo else "spherical wrist from R",
                                        "kinematic decoupling at the wrist centre" if lo else "three intersecting "
                                        "axes", tuple(range(lo, n))))
+            continue
+        if k == "group_rest":
+            out.append(group.rest(j))
             continue
         h, r, q = axes[j], points[j], joints[j]
         first = k.startswith("first")
