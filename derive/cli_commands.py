@@ -35,8 +35,8 @@ COMMANDS = (
       (("--stages",), {"choices": ["interpreted", "derived"],
                        "help": "the IK as the plan interpreter (interpreted, the default: every robot wristkin solves) "
                                "or derived as straight-line code like the catalogue's PUMA-560 (derived: six or "
-                               "fewer revolute joints with exact axes whose decomposition the derived stages cover; "
-                               "others are refused with the reason)"}),
+                               "fewer revolute joints, axes exact to 1e-8, a decomposition the derived stages cover: "
+                               "a spherical wrist or the UR type; others are refused with the reason)"}),
       (("--xacro-arg",), {"action": "append", "metavar": "NAME=VALUE", "dest": "xacro_args",
                           "help": "a .xacro file's $(arg NAME) (repeat for more)"}),
       (("--package",), {"action": "append", "metavar": "NAME=DIR", "dest": "packages",

@@ -19,6 +19,7 @@ from reference import chain as ref
 from seeding import case_rng
 
 from derive import own_robot
+from derive.families.serial.from_table import ANGLE_SNAP, ROUNDING_DEVIATION
 from derive.kinematics.dh_table import PARALLEL_TOL, NoDHTable, standard_dh
 from derive.kinematics.poe import Chain
 from derive.model import NotDerivable
@@ -226,3 +227,50 @@ def test_the_emitted_c_is_strict_c99_and_clean_under_the_sanitizers():
     for p, (count, _status) in zip(poses[:-1], counts[:-1], strict=True):
         assert count == m.ik(np.vstack([p.reshape(3, 4), [0, 0, 0, 1]])).count
     assert counts[-1][0] == 0
+
+
+# ------------------------------------------------------------------------------------------------ files as shipped
+def _rtb(rel: str) -> Path:
+    import rtbdata  # the dev extra's Robotics Toolbox data: ROS-Industrial description packages as published
+
+    return Path(rtbdata.__file__).parent / "xacro" / rel
+
+
+SHIPPED = {  # id -> (description, derive options, the URDF the reference reads, its base and tip links)
+    "kr120_urdf": ("kuka_description/kuka_kr120/urdf/kr120r2500pro.urdf", {"tip": "tool0"},
+                   "kuka_description/kuka_kr120/urdf/kr120r2500pro.urdf", ("base_link", "tool0")),
+    "kr16_xacro": ("kuka_description/kuka_kr16/urdf/kr16_2.xacro",
+                   {"tip": "tool0", "packages": {"kuka_kr16_support": "kuka_description/kuka_kr16"}},
+                   "kuka_description/kuka_kr16/urdf/kr16_2.urdf", ("base_link", "tool0")),
+    "puma560_urdf": ("unimation_puma560_description/urdf/puma560_robot.urdf", {},
+                     "unimation_puma560_description/urdf/puma560_robot.urdf", ("link1", "link7")),
+}
+
+
+@pytest.mark.parametrize("case", sorted(SHIPPED))
+def test_description_files_as_shipped_are_derived(case, tmp_path):
+    """ROS-Industrial's KR 120 URDF, its KR 16 xacro (with its $(find) package) and the PUMA 560 URDF as published,
+    derived with --stages derived: 30 random poses of the reference's product of the shipped URDF's transforms, the
+    generating joints among the sets and every set on the pose, to 1e-9 plus what the file's rounding allows: the
+    table is the exact robot, and the file's angles (the PUMA's rpy to 8 decimals) and axes (5e-11 off) are rounded,
+    so its end frame is `frame` off the file's (measured here, within what from_table's snapping bounds: 12 angles
+    of ANGLE_SNAP and 6 axes of 2 ROUNDING_DEVIATION, times the size) and the joints by that over sigma_min."""
+    rel, options, twin, (base, tip) = SHIPPED[case]
+    options = dict(options)
+    if "packages" in options:
+        options["packages"] = {k: str(_rtb(v)) for k, v in options["packages"].items()}
+    own_robot.derive(_rtb(rel), tmp_path, name=case, stages="derived", native=False, progress=lambda _: None,
+                     **options)
+    m = own_robot.import_solver(tmp_path, case)
+    reference = ref.urdf_fk(_rtb(twin), base, tip)
+    rng = case_rng(2307)
+    size = max(own_robot.load(_rtb(rel), **options).scale(), 1.0)
+    frame = max(float(np.max(np.abs(m.fk_matrix(q) - reference(q)))) for q in rng.uniform(-math.pi, math.pi, (30, 6)))
+    assert frame <= 1e-12 + (12 * ANGLE_SNAP + 12 * ROUNDING_DEVIATION) * size
+    for _ in range(30):
+        q = np.array([rng.uniform(max(lo, -math.pi), min(hi, math.pi)) for lo, hi in reference.limits])
+        T = reference(q)
+        sol = m.ik(T)
+        sigma = np.linalg.svd(m.jacobian(q), compute_uv=False)[-1]
+        assert min(_gap(v, q) for v in sol) <= 1e-9 + 2 * frame / sigma
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 + 2 * frame for v in sol)

@@ -123,3 +123,4 @@ class RobotTable:
     strategy: str  # the interpreter's decomposition, in words
     ops: frozenset  # its op kinds
     reversed_: bool  # solved from the tool
+    deviation: float  # the description's axes and points off the ideal ones the table is read from (metres, sines)

@@ -264,7 +264,8 @@ class ChainMechanism(MechanismDefaults):
 
     def robot_table(self):
         """The robot as a DH table for `--stages derived` (kinematics/dh_table.RobotTable) on its ideal axes; a
-        held joint, the arm angle, more than six joints, a calibrated robot or a slide refused with the reason."""
+        held joint, the arm angle, more than six joints or a slide refused with the reason (the deviation of the
+        true axes from the ideal ones goes with it: the deriving family decides what it takes)."""
         from ...kinematics.dh_table import NoDHTable, RobotTable, standard_dh
         from ...model import NotDerivable
 
@@ -277,15 +278,13 @@ class ChainMechanism(MechanismDefaults):
         if self.chain.n > 6:
             raise refuse(f"{self.chain.n} joints")
         plan, ideal = self.plan()
-        if self.deviation() > CALIBRATED_DEVIATION:
-            raise refuse(f"a calibrated robot: its axes are {self.deviation():.2g} off the ideal ones")
         try:
             table = standard_dh(ideal)
         except NoDHTable as exc:
             raise refuse(str(exc)) from None
         return RobotTable(self.NAME, self.title, desc.source, desc.rule, self.chain.joint_names, table,
                           self.chain.base @ table.frame0, desc.fk, self.scale(), plan.strategy,
-                          frozenset(o["op"] for o in plan.ops), plan.reversed)
+                          frozenset(o["op"] for o in plan.ops), plan.reversed, self.deviation())
 
     def scale(self) -> float:
         c = self.chain

@@ -24,10 +24,18 @@ from .mechanism import SerialMechanism
 from .planned import SUPPORTED, PlanError
 from .planned import stages as planned_stages
 
-# an angle of the table within this of a multiple of pi / 36 (5 degrees) is that multiple (the ideal axes are exact
-# to rounding, ~1e-16; a calibrated robot's are not and is refused before)
-ANGLE_SNAP = 1e-9
+# an angle of the table (twist, offset) within this of a multiple of pi / 36 (5 degrees) is that multiple: the
+# decomposition's structure (parallel, perpendicular axes) must be exact for the stages (a twist off the grid is
+# refused), and exact offsets keep the derivation symbolic (floating-point offsets made a UR's take 50 s instead of
+# 12; an offset off the grid stays a number). The ideal axes are exact to
+# rounding; a description's rounded angles (8 decimals: 5e-9) move the end frame by at most their sum times the
+# robot's size, which the description step's tolerance states and checks.
+ANGLE_SNAP = 1e-8
 ANGLE_GRID = 36
+# the description's axes off the ideal ones by at most this (metres and sines): its numbers' rounding (an 8-decimal
+# URDF, the PUMA 560 of ROS-Industrial at 5e-11), derived on the ideal geometry, the end frame's difference stated and
+# checked as for the angles; farther off, a calibrated robot (the plan interpreter polishes it on its own axes)
+ROUNDING_DEVIATION = 1e-8
 # a length below this (relative to the robot's size) is zero: two axes that meet, a wrist without offset
 LENGTH_ZERO = 1e-12
 # entries of a constant rotation (the base's, the tool's) within this of 0, +-1/2, +-sqrt(2)/2, +-sqrt(3)/2, +-1 are
@@ -41,9 +49,9 @@ def _refuse(name: str, why: str) -> NotDerivable:
                         "plan interpreter solves it")
 
 
-def _angle(v: float) -> sp.Expr | None:
+def _angle(v: float, tol: float = ANGLE_SNAP) -> sp.Expr | None:
     k = round(v * ANGLE_GRID / math.pi)
-    return sp.pi * sp.Rational(k, ANGLE_GRID) if abs(v - k * math.pi / ANGLE_GRID) <= ANGLE_SNAP else None
+    return sp.pi * sp.Rational(k, ANGLE_GRID) if abs(v - k * math.pi / ANGLE_GRID) <= tol else None
 
 
 def _entry(v: float) -> sp.Expr:
@@ -77,15 +85,21 @@ def _identifier(name: str, taken: set[str]) -> str:
 def from_table(robot: RobotTable) -> SerialMechanism:
     """The robot as a serial-family mechanism with derived stages, or NotDerivable with the reason."""
     name, table = robot.name, robot.table
+    if robot.deviation > ROUNDING_DEVIATION:
+        raise _refuse(name, f"a calibrated robot: its axes are {robot.deviation:.2g} off the ideal ones")
     n = len(robot.joint_names)
     taken: set[str] = set()
     joints = [sp.Symbol(_identifier(j, taken), real=True) for j in robot.joint_names]
     design, defaults, rows = [], [], []
+    snapped = 0.0  # the angles' changes when made exact, summed
     for k, ((a, alpha, d, theta), q) in enumerate(zip(table.rows, joints, strict=True), start=1):
         angles = [_angle(alpha), _angle(theta)]
-        if any(x is None for x in angles):
-            raise _refuse(name, f"joint {robot.joint_names[k - 1]}'s DH angles ({alpha:.6g}, {theta:.6g} rad) are "
-                                f"no multiple of pi/{ANGLE_GRID}")
+        if angles[0] is None:
+            raise _refuse(name, f"joint {robot.joint_names[k - 1]}'s DH twist ({alpha:.9g} rad) is no multiple of "
+                                f"pi/{ANGLE_GRID}")
+        if angles[1] is None:  # an offset off the grid (the Z1's 2.886 rad) stays a number: no structure rests on it
+            angles[1] = sp.Float(theta)
+        snapped += abs(alpha - float(angles[0])) + abs(theta - float(angles[1]))
         lengths = []
         for label, v in (("a", a), ("d", d)):
             if abs(v) <= LENGTH_ZERO * robot.size:
@@ -113,6 +127,10 @@ def from_table(robot: RobotTable) -> SerialMechanism:
     mech = _DerivedRobot(name, lambda: replace(spec, stages=stage_list))
     mech.DERIVE_SECONDS = 0.2 * 2 ** n
     mech.description_fk = robot.description_fk
+    # each angle's change turns the links after it, at most the robot's size away (and the frame's axes by as
+    # much), and each axis's deviation (direction and point) moves the end frame by at most twice its size: the end
+    # frame moves by at most their sum times the size, on top of the products' rounding
+    mech.description_tol = 1e-12 + (snapped + 2 * n * robot.deviation) * max(robot.size, 1.0)
     return mech
 
 
@@ -120,6 +138,7 @@ class _DerivedRobot(SerialMechanism):
     """The serial family's derivation plus the step that proves the DH table is the user's robot."""
 
     description_fk = None
+    description_tol = 1e-12
 
     def derive(self):
         dv = super().derive()
@@ -133,6 +152,9 @@ class _DerivedRobot(SerialMechanism):
             return float(np.max(np.abs(np.array(table_fk(*q), dtype=float) - self.description_fk(q))))
         dv.add(Step("description", "The DH table is the description's robot",
                     "the table's product at the design defaults equals the description's own product (its URDF "
-                    "transforms, DH matrices or exponentials, base and tool included)", ("T",), {},
-                    (numeric_predicate(err, "same end frame at random joints", samples=200, tol=1e-12),)))
+                    "transforms, DH matrices or exponentials, base and tool included); tolerance 1e-12 plus the "
+                    "angles' changes when made exact and twice the axes' deviation per joint, summed, times the "
+                    "robot's size", ("T",), {},
+                    (numeric_predicate(err, "same end frame at random joints", samples=200,
+                                       tol=self.description_tol),)))
         return dv
