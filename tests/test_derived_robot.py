@@ -274,3 +274,38 @@ def test_description_files_as_shipped_are_derived(case, tmp_path):
         sigma = np.linalg.svd(m.jacobian(q), compute_uv=False)[-1]
         assert min(_gap(v, q) for v in sol) <= 1e-9 + 2 * frame / sigma
         assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 + 2 * frame for v in sol)
+
+
+W60 = """family = "chain"
+name = "w60"
+title = "an arm with a 60-degree wrist (axes 4-5 and 5-6 at 60 degrees, meeting in a point: a Jaco-type wrist)"
+source = "a test robot"
+convention = "poe"
+[home]
+position = [0.8, 0.05, 0.3]
+""" + "".join(f'[[joint]]\nname = "j{k + 1}"\ntype = "revolute"\naxis = {list(a)}\npoint = {list(p)}\n' for k, (a, p) in
+              enumerate([((0, 0, 1), (0, 0, 0)), ((0, 1, 0), (0, 0, 0.3)), ((0, 1, 0), (0.4, 0, 0.3)),
+                         ((1, 0, 0), (0.4, 0.05, 0.3)), ((0.5, 0.8660254037844386, 0), (0.7, 0.05, 0.3)),
+                         ((1, 0, 0), (0.7, 0.05, 0.3))]))
+
+
+def test_a_wrist_of_another_form_is_read_from_its_axes(tmp_path):
+    """A 60-degree wrist (no DH wrist sign pattern): read from its axes (q5 from a plane equation whose roots' gap
+    comes from 1 - n.w = |n x w|^2 / (1 + n.w), q6 and q4 by subproblem 1): round trips on the reference, and near
+    its singularity (axes 4 and 6 aligned, q5 = 0) the generating joints within 1e-6 + 1e-13 / delta."""
+    spec = tmp_path / "w60.toml"
+    spec.write_text(W60)
+    own_robot.derive(spec, tmp_path / "out", stages="derived", native=False, progress=lambda _: None)
+    m = own_robot.import_solver(tmp_path / "out", "w60")
+    assert "wrist" not in {st.kind for st in own_robot.load(spec, stages="derived").spec.stages}
+    reference = ref.load(spec)
+    rng = case_rng(2308)
+    for delta in (1.0, 1e-4, 1e-6, 1e-8, 1e-10):
+        for _ in range(10):
+            q = rng.uniform(-math.pi, math.pi, 6)
+            if delta < 1.0:
+                q[4] = delta * rng.choice([-1.0, 1.0])
+            T = reference(q)
+            sol = m.ik(T)
+            assert min(_gap(v, q) for v in sol) <= 1e-6 + 1e-13 / delta, (delta, q)
+            assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)

@@ -9,6 +9,7 @@ relation that held only at the defaults fails there, with the stage named.
   prismatic ops, orient (one axis)              -> value
   orient (three axes at the end)                -> wrist        (dh_serial.wrist_stage)
   orient (a parallel group, then two axes)      -> trig_linear + rotation2d  (_GroupThenTwo: the UR type)
+  orient (three axes, not the DH wrist's form)  -> trig_linear + 2 rotation2d  (_GroupThenTwo, a group of one)
   group_rest (the group's last joint)           -> rotation2d   (from the group's rotation)
 """
 
@@ -70,7 +71,8 @@ def _perp(h):
 
 class _GroupThenTwo:
     """The orientation R_d = rot(h_g, phi) rot(h_a, q_a) rot(h_b, q_b) of three parallel axes (the group, one
-    direction h_g) followed by two axes a, b (a UR-type arm), read without the group's sum phi:
+    direction h_g) followed by two axes a, b (a UR-type arm), read without the group's sum phi (a group of one: any
+    three-axis wrist, from its axes; the DH wrist stage takes the 90-degree ones):
 
     - q_a from h_g . rot(h_a, q_a) h_b = h_g . R_d h_b (the group and b turn about h_g and h_b, which they keep:
       subproblem 4 on unit vectors, two roots);
@@ -90,14 +92,23 @@ class _GroupThenTwo:
         p0, p1 = rd.T * hg, _rodrigues(ha, -joints[ja]) * hg
         exprs, rule = (a, b, -c), ("subproblem 4 on the rotation: h_g . rot(h_a, q) h_b = h_g . R_d h_b (the "
                                    "parallel group and the last axis keep their own axes)")
+        cross = hg.cross(rd * hb)
+        sq = sum(x ** 2 for x in cross)
         if sp.simplify(hg.dot(ha)) == 0 and sp.simplify(hab) == 0:
             # h_a normal to both (the UR type): A^2 + B^2 = 1 and A^2 + B^2 - C^2 = |h_g x w|^2, w = R_d h_b, the sine
             # of the roots' half-gap to eps (from the cosine alone: sqrt(eps), and a wrist 1e-7 rad from singular
             # read as singular); Dm = 2 |h_g x w|^2 with Dp = 2, its rounding 4 |h_g x w| eps
-            cross = hg.cross(rd * hb)
-            sq = sum(x ** 2 for x in cross)
             exprs += (2 * sq, sp.Integer(2), 4 * sp.sqrt(sq))
             rule += "; the roots' half-gap from |h_g x R_d h_b| (A^2 + B^2 - C^2 = |h_g x R_d h_b|^2)"
+        elif sp.simplify(hg.dot(ha) - hab) == 0:
+            # h_a at the same angle b to both (a 60-degree wrist: h_g and h_b align at its singularity, n.w = 1):
+            # A^2 + B^2 = sin^4 b, C = cos^2 b - n.w, and A^2 + B^2 - C^2 = (1 - n.w)(n.w - cos 2b) with
+            # 1 - n.w = |n x w|^2 / (1 + n.w) to eps near the singularity (n.w near -1 is out of reach: the stage
+            # refuses the pose before it reads these)
+            nw = hg.dot(rd * hb)
+            exprs += (2 * sq / (1 + nw), 2 * (nw - (2 * hab ** 2 - 1)), 4 * sp.sqrt(sq) / (1 + nw))
+            rule += ("; the roots' half-gap from (1 - n.w)(n.w - cos 2b), 1 - n.w = |h_g x R_d h_b|^2 / "
+                     "(1 + n.w), the wrist's equal angles b")
         self.stages = [
             Stage("trig_linear", (ja,), exprs, f"angle {joints[ja]} (two roots)", rule),
             Stage("rotation2d", (jb,), (e1.dot(p1), e2.dot(p1), e1.dot(p0), e2.dot(p0)), f"angle {joints[jb]}",
@@ -222,10 +233,14 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             else:
                 lo = op["lo"]
                 m = (frames[0][:3, :3].T if lo == 0 else ts[lo - 1][:3, :3].T) * R_POSE * untool
-                out.append(wrist_stage(list(rows[lo:]), joints[lo:], tuple(m), "spherical wrist from R_6^3 = "
-                                       "(R_3^0)^T R (flip / no flip)" if lo else "spherical wrist from R",
-                                       "kinematic decoupling at the wrist centre" if lo else "three intersecting "
-                                       "axes", tuple(range(lo, n))))
+                try:
+                    out.append(wrist_stage(list(rows[lo:]), joints[lo:], tuple(m), "spherical wrist from R_6^3 = "
+                                           "(R_3^0)^T R (flip / no flip)" if lo else "spherical wrist from R",
+                                           "kinematic decoupling at the wrist centre" if lo else "three "
+                                           "intersecting axes", tuple(range(lo, n))))
+                except ValueError:  # a wrist of another form (twists off 90 degrees): read from its axes
+                    wrist = _GroupThenTwo(rd, [units[0]], units[1], units[2], axes, joints)
+                    out += [*wrist.stages, wrist.rest(units[0])]
             continue
         if k == "group_rest":
             out.append(group.rest(j))
