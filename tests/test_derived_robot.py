@@ -7,6 +7,7 @@ solution count."""
 from __future__ import annotations
 
 import math
+import os
 import subprocess
 import sys
 import tempfile
@@ -115,7 +116,9 @@ def test_the_derived_solver_returns_every_set_and_only_true_ones(robot, fmt):
 def test_c_returns_the_numpy_sets(robot):
     """The folder's C extension and the numpy path return the same sets (1e-12) and flags."""
     m, py, _ = derived(robot)
-    assert m.BACKEND == "c" and py.BACKEND == "numpy"
+    if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
+        assert m.BACKEND == "c"
+    assert py.BACKEND == "numpy"
     rng = case_rng(2303)
     for _ in range(30):
         T = m.fk_matrix(rng.uniform(-math.pi, math.pi, 6))
