@@ -85,8 +85,8 @@ class MechanismDefaults:
         is no user's robot description refuses."""
         from .model import NotDerivable
 
-        raise NotDerivable(f"{self.NAME}: --stages derived takes a robot description "
-                           "(URDF, DH or POE); a catalogue mechanism's stages are derived already")
+        raise NotDerivable(f"{self.NAME}: --stages derived takes a robot description (URDF, DH or POE); a catalogue "
+                           "mechanism's stages are derived already")
 
     def audit_numbers(self, dv: Derivation, solver: Any, audit_dir: Path) -> dict:
         """Numeric findings for the audit beyond the derivation's own records (none by default)."""

@@ -26,6 +26,11 @@ class NoDecomposition(ValueError):
 class NotDerivable(NoDecomposition):
     """`--stages derived` does not cover the robot (the message says why, and that the plan interpreter solves it)."""
 
+    @classmethod
+    def because(cls, name: str, why: str) -> NotDerivable:
+        return cls(f"{name}: --stages derived does not cover this robot ({why}); without --stages derived the plan "
+                   "interpreter solves it")
+
 
 class CheckFailed(AssertionError):
     """A derivation step failed its checks: nothing built on it is emitted. The message names the step and the

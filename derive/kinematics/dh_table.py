@@ -71,7 +71,6 @@ def standard_dh(chain: Chain) -> DHTable:
     o = chain.points[0] - np.dot(chain.points[0], z) * z  # the base origin's foot on axis 0
     if np.linalg.norm(np.cross(z, [0.0, 0.0, 1.0])) <= PARALLEL_TOL:
         x = np.array([1.0, 0.0, 0.0])  # axis 0 along +-z: x as the base's (frame 0 = the base when on it)
-        x = x - np.dot(x, z) * z
     else:
         x = _unit(np.cross([0.0, 0.0, 1.0], z))
     frame0 = np.eye(4)

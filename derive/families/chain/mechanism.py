@@ -11,12 +11,13 @@ import numpy as np
 
 from ...checks import numeric_predicate
 from ...kinematics import general6r
+from ...kinematics.dh_table import NoDHTable, RobotTable, standard_dh
 from ...kinematics.geometry import common_point
 from ...kinematics.planner import Geometry, NoClosedForm, Plan, arm_angle_plan, find_plan, op_branches, replay
 from ...kinematics.poe import Chain, normalised, reduce_free, reverse
 from ...kinematics.subproblems import subproblem_checks
 from ...mechanism import CApi, MechanismDefaults
-from ...model import Check, Derivation, Finding, NoDecomposition, Step
+from ...model import Check, Derivation, Finding, NoDecomposition, NotDerivable, Step
 from ...tolerances import TOLERANCES
 from . import views
 from .description import Description
@@ -266,22 +267,16 @@ class ChainMechanism(MechanismDefaults):
         """The robot as a DH table for `--stages derived` (kinematics/dh_table.RobotTable) on its ideal axes; a
         held joint, the arm angle, more than six joints or a slide refused with the reason (the deviation of the
         true axes from the ideal ones goes with it: the deriving family decides what it takes)."""
-        from ...kinematics.dh_table import NoDHTable, RobotTable, standard_dh
-        from ...model import NotDerivable
-
-        def refuse(why):
-            return NotDerivable(f"{self.NAME}: --stages derived does not cover this robot ({why}); without --stages "
-                                "derived the plan interpreter solves it")
         desc = self.desc
         if desc.free >= 0 or desc.redundancy != "joint":
-            raise refuse("a held joint or the arm angle as a run-time parameter")
+            raise NotDerivable.because(self.NAME, "a held joint or the arm angle as a run-time parameter")
         if self.chain.n > 6:
-            raise refuse(f"{self.chain.n} joints")
+            raise NotDerivable.because(self.NAME, f"{self.chain.n} joints")
         plan, ideal = self.plan()
         try:
             table = standard_dh(ideal)
         except NoDHTable as exc:
-            raise refuse(str(exc)) from None
+            raise NotDerivable.because(self.NAME, str(exc)) from None
         return RobotTable(self.NAME, self.title, desc.source, desc.rule, self.chain.joint_names, table,
                           self.chain.base @ table.frame0, desc.fk, self.scale(), plan.strategy,
                           frozenset(o["op"] for o in plan.ops), plan.reversed, self.deviation())

@@ -27,9 +27,8 @@ from .planned import stages as planned_stages
 # an angle of the table (twist, offset) within this of a multiple of pi / 36 (5 degrees) is that multiple: the
 # decomposition's structure (parallel, perpendicular axes) must be exact for the stages (a twist off the grid is
 # refused), and exact offsets keep the derivation symbolic (floating-point offsets made a UR's take 50 s instead of
-# 12; an offset off the grid stays a number). The ideal axes are exact to
-# rounding; a description's rounded angles (8 decimals: 5e-9) move the end frame by at most their sum times the
-# robot's size, which the description step's tolerance states and checks.
+# 12; an offset off the grid stays a number). A description's rounded angles (8 decimals: 5e-9) move the end frame
+# by at most their sum times the robot's size, which the description step's tolerance states and checks.
 ANGLE_SNAP = 1e-8
 ANGLE_GRID = 36
 # the description's axes off the ideal ones by at most this (metres and sines): its numbers' rounding (an 8-decimal
@@ -44,14 +43,9 @@ ENTRY_SNAP = 1e-12
 _ENTRIES = (sp.Integer(0), sp.Integer(1), sp.Rational(1, 2), sp.sqrt(2) / 2, sp.sqrt(3) / 2)
 
 
-def _refuse(name: str, why: str) -> NotDerivable:
-    return NotDerivable(f"{name}: --stages derived does not cover this robot ({why}); without --stages derived the "
-                        "plan interpreter solves it")
-
-
-def _angle(v: float, tol: float = ANGLE_SNAP) -> sp.Expr | None:
+def _angle(v: float) -> sp.Expr | None:
     k = round(v * ANGLE_GRID / math.pi)
-    return sp.pi * sp.Rational(k, ANGLE_GRID) if abs(v - k * math.pi / ANGLE_GRID) <= tol else None
+    return sp.pi * sp.Rational(k, ANGLE_GRID) if abs(v - k * math.pi / ANGLE_GRID) <= ANGLE_SNAP else None
 
 
 def _entry(v: float) -> sp.Expr:
@@ -86,7 +80,7 @@ def from_table(robot: RobotTable) -> SerialMechanism:
     """The robot as a serial-family mechanism with derived stages, or NotDerivable with the reason."""
     name, table = robot.name, robot.table
     if robot.deviation > ROUNDING_DEVIATION:
-        raise _refuse(name, f"a calibrated robot: its axes are {robot.deviation:.2g} off the ideal ones")
+        raise NotDerivable.because(name, f"a calibrated robot: its axes are {robot.deviation:.2g} off the ideal ones")
     n = len(robot.joint_names)
     taken: set[str] = set()
     joints = [sp.Symbol(_identifier(j, taken), real=True) for j in robot.joint_names]
@@ -95,8 +89,8 @@ def from_table(robot: RobotTable) -> SerialMechanism:
     for k, ((a, alpha, d, theta), q) in enumerate(zip(table.rows, joints, strict=True), start=1):
         angles = [_angle(alpha), _angle(theta)]
         if angles[0] is None:
-            raise _refuse(name, f"joint {robot.joint_names[k - 1]}'s DH twist ({alpha:.9g} rad) is no multiple of "
-                                f"pi/{ANGLE_GRID}")
+            raise NotDerivable.because(name, f"joint {robot.joint_names[k - 1]}'s DH twist ({alpha:.9g} rad) is "
+                                             f"no multiple of pi/{ANGLE_GRID}")
         if angles[1] is None:  # an offset off the grid (the Z1's 2.886 rad) stays a number: no structure rests on it
             angles[1] = sp.Float(theta)
         snapped += abs(alpha - float(angles[0])) + abs(theta - float(angles[1]))
@@ -121,24 +115,25 @@ def from_table(robot: RobotTable) -> SerialMechanism:
         missing = sorted(robot.ops - SUPPORTED)
         if missing or robot.reversed_:  # say what the interpreter's decomposition needs, not the search's refusal
             what = f"the ops {', '.join(missing)}" if missing else "the chain solved from the tool"
-            raise _refuse(name, f"its decomposition, {robot.strategy.split(':')[0]}, needs {what}, which the "
-                                "derived stages do not have yet") from None
-        raise _refuse(name, f"no decomposition in the derived stage kinds: {exc}") from None
-    mech = _DerivedRobot(name, lambda: replace(spec, stages=stage_list))
-    mech.DERIVE_SECONDS = 0.2 * 2 ** n
-    mech.description_fk = robot.description_fk
+            raise NotDerivable.because(name, f"its decomposition, {robot.strategy.split(':')[0]}, needs {what}, "
+                                             "which the derived stages do not have yet") from None
+        raise NotDerivable.because(name, f"no decomposition in the derived stage kinds: {exc}") from None
     # each angle's change turns the links after it, at most the robot's size away (and the frame's axes by as
     # much), and each axis's deviation (direction and point) moves the end frame by at most twice its size: the end
     # frame moves by at most their sum times the size, on top of the products' rounding
-    mech.description_tol = 1e-12 + (snapped + 2 * n * robot.deviation) * max(robot.size, 1.0)
+    tol = 1e-12 + (snapped + 2 * n * robot.deviation) * max(robot.size, 1.0)
+    mech = _DerivedRobot(name, lambda: replace(spec, stages=stage_list), robot.description_fk, tol)
+    mech.DERIVE_SECONDS = 0.2 * 2 ** n
     return mech
 
 
 class _DerivedRobot(SerialMechanism):
-    """The serial family's derivation plus the step that proves the DH table is the user's robot."""
+    """The serial family's derivation plus the step that proves the DH table is the user's robot (its description's
+    own FK, to `description_tol`)."""
 
-    description_fk = None
-    description_tol = 1e-12
+    def __init__(self, name: str, build, description_fk, description_tol: float):
+        super().__init__(name, build)
+        self.description_fk, self.description_tol = description_fk, description_tol
 
     def derive(self):
         dv = super().derive()
