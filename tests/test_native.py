@@ -35,6 +35,12 @@ REGULAR_TOL = 1e-12
 # At special joint values (0, +-pi/2, pi, 1e-7) a set may sit next to a singularity, where a joint is only
 # accurate to eps / sigma_min ~ 1e-16 / 1e-7 = 1e-9 (and a polished tangent root to sqrt(eps) ~ 1e-8).
 SPECIAL_TOL = 1e-7
+# Where singularities compound (a wrist 1e-7 from straight on an arm 5e-4 from its elbow boundary: sigma_min of
+# the Jacobian 4e-11), a set is determined only to eps / sigma_min along the near-null direction, whatever the
+# backend: both sets then reproduce the pose to rounding and may differ by up to CONDITIONED x eps / sigma_min.
+# At sigma_min below rounding the set is a family representative chosen by convention, compared at SPECIAL_TOL.
+CONDITIONED = 16.0
+EPS = float(np.finfo(float).eps)
 SPECIAL = [0.0, math.pi / 2, -math.pi / 2, math.pi, 1e-7, -1e-7]
 
 
@@ -66,20 +72,31 @@ def _diff(a, b, revolute):
 
 
 def _same(a, b, tol, what, revolute=None):
+    """tol: one tolerance, or one per valid set (`_conditioned`)."""
     assert a.status == b.status, what
     assert np.array_equal(a.valid, b.valid), what
     assert np.array_equal(a.flags, b.flags), what
     d = _diff(a.values[a.valid], b.values[b.valid], revolute)
-    assert d.size == 0 or float(np.max(np.abs(d))) <= tol, f"{what}: {d}"
+    over = np.abs(d) > np.reshape(tol, (-1, 1) if np.ndim(tol) else ())
+    assert not np.any(over), f"{what}: {d} (tolerance {tol})"
     assert np.all(np.isnan(a.values[~a.valid])) and np.all(np.isnan(b.values[~b.valid])), what
 
 
 def _same_batch(a, b, tol, what, revolute=None):
-    """Two BatchSolutions: the same valid sets, flags and statuses, values within tol (angles wrapped)."""
+    """Two BatchSolutions: the same valid sets, flags and statuses, values within tol (angles wrapped; tol: one, or
+    one per valid set in the batch's row-major order)."""
     for f in ("valid", "flags", "status"):
         assert np.array_equal(getattr(a, f), getattr(b, f)), (what, f)
     d = _diff(a.values[a.valid], b.values[b.valid], revolute)
-    assert float(np.max(np.abs(d), initial=0.0)) <= tol, what
+    assert not np.any(np.abs(d) > np.reshape(tol, (-1, 1) if np.ndim(tol) else ())), what
+
+
+def _conditioned(mod, design, sets):
+    """Per set: SPECIAL_TOL, or CONDITIONED x eps / sigma_min of the Jacobian there where that is larger and the set
+    is not singular to rounding (lengths are O(1 m), so the mixed units do not move sigma_min's order)."""
+    sigma = np.array([np.linalg.svd(mod.jacobian(q, design), compute_uv=False)[-1] for q in sets])
+    regular = sigma > CONDITIONED * EPS
+    return np.where(regular, np.maximum(SPECIAL_TOL, CONDITIONED * EPS / np.where(regular, sigma, 1.0)), SPECIAL_TOL)
 
 
 def _joints(mod, rng, special: bool):
@@ -110,10 +127,13 @@ def test_serial_c_and_numpy_give_the_same_solution_sets(name):
         np.testing.assert_allclose(mod.jacobian(q, c_design), mod.jacobian(q, py_design), atol=tol, rtol=0)
         T = mod.fk_matrix(q, py_design)
         np.testing.assert_allclose(mod.fk_matrix(q, c_design), T, atol=tol, rtol=0)
-        _same(mod.ik(T, c_design), mod.ik(T, py_design), tol, f"{name} ik of fk({q.tolist()})", rev)
+        py_ik = mod.ik(T, py_design)
+        sets_tol = _conditioned(mod, py_design, py_ik.values[py_ik.valid]) if special else tol
+        _same(mod.ik(T, c_design), py_ik, sets_tol, f"{name} ik of fk({q.tolist()})", rev)
         prev = _joints(mod, rng, False)
-        _same(mod.ik(T, c_design, previous=prev), mod.ik(T, py_design, previous=prev), tol,
-              f"{name} ik near {prev.tolist()}", rev)
+        py_near = mod.ik(T, py_design, previous=prev)
+        near_tol = _conditioned(mod, py_design, py_near.values[py_near.valid]) if special else tol
+        _same(mod.ik(T, c_design, previous=prev), py_near, near_tol, f"{name} ik near {prev.tolist()}", rev)
         poses.append(T)
     # poses the chain cannot reach, and rotations a little off SO(3) (projected, reported): C answers, the numpy
     # path words the reason when it is read, so the result is the same either way
@@ -126,7 +146,9 @@ def test_serial_c_and_numpy_give_the_same_solution_sets(name):
         _same(a, b, REGULAR_TOL, f"{name} ik of an odd pose", rev)
         assert a.reason == b.reason
     batch = np.array(poses)
-    _same_batch(mod.ik_batch(batch, c_design), mod.ik_batch(batch, py_design), SPECIAL_TOL, f"{name} ik_batch", rev)
+    py_batch = mod.ik_batch(batch, py_design)
+    _same_batch(mod.ik_batch(batch, c_design), py_batch, _conditioned(mod, py_design, py_batch.values[py_batch.valid]),
+                f"{name} ik_batch", rev)
     qs = np.array([_joints(mod, rng, False) for _ in range(20)])
     cf, pf = mod.fk_batch(qs, c_design), mod.fk_batch(qs, py_design)
     np.testing.assert_allclose(cf.values, pf.values, atol=REGULAR_TOL, rtol=0)

@@ -120,6 +120,31 @@ def test_a_distance_stage_keeps_both_roots_of_a_fold_onto_its_centre(py):
     assert st._trig_linear(out, 0, -1.0, q, c, s, None, [1.0]) == (False, 0)
 
 
+def test_a_wrist_gap_stage_separates_its_roots_down_to_the_wrists_rounding(py):
+    """A UR-type wrist's angle from cos q = n.w (A = 1, B = 0, C = -cos delta) with its half-gap factored from
+    |n x w| = sin delta: Dm = 2 sin^2 delta, Dp = 2, Em = 4 sin delta. With the wrist's band (WRIST_EXACT_TOL, as the
+    DH wrist's family band on |sin theta5|: 2 WRIST_EXACT_TOL amp_before on |n x w|) the two generating roots come
+    back at delta = 1e-10 behind an arm that amplifies the rounding 100-fold (the distance band, 4500 eps, merged
+    them: a 60-degree wrist 1e-10 from straight lost its generating joints); |n x w| at the rounding of such an
+    input (eps x amp_before) is one double root, flagged."""
+    st = py.stages
+    amp_before = 100.0
+    for delta in (1e-4, 1e-8, 1e-10):
+        out = (1.0, 0.0, -math.cos(delta), 2.0 * math.sin(delta) ** 2, 2.0, 4.0 * math.sin(delta))
+        got = []
+        for sgn in (1.0, -1.0):
+            q, c, s, amp = [0.0], [1.0], [0.0], [1.0]
+            assert st._trig_linear(out, 0, sgn, q, c, s, None, amp, amp_before, st.WRIST_EXACT_TOL) == (True, 0)
+            got.append(q[0])
+        assert got == pytest.approx([delta, -delta], rel=1e-12)
+    noise = 4 * float(np.finfo(float).eps) * amp_before
+    out = (1.0, 0.0, -math.cos(noise), 2.0 * noise ** 2, 2.0, 4.0 * noise)
+    q, c, s = [0.0], [1.0], [0.0]
+    flags = st._trig_linear(out, 0, 1.0, q, c, s, None, [1.0], amp_before, st.WRIST_EXACT_TOL)
+    assert flags == (True, FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE) and q == [0.0]
+    assert st._trig_linear(out, 0, -1.0, q, c, s, None, [1.0], amp_before, st.WRIST_EXACT_TOL) == (False, 0)
+
+
 def test_rotation2d_is_the_angle_between_the_two_vectors(py):
     rng = case_rng(2241)
     for _ in range(30):

@@ -27,6 +27,10 @@ class Stage:
     signs: tuple[int, ...] = ()  # wrist: (e0, e1, e2, e3, k00@0, k10@0, k00@pi, k10@pi)
     wrist_rotation: sp.Matrix | None = None  # wrist: R(q4) R(q5) R(q6) of the three wrist rows
     wrist_joints: tuple = ()
+    # a factored stage's double-root band: "distance" (DOUBLE_ROOT_TOL: a distance's square carries the lengths'
+    # rounding) or "wrist" (WRIST_EXACT_TOL, as the DH wrist's family band: the half-gap is a wrist's |sin|, read
+    # from unit vectors to eps)
+    gap: str = "distance"
 
     @property
     def branches(self) -> int:
@@ -107,6 +111,7 @@ def stage_view(spec) -> list[dict]:
         view["amp_joints"] = [j for prior in spec.stages[:k - 1] if prior.kind in ("trig_linear", "rotation2d")
                               for j in prior.joints]
         view["factored"] = st.factored
+        view["gap_tol"] = {"distance": "DOUBLE_ROOT_TOL", "wrist": "WRIST_EXACT_TOL"}[st.gap]
         if st.kind == "wrist":
             view["signs"] = list(st.signs)
             view["joint_kinds"] = [spec.kinds[j] for j in st.joints]

@@ -31,7 +31,7 @@ def py_stage_body(st: dict) -> list[str]:
         if not st.get("factored"):
             return [f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp)"]
         return [f"a = {_amp_before(st)}  # the angle stages' amplification",
-                f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp, a)"]
+                f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp, a, {st['gap_tol']})"]
     if st["kind"] == "rotation2d":
         return [f"return _rotation2d({out}, {j}, q, c, s, prev, amp)"]
     if st["kind"] == "value":
@@ -55,8 +55,9 @@ def c_stage_body(st: dict) -> list[str]:
             "rotation2d stages) */", "(void)amp; /* the angle stages' amplification */",
             "*f = 0u;"]
     if st["kind"] == "trig_linear":
-        return head + [call, f"return sr_trig_linear(out, {int(bool(st.get('factored')))}, {j}, sr_sign(k, "
-                             f"{st['bit']}), q, c, s, prev, amp, {_amp_before(st)}, f);"]
+        gap_tol = f"SR_{st['gap_tol']}" if st.get("factored") else "0.0"
+        return head + [call, f"return sr_trig_linear(out, {int(bool(st.get('factored')))}, {gap_tol}, {j}, "
+                             f"sr_sign(k, {st['bit']}), q, c, s, prev, amp, {_amp_before(st)}, f);"]
     if st["kind"] == "rotation2d":
         return head + [call, f"return sr_rotation2d(out, {j}, q, c, s, prev, amp, f);"]
     if st["kind"] == "value":

@@ -40,10 +40,11 @@ def _family_member(j, q, c, s, prev):
     q[j], c[j], s[j] = (v, 1.0, 0.0) if v == 0.0 else (v, math.cos(v), math.sin(v))
 
 
-def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0):
-    """Joint j from A cos q + B sin q + C = 0 (out = (A, B, C), a distance stage's also (Dm, Dp, Em)): q = atan2(B, A)
+def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=DOUBLE_ROOT_TOL):
+    """Joint j from A cos q + B sin q + C = 0 (out = (A, B, C), a factored stage's also (Dm, Dp, Em)): q = atan2(B, A)
     + sgn acos(-C / sqrt(A^2 + B^2)), its cos and sin from (A, B, u) without trigonometry; amp[j]: how much its roots
-    amplify the input's rounding; amp_before: the angle stages' before it. Returns (ok, flags)."""
+    amplify the input's rounding; amp_before: the angle stages' before it; gap_tol: a factored stage's band
+    (_root_gap). Returns (ok, flags)."""
     a, b, cc = out[0], out[1], out[2]
     r = math.hypot(a, b)
     if r <= DEGENERATE_EPS:
@@ -59,7 +60,7 @@ def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0):
     if not abs(u) <= 1.0 + TANGENT_TOL:
         return False, 0
     u = max(-1.0, min(1.0, u))
-    sg, band = _root_gap(out, r, u, amp_before)
+    sg, band = _root_gap(out, r, u, amp_before, gap_tol)
     f = FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE if sg <= band else 0
     if f and sgn < 0.0:
         return False, 0  # a double root is one solution: reported once, by the + branch
@@ -77,20 +78,22 @@ def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0):
     return True, f
 
 
-def _root_gap(out, r, u, amp_before):
+def _root_gap(out, r, u, amp_before, gap_tol):
     """(sin w, band): the half-gap w of the roots phi +- w, and the sin w below which they are one double root.
 
-    From u alone 1 - u^2 carries eps of rounding, so the band is sqrt(DOUBLE_ROOT_TOL). A distance stage gives the
+    From u alone 1 - u^2 carries eps of rounding, so the band is sqrt(DOUBLE_ROOT_TOL). A factored stage gives the
     factors (Dm, Dp) of 4 R^2 (1 - u^2), each to its own precision, and Em, the scale of Dm's rounding: when Dm is the
     small factor its rounding is Em / (2 R) of what 1 - u^2 carries (times the angle stages' amplification before
-    it), and the band narrows by its square root (a SCARA with a1 = a2 folded to 1e-8 keeps both elbows)."""
+    it), and the band narrows by its square root (a SCARA with a1 = a2 folded to 1e-8 keeps both elbows). Its
+    gap_tol: a distance stage's DOUBLE_ROOT_TOL; a wrist's half-gap (Dm = 2 |n x w|^2, Em = 4 |n x w|: the band is
+    2 gap_tol amp_before on |n x w|) takes WRIST_EXACT_TOL, the DH wrist's family band on |sin theta5|."""
     if len(out) == 3:
         return math.sqrt(1.0 - u * u), math.sqrt(DOUBLE_ROOT_TOL)
     dm, dp, em = out[3], out[4], out[5]
     # the product and |Dm| <= |Dp|: a length derived as positive and given negative swaps the factors and their signs
     sg = math.sqrt(max(dm * dp, 0.0)) / (2.0 * r)
     scale = min(1.0, em * amp_before / (2.0 * r)) if abs(dm) <= abs(dp) else 1.0
-    return sg, math.sqrt(DOUBLE_ROOT_TOL * scale)
+    return sg, math.sqrt(gap_tol * scale)
 
 
 def _rotation2d(out, j, q, c, s, prev, amp):

@@ -110,7 +110,8 @@ class _GroupThenTwo:
             rule += ("; the roots' half-gap from (1 - n.w)(n.w - cos 2b), 1 - n.w = |h_g x R_d h_b|^2 / "
                      "(1 + n.w), the wrist's equal angles b")
         self.stages = [
-            Stage("trig_linear", (ja,), exprs, f"angle {joints[ja]} (two roots)", rule),
+            Stage("trig_linear", (ja,), exprs, f"angle {joints[ja]} (two roots)", rule,
+                  gap="wrist" if len(exprs) == 6 else "distance"),
             Stage("rotation2d", (jb,), (e1.dot(p1), e2.dot(p1), e1.dot(p0), e2.dot(p0)), f"angle {joints[jb]}",
                   "subproblem 1: rot(h_b, q) (R_d^T h_g) = rot(h_a, -q_a) h_g in the plane normal to h_b")]
 

@@ -32,10 +32,11 @@ static double sr_clamp1(double x)
 }
 
 /* (sin w, band) of the roots phi +- w: below the band they are one double root (Python's _root_gap). From u alone
- * 1 - u^2 carries eps of rounding (band sqrt(SR_DOUBLE_ROOT_TOL)); a distance stage (factored) gives the factors
- * Dm, Dp of 4 R^2 (1 - u^2), each to its own precision, and Em, the scale of Dm's rounding */
-static inline void sr_root_gap(const double *out, int factored, double r, double u, double amp_before, double *sg,
-                               double *band)
+ * 1 - u^2 carries eps of rounding (band sqrt(SR_DOUBLE_ROOT_TOL)); a factored stage gives the factors Dm, Dp of
+ * 4 R^2 (1 - u^2), each to its own precision, and Em, the scale of Dm's rounding, and its band's gap_tol (a distance:
+ * SR_DOUBLE_ROOT_TOL, a wrist's half-gap: SR_WRIST_EXACT_TOL) */
+static inline void sr_root_gap(const double *out, int factored, double gap_tol, double r, double u,
+                               double amp_before, double *sg, double *band)
 {
     if (!factored) {
         *sg = sqrt(1.0 - u * u);
@@ -46,15 +47,15 @@ static inline void sr_root_gap(const double *out, int factored, double r, double
         const double prod = out[3] * out[4];
         const double scale = fabs(out[3]) <= fabs(out[4]) ? fmin(1.0, out[5] * amp_before / (2.0 * r)) : 1.0;
         *sg = prod > 0.0 ? sqrt(prod) / (2.0 * r) : 0.0;
-        *band = sqrt(SR_DOUBLE_ROOT_TOL * scale);
+        *band = sqrt(gap_tol * scale);
     }
 }
 
-/* Joint j from A cos q + B sin q + C = 0 (out = A, B, C, a distance stage's also Dm, Dp, Em): q = atan2(B, A) +
+/* Joint j from A cos q + B sin q + C = 0 (out = A, B, C, a factored stage's also Dm, Dp, Em): q = atan2(B, A) +
  * sgn acos(-C / sqrt(A^2 + B^2)). inline: each stage of this kind calls it with its own constant joint, bit and form,
  * as straight-line code would */
-static inline int sr_trig_linear(const double *out, int factored, int j, double sgn, double *q, double *c, double *s,
-                                 const double *prev, double *amp, double amp_before, unsigned *f)
+static inline int sr_trig_linear(const double *out, int factored, double gap_tol, int j, double sgn, double *q,
+                                 double *c, double *s, const double *prev, double *amp, double amp_before, unsigned *f)
 {
     const double r = sqrt(out[0] * out[0] + out[1] * out[1]);
     double u, sg, band, ca, sa;
@@ -69,7 +70,7 @@ static inline int sr_trig_linear(const double *out, int factored, int j, double 
     u = -out[2] / r;
     if (!(fabs(u) <= 1.0 + SR_TANGENT_TOL)) return 0;
     u = sr_clamp1(u);
-    sr_root_gap(out, factored, r, u, amp_before, &sg, &band);
+    sr_root_gap(out, factored, gap_tol, r, u, amp_before, &sg, &band);
     if (sg <= band) {
         if (sgn < 0.0) return 0; /* a double root is one solution: reported once, by the + branch */
         *f = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
