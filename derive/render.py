@@ -27,7 +27,21 @@ def wrap_python(code: str, indent: int, width: int = 108) -> str:
     if indent + len(code) <= width:
         return code
     lines = textwrap.wrap(code, width - indent - 2, break_long_words=False, break_on_hyphens=False)
-    return "(" + ("\n" + " " * (indent + 1)).join(lines) + ")"
+    joined = ("\n" + " " * (indent + 1)).join(lines)
+    return joined if _enclosed(code) else "(" + joined + ")"
+
+
+def _enclosed(code: str) -> bool:
+    """Whether the whole expression is inside one pair of parentheses (a square printed as (x*x)): it then
+    continues over lines as it is (another pair would be extraneous, ruff UP034)."""
+    if not code.startswith("("):
+        return False
+    depth = 0
+    for i, ch in enumerate(code):
+        depth += {"(": 1, ")": -1}.get(ch, 0)
+        if depth == 0:
+            return i == len(code) - 1
+    return False
 
 
 @functools.lru_cache(maxsize=1)

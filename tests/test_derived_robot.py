@@ -128,6 +128,61 @@ def test_c_returns_the_numpy_sets(robot):
         assert np.max(np.abs(np.asarray(a.values)[a.valid] - np.asarray(b.values)[b.valid])) <= 1e-12
 
 
+INTERPRETER_ONLY = {"CALIBRATED", "FAMILY_ANGLES", "FAMILY_TOL", "GEOMETRY_DEVIATION", "GEOMETRY_TOL", "ON_AXIS_TOL",
+                    "POLISH_STEPS", "POLISH_TOL", "SCALE", "STAGE_NOISE"}  # the plan interpreter's own tolerances
+
+
+@pytest.mark.parametrize("robot", ["kr6", "ur5e"])
+def test_the_derived_module_offers_what_the_interpreted_one_does(robot, tmp_path):
+    """One API whichever way the IK runs: the interpreted module's names (but its own tolerances), the same limits,
+    decomposition and named branches (branch_of equal on random joints, select's defaults the description's limits,
+    select(branch=) a set of that branch), the same pose forms (xyz + rpy, quaternion) and the same command line
+    (the sets' branches and values, text and JSON)."""
+    m, _, out = derived(robot)
+    own_robot.derive(_file(robot, "urdf"), tmp_path, name=f"{robot}_interp", native=False, progress=lambda _: None)
+    interp = own_robot.import_solver(tmp_path, f"{robot}_interp")
+    public = {n for n in dir(interp) if not n.startswith("_")} - INTERPRETER_ONLY
+    assert public <= {n for n in dir(m) if not n.startswith("_")}
+    for name in ("LOWER", "UPPER", "BRANCHES", "DECOMPOSITION", "CONTROLS", "JOINT_NAMES", "JOINT_KINDS"):
+        assert getattr(m, name) == getattr(interp, name), name
+    rng = case_rng(2311)
+    for _ in range(50):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        assert m.branch_of(q) == interp.branch_of(q)
+        sol = m.ik(m.fk_matrix(q))
+        k = m.select(sol)
+        inside = [i for i in range(len(sol.valid)) if sol.valid[i] and np.all(sol.values[i] >= m.LOWER)
+                  and np.all(sol.values[i] <= m.UPPER)]
+        assert (k in inside) if inside else k == -1
+        name, labels = next(iter(m.BRANCHES.items()))
+        for label in labels:
+            k = m.select(sol, lower=[-1e9] * 6, upper=[1e9] * 6, branch={name: label})
+            assert k == -1 or m.branch_of(sol.values[k])[name] == label
+    with pytest.raises(m.InvalidInput, match="unknown branch"):
+        m.select(sol, branch={"knee": "up"})
+    T = m.fk_matrix([0.3, -1.2, 1.1, 0.4, 0.9, -0.6])
+    rpy = (math.atan2(T[2, 1], T[2, 2]), math.asin(-T[2, 0]), math.atan2(T[1, 0], T[0, 0]))
+    w = math.sqrt(1.0 + np.trace(T[:3, :3])) / 2.0
+    quat = ((T[2, 1] - T[1, 2]) / (4 * w), (T[0, 2] - T[2, 0]) / (4 * w), (T[1, 0] - T[0, 1]) / (4 * w), w)
+    for pose in ((*T[:3, 3], *rpy), (*T[:3, 3], *quat)):
+        assert np.max(np.abs(m.pose_matrix(pose) - T)) <= 1e-14
+        a, b = m.ik(pose), m.ik(T)
+        assert a.count == b.count and np.max(np.abs(a.values[a.valid] - b.values[b.valid])) <= 1e-12
+    args = ["ik", "--pose", *map(str, (*T[:3, 3], *rpy)), "--json"]
+    runs = [subprocess.run([sys.executable, str(folder / "python" / f"{mod.NAME}.py"), *args], capture_output=True,
+                           text=True, timeout=120, check=True) for folder, mod in ((out, m), (tmp_path, interp))]
+    import json
+    got, want = (json.loads(r.stdout) for r in runs)
+    assert got["status"] == want["status"] == "ok" and got["columns"] == want["columns"]
+    assert sorted(map(str, (s["branches"] for s in got["solutions"]))) == \
+        sorted(map(str, (s["branches"] for s in want["solutions"])))
+    for s in got["solutions"]:  # each derived set among the interpreted ones (its branches, its values to 1e-9)
+        assert min(_gap(s["values"], t["values"]) for t in want["solutions"] if t["branches"] == s["branches"]) <= 1e-9
+    text = subprocess.run([sys.executable, str(out / "python" / f"{m.NAME}.py"), "fk", "--joints", "0", "10", "20",
+                           "30", "40", "50", "--deg"], capture_output=True, text=True, timeout=120, check=True).stdout
+    assert text.startswith("ok: 1 pose") and "rpy (deg" in text
+
+
 def _regular_elsewhere(m, rng, joint, margin=1e-3):
     """Random joints whose Jacobian, with `joint` at 1 rad, has sigma_min / sigma_max > margin: the arm regular but
     for the singularity the test then approaches (a second one nearby compounds the conditioning: with the UR's
@@ -242,7 +297,7 @@ int main(void) {
         int i;
         for (i = 0; i < 12; ++i) if (scanf("%lf", &pose[i]) != 1) return 0;
         wk_NAME_ik(pose, &d, &s);
-        printf("%d %d\n", s.count, s.status);
+        printf("%d %d %d\n", s.count, s.status, wk_NAME_select_ik(&s, NULL, NULL, NULL));
     }
 }
 """
@@ -250,7 +305,8 @@ int main(void) {
 
 def test_the_emitted_c_is_strict_c99_and_clean_under_the_sanitizers():
     """The derived irb120's C under -std=c99 -Wall -Wextra -Werror -pedantic, run under ASan/UBSan on random,
-    singular, unreachable and non-finite poses: the counts the Python module returns, nothing reported."""
+    singular, unreachable and non-finite poses: the counts the Python module returns and the set its select takes
+    (the description's limits by default), nothing reported."""
     m, _, out = derived("irb120")
     name = m.NAME
     src = out / "c" / "driver.c"
@@ -272,8 +328,10 @@ def test_the_emitted_c_is_strict_c99_and_clean_under_the_sanitizers():
     r = subprocess.run([str(exe)], input=text, capture_output=True, text=True, timeout=120)
     assert r.returncode == 0 and not r.stderr, r.stderr
     counts = [tuple(map(int, line.split())) for line in r.stdout.split("\n") if line]
-    for p, (count, _status) in zip(poses[:-1], counts[:-1], strict=True):
-        assert count == m.ik(np.vstack([p.reshape(3, 4), [0, 0, 0, 1]])).count
+    for p, (count, _status, chosen) in zip(poses[:-1], counts[:-1], strict=True):
+        sol = m.ik(np.vstack([p.reshape(3, 4), [0, 0, 0, 1]]))
+        assert count == sol.count
+        assert chosen == m.select(sol)  # NULL limits are the description's, as Python's LOWER / UPPER
     assert counts[-1][0] == 0
 
 

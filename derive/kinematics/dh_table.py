@@ -123,3 +123,21 @@ class RobotTable:
     ops: frozenset  # its op kinds
     reversed_: bool  # solved from the tool
     deviation: float  # the description's axes and points off the ideal ones the table is read from (metres, sines)
+    api: OwnRobotApi  # what the robot's module offers beyond the verbs, the same whichever way its IK runs
+
+
+@dataclass(frozen=True)
+class OwnRobotApi:
+    """A user robot's module beyond the verbs (runtime/python/own_api.py): the description's joint limits, the
+    named branches (labels, and the roles that read them on the ideal chain: its axes, points and home frame,
+    before the base) and the words for its decomposition and what it controls."""
+
+    lower: np.ndarray
+    upper: np.ndarray
+    branches: dict  # name -> (label of the first set, label of the other)
+    roles: tuple  # (name, kind, joint, reference data) per branch, on the ideal chain
+    ideal_axes: np.ndarray
+    ideal_points: np.ndarray
+    ideal_home: np.ndarray
+    strategy: str
+    controls: str

@@ -5,7 +5,14 @@ the result. The solvers themselves are runtime sources (runtime/python/serial_*.
 
 from __future__ import annotations
 
-PY_RUNTIME_FILES = tuple(f"python/serial_{part}.py" for part in ("input", "fk", "stages", "verify", "ik"))
+PY_RUNTIME_FILES = ("python/pose_forms.py",
+                    *(f"python/serial_{part}.py" for part in ("input", "fk", "stages", "verify", "ik")))
+# a user robot's module (derived stages): its branches, limits and command line, as the interpreted module's
+# (own_api.py, last: it ends with the command line's entry point), on the ideal chain's products (chain_rigid, _poe)
+PY_OWN_RUNTIME_FILES = ("python/chain_rigid.py", "python/chain_poe.py", "python/serial_own.py", "python/own_api.py")
+PY_SELECT_FILE = "python/serial_select.py"  # select without named branches (a user robot's: own_api.py's)
+# the constants a user robot's module adds (its limits, decomposition, branches and the ideal chain they are read on)
+OWN_PARTIALS = ("python/partials/own_constants.py.jinja", "python/partials/own_serial.py.jinja")
 # the C sources before the stage functions (which call sr_stages.c) and the one after them (which runs them)
 C_RUNTIME_FILES = tuple(f"c/serial/sr_{part}.c" for part in ("input", "fk", "stages", "verify"))
 C_RUNTIME_AFTER_STAGES = ("c/serial/sr_ik.c",)
@@ -125,6 +132,14 @@ def serial_views(ctx: dict) -> dict:
                      f"static const int sr_check_zero[SR_N_DESIGN_CHECKS] = {{ {zero} }};",
                      f"static const double sr_check_tol[SR_N_DESIGN_CHECKS] = "
                      f"{{ {', '.join(c['tol'] for c in design_checks)} }};"]
+    own = ctx.get("own_api")
+    if own:
+        # a user robot's limits as select_ik's defaults (NULL limits: the description's), as the interpreted C's
+        c_flags["SR_HAS_LIMITS"] = 1
+        c_tables += [f"static const double sr_lower[SR_N] = {{ {', '.join(own['c_lower'])} }};",
+                     f"static const double sr_upper[SR_N] = {{ {', '.join(own['c_upper'])} }};"]
+    else:
+        c_flags["SR_HAS_LIMITS"] = 0
     names = [f'"{n}"' for n in ctx["design_names"]]
     return {**ctx, "design_names_literal": _py_tuple(names), "design_default_literal": _py_tuple(ctx["design_values"]),
             "design_checks": design_checks, "image_checks": image_checks,
@@ -136,5 +151,10 @@ def serial_views(ctx: dict) -> dict:
             "wrist_stage": c_flags["SR_WRIST_STAGE"],
             "wrist_joints": [wrist[0]["joints"][0], wrist[0]["joints"][2]] if wrist else [],
             "revolute": [1 if k == "R" else 0 for k in ctx["joint_kinds"]], "c_flags": c_flags, "c_tables": c_tables,
-            "py_runtime_files": PY_RUNTIME_FILES,
+            "own_api": own or None, "own_partials": OWN_PARTIALS if own else (),
+            "py_runtime_files": PY_RUNTIME_FILES + (PY_OWN_RUNTIME_FILES if own else (PY_SELECT_FILE,)),
+            "select_doc": ("Joint limits (NULL = the description's limits, as the Python select); nearest valid set "
+                           "to previous, or the\n * first regular one (NULL): index or -1." if own else
+                           "Joint limits (NULL = none); nearest valid set to previous, or the first regular one "
+                           "(NULL): index or -1."),
             "c_runtime_files": C_RUNTIME_FILES, "c_runtime_after_stages": C_RUNTIME_AFTER_STAGES}

@@ -1,4 +1,4 @@
-"""A serial arm's inputs: the pose matrix, the joints and the design, validated (the typed errors of
+"""A serial arm's inputs: the pose (pose_forms.py's forms), the joints and the design, validated (the typed errors of
 docs/API.md).
 
 A wristkin runtime source: every serial arm's generated module (the catalogue's DH chains, the finite-screw chains'
@@ -9,6 +9,7 @@ the PUMA-560), so that it is linted and tested as it is (tests/test_serial_runti
 from __future__ import annotations
 
 import numpy as np
+from pose_forms import pose_matrix
 from serial_stand_in import (
     _DESIGN_CHECK,
     DESIGN_CHECKS,
@@ -25,7 +26,6 @@ from serial_stand_in import (
     Design,
     InvalidDesign,
     InvalidInput,
-    _array,
     _as_rotation,
     _c_design,
     _design_values,
@@ -37,16 +37,10 @@ from serial_stand_in import (
 # wristkin: inlined from here
 # ---------------------------------------------------------------------------- input handling
 def _pose(pose):
-    """A 4x4 / 3x4 matrix or 12 / 16 numbers (row-major) -> (the 12 entries of [R | p], rotation deviation); the
-    rotation is projected onto SO(3) when it deviates by at most ROTATION_PROJECT_TOL."""
-    a = _array(pose, "pose")
-    if a.size in (12, 16) and a.ndim == 1:
-        a = a.reshape(-1, 4)
-    if a.shape not in ((3, 4), (4, 4)):
-        raise InvalidInput(f"pose: expected a 4x4 or 3x4 matrix, got shape {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise InvalidInput("pose: values must be finite")
-    if a.shape == (4, 4) and not np.max(np.abs(a[3] - (0.0, 0.0, 0.0, 1.0))) <= ROTATION_TOL:
+    """A pose in any of pose_matrix's forms -> (the 12 entries of [R | p], rotation deviation); the rotation is
+    projected onto SO(3) when it deviates by at most ROTATION_PROJECT_TOL."""
+    a = pose_matrix(pose)
+    if not np.max(np.abs(a[3] - (0.0, 0.0, 0.0, 1.0))) <= ROTATION_TOL:
         raise InvalidInput(f"pose: last row must be (0, 0, 0, 1) (within {ROTATION_TOL:g}), got {a[3].tolist()}")
     if not np.max(np.abs(a[:3, 3])) <= LENGTH_MAX:
         raise InvalidInput(f"pose: translation must be within {LENGTH_MAX:g} m, got {a[:3, 3].tolist()}")

@@ -11,11 +11,12 @@ import numpy as np
 
 from ...checks import numeric_predicate
 from ...kinematics import general6r
-from ...kinematics.dh_table import NoDHTable, RobotTable, standard_dh
+from ...kinematics.dh_table import NoDHTable, OwnRobotApi, RobotTable, standard_dh
 from ...kinematics.geometry import common_point
 from ...kinematics.planner import Geometry, NoClosedForm, Plan, arm_angle_plan, find_plan, op_branches, replay
 from ...kinematics.poe import Chain, normalised, reduce_free, reverse
 from ...kinematics.subproblems import subproblem_checks
+from ...literals import c_num, floats, py_num, text_literal, vectors
 from ...mechanism import CApi, MechanismDefaults
 from ...model import Check, Derivation, Finding, NoDecomposition, NotDerivable, Step
 from ...tolerances import TOLERANCES
@@ -277,9 +278,13 @@ class ChainMechanism(MechanismDefaults):
             table = standard_dh(ideal)
         except NoDHTable as exc:
             raise NotDerivable.because(self.NAME, str(exc)) from None
-        return RobotTable(self.NAME, self.title, desc.source, desc.rule, self.chain.joint_names, table,
-                          self.chain.base @ table.frame0, desc.fk, self.scale(), plan.strategy,
-                          frozenset(o["op"] for o in plan.ops), plan.reversed, self.deviation())
+        c = self.chain
+        roles, labels = _roles(plan, self.solver_chain(c, 0.0, plan.reversed))
+        api = OwnRobotApi(c.lower, c.upper, labels, tuple(roles), ideal.axes, ideal.points, ideal.home, plan.strategy,
+                          self.controls())
+        return RobotTable(self.NAME, self.title, desc.source, desc.rule, c.joint_names, table, c.base @ table.frame0,
+                          desc.fk, self.scale(), plan.strategy, frozenset(o["op"] for o in plan.ops), plan.reversed,
+                          self.deviation(), api)
 
     def scale(self) -> float:
         c = self.chain
@@ -410,7 +415,7 @@ class ChainMechanism(MechanismDefaults):
                 "design_names": [c.joint_names[free]] if free >= 0 else (["arm_angle"] if self.arm_angle else []),
                 "design_values": ["0.0"] if free >= 0 or self.arm_angle else [],
                 "arm_angle": self.arm_angle,
-                "lower": [_num(v) for v in c.lower], "upper": [_num(v) for v in c.upper],
+                "limits_lower": [py_num(v) for v in c.lower], "limits_upper": [py_num(v) for v in c.upper],
                 "strategy": plan.strategy, "controls": self.controls(), "branch_names": branch_names,
                 "scale": repr(self.scale()), "geometry_tol": repr(self.desc.geometry_tol),
                 "geometry_deviation": repr(deviation),
@@ -418,12 +423,12 @@ class ChainMechanism(MechanismDefaults):
                 "degenerate_held": repr(self.degenerate_held_reasons()),
                 "tangent_tol": repr(max(float(TOLERANCES["stage_tangent"]),
                                         8.0 * deviation / min(1.0, self.scale()))),
-                "axes": _vectors(c.axes), "points": _vectors(c.points), "home": _matrix(c.home),
-                "ideal_axes": _vectors(ideal.axes), "ideal_points": _vectors(ideal.points),
-                "ideal_home": _matrix(ideal.home), "base": _matrix(c.base), "tool_frame": _matrix(c.tool),
+                "axes": vectors(c.axes), "points": vectors(c.points), "home": vectors(c.home),
+                "ideal_axes": vectors(ideal.axes), "ideal_points": vectors(ideal.points),
+                "ideal_home": vectors(ideal.home), "base": vectors(c.base), "tool_frame": vectors(c.tool),
                 "free": free, "reversed": plan.reversed, "plan": _plan_literal(plan),
                 "roles": pprint.pformat(tuple(roles), width=110),
-                "strategy_literal": _text_literal(plan.strategy), "controls_literal": _text_literal(self.controls()),
+                "strategy_literal": text_literal(plan.strategy), "controls_literal": text_literal(self.controls()),
                 "plan_ops": plan.ops, "roles_list": roles,
                 "has_spatial3": any(op["op"] == "spatial3" for op in plan.ops),
                 "has_sp6": any(op["op"] == "sp6" for op in plan.ops),
@@ -436,10 +441,10 @@ class ChainMechanism(MechanismDefaults):
                 "py_runtime_files": views.py_runtime_files(plan.ops),
                 "c_includes": views.c_includes(plan.ops),
                 # the same data as plain numbers, for the C template
-                "c_data": {"axes": _floats(c.axes), "points": _floats(c.points), "home": _floats(c.home),
-                           "ideal_axes": _floats(ideal.axes), "ideal_points": _floats(ideal.points),
-                           "ideal_home": _floats(ideal.home), "base": _floats(c.base), "tool": _floats(c.tool),
-                           "lower": [_c_num(v) for v in c.lower], "upper": [_c_num(v) for v in c.upper]}}
+                "c_data": {"axes": floats(c.axes), "points": floats(c.points), "home": floats(c.home),
+                           "ideal_axes": floats(ideal.axes), "ideal_points": floats(ideal.points),
+                           "ideal_home": floats(ideal.home), "base": floats(c.base), "tool": floats(c.tool),
+                           "lower": [c_num(v) for v in c.lower], "upper": [c_num(v) for v in c.upper]}}
 
     def c_shared_files(self) -> list[str]:
         """Runtime sources (runtime/c/...) written beside the robot's C: the general 6R's, when it is one."""
@@ -511,32 +516,6 @@ def _joint_gap(a, b, kinds) -> float:
                for x, y, k in zip(a, b, kinds, strict=True))
 
 
-def _num(v: float) -> str:
-    return repr(float(v)) if math.isfinite(v) else ("math.inf" if v > 0 else "-math.inf")
-
-
-def _floats(a) -> list:
-    return [[repr(float(x)) for x in row] for row in np.asarray(a)]
-
-
-def _c_num(v: float) -> str:
-    return repr(float(v)) if math.isfinite(v) else ("INFINITY" if v > 0 else "-INFINITY")
-
-
-def _vectors(a) -> str:
-    """Rows of numbers as a tuple literal, one row per line."""
-    return "(\n" + "".join("    (" + ", ".join(repr(float(x)) for x in row) + "),\n" for row in a) + ")"
-
-
-def _text_literal(text: str) -> str:
-    """A long string as implicitly joined lines of at most ~100 characters."""
-    import textwrap
-
-    lines = textwrap.wrap(text, 100, break_on_hyphens=False)
-    return "(\n" + "".join(f"    {(ln + (' ' if i < len(lines) - 1 else ''))!r}\n" for i, ln in enumerate(lines)) + ")"
-
-
-_matrix = _vectors
 
 
 def _spec_literal(s) -> str:

@@ -40,7 +40,8 @@ def py_runtime_files(ops) -> list[str]:
             *(["python/chain_sp6.py"] if "sp6" in kinds else []),
             *(["python/chain_arm_angle.py"] if "arm_angle" in kinds else []),
             *(["python/general6r.py", "python/chain_general6r.py"] if "general6r" in kinds else []),
-            *(f"python/chain_{n}.py" for n in ("solve", "verify", "api"))]
+            *(f"python/chain_{n}.py" for n in ("solve", "verify")), "python/pose_forms.py", "python/chain_api.py",
+            "python/own_api.py"]
 
 
 def c_flags(ops, free: int, reversed_: bool, calibrated: bool = False, degenerate_held=(),

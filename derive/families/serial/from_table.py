@@ -10,6 +10,7 @@ dh_serial emits (a spherical wrist at the end), else the robot is refused with t
 from __future__ import annotations
 
 import math
+import pprint
 from dataclasses import replace
 
 import numpy as np
@@ -17,7 +18,8 @@ import sympy as sp
 
 from ...checks import numeric_predicate, sampler
 from ...identities.dh import DHRow
-from ...kinematics.dh_table import RobotTable
+from ...kinematics.dh_table import OwnRobotApi, RobotTable
+from ...literals import c_num, py_num, text_literal, vectors
 from ...model import NotDerivable, Step
 from .dh_serial import SerialSpec
 from .mechanism import SerialMechanism
@@ -122,7 +124,7 @@ def from_table(robot: RobotTable) -> SerialMechanism:
     # much), and each axis's deviation (direction and point) moves the end frame by at most twice its size: the end
     # frame moves by at most their sum times the size, on top of the products' rounding
     tol = 1e-12 + (snapped + 2 * n * robot.deviation) * max(robot.size, 1.0)
-    mech = _DerivedRobot(name, lambda: replace(spec, stages=stage_list), robot.description_fk, tol)
+    mech = _DerivedRobot(name, lambda: replace(spec, stages=stage_list), robot.description_fk, tol, robot.api)
     mech.DERIVE_SECONDS = 0.2 * 2 ** n
     return mech
 
@@ -131,9 +133,20 @@ class _DerivedRobot(SerialMechanism):
     """The serial family's derivation plus the step that proves the DH table is the user's robot (its description's
     own FK, to `description_tol`)."""
 
-    def __init__(self, name: str, build, description_fk, description_tol: float):
+    def __init__(self, name: str, build, description_fk, description_tol: float, api: OwnRobotApi):
         super().__init__(name, build)
-        self.description_fk, self.description_tol = description_fk, description_tol
+        self.description_fk, self.description_tol, self.api = description_fk, description_tol, api
+
+    def own_context(self) -> dict:
+        """The interpreted module's limits, named branches and command line (runtime/python/own_api.py): the same
+        constants, read on the same ideal chain."""
+        api = self.api
+        return {"limits_lower": [py_num(v) for v in api.lower], "limits_upper": [py_num(v) for v in api.upper],
+                "strategy_literal": text_literal(api.strategy), "controls_literal": text_literal(api.controls),
+                "branch_names": api.branches,
+                "own_api": {"ideal_axes": vectors(api.ideal_axes), "ideal_points": vectors(api.ideal_points),
+                            "ideal_home": vectors(api.ideal_home), "roles": pprint.pformat(api.roles, width=110),
+                            "c_lower": [c_num(v) for v in api.lower], "c_upper": [c_num(v) for v in api.upper]}}
 
     def derive(self):
         dv = super().derive()

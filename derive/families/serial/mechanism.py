@@ -31,7 +31,11 @@ class SerialMechanism(SerialArm):
                 "mirror_keeps_fk": stages.mirror_keeps_fk(sp_, next(k for k in ks if k.name == "fk_cs")),
                 "design_default": [repr(float(v)) for v in sp_.design_default],
                 # DH design values are link lengths and offsets: each is 0 or at least DESIGN_SCALE_MIN
-                "lengths_floor": True})
+                "lengths_floor": True, **self.own_context()})
+
+    def own_context(self) -> dict:
+        """A user robot's limits, named branches and command line (from_table's robots): none in the catalogue."""
+        return {}
 
     def audit_numbers(self, dv, solver, audit_dir) -> dict:
         """Seeded round trips through the generated solver (counts only: byte-stable across machines)."""

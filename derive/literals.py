@@ -1,0 +1,34 @@
+"""Numbers and texts as the generated files print them (Python and C literals): one spelling for every family."""
+
+from __future__ import annotations
+
+import math
+import textwrap
+
+import numpy as np
+
+
+def py_num(v: float) -> str:
+    """A float as Python source, infinities as math.inf."""
+    return repr(float(v)) if math.isfinite(v) else ("math.inf" if v > 0 else "-math.inf")
+
+
+def c_num(v: float) -> str:
+    """A float as C source, infinities as INFINITY (math.h)."""
+    return repr(float(v)) if math.isfinite(v) else ("INFINITY" if v > 0 else "-INFINITY")
+
+
+def floats(a) -> list:
+    """Rows of numbers, each as its repr."""
+    return [[repr(float(x)) for x in row] for row in np.asarray(a)]
+
+
+def vectors(a) -> str:
+    """Rows of numbers as a tuple literal, one row per line."""
+    return "(\n" + "".join("    (" + ", ".join(repr(float(x)) for x in row) + "),\n" for row in a) + ")"
+
+
+def text_literal(text: str) -> str:
+    """A long string as implicitly joined lines of at most ~100 characters."""
+    lines = textwrap.wrap(text, 100, break_on_hyphens=False)
+    return "(\n" + "".join(f"    {(ln + (' ' if i < len(lines) - 1 else ''))!r}\n" for i, ln in enumerate(lines)) + ")"
