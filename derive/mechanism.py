@@ -39,7 +39,7 @@ class CApi:
         return ["design", "ik", "fk", "ik_batch", "fk_batch"] + [f for on, fs in optional if on for f in fs]
 
 
-SERIAL_C_API = CApi(pose12=True, ik_near=True, jacobian=True, fk_matrix=True, atlas_conditioning=True)
+SERIAL_C_API = CApi(pose12=True, ik_near=True, jacobian=True, fk_matrix=True, atlas_conditioning=True, frames=True)
 
 
 @runtime_checkable

@@ -183,6 +183,37 @@ def test_the_derived_module_offers_what_the_interpreted_one_does(robot, tmp_path
     assert text.startswith("ok: 1 pose") and "rpy (deg" in text
 
 
+def test_base_and_tool_frames_replace_the_description_s_as_in_the_interpreted_module(tmp_path):
+    """make_design(base=B, tool=T) on the derived KR 6 of its DH file (whose own tool frame, a flange turned by pi,
+    is folded into the derived kernels): the pose is B base0^-1 T_desc(q) tool0^-1 T on the independent reference,
+    as the interpreted module's with the same frames (1e-12); IK of such a pose returns the generating joints, in C
+    and on numpy."""
+    path = _file("kr6", "dh")
+    own_robot.derive(path, tmp_path / "d", name="kr6_framed", stages="derived", progress=lambda _: None)
+    m = own_robot.import_solver(tmp_path / "d", "kr6_framed")
+    py = own_robot.import_solver(tmp_path / "d", "kr6_framed", backend="numpy")
+    reference = ref.load(path)
+    own_robot.derive(path, tmp_path / "i", name="kr6_interp", native=False, progress=lambda _: None)
+    interp = own_robot.import_solver(tmp_path / "i", "kr6_interp")
+    assert m._TOOL != m._BASE and np.array_equal(m._TOOL, interp.make_design().tool)
+    assert np.array_equal(m._BASE, interp.make_design().base)
+    rng = case_rng(2313)
+    base0_inv, tool0_inv = np.linalg.inv(np.array(m._BASE)), np.linalg.inv(np.array(m._TOOL))
+    for _ in range(4):
+        base = ref.xyz_rpy(rng.uniform(-0.5, 0.5, 3), rng.uniform(-math.pi, math.pi, 3))
+        tool = ref.xyz_rpy(rng.uniform(-0.2, 0.2, 3), rng.uniform(-math.pi, math.pi, 3))
+        designs = [mod.make_design(base=base, tool=tool) for mod in (m, py, interp)]
+        for _ in range(5):
+            q = rng.uniform(-math.pi, math.pi, 6)
+            want = base @ base0_inv @ reference(q) @ tool0_inv @ tool
+            for mod, d in zip((m, py, interp), designs, strict=True):
+                assert np.max(np.abs(mod.fk_matrix(q, d) - want)) <= 1e-12, mod.NAME
+            for mod, d in ((m, designs[0]), (py, designs[1])):
+                sol = mod.ik(want, d)
+                assert min(_gap(v, q) for v in sol) <= 1e-9
+                assert all(np.max(np.abs(mod.fk_matrix(v, d) - want)) <= 1e-9 for v in sol)
+
+
 def _regular_elsewhere(m, rng, joint, margin=1e-3):
     """Random joints whose Jacobian, with `joint` at 1 rad, has sigma_min / sigma_max > margin: the arm regular but
     for the singularity the test then approaches (a second one nearby compounds the conditioning: with the UR's

@@ -343,3 +343,64 @@ def test_joints_with_no_assembly_come_back_from_c_as_numpy_words_them():
         assert (c.status, c.reason, c.count) == (n.status, n.reason, 0)
         assert np.array_equal(c.valid, n.valid) and np.array_equal(c.flags, n.flags)
         assert np.all(np.isnan(c.values)) and np.all(np.isnan(c.aux))
+
+
+def _rigid(rng, reach=0.5):
+    """A random rigid 4x4 (a rotation from a random unit quaternion, a translation within reach)."""
+    x, y, z, w = rng.normal(size=4) / 1.0
+    n = math.sqrt(x * x + y * y + z * z + w * w)
+    x, y, z, w = x / n, y / n, z / n, w / n
+    out = np.eye(4)
+    out[:3, :3] = [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                   [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                   [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
+    out[:3, 3] = rng.uniform(-reach, reach, 3)
+    return out
+
+
+@pytest.mark.parametrize("name", SERIAL)
+def test_a_serial_arm_takes_base_and_tool_frames_on_both_paths(name):
+    """make_design(base=B, tool=T): the pose is the tool's in the base's frame, B T0(q) T (the catalogue's own
+    frames are the identity), on C and numpy alike (1e-12); IK returns the generating joints of such a pose; the
+    Jacobian is the framed pose's derivative (central differences, h = 1e-6: error O(h^2) ~ 1e-12 plus rounding
+    eps / h ~ 2e-10); a design keeps its frames when its parameters change; a frame that is no rigid transform
+    is refused on both paths."""
+    mod = module(name)
+    rng = case_rng(73)
+    rev = np.array(mod.JOINT_KINDS) == "R"
+    for _ in range(5):
+        base, tool = _rigid(rng), _rigid(rng, 0.2)
+        c_design = mod.make_design(base=base, tool=tool)
+        py_design = mod.Design(c_design.params, None, c_design.base, c_design.tool, c_design.frames)
+        assert FORCED_NUMPY or c_design.native is not None
+        for _ in range(6):
+            q = _joints(mod, rng, False)
+            want = base @ mod.fk_matrix(q) @ tool
+            for d in (c_design, py_design):
+                np.testing.assert_allclose(mod.fk_matrix(q, d), want, atol=1e-12, rtol=0)
+                np.testing.assert_allclose(mod.fk(q, d).values[0], want[:3].ravel(), atol=1e-12, rtol=0)
+            np.testing.assert_allclose(mod.fk_batch(np.array([q, q]), c_design).values[:, 0],
+                                       np.array([want[:3].ravel()] * 2), atol=1e-12, rtol=0)
+            a, b = mod.ik(want, c_design), mod.ik(want, py_design)
+            _same(a, b, REGULAR_TOL * 10, f"{name} framed ik", rev)
+            assert min(float(np.max(np.abs(_diff(v, q, rev)))) for v in a.values[a.valid]) <= 1e-9
+            jac = mod.jacobian(q, c_design)
+            np.testing.assert_allclose(jac, mod.jacobian(q, py_design), atol=1e-12, rtol=0)
+            h = 1e-6
+            for j in range(mod.N_JOINTS):
+                dq = np.zeros(mod.N_JOINTS)
+                dq[j] = h
+                tp, tm = mod.fk_matrix(q + dq, py_design), mod.fk_matrix(q - dq, py_design)
+                lin = (tp[:3, 3] - tm[:3, 3]) / (2 * h)
+                skew = (tp[:3, :3] - tm[:3, :3]) / (2 * h) @ want[:3, :3].T
+                ang = np.array([skew[2, 1], skew[0, 2], skew[1, 0]])
+                np.testing.assert_allclose(jac[:, j], np.concatenate([lin, ang]), atol=1e-8, rtol=0)
+    moved = mod.make_design(c_design, base=np.eye(4))
+    assert moved.tool == c_design.tool and moved.base == tuple(map(tuple, np.eye(4)))
+    assert mod.make_design(moved) is moved
+    bad = np.eye(4)
+    bad[0, 0] = 1.5
+    with pytest.raises(mod.WristkinError):
+        mod.make_design(base=bad)
+    with pytest.raises(mod.WristkinError):
+        mod.make_design(tool=np.full((4, 4), np.nan))

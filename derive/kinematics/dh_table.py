@@ -141,3 +141,5 @@ class OwnRobotApi:
     ideal_home: np.ndarray
     strategy: str
     controls: str
+    base: np.ndarray  # 4x4: the description's base and tool frames (make_design(base=, tool=) replaces them)
+    tool: np.ndarray

@@ -5,7 +5,7 @@ the result. The solvers themselves are runtime sources (runtime/python/serial_*.
 
 from __future__ import annotations
 
-PY_RUNTIME_FILES = ("python/pose_forms.py",
+PY_RUNTIME_FILES = ("python/pose_forms.py", "python/serial_frames.py",
                     *(f"python/serial_{part}.py" for part in ("input", "fk", "stages", "verify", "ik")))
 # a user robot's module (derived stages): its branches, limits and command line, as the interpreted module's
 # (own_api.py, last: it ends with the command line's entry point), on the ideal chain's products (chain_rigid, _poe)
@@ -14,8 +14,23 @@ PY_SELECT_FILE = "python/serial_select.py"  # select without named branches (a u
 # the constants a user robot's module adds (its limits, decomposition, branches and the ideal chain they are read on)
 OWN_PARTIALS = ("python/partials/own_constants.py.jinja", "python/partials/own_serial.py.jinja")
 # the C sources before the stage functions (which call sr_stages.c) and the one after them (which runs them)
-C_RUNTIME_FILES = tuple(f"c/serial/sr_{part}.c" for part in ("input", "fk", "stages", "verify"))
+C_RUNTIME_FILES = tuple(f"c/serial/sr_{part}.c" for part in ("frames", "input", "fk", "stages", "verify"))
 C_RUNTIME_AFTER_STAGES = ("c/serial/sr_ik.c",)
+
+
+IDENTITY_3X4 = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0)
+
+
+# a serial arm's Design beyond (params, native): its base and tool frames (serial_frames.py)
+DESIGN_FIELDS = ("base: tuple = _BASE  # 4x4 rows: the base frame (the chain's own unless make_design(base=))",
+                 "tool: tuple = _TOOL  # 4x4 rows: the tool frame",
+                 "frames: tuple | None = field(default=None, compare=False, repr=False)  # (left, right, inverses)")
+
+
+def _frame_literal(top12) -> str:
+    """A frame's 12 entries (top 3x4, row-major, as reprs) as a 4x4 tuple literal."""
+    rows = [top12[4 * i:4 * i + 4] for i in range(3)] + [["0.0", "0.0", "0.0", "1.0"]]
+    return "(" + ", ".join("(" + ", ".join(r) + ")" for r in rows) + ")"
 
 
 def _tuple(xs) -> str:
@@ -133,6 +148,11 @@ def serial_views(ctx: dict) -> dict:
                      f"static const double sr_check_tol[SR_N_DESIGN_CHECKS] = "
                      f"{{ {', '.join(c['tol'] for c in design_checks)} }};"]
     own = ctx.get("own_api")
+    # the chain's own base and tool frames (the catalogue's identity, a user robot's description's), which its
+    # kernels fold in: design_set_frames replaces them (sr_frames.c, serial_frames.py)
+    base0, tool0 = (own["base0"], own["tool0"]) if own else ([repr(float(v)) for v in IDENTITY_3X4],) * 2
+    c_tables += [f"static const double sr_base0[12] = {{ {', '.join(base0)} }};",
+                 f"static const double sr_tool0[12] = {{ {', '.join(tool0)} }};"]
     if own:
         # a user robot's limits as select_ik's defaults (NULL limits: the description's), as the interpreted C's
         c_flags["SR_HAS_LIMITS"] = 1
@@ -151,7 +171,8 @@ def serial_views(ctx: dict) -> dict:
             "wrist_stage": c_flags["SR_WRIST_STAGE"],
             "wrist_joints": [wrist[0]["joints"][0], wrist[0]["joints"][2]] if wrist else [],
             "revolute": [1 if k == "R" else 0 for k in ctx["joint_kinds"]], "c_flags": c_flags, "c_tables": c_tables,
-            "own_api": own or None, "own_partials": OWN_PARTIALS if own else (),
+            "own_api": own or None, "own_partials": OWN_PARTIALS if own else (), "base0": base0, "tool0": tool0,
+            "py_base0": _frame_literal(base0), "py_tool0": _frame_literal(tool0), "design_fields": DESIGN_FIELDS,
             "py_runtime_files": PY_RUNTIME_FILES + (PY_OWN_RUNTIME_FILES if own else (PY_SELECT_FILE,)),
             "select_doc": ("Joint limits (NULL = the description's limits, as the Python select); nearest valid set "
                            "to previous, or the\n * first regular one (NULL): index or -1." if own else

@@ -11,6 +11,7 @@ import math
 
 import _runtime
 import numpy as np
+from serial_frames import _reframe, _reframe_jacobian
 from serial_input import _JOINT_SHAPE, _design, _joints
 from serial_stand_in import (
     _C_FK,
@@ -35,9 +36,15 @@ from serial_stand_in import (
 
 # wristkin: inlined from here
 # ---------------------------------------------------------------------------- forward kinematics
-def _conditioning(q, dp):
+def _jacobian_in_frames(q, d):
+    """The geometric Jacobian (6 x n) in the design's base and tool frames."""
+    j = np.array(_k_jacobian(q, d.params), dtype=float).reshape(6, N_JOINTS)
+    return j if d.frames is None else _reframe_jacobian(j, _k_fk(q, d.params), d.frames)
+
+
+def _conditioning(q, d):
     """(manipulability sqrt(det J^T J), sigma_min / sigma_max of J), both from the eigenvalues of J^T J."""
-    j = np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)
+    j = _jacobian_in_frames(q, d)
     lam = np.maximum(np.linalg.eigvalsh(j.T @ j), 0.0)
     return math.sqrt(float(np.prod(lam))), (math.sqrt(lam[0] / lam[-1]) if lam[-1] > 0.0 else 0.0)
 
@@ -63,8 +70,9 @@ def fk(joints, design=None) -> Solutions:
 def _fk_numpy(joints, d):
     """fk on the numpy path (also what words the reason of an answer from C that needs one)."""
     q = _joints(joints)
-    values = np.array([_k_fk(q, d.params)], dtype=float)
-    man, ratio = _conditioning(q, d.params)
+    v = _k_fk(q, d.params)
+    values = np.array([v if d.frames is None else _reframe(v, d.frames)], dtype=float)
+    man, ratio = _conditioning(q, d)
     flags = np.array([_fk_flag(ratio)], dtype=np.int64)
     return Solutions(values, np.array([True]), flags, np.array([[man]]), STATUS_OK, "1 pose")
 
@@ -101,7 +109,9 @@ def fk_batch(joints, design=None) -> BatchSolutions:
         return _stack([], 1, 12, 1)
     q = np.array([_joints(row) for row in q])
     vals = np.stack(np.broadcast_arrays(*_kv_fk(tuple(q.T), d.params)), axis=1)[:, None, :]
-    cond = [_conditioning(tuple(row), d.params) for row in q]
+    if d.frames is not None:
+        vals = np.array([[_reframe(v[0], d.frames)] for v in vals])
+    cond = [_conditioning(tuple(row), d) for row in q]
     man = np.array([[c[0]] for c in cond])
     n = q.shape[0]
     return BatchSolutions(vals, np.ones((n, 1), dtype=bool), np.array([[_fk_flag(c[1])] for c in cond], np.int64),
@@ -117,4 +127,4 @@ def jacobian(joints, design=None) -> np.ndarray:
             jac = _runtime.c_retry(jac, _C_JACOBIAN, joints, _JOINT_SHAPE, d.native)
         if jac.__class__ is np.ndarray:  # else an error: the numpy path explains
             return jac
-    return np.array(_k_jacobian(_joints(joints), d.params), dtype=float).reshape(6, N_JOINTS)
+    return _jacobian_in_frames(_joints(joints), d)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import _runtime
 import numpy as np
+from serial_frames import _unframe
 from serial_input import _HAS_PRISMATIC, _JOINT_SHAPE, _POSE_SHAPES, _REVOLUTE, _design, _joints, _pose
 from serial_stand_in import (
     _C_IK,
@@ -65,6 +66,8 @@ def ik(pose, design=None, previous=None) -> Solutions:
 def _ik_numpy(pose, d, previous):
     """ik on the numpy path (also what words the reason of an answer from C that needs one)."""
     p, dev = _pose(pose)
+    if d.frames is not None:  # the design's base and tool frames: the pose the kernels answer
+        p = _unframe(p, d.frames)
     prev = None if previous is None else _joints(previous, "previous")  # places a family's representative
     values = np.full((MAX_IK, N_JOINTS), np.nan)
     aux = np.full((MAX_IK, 1), np.nan)

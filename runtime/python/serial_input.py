@@ -10,8 +10,11 @@ from __future__ import annotations
 
 import numpy as np
 from pose_forms import pose_matrix
+from serial_frames import _frame, _frames_of
 from serial_stand_in import (
+    _BASE,
     _DESIGN_CHECK,
+    _TOOL,
     DESIGN_CHECKS,
     DESIGN_NAMES,
     DESIGN_SCALE_MIN,
@@ -58,10 +61,14 @@ def _joints(joints, what="joints"):
     return tuple(_wrap(v) if kind == "R" else v for v, kind in zip(q, JOINT_KINDS, strict=True))
 
 
-def make_design(params=None) -> Design:
-    """Validate design parameters (sequence in DESIGN_NAMES order or dict; lengths in metres)."""
+def make_design(params=None, base=None, tool=None) -> Design:
+    """Validate design parameters (sequence in DESIGN_NAMES order or dict; lengths in metres), and optionally the
+    base and tool frames (4x4) replacing the chain's own (_BASE, _TOOL): poses are then the tool's in the base's
+    frame, T = base base0^-1 T0(q) tool0^-1 tool."""
     if isinstance(params, Design):
-        return params
+        if base is None and tool is None:
+            return params
+        params, base, tool = params.params, params.base if base is None else base, params.tool if tool is None else tool
     vals = _design_values(params)
     scale = max(abs(v) for v in vals)
     if scale > LENGTH_MAX:
@@ -82,7 +89,10 @@ def make_design(params=None) -> Design:
         for v, (kind, tol, what) in zip(_DESIGN_CHECK(vals), DESIGN_CHECKS, strict=True):
             if (abs(v) > tol) if kind == "zero" else (abs(v) <= tol):
                 raise InvalidDesign(f"design violates: {what} (value {v:.3g}, tolerance {tol:g})")
-    return Design(vals, _c_design(vals))
+    b = _BASE if base is None else _frame(base, "base")
+    t = _TOOL if tool is None else _frame(tool, "tool")
+    return Design(vals, _c_design(vals + tuple(v for m in (b, t) for row in m[:3] for v in row)), b, t,
+                  _frames_of(b, t))
 
 
 _DEFAULT_DESIGN = make_design()

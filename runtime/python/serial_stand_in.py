@@ -27,7 +27,9 @@ from _runtime import (  # noqa: F401  (re-exported: the runtime's names a genera
     _wrap,
 )
 from wristkin.puma560 import (  # noqa: F401  (derived or printed per robot)
+    _BASE,
     _STAGES,
+    _TOOL,
     Design,
     _design_values,
     _k_fk,

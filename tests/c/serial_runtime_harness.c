@@ -5,6 +5,7 @@
  * library with runtime/c/wristkin_runtime.c; exports wkt_sr_* wrappers for ctypes (every sr_api_* is called, so
  * the strict flags see no unused function). */
 #include "serial_prelude.h"
+#include "../../runtime/c/serial/sr_frames.c"
 #include "../../runtime/c/serial/sr_input.c"
 #include "../../runtime/c/serial/sr_fk.c"
 #include "../../runtime/c/serial/sr_stages.c"
@@ -14,6 +15,7 @@
 
 int wkt_sr_sizes(int *n, int *max_ik);
 int wkt_sr_design_init(const double *params, sr_design *design);
+int wkt_sr_design_set_frames(sr_design *design, const double *base, const double *tool);
 int wkt_sr_ik(const double *pose, const double *previous, double *values, int *valid, unsigned *flags, double *aux);
 int wkt_sr_ik_batch(size_t n, const double *poses, sr_ik_solutions *out);
 int wkt_sr_fk(const double *joints, double *pose, double *jac, double *man, unsigned *flags);
@@ -31,6 +33,11 @@ int wkt_sr_sizes(int *n, int *max_ik)
 int wkt_sr_design_init(const double *params, sr_design *design)
 {
     return sr_api_design_init(params, design);
+}
+
+int wkt_sr_design_set_frames(sr_design *design, const double *base, const double *tool)
+{
+    return sr_api_design_set_frames(design, base, tool);
 }
 
 /* IK near `previous` (NULL: none) with the default design, the sets copied out flat */

@@ -45,6 +45,24 @@ int main(void)
         if (FN(MECH, _atlas_conditioning)(1, rows, NULL, 0.5, 0.1, sums, &li_min) != WK_ERR_NONFINITE) return 1;
         checksum += (long)sums[1];
     }
+    { /* base and tool frames: a framed design's FK -> IK round trip, and hostile frames refused */
+        TYPE(MECH, _design) d;
+        const double c = cos(0.7), s = sin(0.7);
+        const double base[12] = {c, -s, 0.0, 0.1, s, c, 0.0, -0.2, 0.0, 0.0, 1.0, 0.3};
+        const double tool[12] = {1.0, 0.0, 0.0, 0.0, 0.0, c, -s, 0.05, 0.0, s, c, 0.1};
+        double bad[12];
+        if (FN(MECH, _design_init)(NULL, &d) != WK_OK || FN(MECH, _design_set_frames)(&d, base, tool) != WK_OK)
+            return 1;
+        for (j = 0; j < N; ++j) q[j] = uniform(-3.2, 3.2);
+        if (FN(MECH, _fk)(q, &d, &fk) != WK_OK || FN(MECH, _jacobian)(q, &d, jac) != WK_OK) return 1;
+        checksum += FN(MECH, _ik)(fk.values[0], &d, &ik) + ik.count;
+        for (j = 0; j < 12; ++j) bad[j] = base[j];
+        bad[0] = 1.5; /* not a rotation */
+        if (FN(MECH, _design_set_frames)(&d, bad, NULL) != WK_ERR_DESIGN) return 1;
+        bad[0] = NAN;
+        if (FN(MECH, _design_set_frames)(&d, NULL, bad) != WK_ERR_NONFINITE) return 1;
+        if (FN(MECH, _design_set_frames)(NULL, base, tool) != WK_ERR_NULL) return 1;
+    }
     printf("checksum %ld\n", checksum);
     return 0;
 }

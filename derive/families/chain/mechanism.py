@@ -281,7 +281,7 @@ class ChainMechanism(MechanismDefaults):
         c = self.chain
         roles, labels = _roles(plan, self.solver_chain(c, 0.0, plan.reversed))
         api = OwnRobotApi(c.lower, c.upper, labels, tuple(roles), ideal.axes, ideal.points, ideal.home, plan.strategy,
-                          self.controls())
+                          self.controls(), c.base, c.tool)
         return RobotTable(self.NAME, self.title, desc.source, desc.rule, c.joint_names, table, c.base @ table.frame0,
                           desc.fk, self.scale(), plan.strategy, frozenset(o["op"] for o in plan.ops), plan.reversed,
                           self.deviation(), api)

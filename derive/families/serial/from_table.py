@@ -146,7 +146,9 @@ class _DerivedRobot(SerialMechanism):
                 "branch_names": api.branches,
                 "own_api": {"ideal_axes": vectors(api.ideal_axes), "ideal_points": vectors(api.ideal_points),
                             "ideal_home": vectors(api.ideal_home), "roles": pprint.pformat(api.roles, width=110),
-                            "c_lower": [c_num(v) for v in api.lower], "c_upper": [c_num(v) for v in api.upper]}}
+                            "c_lower": [c_num(v) for v in api.lower], "c_upper": [c_num(v) for v in api.upper],
+                            "base0": [repr(float(v)) for v in api.base[:3].ravel()],
+                            "tool0": [repr(float(v)) for v in api.tool[:3].ravel()]}}
 
     def derive(self):
         dv = super().derive()

@@ -6,11 +6,21 @@
 /* The manipulability sqrt(det J^T J) of the geometric Jacobian; *singular: sigma_min / sigma_max of J at or below
  * SR_SINGULAR_EPS. A well-conditioned J is proven so by Cholesky factors (the runtime's wk_conditioning_bound);
  * else the Jacobi eigenvalues of J^T J decide (the Python module's eigvalsh). */
-static double sr_conditioning(const double *q, const double *dp, int *singular)
+static void sr_jacobian_in_frames(const double *q, const sr_design *d, double *jac)
+{
+    sr_k_jacobian(q, d->params, jac);
+    if (d->framed) { /* the design's base and tool frames (sr_frames.c) */
+        double pose0[12];
+        sr_k_fk(q, d->params, pose0);
+        sr_reframe_jacobian(d, pose0, jac);
+    }
+}
+
+static double sr_conditioning(const double *q, const sr_design *d, int *singular)
 {
     double jac[6 * SR_N], g[SR_N * SR_N], man, ratio;
     int i, j, k;
-    sr_k_jacobian(q, dp, jac);
+    sr_jacobian_in_frames(q, d, jac);
     if (wk_conditioning_bound(jac, SR_N, SR_SINGULAR_EPS, &man) == 1) {
         *singular = 0;
         return man;
@@ -51,7 +61,12 @@ static int sr_api_fk(const double *joints, const sr_design *design, sr_fk_soluti
         }
     }
     sr_k_fk(q, d->params, out->values[0]);
-    man = sr_conditioning(q, d->params, &singular);
+    if (d->framed) {
+        double pose0[12];
+        for (j = 0; j < 12; ++j) pose0[j] = out->values[0][j];
+        sr_reframe(d, pose0, out->values[0]);
+    }
+    man = sr_conditioning(q, d, &singular);
     out->aux[0][0] = man;
     out->flags[0] = singular ? WK_FLAG_SINGULAR_INVERSE : 0u;
     out->valid[0] = 1;
@@ -68,7 +83,13 @@ static int sr_api_fk_matrix(const double *joints, const sr_design *design, doubl
     if (!joints || !pose) return WK_ERR_NULL;
     rc = sr_joints(joints, q);
     if (rc != WK_OK) return rc;
-    sr_k_fk(q, d->params, pose);
+    if (!d->framed) {
+        sr_k_fk(q, d->params, pose);
+    } else {
+        double pose0[12];
+        sr_k_fk(q, d->params, pose0);
+        sr_reframe(d, pose0, pose);
+    }
     return WK_OK;
 }
 
@@ -80,10 +101,12 @@ static int sr_api_jacobian(const double *joints, const sr_design *design, double
     if (!joints || !jac) return WK_ERR_NULL;
     rc = sr_joints(joints, q);
     if (rc != WK_OK) return rc;
-    sr_k_jacobian(q, d->params, jac);
+    sr_jacobian_in_frames(q, d, jac);
     return WK_OK;
 }
 
+/* the design atlas reads the chain's own Jacobian (its base and tool frames, not the design's: the atlas sweeps
+ * the chain's lengths, for which frames change no conditioning but the tool's lever) */
 static int sr_api_atlas_conditioning(size_t n, const double *joints, const sr_design *design,
                                      double length, double threshold, int64_t sums[2], double *li_min)
 {

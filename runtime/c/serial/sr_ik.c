@@ -47,6 +47,11 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         pose[4 * j + 3] = pose_in[4 * j + 3];
     }
     projected = deviation > 0.0 ? WK_FLAG_PROJECTED : 0u;
+    if (d->framed) { /* the design's base and tool frames: the pose the kernels answer (sr_frames.c) */
+        double given[12];
+        for (j = 0; j < 12; ++j) given[j] = pose[j];
+        sr_unframe(d, given, pose);
+    }
     if (previous) { /* wrapped as the joints are: a family's representative is taken from it */
         for (j = 0; j < SR_N; ++j) prev_w[j] = sr_revolute[j] ? wk_wrap(previous[j]) : previous[j];
         prev = prev_w;
