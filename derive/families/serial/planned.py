@@ -116,19 +116,22 @@ class _GroupThenTwo:
                   "subproblem 1: rot(h_b, q) (R_d^T h_g) = rot(h_a, -q_a) h_g in the plane normal to h_b")]
 
     def rest(self, j) -> Stage:
-        """The group's joint j from its rotation, the group's other joints solved."""
+        """The group's joint j, the group's other joints solved: the group turns about one direction, so R_g =
+        R_d rot(h_b, q_b)^T rot(h_a, q_a)^T = rot(h_j, S + q_j) with S the others' angles signed by their axes'
+        sense along h_j (parallel DH axes may point either way): q_j is the angle of R_g about h_j less S
+        (subproblem 1 on e1 normal to h_j, against (cos S, sin S)). Reading S from the solved joints' cos and sin
+        keeps the stage small: undoing each joint's rotation in the matrix made the UR5e's stage 1,100 lines of C."""
         axes, joints = self.axes, self.joints
-        m = self.rd * _rodrigues(axes[self.jb], joints[self.jb]).T * _rodrigues(axes[self.ja], joints[self.ja]).T
-        for o in self.grp[:self.grp.index(j)]:
-            m = _rodrigues(axes[o], joints[o]).T * m
-        for o in reversed(self.grp[self.grp.index(j) + 1:]):
-            m = m * _rodrigues(axes[o], joints[o]).T
-        e1 = _perp(axes[j])
-        e2 = axes[j].cross(e1)
-        v = m * e1
-        return Stage("rotation2d", (j,), (e1.dot(v), e2.dot(v), sp.Integer(1), sp.Integer(0)),
+        h = axes[j]
+        rg = self.rd * _rodrigues(axes[self.jb], joints[self.jb]).T * _rodrigues(axes[self.ja], joints[self.ja]).T
+        others = sum((sp.sign(sp.simplify(axes[o].dot(h))) * joints[o] for o in self.grp if o != j), sp.Integer(0))
+        e1 = _perp(h)
+        e2 = h.cross(e1)
+        v = rg * e1
+        return Stage("rotation2d", (j,), (e1.dot(v), e2.dot(v), sp.cos(others), sp.sin(others)),
                      f"angle {joints[j]}", "subproblem 1: the parallel group's rotation R_d rot(h_b, q_b)^T "
-                     "rot(h_a, q_a)^T with its other joints undone, about the joint's axis")
+                     "rot(h_a, q_a)^T about the joint's axis, less the group's other joints (signed by their axes' "
+                     "sense)")
 
 
 def stages(rows, joints, kinds, design, defaults, convention="standard", names=None, base=None, tool=None):
