@@ -31,6 +31,9 @@ class Stage:
     # rounding) or "wrist" (WRIST_EXACT_TOL, as the DH wrist's family band: the half-gap is a wrist's |sin|, read
     # from unit vectors to eps)
     gap: str = "distance"
+    # a rotation2d stage whose family moves what its next stage must reach (a UR's q6 at its wrist singularity):
+    # the member is the one that stage reaches (serial_stages._family_by_reach), probed on its kernel
+    probe_next: bool = False
 
     @property
     def branches(self) -> int:
@@ -111,6 +114,9 @@ def stage_view(spec) -> list[dict]:
         view["amp_joints"] = [j for prior in spec.stages[:k - 1] if prior.kind in ("trig_linear", "rotation2d")
                               for j in prior.joints]
         view["factored"] = st.factored
+        nxt = spec.stages[k] if k < len(spec.stages) else None
+        view["probe"] = k + 1 if st.probe_next and nxt is not None and nxt.kind == "trig_linear" and any(
+            spec.joints[st.joints[0]] in sp.sympify(e).free_symbols for e in nxt.exprs) else None
         view["gap_tol"] = {"distance": "DOUBLE_ROOT_TOL", "wrist": "WRIST_EXACT_TOL"}[st.gap]
         if st.kind == "wrist":
             view["signs"] = list(st.signs)

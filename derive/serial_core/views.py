@@ -55,6 +55,9 @@ def py_stage_body(st: dict) -> list[str]:
         return [f"a = {_amp_before(st)}  # the angle stages' amplification",
                 f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp, a, {st['gap_tol']})"]
     if st["kind"] == "rotation2d":
+        if st.get("probe"):  # a family's member is the one its next stage reaches (serial_stages._family_by_reach)
+            return [f"probe = lambda q, c, s: _k_stage{st['probe']}(pose, q, c, s, dp)  # noqa: E731",
+                    f"return _rotation2d({out}, {j}, q, c, s, prev, amp, probe)"]
         return [f"return _rotation2d({out}, {j}, q, c, s, prev, amp)"]
     if st["kind"] == "value":
         return [f"return _revolute_value({out}, {j}, q, c, s)" if st["joint_kind"] == "R" else
@@ -81,7 +84,8 @@ def c_stage_body(st: dict) -> list[str]:
         return head + [call, f"return sr_trig_linear(out, {int(bool(st.get('factored')))}, {gap_tol}, {j}, "
                              f"sr_sign(k, {st['bit']}), q, c, s, prev, amp, {_amp_before(st)}, f);"]
     if st["kind"] == "rotation2d":
-        return head + [call, f"return sr_rotation2d(out, {j}, q, c, s, prev, amp, f);"]
+        probe = f"sr_k_stage{st['probe']}" if st.get("probe") else "NULL"
+        return head + [call, f"return sr_rotation2d(out, {j}, q, c, s, prev, amp, f, {probe}, pose, dp);"]
     if st["kind"] == "value":
         return head + [call, f"return sr_revolute_value(out, {j}, q, c, s);" if st["joint_kind"] == "R" else
                        f"return sr_prismatic_value(out, {j}, q, c, s);"]
@@ -127,6 +131,7 @@ def serial_views(ctx: dict) -> dict:
         "SR_HAS_TRIG_LINEAR": int(any(st["kind"] == "trig_linear" for st in stages)),
         "SR_HAS_FAMILY_STAGE": int(any(st["kind"] in ("trig_linear", "rotation2d") for st in stages)),
         "SR_HAS_ROTATION2D": int(any(st["kind"] == "rotation2d" for st in stages)),
+        "SR_HAS_FAMILY_PROBE": int(any(st.get("probe") for st in stages)),
         "SR_HAS_REVOLUTE_VALUE": int(any(st["kind"] == "value" and st["joint_kind"] == "R" for st in stages)),
         "SR_HAS_PRISMATIC_VALUE": int(any(st["kind"] == "value" and st["joint_kind"] != "R" for st in stages)),
         "SR_HAS_WRIST_MIRROR": int(bool(wrist) and wrist[0]["bit"] == 0),

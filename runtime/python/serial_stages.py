@@ -96,13 +96,17 @@ def _root_gap(out, r, u, amp_before, gap_tol):
     return sg, math.sqrt(gap_tol * scale)
 
 
-def _rotation2d(out, j, q, c, s, prev, amp):
-    """Joint j as the angle from (u0, v0) to (u, v) (out = (u, v, u0, v0)); a family where either vanishes. amp[j]:
-    the angle carries the vectors' rounding (a few eps of the metre-sized terms) over the shorter one's length."""
+def _rotation2d(out, j, q, c, s, prev, amp, probe=None):
+    """Joint j as the angle from (u0, v0) to (u, v) (out = (u, v, u0, v0)); a family where either vanishes (its member
+    by _family_by_reach when the stage has a `probe`, the next stage's kernel of (q, c, s)). amp[j]: the angle
+    carries the vectors' rounding (a few eps of the metre-sized terms) over the shorter one's length."""
     u, v, u0, v0 = out
     nu, n0 = math.hypot(u, v), math.hypot(u0, v0)
     if n0 <= DEGENERATE_EPS or nu <= DEGENERATE_EPS:
-        _family_member(j, q, c, s, prev)
+        if probe is None:
+            _family_member(j, q, c, s, prev)
+        else:
+            _family_by_reach(j, q, c, s, prev, probe)
         amp[j] = 1.0
         return True, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE
     # a wrist after it reads its rotation with that much more rounding (seed 507497: a PUMA's wrist centre near the
@@ -112,6 +116,32 @@ def _rotation2d(out, j, q, c, s, prev, amp):
     c[j], s[j] = cu * c0 + su * s0, su * c0 - cu * s0
     q[j] = math.atan2(s[j], c[j])
     return True, 0
+
+
+def _family_by_reach(j, q, c, s, prev, probe):
+    """The member of a family in joint j whose next stage, A cos q' + B sin q' + C = 0, reaches: at a UR's wrist
+    singularity q6 trades with the parallel group along a self-motion that carries the planar pair's target round a
+    circle, so the next stage's C is C0 + C1 cos t + C2 sin t in the member t (a distance squared to a point on a
+    circle), read from three probes of its kernel. previous's member where it reaches (|C| <= sqrt(A^2 + B^2));
+    else the member with C = 0, the middle of that stage's reach, or the one nearest it (if any member reaches,
+    that one does). A fixed three or four kernel calls: no search over the family."""
+    def at(t, ct, st):
+        q[j], c[j], s[j] = t, ct, st
+        return probe(q, c, s)
+    if prev is not None:
+        o = at(prev[j], math.cos(prev[j]), math.sin(prev[j]))
+        if abs(o[2]) <= math.hypot(o[0], o[1]) * (1.0 + TANGENT_TOL):
+            return
+    c_zero, c_pi, c_half = at(0.0, 1.0, 0.0)[2], at(math.pi, -1.0, 0.0)[2], at(0.5 * math.pi, 0.0, 1.0)[2]
+    c0 = 0.5 * (c_zero + c_pi)
+    c1, c2 = 0.5 * (c_zero - c_pi), c_half - c0
+    g = math.hypot(c1, c2)
+    if g <= DEGENERATE_EPS:  # the next stage does not see the family: its usual representative
+        _family_member(j, q, c, s, prev)
+        return
+    t = math.atan2(c2, c1) + math.acos(max(-1.0, min(1.0, -c0 / g)))
+    c[j], s[j] = math.cos(t), math.sin(t)
+    q[j] = math.atan2(s[j], c[j])
 
 
 def _revolute_value(out, j, q, c, s):

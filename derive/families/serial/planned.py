@@ -113,7 +113,8 @@ class _GroupThenTwo:
             Stage("trig_linear", (ja,), exprs, f"angle {joints[ja]} (two roots)", rule,
                   gap="wrist" if len(exprs) == 6 else "distance"),
             Stage("rotation2d", (jb,), (e1.dot(p1), e2.dot(p1), e1.dot(p0), e2.dot(p0)), f"angle {joints[jb]}",
-                  "subproblem 1: rot(h_b, q) (R_d^T h_g) = rot(h_a, -q_a) h_g in the plane normal to h_b")]
+                  "subproblem 1: rot(h_b, q) (R_d^T h_g) = rot(h_a, -q_a) h_g in the plane normal to h_b",
+                  probe_next=len(self.grp) > 1)]
 
     def rest(self, j) -> Stage:
         """The group's joint j, the group's other joints solved: the group turns about one direction, so R_g =

@@ -89,13 +89,66 @@ static inline int sr_trig_linear(const double *out, int factored, double gap_tol
 #endif
 
 #if SR_HAS_ROTATION2D
-/* Joint j as the angle from (u0, v0) to (u, v) (out = u, v, u0, v0); a family where either vanishes */
+/* a stage kernel: what a family probes its next stage with */
+typedef void (*sr_stage_kernel)(const double *pose, const double *q, const double *c, const double *s,
+                                const double *dp, double *out);
+
+#if SR_HAS_FAMILY_PROBE
+/* The member of a family in joint j whose next stage (A cos q' + B sin q' + C = 0, its kernel `probe`) reaches:
+ * previous's where it does, else the one with C = 0 from three probes, C = C0 + C1 cos t + C2 sin t in the member t
+ * (Python's _family_by_reach says why) */
+static void sr_family_by_reach(int j, double *q, double *c, double *s, const double *prev, sr_stage_kernel probe,
+                               const double *pose, const double *dp)
+{
+    double o[6], c_zero, c_pi, c0, c1, c2, g, t;
+    if (prev) {
+        q[j] = prev[j];
+        c[j] = cos(prev[j]);
+        s[j] = sin(prev[j]);
+        probe(pose, q, c, s, dp, o);
+        if (fabs(o[2]) <= sqrt(o[0] * o[0] + o[1] * o[1]) * (1.0 + SR_TANGENT_TOL)) return;
+    }
+    q[j] = 0.0, c[j] = 1.0, s[j] = 0.0;
+    probe(pose, q, c, s, dp, o);
+    c_zero = o[2];
+    q[j] = SR_PI, c[j] = -1.0, s[j] = 0.0;
+    probe(pose, q, c, s, dp, o);
+    c_pi = o[2];
+    q[j] = 0.5 * SR_PI, c[j] = 0.0, s[j] = 1.0;
+    probe(pose, q, c, s, dp, o);
+    c0 = 0.5 * (c_zero + c_pi);
+    c1 = 0.5 * (c_zero - c_pi);
+    c2 = o[2] - c0;
+    g = sqrt(c1 * c1 + c2 * c2);
+    if (g <= SR_DEGENERATE_EPS) { /* the next stage does not see the family: its usual representative */
+        sr_family_member(j, q, c, s, prev);
+        return;
+    }
+    t = atan2(c2, c1) + acos(sr_clamp1(-c0 / g));
+    c[j] = cos(t);
+    s[j] = sin(t);
+    q[j] = atan2(s[j], c[j]);
+}
+#endif
+
+/* Joint j as the angle from (u0, v0) to (u, v) (out = u, v, u0, v0); a family where either vanishes (its member by
+ * sr_family_by_reach when the stage has a probe, its next stage's kernel; else NULL) */
 static int sr_rotation2d(const double *out, int j, double *q, double *c, double *s, const double *prev,
-                         double *amp, unsigned *f)
+                         double *amp, unsigned *f, sr_stage_kernel probe, const double *pose, const double *dp)
 {
     const double nu = sqrt(out[0] * out[0] + out[1] * out[1]), n0 = sqrt(out[2] * out[2] + out[3] * out[3]);
     if (n0 <= SR_DEGENERATE_EPS || nu <= SR_DEGENERATE_EPS) {
+#if SR_HAS_FAMILY_PROBE
+        if (probe)
+            sr_family_by_reach(j, q, c, s, prev, probe, pose, dp);
+        else
+            sr_family_member(j, q, c, s, prev);
+#else
+        (void)probe;
+        (void)pose;
+        (void)dp;
         sr_family_member(j, q, c, s, prev);
+#endif
         *f = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
         amp[j] = 1.0;
     } else {
