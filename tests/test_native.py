@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import wristkin
+from reference import chain as ref
 from seeding import case_rng
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -346,16 +347,8 @@ def test_joints_with_no_assembly_come_back_from_c_as_numpy_words_them():
 
 
 def _rigid(rng, reach=0.5):
-    """A random rigid 4x4 (a rotation from a random unit quaternion, a translation within reach)."""
-    x, y, z, w = rng.normal(size=4) / 1.0
-    n = math.sqrt(x * x + y * y + z * z + w * w)
-    x, y, z, w = x / n, y / n, z / n, w / n
-    out = np.eye(4)
-    out[:3, :3] = [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                   [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                   [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
-    out[:3, 3] = rng.uniform(-reach, reach, 3)
-    return out
+    """A random rigid 4x4 (tests/reference's xyz + rpy)."""
+    return ref.xyz_rpy(rng.uniform(-reach, reach, 3), rng.uniform(-math.pi, math.pi, 3))
 
 
 @pytest.mark.parametrize("name", SERIAL)

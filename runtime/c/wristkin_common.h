@@ -54,6 +54,11 @@ double wk_wrap(double a);
  * (the nearest rotation) and *deviation = max|R^T R - I| of the input (0 when it was used as given). */
 int wk_input_rotation(const double *p, double r[9], double *deviation);
 
+/* A base or tool frame as given (the top 3x4 of a rigid 4x4, row-major): finite (else WK_ERR_NONFINITE), its
+ * rotation within WK_ROTATION_PROJECT_TOL of SO(3) (else WK_ERR_DESIGN), written to `out` with the rotation
+ * projected as wk_input_rotation does. */
+int wk_input_frame(const double *in, double out[12]);
+
 /* Eigenvalues of the symmetric n x n matrix g (row-major, n <= WK_MAX_DIM, overwritten) by cyclic Jacobi
  * rotations: returns sqrt of their product (the manipulability when g = J^T J) and sets *ratio =
  * sqrt(lambda_min / lambda_max) (sigma_min / sigma_max of J; 0 at a singular configuration, up to rounding). */

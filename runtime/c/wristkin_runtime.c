@@ -191,6 +191,21 @@ int wk_input_rotation(const double *p, double r[9], double *deviation)
     return 1;
 }
 
+int wk_input_frame(const double *in, double out[12])
+{
+    double r[9], dev = 0.0;
+    int i;
+    if (!wk_all_finite(in, 12)) return WK_ERR_NONFINITE;
+    if (!wk_input_rotation(in, r, &dev)) return WK_ERR_DESIGN;
+    for (i = 0; i < 3; ++i) {
+        out[4 * i] = r[3 * i];
+        out[4 * i + 1] = r[3 * i + 1];
+        out[4 * i + 2] = r[3 * i + 2];
+        out[4 * i + 3] = in[4 * i + 3];
+    }
+    return WK_OK;
+}
+
 double wk_jacobi_spectrum(double *g, int n, double *ratio)
 {
     double prod = 1.0, lo = HUGE_VAL, hi = 0.0, scale = 0.0;

@@ -43,21 +43,6 @@ static int ck_api_design_init(const double *params, ck_design *design)
 }
 
 /* one frame: finite, its rotation within WK_ROTATION_PROJECT_TOL of SO(3) (projected) */
-static int ck_frame(const double *in, double *out)
-{
-    double r[9], dev = 0.0;
-    int i;
-    if (!wk_all_finite(in, 12)) return WK_ERR_NONFINITE;
-    if (!wk_input_rotation(in, r, &dev)) return WK_ERR_DESIGN;
-    for (i = 0; i < 3; ++i) {
-        out[4 * i] = r[3 * i];
-        out[4 * i + 1] = r[3 * i + 1];
-        out[4 * i + 2] = r[3 * i + 2];
-        out[4 * i + 3] = in[4 * i + 3];
-    }
-    return WK_OK;
-}
-
 static int ck_api_design_set_frames(ck_design *design, const double base[12], const double tool[12])
 {
     double b[12], t[12];
@@ -67,8 +52,8 @@ static int ck_api_design_set_frames(ck_design *design, const double base[12], co
         b[i] = ck_default_design.base[i];
         t[i] = ck_default_design.tool[i];
     }
-    if (base && (rc = ck_frame(base, b)) != WK_OK) return rc;
-    if (tool && (rc = ck_frame(tool, t)) != WK_OK) return rc;
+    if (base && (rc = wk_input_frame(base, b)) != WK_OK) return rc;
+    if (tool && (rc = wk_input_frame(tool, t)) != WK_OK) return rc;
     for (i = 0; i < 12; ++i) {
         design->base[i] = b[i];
         design->tool[i] = t[i];

@@ -26,22 +26,14 @@ static void sr_invert(const double *a, double *o)
     }
 }
 
-/* a frame as given: finite, its rotation within WK_ROTATION_PROJECT_TOL of SO(3) (projected), else an error */
+/* a frame as given (wk_input_frame), its translation within SR_LENGTH_MAX */
 static int sr_frame(const double *in, double *out)
 {
-    double r[9], dev = 0.0;
-    int i;
-    if (!wk_all_finite(in, 12)) return WK_ERR_NONFINITE;
-    if (!wk_input_rotation(in, r, &dev)) return WK_ERR_DESIGN;
-    if (!(fabs(in[3]) <= SR_LENGTH_MAX) || !(fabs(in[7]) <= SR_LENGTH_MAX) || !(fabs(in[11]) <= SR_LENGTH_MAX))
-        return WK_ERR_DESIGN;
-    for (i = 0; i < 3; ++i) {
-        out[4 * i] = r[3 * i];
-        out[4 * i + 1] = r[3 * i + 1];
-        out[4 * i + 2] = r[3 * i + 2];
-        out[4 * i + 3] = in[4 * i + 3];
-    }
-    return WK_OK;
+    const int rc = wk_input_frame(in, out);
+    if (rc != WK_OK) return rc;
+    return fabs(out[3]) <= SR_LENGTH_MAX && fabs(out[7]) <= SR_LENGTH_MAX && fabs(out[11]) <= SR_LENGTH_MAX
+               ? WK_OK
+               : WK_ERR_DESIGN;
 }
 
 /* base and / or tool (NULL: the chain's own); framed when either differs from it */
