@@ -132,10 +132,21 @@ def test_python_ik_then_fk_returns_the_pose_and_c_returns_the_same_sets(py, lib)
         cd = _c_design(lib, params)
         assert abs(cd.theta0 - d.theta0) <= 1e-15 and np.allclose(list(cd.c), d.constants, rtol=0, atol=1e-15)
         reached = 0
-        for _ in range(400):  # poses until 3 reachable ones (a design reaches a part of SO(3))
+        for k in range(400):  # poses until 3 reachable ones (a design reaches a part of SO(3))
             if reached == 3:
                 break
+            # random poses (the unreachable ones compare statuses), every other one an assembled pose's: a design
+            # whose reach is a sliver of SO(3) (seed 31415: 2 of 400 random poses) still gives its 3
             pose = (rng.uniform(-math.pi, math.pi), rng.uniform(0.2, math.pi - 0.2), rng.uniform(-math.pi, math.pi))
+            if k % 2:
+                f = py.fk.fk(rng.uniform(0.0, 2 * math.pi, 3), d)
+                if not f.valid.any():
+                    continue
+                r = np.array(f.aux[f.valid][0][:9]).reshape(3, 3)
+                beta = math.acos(max(-1.0, min(1.0, r[2, 2])))
+                if not 0.2 <= beta <= math.pi - 0.2:
+                    continue
+                pose = (math.atan2(r[0, 2], -r[1, 2]), beta, math.atan2(r[2, 0], r[2, 1]))  # R = Rz Rx Rz
             s = py.ik.ik(pose, d)
             out = IkSolutions()
             assert lib.wkt_uw_ik(_p(pose), ctypes.byref(cd), ctypes.byref(out)) == 0
