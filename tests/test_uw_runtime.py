@@ -126,22 +126,26 @@ def test_python_ik_then_fk_returns_the_pose_and_c_returns_the_same_sets(py, lib)
     """Every IK set of a random pose assembles (FK) back to that pose, in Python; C gives the same sets and modes
     (one algorithm in both, operation for operation: equal to rounding)."""
     rng = case_rng(2230)
-    checked = 0
-    for params in _designs(py, lib, rng, 4):
+    checked = usable = 0
+    for params in _designs(py, lib, rng, 12):
         d = py.design.make_design(params)
         cd = _c_design(lib, params)
         assert abs(cd.theta0 - d.theta0) <= 1e-15 and np.allclose(list(cd.c), d.constants, rtol=0, atol=1e-15)
-        reached = 0
+        reached, centre = 0, None
         for k in range(400):  # poses until 3 reachable ones (a design reaches a part of SO(3))
             if reached == 3:
                 break
             # random poses (the unreachable ones compare statuses), every other one an assembled pose's: a design
-            # whose reach is a sliver of SO(3) (seed 31415: 2 of 400 random poses) still gives its 3
+            # whose reach is a sliver of SO(3) (seed 31415: 2 of 400 random poses; seed 111: 2 of 200 random joints
+            # assemble) still gives its 3, joints drawn near the last that assembled
             pose = (rng.uniform(-math.pi, math.pi), rng.uniform(0.2, math.pi - 0.2), rng.uniform(-math.pi, math.pi))
             if k % 2:
-                f = py.fk.fk(rng.uniform(0.0, 2 * math.pi, 3), d)
+                joints = rng.uniform(0.0, 2 * math.pi, 3) if centre is None or k % 4 == 1 else \
+                    centre + rng.normal(0.0, 0.2, 3)
+                f = py.fk.fk(joints, d)
                 if not f.valid.any():
                     continue
+                centre = joints
                 r = np.array(f.aux[f.valid][0][:9]).reshape(3, 3)
                 beta = math.acos(max(-1.0, min(1.0, r[2, 2])))
                 if not 0.2 <= beta <= math.pi - 0.2:
@@ -167,8 +171,13 @@ def test_python_ik_then_fk_returns_the_pose_and_c_returns_the_same_sets(py, lib)
                 assert cf.count == int(np.sum(f.valid))
                 assert np.allclose(np.array(cf.values)[:cf.count], f.values[f.valid], rtol=0, atol=1e-9)
                 checked += 1
-        assert reached == 3, params
-    assert checked >= 4 * 3 * 8
+        if reached < 3:  # a design whose few assemblies all lie outside the tested beta range (seeds 111, 137)
+            assert params != DEFAULT
+            continue
+        usable += 1
+        if usable == 4:
+            break
+    assert usable == 4 and checked >= 4 * 3 * 8
 
 
 def test_fk_batch_and_scalar_fk_agree(py):
