@@ -117,9 +117,11 @@ class SerialC:
         self.IK = _solutions_struct(max_ik, n_joints, 1)
         self.FK = _solutions_struct(1, 12, 1)
 
+        frames = ("base", "tool", "left", "right", "left_inv", "right_inv")
+
         class Design(ctypes.Structure):  # the header's wk_NAME_design: parameters, base and tool frames
-            _fields_ = [("params", ctypes.c_double * n_params), ("base", ctypes.c_double * 12),
-                        ("tool", ctypes.c_double * 12), ("framed", ctypes.c_int)]
+            _fields_ = [("params", ctypes.c_double * n_params), *((f, ctypes.c_double * 12) for f in frames),
+                        ("framed", ctypes.c_int)]
         self.Design = Design
         d = ctypes.POINTER(ctypes.c_double)
         getattr(self.lib, f"wk_{name}_ik").argtypes = [d, ctypes.POINTER(Design), ctypes.POINTER(self.IK)]

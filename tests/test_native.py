@@ -20,6 +20,8 @@ import numpy as np
 import pytest
 import wristkin
 from reference import chain as ref
+from reference import dh as dh_ref
+from reference import screws as screw_ref
 from seeding import case_rng
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -353,14 +355,22 @@ def _rigid(rng, reach=0.5):
 
 @pytest.mark.parametrize("name", SERIAL)
 def test_a_serial_arm_takes_base_and_tool_frames_on_both_paths(name):
-    """make_design(base=B, tool=T): the pose is the tool's in the base's frame, B T0(q) T (the catalogue's own
-    frames are the identity), on C and numpy alike (1e-12); IK returns the generating joints of such a pose; the
-    Jacobian is the framed pose's derivative (central differences, h = 1e-6: error O(h^2) ~ 1e-12 plus rounding
-    eps / h ~ 2e-10); a design keeps its frames when its parameters change; a frame that is no rigid transform
-    is refused on both paths."""
+    """make_design(base=B, tool=T): the pose is the tool's in the base's frame, B T0(q) T with T0 the independent
+    reference's (tests/reference dh / screws; the catalogue's own frames are the identity), on C and numpy alike
+    (1e-12); IK returns the generating joints of such a pose; the Jacobian is that framed pose's derivative (central
+    differences of the reference, h = 1e-6: error O(h^2) ~ 1e-12 plus rounding eps / h ~ 2e-10); a design keeps its
+    frames when its parameters change; a frame that is no rigid transform is refused on both paths."""
     mod = module(name)
     rng = case_rng(73)
     rev = np.array(mod.JOINT_KINDS) == "R"
+    if name in dh_ref.MECHANISMS:  # the independent references: numeric DH matrices, or exponentials of the screws
+        def own(q):
+            return dh_ref.fk(name, q)
+    else:
+        robot = screw_ref.axes(name, mod.DESIGN_DEFAULT)
+
+        def own(q):
+            return screw_ref.fk(robot, q)
     for _ in range(5):
         base, tool = _rigid(rng), _rigid(rng, 0.2)
         c_design = mod.make_design(base=base, tool=tool)
@@ -368,7 +378,7 @@ def test_a_serial_arm_takes_base_and_tool_frames_on_both_paths(name):
         assert FORCED_NUMPY or c_design.native is not None
         for _ in range(6):
             q = _joints(mod, rng, False)
-            want = base @ mod.fk_matrix(q) @ tool
+            want = base @ own(q) @ tool
             for d in (c_design, py_design):
                 np.testing.assert_allclose(mod.fk_matrix(q, d), want, atol=1e-12, rtol=0)
                 np.testing.assert_allclose(mod.fk(q, d).values[0], want[:3].ravel(), atol=1e-12, rtol=0)
@@ -383,7 +393,7 @@ def test_a_serial_arm_takes_base_and_tool_frames_on_both_paths(name):
             for j in range(mod.N_JOINTS):
                 dq = np.zeros(mod.N_JOINTS)
                 dq[j] = h
-                tp, tm = mod.fk_matrix(q + dq, py_design), mod.fk_matrix(q - dq, py_design)
+                tp, tm = base @ own(q + dq) @ tool, base @ own(q - dq) @ tool
                 lin = (tp[:3, 3] - tm[:3, 3]) / (2 * h)
                 skew = (tp[:3, :3] - tm[:3, :3]) / (2 * h) @ want[:3, :3].T
                 ang = np.array([skew[2, 1], skew[0, 2], skew[1, 0]])

@@ -119,7 +119,6 @@ class RobotTable:
     base: np.ndarray  # 4x4: the world frame's base times frame0
     description_fk: Callable  # q -> 4x4, the description's own products, base and tool included
     size: float  # metres: the robot's scale (lengths below LENGTH_ZERO of it are 0)
-    strategy: str  # the interpreter's decomposition, in words
     ops: frozenset  # its op kinds
     reversed_: bool  # solved from the tool
     deviation: float  # the description's axes and points off the ideal ones the table is read from (metres, sines)
@@ -139,7 +138,7 @@ class OwnRobotApi:
     ideal_axes: np.ndarray
     ideal_points: np.ndarray
     ideal_home: np.ndarray
-    strategy: str
+    strategy: str  # the interpreter's decomposition, in words
     controls: str
     base: np.ndarray  # 4x4: the description's base and tool frames (make_design(base=, tool=) replaces them)
     tool: np.ndarray

@@ -10,7 +10,7 @@ PY_RUNTIME_FILES = ("python/pose_forms.py", "python/serial_frames.py",
 # a user robot's module (derived stages): its branches, limits and command line, as the interpreted module's
 # (own_api.py, last: it ends with the command line's entry point), on the ideal chain's products (chain_rigid, _poe)
 PY_OWN_RUNTIME_FILES = ("python/chain_rigid.py", "python/chain_poe.py", "python/serial_own.py", "python/own_api.py")
-PY_SELECT_FILE = "python/serial_select.py"  # select without named branches (a user robot's: own_api.py's)
+PY_SELECT_FILE = "python/select_plain.py"  # select without named branches (a user robot's: own_api.py's)
 # the constants a user robot's module adds (its limits, decomposition, branches and the ideal chain they are read on)
 OWN_PARTIALS = ("python/partials/own_constants.py.jinja", "python/partials/own_serial.py.jinja")
 # the C sources before the stage functions (which call sr_stages.c) and the one after them (which runs them)
@@ -56,8 +56,7 @@ def py_stage_body(st: dict) -> list[str]:
                 f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp, a, {st['gap_tol']})"]
     if st["kind"] == "rotation2d":
         if st.get("probe"):  # a family's member is the one its next stage reaches (serial_stages._family_by_reach)
-            return [f"probe = lambda q, c, s: _k_stage{st['probe']}(pose, q, c, s, dp)  # noqa: E731",
-                    f"return _rotation2d({out}, {j}, q, c, s, prev, amp, probe)"]
+            return [f"return _rotation2d({out}, {j}, q, c, s, prev, amp, _k_stage{st['probe']}, pose, dp)"]
         return [f"return _rotation2d({out}, {j}, q, c, s, prev, amp)"]
     if st["kind"] == "value":
         return [f"return _revolute_value({out}, {j}, q, c, s)" if st["joint_kind"] == "R" else
@@ -177,6 +176,7 @@ def serial_views(ctx: dict) -> dict:
             "wrist_joints": [wrist[0]["joints"][0], wrist[0]["joints"][2]] if wrist else [],
             "revolute": [1 if k == "R" else 0 for k in ctx["joint_kinds"]], "c_flags": c_flags, "c_tables": c_tables,
             "own_api": own or None, "own_partials": OWN_PARTIALS if own else (), "base0": base0, "tool0": tool0,
+            "identity": [repr(float(v)) for v in IDENTITY_3X4],
             "py_base0": _frame_literal(base0), "py_tool0": _frame_literal(tool0), "design_fields": DESIGN_FIELDS,
             "py_runtime_files": PY_RUNTIME_FILES + (PY_OWN_RUNTIME_FILES if own else (PY_SELECT_FILE,)),
             "select_doc": ("Joint limits (NULL = the description's limits, as the Python select); nearest valid set "

@@ -36,15 +36,16 @@ from serial_stand_in import (
 
 # wristkin: inlined from here
 # ---------------------------------------------------------------------------- forward kinematics
-def _jacobian_in_frames(q, d):
-    """The geometric Jacobian (6 x n) in the design's base and tool frames."""
+def _jacobian_in_frames(q, d, v0=None):
+    """The geometric Jacobian (6 x n) in the design's base and tool frames; v0: the kernels' end pose at q when the
+    caller has it."""
     j = np.array(_k_jacobian(q, d.params), dtype=float).reshape(6, N_JOINTS)
-    return j if d.frames is None else _reframe_jacobian(j, _k_fk(q, d.params), d.frames)
+    return j if d.frames is None else _reframe_jacobian(j, _k_fk(q, d.params) if v0 is None else v0, d.frames)
 
 
-def _conditioning(q, d):
+def _conditioning(q, d, v0=None):
     """(manipulability sqrt(det J^T J), sigma_min / sigma_max of J), both from the eigenvalues of J^T J."""
-    j = _jacobian_in_frames(q, d)
+    j = _jacobian_in_frames(q, d, v0)
     lam = np.maximum(np.linalg.eigvalsh(j.T @ j), 0.0)
     return math.sqrt(float(np.prod(lam))), (math.sqrt(lam[0] / lam[-1]) if lam[-1] > 0.0 else 0.0)
 
@@ -72,7 +73,7 @@ def _fk_numpy(joints, d):
     q = _joints(joints)
     v = _k_fk(q, d.params)
     values = np.array([v if d.frames is None else _reframe(v, d.frames)], dtype=float)
-    man, ratio = _conditioning(q, d)
+    man, ratio = _conditioning(q, d, v)
     flags = np.array([_fk_flag(ratio)], dtype=np.int64)
     return Solutions(values, np.array([True]), flags, np.array([[man]]), STATUS_OK, "1 pose")
 
@@ -108,10 +109,9 @@ def fk_batch(joints, design=None) -> BatchSolutions:
     if q.shape[0] == 0:
         return _stack([], 1, 12, 1)
     q = np.array([_joints(row) for row in q])
-    vals = np.stack(np.broadcast_arrays(*_kv_fk(tuple(q.T), d.params)), axis=1)[:, None, :]
-    if d.frames is not None:
-        vals = np.array([[_reframe(v[0], d.frames)] for v in vals])
-    cond = [_conditioning(tuple(row), d) for row in q]
+    raw = np.stack(np.broadcast_arrays(*_kv_fk(tuple(q.T), d.params)), axis=1)
+    vals = (raw if d.frames is None else np.array([_reframe(v, d.frames) for v in raw]))[:, None, :]
+    cond = [_conditioning(tuple(row), d, v) for row, v in zip(q, raw, strict=True)]
     man = np.array([[c[0]] for c in cond])
     n = q.shape[0]
     return BatchSolutions(vals, np.ones((n, 1), dtype=bool), np.array([[_fk_flag(c[1])] for c in cond], np.int64),

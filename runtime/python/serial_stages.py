@@ -96,9 +96,9 @@ def _root_gap(out, r, u, amp_before, gap_tol):
     return sg, math.sqrt(gap_tol * scale)
 
 
-def _rotation2d(out, j, q, c, s, prev, amp, probe=None):
+def _rotation2d(out, j, q, c, s, prev, amp, probe=None, pose=None, dp=None):
     """Joint j as the angle from (u0, v0) to (u, v) (out = (u, v, u0, v0)); a family where either vanishes (its member
-    by _family_by_reach when the stage has a `probe`, the next stage's kernel of (q, c, s)). amp[j]: the angle
+    by _family_by_reach when the stage has a `probe`, the next stage's kernel, read at pose and dp). amp[j]: the angle
     carries the vectors' rounding (a few eps of the metre-sized terms) over the shorter one's length."""
     u, v, u0, v0 = out
     nu, n0 = math.hypot(u, v), math.hypot(u0, v0)
@@ -106,7 +106,7 @@ def _rotation2d(out, j, q, c, s, prev, amp, probe=None):
         if probe is None:
             _family_member(j, q, c, s, prev)
         else:
-            _family_by_reach(j, q, c, s, prev, probe)
+            _family_by_reach(j, q, c, s, prev, probe, pose, dp)
         amp[j] = 1.0
         return True, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE
     # a wrist after it reads its rotation with that much more rounding (seed 507497: a PUMA's wrist centre near the
@@ -118,7 +118,7 @@ def _rotation2d(out, j, q, c, s, prev, amp, probe=None):
     return True, 0
 
 
-def _family_by_reach(j, q, c, s, prev, probe):
+def _family_by_reach(j, q, c, s, prev, probe, pose, dp):
     """The member of a family in joint j whose next stage, A cos q' + B sin q' + C = 0, reaches: at a UR's wrist
     singularity q6 trades with the parallel group along a self-motion that carries the planar pair's target round a
     circle, so the next stage's C is C0 + C1 cos t + C2 sin t in the member t (a distance squared to a point on a
@@ -127,7 +127,7 @@ def _family_by_reach(j, q, c, s, prev, probe):
     that one does). A fixed three or four kernel calls: no search over the family."""
     def at(t, ct, st):
         q[j], c[j], s[j] = t, ct, st
-        return probe(q, c, s)
+        return probe(pose, q, c, s, dp)
     if prev is not None:
         o = at(prev[j], math.cos(prev[j]), math.sin(prev[j]))
         if abs(o[2]) <= math.hypot(o[0], o[1]) * (1.0 + TANGENT_TOL):

@@ -283,7 +283,7 @@ class ChainMechanism(MechanismDefaults):
         api = OwnRobotApi(c.lower, c.upper, labels, tuple(roles), ideal.axes, ideal.points, ideal.home, plan.strategy,
                           self.controls(), c.base, c.tool)
         return RobotTable(self.NAME, self.title, desc.source, desc.rule, c.joint_names, table, c.base @ table.frame0,
-                          desc.fk, self.scale(), plan.strategy, frozenset(o["op"] for o in plan.ops), plan.reversed,
+                          desc.fk, self.scale(), frozenset(o["op"] for o in plan.ops), plan.reversed,
                           self.deviation(), api)
 
     def scale(self) -> float:

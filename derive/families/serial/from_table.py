@@ -117,7 +117,7 @@ def from_table(robot: RobotTable) -> SerialMechanism:
         missing = sorted(robot.ops - SUPPORTED)
         if missing or robot.reversed_:  # say what the interpreter's decomposition needs, not the search's refusal
             what = f"the ops {', '.join(missing)}" if missing else "the chain solved from the tool"
-            raise NotDerivable.because(name, f"its decomposition, {robot.strategy.split(':')[0]}, needs {what}, "
+            raise NotDerivable.because(name, f"its decomposition, {robot.api.strategy.split(':')[0]}, needs {what}, "
                                              "which the derived stages do not have yet") from None
         raise NotDerivable.because(name, f"no decomposition in the derived stage kinds: {exc}") from None
     # each angle's change turns the links after it, at most the robot's size away (and the frame's axes by as

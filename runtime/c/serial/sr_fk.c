@@ -6,21 +6,26 @@
 /* The manipulability sqrt(det J^T J) of the geometric Jacobian; *singular: sigma_min / sigma_max of J at or below
  * SR_SINGULAR_EPS. A well-conditioned J is proven so by Cholesky factors (the runtime's wk_conditioning_bound);
  * else the Jacobi eigenvalues of J^T J decide (the Python module's eigvalsh). */
-static void sr_jacobian_in_frames(const double *q, const sr_design *d, double *jac)
+/* the Jacobian in the design's base and tool frames (sr_frames.c); pose0: the kernels' end pose at q when the caller
+ * has it, else NULL */
+static void sr_jacobian_in_frames(const double *q, const sr_design *d, const double *pose0, double *jac)
 {
     sr_k_jacobian(q, d->params, jac);
-    if (d->framed) { /* the design's base and tool frames (sr_frames.c) */
-        double pose0[12];
-        sr_k_fk(q, d->params, pose0);
+    if (d->framed) {
+        double own[12];
+        if (!pose0) {
+            sr_k_fk(q, d->params, own);
+            pose0 = own;
+        }
         sr_reframe_jacobian(d, pose0, jac);
     }
 }
 
-static double sr_conditioning(const double *q, const sr_design *d, int *singular)
+static double sr_conditioning(const double *q, const sr_design *d, const double *pose0, int *singular)
 {
     double jac[6 * SR_N], g[SR_N * SR_N], man, ratio;
     int i, j, k;
-    sr_jacobian_in_frames(q, d, jac);
+    sr_jacobian_in_frames(q, d, pose0, jac);
     if (wk_conditioning_bound(jac, SR_N, SR_SINGULAR_EPS, &man) == 1) {
         *singular = 0;
         return man;
@@ -41,7 +46,7 @@ static double sr_conditioning(const double *q, const sr_design *d, int *singular
 static int sr_api_fk(const double *joints, const sr_design *design, sr_fk_solutions *out)
 {
     const sr_design *d = sr_design_or_default(design);
-    double man, q[SR_N];
+    double man, q[SR_N], pose0[12];
     int j, singular;
     if (!out) return WK_ERR_NULL;
     out->count = 0;
@@ -60,13 +65,12 @@ static int sr_api_fk(const double *joints, const sr_design *design, sr_fk_soluti
             return rc;
         }
     }
-    sr_k_fk(q, d->params, out->values[0]);
-    if (d->framed) {
-        double pose0[12];
-        for (j = 0; j < 12; ++j) pose0[j] = out->values[0][j];
+    sr_k_fk(q, d->params, pose0);
+    if (d->framed)
         sr_reframe(d, pose0, out->values[0]);
-    }
-    man = sr_conditioning(q, d, &singular);
+    else
+        for (j = 0; j < 12; ++j) out->values[0][j] = pose0[j];
+    man = sr_conditioning(q, d, pose0, &singular);
     out->aux[0][0] = man;
     out->flags[0] = singular ? WK_FLAG_SINGULAR_INVERSE : 0u;
     out->valid[0] = 1;
@@ -101,7 +105,7 @@ static int sr_api_jacobian(const double *joints, const sr_design *design, double
     if (!joints || !jac) return WK_ERR_NULL;
     rc = sr_joints(joints, q);
     if (rc != WK_OK) return rc;
-    sr_jacobian_in_frames(q, d, jac);
+    sr_jacobian_in_frames(q, d, NULL, jac);
     return WK_OK;
 }
 

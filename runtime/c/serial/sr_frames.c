@@ -36,10 +36,11 @@ static int sr_frame(const double *in, double *out)
                : WK_ERR_DESIGN;
 }
 
-/* base and / or tool (NULL: the chain's own); framed when either differs from it */
+/* base and / or tool (NULL: the chain's own); framed when either differs from it, and then the transforms the calls
+ * apply (left, right and their inverses) are composed here once, not per call */
 static int sr_api_design_set_frames(sr_design *design, const double *base, const double *tool)
 {
-    double b[12], t[12];
+    double b[12], t[12], inv[12];
     int i, rc;
     if (!design) return WK_ERR_NULL;
     for (i = 0; i < 12; ++i) {
@@ -54,37 +55,29 @@ static int sr_api_design_set_frames(sr_design *design, const double *base, const
         design->tool[i] = t[i];
         if (b[i] != sr_base0[i] || t[i] != sr_tool0[i]) design->framed = 1;
     }
-    return WK_OK;
-}
-
-/* left = base . base0^-1 and right = tool0^-1 . tool of a framed design */
-static void sr_left_right(const sr_design *d, double *left, double *right)
-{
-    double inv[12];
     sr_invert(sr_base0, inv);
-    sr_compose(d->base, inv, left);
+    sr_compose(b, inv, design->left);
     sr_invert(sr_tool0, inv);
-    sr_compose(inv, d->tool, right);
+    sr_compose(inv, t, design->right);
+    sr_invert(design->left, design->left_inv);
+    sr_invert(design->right, design->right_inv);
+    return WK_OK;
 }
 
 /* the pose the kernels answer for a pose in the design's frames: left^-1 . pose . right^-1 */
 static void sr_unframe(const sr_design *d, const double *pose, double *pose0)
 {
-    double left[12], right[12], li[12], ri[12], tmp[12];
-    sr_left_right(d, left, right);
-    sr_invert(left, li);
-    sr_invert(right, ri);
-    sr_compose(li, pose, tmp);
-    sr_compose(tmp, ri, pose0);
+    double tmp[12];
+    sr_compose(d->left_inv, pose, tmp);
+    sr_compose(tmp, d->right_inv, pose0);
 }
 
 /* the pose in the design's frames of the kernels' pose0: left . pose0 . right */
 static void sr_reframe(const sr_design *d, const double *pose0, double *pose)
 {
-    double left[12], right[12], tmp[12];
-    sr_left_right(d, left, right);
-    sr_compose(left, pose0, tmp);
-    sr_compose(tmp, right, pose);
+    double tmp[12];
+    sr_compose(d->left, pose0, tmp);
+    sr_compose(tmp, d->right, pose);
 }
 
 /* the geometric Jacobian in the design's frames, from the kernels' (jac, 6 x SR_N, at the end pose pose0): the end
@@ -92,9 +85,9 @@ static void sr_reframe(const sr_design *d, const double *pose0, double *pose)
  * by left's rotation */
 static void sr_reframe_jacobian(const sr_design *d, const double *pose0, double *jac)
 {
-    double left[12], right[12], a[3];
+    const double *left = d->left, *right = d->right;
+    double a[3];
     int i, j;
-    sr_left_right(d, left, right);
     for (i = 0; i < 3; ++i) a[i] = pose0[4 * i] * right[3] + pose0[4 * i + 1] * right[7] + pose0[4 * i + 2] * right[11];
     for (j = 0; j < SR_N; ++j) {
         const double w[3] = { jac[3 * SR_N + j], jac[4 * SR_N + j], jac[5 * SR_N + j] };

@@ -67,10 +67,5 @@ static int sr_api_design_init(const double *params, sr_design *design)
     }
 #endif
     for (i = 0; i < SR_N_PARAMS; ++i) design->params[i] = params[i];
-    for (i = 0; i < 12; ++i) { /* the chain's own frames (design_set_frames replaces them) */
-        design->base[i] = sr_base0[i];
-        design->tool[i] = sr_tool0[i];
-    }
-    design->framed = 0;
-    return WK_OK;
+    return sr_api_design_set_frames(design, NULL, NULL); /* the chain's own frames */
 }

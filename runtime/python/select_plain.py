@@ -1,9 +1,9 @@
-"""select for a serial arm without named branches (the catalogue's; a user robot's module takes own_api.py's, with
-its description's limits and branches).
+"""select for a mechanism without named branches (the catalogue's serial arms and parallel wrists; a user robot's
+module takes own_api.py's, with its description's limits and branches).
 
-A wristkin runtime source: every catalogue serial arm's generated module inlines it from the marker line on
-(derive/runtime_files.py); above the marker, what it reads (serial_stand_in.py: the PUMA-560), so that it is
-linted and tested as it is (tests/test_serial_runtime.py)."""
+A wristkin runtime source: those generated modules inline it from the marker line on (derive/runtime_files.py);
+above the marker, what it reads (serial_stand_in.py: the PUMA-560), so that it is linted and tested as it is
+(tests/test_serial_runtime.py)."""
 
 from __future__ import annotations
 
