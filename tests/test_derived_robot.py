@@ -434,7 +434,8 @@ position = [0.8, 0.05, 0.3]
 def test_a_wrist_of_another_form_is_read_from_its_axes(tmp_path):
     """A 60-degree wrist (no DH wrist sign pattern): read from its axes (q5 from a plane equation whose roots' gap
     comes from 1 - n.w = |n x w|^2 / (1 + n.w), q6 and q4 by subproblem 1): round trips on the reference, and near
-    its singularity (axes 4 and 6 aligned, q5 = 0) the generating joints within 1e-6 + 1e-13 / delta."""
+    its singularity (axes 4 and 6 aligned, q5 = 0; the arm regular elsewhere) the generating joints within
+    1e-6 + 1e-13 / delta."""
     spec = tmp_path / "w60.toml"
     spec.write_text(W60)
     own_robot.derive(spec, tmp_path / "out", stages="derived", native=False, progress=lambda _: None)
@@ -444,7 +445,11 @@ def test_a_wrist_of_another_form_is_read_from_its_axes(tmp_path):
     rng = case_rng(2308)
     for delta in (1.0, 1e-4, 1e-6, 1e-8, 1e-10):
         for _ in range(10):
-            q = rng.uniform(-math.pi, math.pi, 6)
+            # near the singularity, arms regular elsewhere: the allowance is the wrist's alone, eps x amplification
+            # / delta with the arm's amplification below ~450 (seed 913424 drew an elbow 0.018 rad from straight,
+            # sigma ratio 1.6e-3, amplification 1.5e3: the wrist's band 2e-13 x 1.5e3 = 3e-10 holds delta = 1e-10
+            # as a family, which the conditioning, 3e-3 rad, cannot tell from regular sets either)
+            q = rng.uniform(-math.pi, math.pi, 6) if delta == 1.0 else _regular_elsewhere(m, rng, 4, margin=1e-2)
             if delta < 1.0:
                 q[4] = delta * rng.choice([-1.0, 1.0])
             T = reference(q)
