@@ -438,6 +438,30 @@ def test_an_offset_wrist_near_its_singularity_returns_the_generating_joints(solv
             assert excess and min(excess) <= 0.0, (what, i, q[WRIST], sigma_min, min(excess, default=None))
 
 
+def test_an_offset_wrist_root_next_to_its_split_pair_is_returned_once(solvers):
+    """ur_off at q5 = -1e-7 (case 24 of the test above at WRISTKIN_TEST_SEED=913424). Was: the quartic's root at
+    q5 = 1.0e-6, 1.03e-6 from the singularity's candidate in q1 (the window that drops a regular root as the same
+    configuration was 1e-6), was kept beside the same root from the split: its two sets were returned twice, which
+    filled MAX_IK = 8 before the generating joints were reached. Now a regular root within 1e-9 of a split root is
+    dropped too (both are refined to ~eps), in C and Python alike."""
+    py, c = solvers["ur_off"]
+    q = np.array([-2.3789922276922026, 2.1620076130335333, -1.743838247657747, 1.4023669220346884, -1e-7,
+                  2.6211950306137624])
+    pose = py.fk_matrix(q)
+    sigma_min = np.linalg.svd(py.jacobian(q), compute_uv=False)[-1]
+    rounding = 64 * np.finfo(float).eps * max(1.0, py.SCALE)
+    rc, o = c.ik(pose)
+    assert rc == WK_OK
+    sp = py.ik(pose)
+    for what, sets in (("python", [(sp.values[k], sp.aux[k, 0]) for k in np.flatnonzero(sp.valid)]),
+                       ("c", [(list(o.values[k]), o.aux[k][0]) for k in range(o.count) if o.valid[k]])):
+        assert min(_gap(v, q, py.JOINT_KINDS) - max(1e-6, 4 * (res + rounding) / sigma_min)
+                   for v, res in sets) <= 0.0, what
+        # the sets here are distinct configurations (the pair ~1.1e-6 apart in q5, its elbows far apart)
+        gaps = [_gap(a, b, py.JOINT_KINDS) for i, (a, _) in enumerate(sets) for b, _ in sets[i + 1:]]
+        assert min(gaps) > 1e-6, (what, len(sets))
+
+
 @pytest.mark.parametrize("name", ("puma_t", "ur_t", "ur_off"))
 def test_previous_changes_no_set_near_the_wrist_singularity(solvers, name):
     """|q5| from 1e-9 to 1e-6: ik(pose) and ik(pose, previous=q) return the same sets, flags and status, in Python and

@@ -114,15 +114,25 @@ def _sp6(nv, h0, p0, h4, p4, d0, e0, g, h5):
                     else:
                         pair = _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4)
                         split += [(a, b, fl | _merged(pair) | FLAG_SINGULAR_INVERSE, 1) for a, b in pair]
-    kept = [r for r in regular if not any(abs(_wrap(r[0] - a[0])) <= 1e-6 and abs(_wrap(r[1] - a[1])) <= 1e-6
-                                          for a in anchors)]
+    # a regular root is dropped as the same configuration when within 1e-6 of a candidate, or within SP6_SAME_ROOT
+    # of a split root (one 1.03e-6 from its candidate was returned twice, and the generating set fell past MAX_IK)
+    kept = [r for r in regular if not (_within(r, anchors, 1e-6) or _within(r, split, SP6_SAME_ROOT))]
     return kept + split + singular
+
+
+def _within(root, others, tol):
+    """Whether (q0, q4) of root is within tol of one of others' in both angles."""
+    return any(abs(_wrap(root[0] - o[0])) <= tol and abs(_wrap(root[1] - o[1])) <= tol for o in others)
 
 
 # |n . rot(h4, q4) h5| at or above this: the wrist near its singularity (|n . z5| = 1 there), where a root of the
 # quartic is refined on the second equation's parts normal to n (_sp6_newton_perp); below it their difference
 # |n x w0|^2 - |n x z5|^2 = (n.z5 - n.w0)(n.z5 + n.w0) loses the factor n.z5 + n.w0 ~ 2 n.z5
 SP6_NEAR_WRIST = 0.5
+
+# a regular root within this of a split root near the wrist singularity is that root found twice (both are refined
+# to ~eps; two distinct roots there are ~delta apart and both the split's)
+SP6_SAME_ROOT = 1e-9
 
 # Newton steps on subproblem 6's equations from a root (quadratic convergence from a root of the quartic or of the
 # local model: 3 suffice)

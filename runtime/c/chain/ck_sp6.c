@@ -33,6 +33,10 @@ static void ck_trig_coef(const double *n, const double *k, const double *p, doub
  * the second equation's parts normal to n (the Python module's SP6_NEAR_WRIST) */
 #define CK_SP6_NEAR_WRIST 0.5
 
+/* a regular root within this of a split root near the wrist singularity is that root found twice (both are refined
+ * to ~eps; two distinct roots there are ~delta apart and both the split's): the Python module's SP6_SAME_ROOT */
+#define CK_SP6_SAME_ROOT 1e-9
+
 /* Newton steps on subproblem 6's equations from a root (quadratic convergence from a root of the quartic or of the
  * local model: 3 suffice; the Python module's SP6_NEWTON_STEPS) */
 #define CK_SP6_NEWTON_STEPS 3
@@ -216,14 +220,22 @@ static unsigned ck_sp6_merged(int ns)
     return ns == 1 ? WK_FLAG_DOUBLE_ROOT : 0u;
 }
 
-/* 1 when (q0, q4) is within 1e-6 of one of the wrist singularity's candidates (at or near it): the same
- * configuration */
-static int ck_sp6_near_anchor(double q0, double q4, const double *aq0, const double *aq4, int n)
+/* 1 when (q0, q4) is within tol of one of the n points (aq0, aq4) in both angles */
+static int ck_sp6_within(double q0, double q4, const double *aq0, const double *aq4, int n, double tol)
 {
     int j;
     for (j = 0; j < n; ++j)
-        if (fabs(ck_wrap(q0 - aq0[j])) <= 1e-6 && fabs(ck_wrap(q4 - aq4[j])) <= 1e-6) return 1;
+        if (fabs(ck_wrap(q0 - aq0[j])) <= tol && fabs(ck_wrap(q4 - aq4[j])) <= tol) return 1;
     return 0;
+}
+
+/* 1 when a regular root (q0, q4) is a configuration the wrist singularity's candidates already give: within 1e-6
+ * of a candidate (at or near it), or within CK_SP6_SAME_ROOT of one of its split roots (Python's _sp6) */
+static int ck_sp6_taken(double q0, double q4, const double *aq0, const double *aq4, int nanchor, const double *pq0,
+                        const double *pq4, int nsplit)
+{
+    return ck_sp6_within(q0, q4, aq0, aq4, nanchor, 1e-6) ||
+           ck_sp6_within(q0, q4, pq0, pq4, nsplit, CK_SP6_SAME_ROOT);
 }
 
 /* (q0, q4, flags) with n.rot(h0, -q0) p0 - n.rot(h4, q4) p4 = d0 and n.rot(h0, -q0) gv - n.rot(h4, q4) h5 = e0
@@ -326,7 +338,7 @@ static int ck_sp6(const double *n, const double *h0, const double *p0, const dou
             double b0[2], b4[2];
             const int nb = ck_sp6_split(n, h0, p0, h4, p4, d0, gv, h5, a0, a4, b0, b4);
             for (j = 0; j < nb; ++j)
-                if (!ck_sp6_near_anchor(b0[j], b4[j], aq0, aq4, nanchor)) {
+                if (!ck_sp6_taken(b0[j], b4[j], aq0, aq4, nanchor, pq0, pq4, nsplit)) {
                     q0[out] = b0[j];
                     q4[out] = b4[j];
                     fl[out] = (af[i] & ~WK_FLAG_DOUBLE_ROOT) | ck_sp6_merged(nb) | WK_FLAG_SINGULAR_INVERSE;
@@ -345,7 +357,7 @@ static int ck_sp6(const double *n, const double *h0, const double *p0, const dou
                 ck_sp6_newton(n, h0, p0, h4, p4, d0, e0, gv, h5, &a0, &a4);
             }
         }
-        if (ck_sp6_near_anchor(a0, a4, aq0, aq4, nanchor)) continue;
+        if (ck_sp6_taken(a0, a4, aq0, aq4, nanchor, pq0, pq4, nsplit)) continue;
         q0[out] = a0;
         q4[out] = a4;
         fl[out] = af[i];
