@@ -78,11 +78,54 @@ class DHRow:
 def chain(rows, convention: str = "standard", tool: sp.Matrix | None = None,
           base: sp.Matrix | None = None) -> list[sp.Matrix]:
     """Cumulative transforms T_1^0 .. T_n^0 (the last one times the constant tool transform, if any; each after the
-    constant base transform, if any: frame 0 in the world)."""
-    out, t = [], sp.eye(4) if base is None else base
+    constant base transform, if any: frame 0 in the world), each in the compact form of _Folded: a run of parallel
+    axes turns through the sum of its angles (cos(q2 + q3 + q4), as simplify writes it, without its cost: 5 s of a
+    UR's 12 s derivation)."""
+    out, run = [], _Folded(sp.eye(4) if base is None else base)
     for row in rows:
-        t = t * row.transform(convention)
-        out.append(t)
+        for op, value in _elementary(row, convention):
+            run.apply(op, value)
+        out.append(run.matrix())
     if tool is not None:
         out[-1] = out[-1] * tool
     return out
+
+
+def _elementary(row, convention: str):
+    """The row's transform as elementary operations, in order."""
+    if convention == "standard":
+        return (("rz", row.theta), ("tz", row.d), ("tx", row.a), ("rx", row.alpha))
+    if convention == "modified":
+        return (("rx", row.alpha), ("tx", row.a), ("rz", row.theta), ("tz", row.d))
+    raise ValueError(f"unknown DH convention {convention!r}")
+
+
+class _Folded:
+    """A product M Rz(phi) F^k Trans(p) of elementary transforms, F = Rx(pi): a turn about z adds its angle to phi
+    (F Rz(t) = Rz(-t) F: with sign s = (-1)^k), a shift along x or z adds to p in the run's frame (Rz(phi) F^k
+    applied, so each link's offset reads cos and sin of its run's partial sum), a twist of 0 or pi keeps the run
+    (pi flips s), any other twist closes it into M. The result is the plain product's, written with the sums."""
+
+    def __init__(self, start: sp.Matrix):
+        self.closed = start
+        self.phi, self.sign, self.p = sp.Integer(0), 1, sp.zeros(3, 1)
+
+    def apply(self, op: str, value) -> None:
+        value = sp.sympify(value)
+        if op == "rz":
+            self.phi += self.sign * value
+        elif op == "tz":
+            self.p += sp.Matrix([0, 0, self.sign * value])
+        elif op == "tx":
+            self.p += value * sp.Matrix([sp.cos(self.phi), sp.sin(self.phi), 0])
+        elif value == 0:
+            pass
+        elif value == sp.pi or value == -sp.pi:
+            self.sign = -self.sign
+        else:
+            self.closed = self.matrix() * _homogeneous(rot_x(value), (0, 0, 0))
+            self.phi, self.sign, self.p = sp.Integer(0), 1, sp.zeros(3, 1)
+
+    def matrix(self) -> sp.Matrix:
+        turn = rot_z(self.phi) * sp.diag(1, self.sign, self.sign)
+        return self.closed * _homogeneous(turn, self.p)  # unexpanded: the products' nesting is what CSE shares

@@ -57,10 +57,6 @@ def _sample_joints(spec: SerialSpec, rng) -> dict:
             for q, k in zip(spec.joints, spec.kinds, strict=True)}
 
 
-def _pose_subs(T: sp.Matrix) -> dict:
-    return {s: T[i // 4, i % 4] for i, s in enumerate(POSE_SYMBOLS)}
-
-
 def wrist_signs(m: sp.Matrix, q4, q5, q6) -> tuple[int, int, int, int]:
     """Signs e with m22 = e0 c5, (m02, m12) = e1 s5 (c4, s4), (m20, m21) = s5 (e2 c6, e3 s6)."""
     c4, s4, c5, s5, c6, s6 = sp.cos(q4), sp.sin(q4), sp.cos(q5), sp.sin(q5), sp.cos(q6), sp.sin(q6)
@@ -81,7 +77,7 @@ def derive_spec(spec: SerialSpec) -> Derivation:
         A = row.transform(spec.convention)
         dv.add(Step(f"A{i}", f"Link transform A{i}", rule, (), {f"A{i}": A},
                     (symbolic_identity(A, explicit(row, spec.convention), "product form = textbook closed form"),)))
-    T = sp.simplify(ts[-1])
+    T = ts[-1]  # the chain's compact form (identities/dh.chain): no simplify (5 s of a UR's derivation)
     fT = sampler((*spec.joints, *spec.design), T)
 
     def orth_err(rng):
@@ -99,7 +95,7 @@ def derive_spec(spec: SerialSpec) -> Derivation:
                                    _mismatch(ours, printed)))
     dv.findings.extend(spec.findings)
     _jacobian_step(dv, spec, ts if spec.tool is None else chain(spec.rows, spec.convention, None, spec.base), ts[-1])
-    _ik_steps(dv, spec, T)
+    _ik_steps(dv, spec, fT)
     dv.exports["T"] = T
     dv.exports["frames"] = ts
     return dv
@@ -149,19 +145,23 @@ def _jacobian_step(dv: Derivation, spec: SerialSpec, ts, t_end) -> None:
     dv.exports["jacobian"] = J
 
 
-def _ik_steps(dv: Derivation, spec: SerialSpec, T: sp.Matrix) -> None:
-    sub_pose = _pose_subs(T)
+def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
+    """Each stage checked on the FK: its expressions at the pose FK gives (fT, numbers) for random joints and
+    design (the pose read as numbers, as the solver reads it: substituting T into them and printing the result took
+    3 s of a UR's derivation)."""
     solved: list[int] = []
     for k, st in enumerate(spec.stages, start=1):
-        exprs = [sp.sympify(e).xreplace(sub_pose) for e in st.exprs]
-        args = (*spec.joints, *spec.design)
-        fn = sp.lambdify(args, exprs, "numpy")
+        fn = sp.lambdify((*POSE_SYMBOLS, *spec.joints, *spec.design), list(st.exprs), "numpy")
         wrist = sp.lambdify(st.wrist_joints, st.wrist_rotation, "numpy") if st.kind == "wrist" else None
 
-        def err(rng, st=st, fn=fn, wrist=wrist):
+        def at_fk(q, dsn, fn=fn):
+            pose = np.array(fT(*q.values(), *dsn.values()), dtype=float)[:3].ravel()
+            return [float(v) for v in fn(*pose, *q.values(), *dsn.values())]
+
+        def err(rng, st=st, at_fk=at_fk, wrist=wrist):
             q = _sample_joints(spec, rng)
             dsn = _sample_design(spec, rng)
-            vals = [float(v) for v in fn(*q.values(), *dsn.values())]
+            vals = at_fk(q, dsn)
             qs = [q[spec.joints[j]] for j in st.joints]
             if st.kind == "trig_linear":
                 a, b, c = vals[:3]
@@ -183,9 +183,9 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, T: sp.Matrix) -> None:
                  "wrist": "M = wrist rotation on the FK"}[st.kind]
         checks: list[Check] = [numeric_predicate(err, claim, samples=200, tol=1e-9)]
         if st.factored:
-            def factors(rng, fn=fn):
+            def factors(rng, at_fk=at_fk):
                 q = _sample_joints(spec, rng)
-                a, b, c, dm, dp, em = (float(v) for v in fn(*q.values(), *_sample_design(spec, rng).values()))
+                a, b, c, dm, dp, em = at_fk(q, _sample_design(spec, rng))
                 # relative to (A^2 + B^2): both sides are sums of squares of metre-sized terms
                 return abs(dm * dp / 4 - (a * a + b * b - c * c)) / max(a * a + b * b, 1e-300) + (em < abs(dm)) * 1.0
             checks.append(numeric_predicate(factors, "Dm Dp / 4 = A^2 + B^2 - C^2 and Em >= |Dm| on the FK",

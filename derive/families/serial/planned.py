@@ -211,7 +211,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             x = point(op["x"])
             # expanded: the home offset and its undoing cancel symbolically, not in floating point at run time
             y = (prefix(range(op["lo"])).inv() * target * prefix(range(op["hi"] + 1, n)).inv()).apply(x).applyfunc(
-                sp.expand)
+                _trig_reduced)
             continue
         if k == "linear":
             js = op["js"]
@@ -297,10 +297,23 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                          rule))
         e = _screw("R", h, r, q)
         if first:
-            y = e.inv().apply(y).applyfunc(sp.expand)
+            y = e.inv().apply(y).applyfunc(_trig_reduced)
         else:
-            x = e.apply(x).applyfunc(sp.expand)
+            x = e.apply(x).applyfunc(_trig_reduced)
     return out, plan.strategy
+
+
+def _trig_reduced(expr):
+    """expr expanded, each sin(a)^k with k >= 2 written as sin(a)^(k mod 2) (1 - cos(a)^2)^(k // 2) and expanded
+    again: its normal form modulo sin^2 + cos^2 = 1 (a solved wrist's rotation and its transpose meet in the target
+    point, and the terms that cancel only by that identity made a UR's elbow stage 1,450 operations per coefficient)."""
+    expr = sp.expand(expr)
+
+    def reduce(power):
+        k = int(power.exp)
+        return sp.sin(power.base.args[0]) ** (k % 2) * (1 - sp.cos(power.base.args[0]) ** 2) ** (k // 2)
+    return sp.expand(expr.replace(lambda e: e.is_Pow and isinstance(e.base, sp.sin) and e.exp.is_Integer
+                                  and e.exp >= 2, reduce))
 
 
 def _distance_factors(p, p2, h, d, y, slides):
@@ -331,7 +344,10 @@ def _distance_factors(p, p2, h, d, y, slides):
     d2 = sum(x ** 2 for x in dv)
     gap = sp.expand(sp.sympify(h.dot(p - p2)).subs(slides))
     planar = sum(x ** 2 for x in sub(d - h * h.dot(d)))
-    if sp.expand(planar - (d2 - gap ** 2)) == 0:
+    # planar = d2 - (h.d)^2 for the unit axis: the gap is the target's own axial part when h.d = +-gap, checked on
+    # the linear forms (expanding the squares of a UR's pose expressions took 2.5 s)
+    axial = sp.expand(sp.sympify(h.dot(d)).subs(slides))
+    if sp.expand(axial - gap) == 0 or sp.expand(axial + gap) == 0:
         e2, size, root = planar, planar, sp.sqrt(planar)
     else:  # the axis moves with unsolved joints: the difference (a true double root's cancellation)
         e2, size, root = d2 - gap ** 2, d2 + gap ** 2, sp.sqrt(d2) + sp.Abs(gap)
