@@ -506,7 +506,7 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bit
             if ((k & m) || k2 >= max_sets || !valid[k] || !valid[k2]) continue;
             x = values + (size_t)k * (size_t)n;
             y = values + (size_t)k2 * (size_t)n;
-            for (j = 0; j < n; ++j) {
+            for (j = 0; j < n && span <= WK_MERGE_SPAN; ++j) { /* most pairs are apart: stop at the first joint */
                 const double d = revolute[j] ? wk_wrap(y[j] - x[j]) : y[j] - x[j];
                 mid[j] = x[j] + 0.5 * d;
                 if (revolute[j]) mid[j] = wk_wrap(mid[j]);
