@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import pprint
 import textwrap
 
 import numpy as np
@@ -32,3 +33,13 @@ def text_literal(text: str) -> str:
     """A long string as implicitly joined lines of at most ~100 characters."""
     lines = textwrap.wrap(text, 100, break_on_hyphens=False)
     return "(\n" + "".join(f"    {(ln + (' ' if i < len(lines) - 1 else ''))!r}\n" for i, ln in enumerate(lines)) + ")"
+
+
+def own_api_literals(api) -> dict:
+    """A user robot's module constants beyond the verbs (kinematics/dh_table.OwnRobotApi: limits, named branches, the
+    ideal axes their roles read, the decomposition's words) as the interpreted and the derived modules print them."""
+    return {"limits_lower": [py_num(v) for v in api.lower], "limits_upper": [py_num(v) for v in api.upper],
+            "strategy_literal": text_literal(api.strategy), "controls_literal": text_literal(api.controls),
+            "branch_names": api.branches, "roles": pprint.pformat(tuple(api.roles), width=110),
+            "ideal_axes": vectors(api.ideal_axes), "ideal_points": vectors(api.ideal_points),
+            "ideal_home": vectors(api.ideal_home)}

@@ -4,7 +4,6 @@ context, CasADi functions and audit numbers."""
 from __future__ import annotations
 
 import math
-import pprint
 from dataclasses import replace
 
 import numpy as np
@@ -16,7 +15,7 @@ from ...kinematics.geometry import common_point
 from ...kinematics.planner import Geometry, NoClosedForm, Plan, arm_angle_plan, find_plan, op_branches, replay
 from ...kinematics.poe import Chain, normalised, reduce_free, reverse
 from ...kinematics.subproblems import subproblem_checks
-from ...literals import c_num, floats, py_num, text_literal, vectors
+from ...literals import c_num, floats, own_api_literals, vectors
 from ...mechanism import CApi, MechanismDefaults
 from ...model import Check, Derivation, Finding, NoDecomposition, NotDerivable, Step
 from ...tolerances import TOLERANCES
@@ -279,12 +278,17 @@ class ChainMechanism(MechanismDefaults):
         except NoDHTable as exc:
             raise NotDerivable.because(self.NAME, str(exc)) from None
         c = self.chain
-        roles, labels = _roles(plan, self.solver_chain(c, 0.0, plan.reversed))
-        api = OwnRobotApi(c.lower, c.upper, labels, tuple(roles), ideal.axes, ideal.points, ideal.home, plan.strategy,
-                          self.controls(), c.base, c.tool)
+        api = self._own_api(plan, ideal)
         return RobotTable(self.NAME, self.title, desc.source, desc.rule, c.joint_names, table, c.base @ table.frame0,
                           desc.fk, self.scale(), frozenset(o["op"] for o in plan.ops), plan.reversed,
                           self.deviation(), api)
+
+    def _own_api(self, plan, ideal) -> OwnRobotApi:
+        """The module's constants beyond the verbs: the interpreted module's, and the derived one's (robot_table)."""
+        c = self.chain
+        roles, labels = _roles(plan, self.solver_chain(c, 0.0, plan.reversed))
+        return OwnRobotApi(c.lower, c.upper, labels, tuple(roles), ideal.axes, ideal.points, ideal.home,
+                           plan.strategy, self.controls(), c.base, c.tool)
 
     def scale(self) -> float:
         c = self.chain
@@ -406,7 +410,7 @@ class ChainMechanism(MechanismDefaults):
         plan, ideal = self.plan()
         c = self.chain
         solver = self.solver_chain(c, 0.0, plan.reversed)
-        roles, branch_names = _roles(plan, solver)
+        api = self._own_api(plan, ideal)
         free = self.desc.free
         deviation = self.deviation()
         calibrated = deviation > CALIBRATED_DEVIATION
@@ -415,8 +419,7 @@ class ChainMechanism(MechanismDefaults):
                 "design_names": [c.joint_names[free]] if free >= 0 else (["arm_angle"] if self.arm_angle else []),
                 "design_values": ["0.0"] if free >= 0 or self.arm_angle else [],
                 "arm_angle": self.arm_angle,
-                "limits_lower": [py_num(v) for v in c.lower], "limits_upper": [py_num(v) for v in c.upper],
-                "strategy": plan.strategy, "controls": self.controls(), "branch_names": branch_names,
+                **own_api_literals(api), "strategy": api.strategy, "controls": api.controls,
                 "scale": repr(self.scale()), "geometry_tol": repr(self.desc.geometry_tol),
                 "geometry_deviation": repr(deviation),
                 "calibrated": calibrated,
@@ -424,12 +427,9 @@ class ChainMechanism(MechanismDefaults):
                 "tangent_tol": repr(max(float(TOLERANCES["stage_tangent"]),
                                         8.0 * deviation / min(1.0, self.scale()))),
                 "axes": vectors(c.axes), "points": vectors(c.points), "home": vectors(c.home),
-                "ideal_axes": vectors(ideal.axes), "ideal_points": vectors(ideal.points),
-                "ideal_home": vectors(ideal.home), "base": vectors(c.base), "tool_frame": vectors(c.tool),
+                "base": vectors(c.base), "tool_frame": vectors(c.tool),
                 "free": free, "reversed": plan.reversed, "plan": _plan_literal(plan),
-                "roles": pprint.pformat(tuple(roles), width=110),
-                "strategy_literal": text_literal(plan.strategy), "controls_literal": text_literal(self.controls()),
-                "plan_ops": plan.ops, "roles_list": roles,
+                "plan_ops": plan.ops,
                 "has_spatial3": any(op["op"] == "spatial3" for op in plan.ops),
                 "has_sp6": any(op["op"] == "sp6" for op in plan.ops),
                 "has_poly": any(op["op"] in ("spatial3", "sp6") for op in plan.ops),

@@ -10,7 +10,6 @@ dh_serial emits (a spherical wrist at the end), else the robot is refused with t
 from __future__ import annotations
 
 import math
-import pprint
 from dataclasses import replace
 
 import numpy as np
@@ -19,7 +18,7 @@ import sympy as sp
 from ...checks import numeric_predicate, sampler
 from ...identities.dh import DHRow
 from ...kinematics.dh_table import OwnRobotApi, RobotTable
-from ...literals import c_num, py_num, text_literal, vectors
+from ...literals import c_num, own_api_literals
 from ...model import NotDerivable, Step
 from .dh_serial import SerialSpec
 from .mechanism import SerialMechanism
@@ -141,11 +140,10 @@ class _DerivedRobot(SerialMechanism):
         """The interpreted module's limits, named branches and command line (runtime/python/own_api.py): the same
         constants, read on the same ideal chain."""
         api = self.api
-        return {"limits_lower": [py_num(v) for v in api.lower], "limits_upper": [py_num(v) for v in api.upper],
-                "strategy_literal": text_literal(api.strategy), "controls_literal": text_literal(api.controls),
-                "branch_names": api.branches,
-                "own_api": {"ideal_axes": vectors(api.ideal_axes), "ideal_points": vectors(api.ideal_points),
-                            "ideal_home": vectors(api.ideal_home), "roles": pprint.pformat(api.roles, width=110),
+        lit = own_api_literals(api)
+        return {**{k: lit[k] for k in ("limits_lower", "limits_upper", "strategy_literal", "controls_literal",
+                                       "branch_names")},
+                "own_api": {**{k: lit[k] for k in ("ideal_axes", "ideal_points", "ideal_home", "roles")},
                             "c_lower": [c_num(v) for v in api.lower], "c_upper": [c_num(v) for v in api.upper],
                             "base0": [repr(float(v)) for v in api.base[:3].ravel()],
                             "tool0": [repr(float(v)) for v in api.tool[:3].ravel()]}}
