@@ -218,6 +218,7 @@ static int ck_api_ik_near(const double pose_in[12], const ck_design *design, con
     const ck_design *d = ck_design_or_default(design);
     ck_chain ideal, truth;
     ck_ctx c;
+    ck_trig_memo memo;
     ck_rt target, base, tool, g_chain;
     double rot[9], deviation = 0.0, prev[CK_N], prev_c[CK_N], zero[3] = {0.0, 0.0, 0.0};
     int k, j;
@@ -307,6 +308,8 @@ static int ck_api_ik_near(const double pose_in[12], const ck_design *design, con
     c.probe = c.hits = 0;
     c.raw = 0;
     c.out = out;
+    memo.valid = 0;
+    c.memo = &memo;
     for (j = 0; j < CK_N; ++j) c.q[j] = c.theta[j] = 0.0;
     for (k = 0; k < CK_N_OPS; ++k) ck_point(&ideal, &ck_plan[k], c.spec[k]);
     ck_run(&c, 0, zero, zero, 0u);

@@ -2,6 +2,13 @@
  * (a wristkin runtime source, inlined whole into every user robot's generated C, after the robot's CK_*
  * constants; derive/runtime_files.py, tests/test_chain_runtime.py) */
 /* ------------------------------------------------------------------ the decomposition's interpreter */
+/* cos and sin of the last full joints a candidate's check, polish or conditioning asked for: its FK and Jacobian
+ * at one point read the same (a calibrated robot's polish spent a third of its time recomputing them) */
+typedef struct {
+    double q[CK_N], c[CK_N], s[CK_N];
+    int valid;
+} ck_trig_memo;
+
 typedef struct {
     const ck_chain *ideal;   /* the chain the plan reads */
     const ck_chain *truth;   /* the same joints on the true geometry: the check */
@@ -24,6 +31,7 @@ typedef struct {
     double theta[CK_N];      /* the angle of a parallel group (orient), by its first joint */
     double spec[CK_N_OPS][3];/* each op's point or direction on the ideal chain */
     ck_ik_solutions *out;
+    ck_trig_memo *memo;      /* the candidates' trig (ck_trig_memo_of) */
 } ck_ctx;
 
 static int ck_same(const double *a, const double *b)
@@ -169,6 +177,23 @@ static int ck_compensated(const ck_ctx *c, double *qc)
 #endif
 
 static void ck_trig_of(const double *q, double *c, double *s);
+
+/* cos and sin of the full joints q: the memo's when it holds these joints (equal, signed zeros alike), else taken
+ * and kept */
+static void ck_trig_memo_of(ck_trig_memo *m, const double *q, double *c, double *s)
+{
+    int j, same = m->valid;
+    for (j = 0; j < CK_N && same; ++j) same = m->q[j] == q[j] && signbit(m->q[j]) == signbit(q[j]);
+    if (!same) {
+        ck_trig_of(q, m->c, m->s);
+        for (j = 0; j < CK_N; ++j) m->q[j] = q[j];
+        m->valid = 1;
+    }
+    for (j = 0; j < CK_N; ++j) {
+        c[j] = m->c[j];
+        s[j] = m->s[j];
+    }
+}
 static void ck_fk_full_cs(const double *q, const double *c, const double *s, const ck_design *d, ck_rt *o);
 static void ck_jacobian_held(const double *full, const double *c, const double *s, double *jac);
 
@@ -178,7 +203,7 @@ static int ck_candidate_exact(const ck_ctx *c, const double *qc, double *full, d
 {
     ck_rt t;
     ck_full_joints(c, qc, full);
-    ck_trig_of(full, cs, sn);
+    ck_trig_memo_of(c->memo, full, cs, sn);
     ck_fk_full_cs(full, cs, sn, c->design, &t);
     *err = ck_frame_error(&t, &c->pose);
     return *err <= CK_IK_VERIFY_TOL;
@@ -191,7 +216,7 @@ static void ck_held_fk(const void *self, const double *qc, ck_rt *t)
 {
     double full[CK_N], cs[CK_N], sn[CK_N], v[12];
     ck_full_joints((const ck_ctx *)self, qc, full);
-    ck_trig_of(full, cs, sn);
+    ck_trig_memo_of(((const ck_ctx *)self)->memo, full, cs, sn);
     ck_k_fk(full, cs, sn, v);
     ck_from12(v, t);
 }
@@ -200,16 +225,17 @@ static void ck_held_jacobian(const void *self, const double *qc, double *jac)
 {
     double full[CK_N], cs[CK_N], sn[CK_N];
     ck_full_joints((const ck_ctx *)self, qc, full);
-    ck_trig_of(full, cs, sn);
+    ck_trig_memo_of(((const ck_ctx *)self)->memo, full, cs, sn);
     ck_jacobian_held(full, cs, sn, jac);
 }
 #endif
 
 /* A candidate's polish on the true chain: through the derived kernels where the solver's chain is the held
- * description, on the reversed chain's table otherwise */
-static double ck_polish_candidate(const ck_ctx *c, double *qc)
+ * description, on the reversed chain's table otherwise (t0: its end frame at qc when the caller has it, else NULL) */
+static double ck_polish_candidate(const ck_ctx *c, double *qc, const ck_rt *t0)
 {
 #if CK_REVERSED
+    (void)t0;
     return ck_polish(c->truth, qc, &c->target);
 #else
     ck_reader r;
@@ -217,7 +243,7 @@ static double ck_polish_candidate(const ck_ctx *c, double *qc)
     r.jacobian = ck_held_jacobian;
     r.self = c;
     r.n = c->truth->n;
-    return ck_polish_read(&r, qc, &c->target);
+    return ck_polish_read(&r, qc, &c->target, t0);
 #endif
 }
 
@@ -253,19 +279,28 @@ static void ck_candidate(ck_ctx *c, unsigned flags)
      * module's): a set near the tolerance passes one and fails the other (a reversed chain reads T^-1's entries),
      * and which one decides whether a family's member verifies (Python's accept) */
     if (!(ck_candidate_exact(c, qc, full, cs, sn, &err) && err <= CK_POLISH_TOL)) {
-        ck_candidate_jacobian(c, qc, jac, &t);
+#if CK_REVERSED
+        ck_candidate_jacobian(c, qc, jac, &t); /* one walk of the chain's table gives both */
+#else
+        ck_held_fk(c, qc, &t); /* the Jacobian at the set kept, below (a polish moves it) */
+#endif
         err = ck_frame_error(&t, &c->target);
         /* polished to CK_POLISH_TOL, not merely to the tolerance: near a singularity a set within CK_IK_VERIFY_TOL
          * may be residual / sigma_min off (5e-12 / 1e-6: an offset wrist 1e-6 from its singularity came back 2e-6
          * rad off) */
         if (err > CK_POLISH_TOL) {
-            err = ck_polish_candidate(c, qc);
+            err = ck_polish_candidate(c, qc, &t);
 #if CK_CALIBRATED
             if (!(err <= CK_IK_VERIFY_TOL) && ck_compensated(c, qc)) /* once per candidate: no retry loop */
-                err = ck_polish_candidate(c, qc);
+                err = ck_polish_candidate(c, qc, NULL);
 #endif
             ck_candidate_jacobian(c, qc, jac, NULL);
         }
+#if !CK_REVERSED
+        else {
+            ck_held_jacobian(c, qc, jac);
+        }
+#endif
         if (!(err <= CK_IK_VERIFY_TOL)) return;
         have_jac = 1;
         /* the residual reported and checked is the module's own FK (fk_matrix) of the returned set: the solver's
@@ -273,7 +308,7 @@ static void ck_candidate(ck_ctx *c, unsigned flags)
          * lever scales an orientation error, so a set within the tolerance there can miss it here; such a set is
          * polished on to CK_POLISH_TOL and kept only if it then meets CK_IK_VERIFY_TOL */
         if (!ck_candidate_exact(c, qc, full, cs, sn, &err)) {
-            ck_polish_candidate(c, qc);
+            ck_polish_candidate(c, qc, NULL);
             ck_candidate_jacobian(c, qc, jac, NULL);
             if (!ck_candidate_exact(c, qc, full, cs, sn, &err)) return;
         }

@@ -47,12 +47,15 @@ typedef struct {
 
 /* Gauss-Newton on the chain `r` reads: removes the error of the ideal geometry and of a tangent root. q in place;
  * returns the pose error. A square step is J^-1 e by elimination, else (or near rank deficiency) least squares. */
-static double ck_polish_read(const ck_reader *r, double *q, const ck_rt *target)
+static double ck_polish_read(const ck_reader *r, double *q, const ck_rt *target, const ck_rt *t0)
 {
     ck_rt t, t2;
     double err;
     int it, j, n = r->n;
-    r->fk(r->self, q, &t);
+    if (t0) /* the caller's reading of r at q */
+        t = *t0;
+    else
+        r->fk(r->self, q, &t);
     err = ck_frame_error(&t, target);
     for (it = 0; it < CK_POLISH_STEPS; ++it) {
         double jac[6 * CK_N], e[6], step[CK_N], trial[CK_N], err2;
@@ -90,6 +93,6 @@ static inline double ck_polish(const ck_chain *ch, double *q, const ck_rt *targe
     r.jacobian = ck_table_jacobian;
     r.self = ch;
     r.n = ch->n;
-    return ck_polish_read(&r, q, target);
+    return ck_polish_read(&r, q, target, NULL);
 }
 
