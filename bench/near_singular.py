@@ -60,7 +60,8 @@ int main(int argc, char **argv) {
     fclose(f);
     double free_value[1] = {0.0};
     wk_NAME_design d;
-    wk_NAME_design_init(free_value, &d);
+    (void)free_value; /* a derived module's design: its defaults (NULL) */
+    wk_NAME_design_init(PARAMS, &d);
     FILE *o = fopen(argv[2], "wb");
     if (!o) return 2;
     for (size_t i = 0; i < n; ++i) {
@@ -78,9 +79,9 @@ int main(int argc, char **argv) {
         fwrite(head, sizeof head, 1, o);
         for (int k = 0; k < WK_NAME_MAX_IK; ++k) {
             double row[2 + WK_NAME_N_JOINTS];
-            row[0] = k < s.count ? (double)s.valid[k] : 0.0;
+            row[0] = (double)s.valid[k]; /* the valid rows anywhere in the table (a serial arm's sit at their branch) */
             row[1] = (double)s.flags[k];
-            for (int j = 0; j < WK_NAME_N_JOINTS; ++j) row[2 + j] = k < s.count ? s.values[k][j] : 0.0;
+            for (int j = 0; j < WK_NAME_N_JOINTS; ++j) row[2 + j] = s.values[k][j];
             fwrite(row, sizeof row, 1, o);
         }
     }
@@ -94,16 +95,26 @@ def specs() -> list[Path]:
     return sorted([*ROBOTS.glob("*/*.urdf"), ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml"])
 
 
+def _free(m) -> int:
+    """The held joint's index, -1 for none (a derived module holds none)."""
+    return getattr(m, "_FREE", -1)
+
+
+def _design(m):
+    """The design the poses and sets are read with: the held joint at 0 (interpreted), the defaults (derived)."""
+    return [0.0] if _free(m) >= 0 else None
+
+
 def held_jacobian(m, q):
     """The 6 x 6 Jacobian of the solved chain (the free joint's column dropped)."""
-    J = np.asarray(m.jacobian(q, [0.0] if m.DESIGN_NAMES else None), dtype=float)
-    return np.delete(J, m._FREE, axis=1) if m._FREE >= 0 else J
+    J = np.asarray(m.jacobian(q, _design(m)), dtype=float)
+    return np.delete(J, _free(m), axis=1) if _free(m) >= 0 else J
 
 
 def singular_configurations(m, rng):
     """(joint index, q*) with det J(q*) = 0 to the last bit (tests/reference/singular.py), the free joint held."""
-    free = {m._FREE: 0.0} if m._FREE >= 0 else {}
-    joints = [j for j in range(m.N_JOINTS) if j != m._FREE]
+    free = {_free(m): 0.0} if _free(m) >= 0 else {}
+    joints = [j for j in range(m.N_JOINTS) if j != _free(m)]
     return reference_singular(lambda q: held_jacobian(m, q), m.N_JOINTS, rng, joints, fixed=free)
 
 
@@ -118,11 +129,13 @@ def sweep_joints(m, rng):
     return rows
 
 
-def run_c(out: Path, name: str, poses) -> Path:
-    """Compile the timing harness beside the robot's C, run it on the poses; the file of its results."""
+def run_c(out: Path, name: str, poses, params: bool = True) -> Path:
+    """Compile the timing harness beside the robot's C, run it on the poses; the file of its results (`params`: the
+    design is the held joint's value, else the module's defaults)."""
     cdir = out / "c"
     src = cdir / "near_singular_main.c"
-    src.write_text(HARNESS.replace("NAME", name).replace("WK_" + name, "WK_" + name.upper()))
+    src.write_text(HARNESS.replace("NAME", name).replace("WK_" + name, "WK_" + name.upper())
+                   .replace("PARAMS", "free_value" if params else "NULL"))
     exe = cdir / "near_singular"
     others = sorted(str(f) for f in cdir.glob("*.c") if f.name != src.name)
     subprocess.run(["gcc", *C_FLAGS, "-o", str(exe), str(src), *others, f"-I{cdir}", "-lm"], check=True)
@@ -138,7 +151,7 @@ def read_c(res: Path, n_poses: int, max_ik: int, nj: int) -> list[dict]:
     raw = raw.reshape(n_poses, per)
     out = []
     for r in raw:
-        sets = r[3:].reshape(max_ik, 2 + nj)[: int(r[1])]
+        sets = r[3:].reshape(max_ik, 2 + nj)
         out.append({"ns": r[0], "count": int(r[1]), "status": int(r[2]),
                     "sets": [s[2:] for s in sets if s[0]], "flags": [int(s[1]) for s in sets if s[0]]})
     return out
@@ -157,24 +170,29 @@ def missing(q, sets, delta, free):
     return best > allowance, best
 
 
-def bench_robot(spec: Path) -> dict:
+def bench_robot(spec: Path, derived: bool = False) -> dict:
+    """One robot's sweep; `derived`: its solvers derived with --stages derived (the same singular configurations:
+    the rng and the robot's FK are the same)."""
     from derive import own_robot
 
     out = Path(tempfile.mkdtemp(prefix="wk_near_"))
     name = spec.stem.removesuffix("_dh")
-    own_robot.derive(spec, out, free=FREE.get(name), progress=lambda _: None)
+    if derived:
+        own_robot.derive(spec, out, stages="derived", progress=lambda _: None)
+    else:
+        own_robot.derive(spec, out, free=FREE.get(name), progress=lambda _: None)
     m = own_robot.import_solver(out, spec.stem)
-    name = m.NAME
+    name = m.NAME + (" (derived)" if derived else "")
     rng = np.random.default_rng(20261126)
-    if m.N_JOINTS - (m._FREE >= 0) != 6:
+    if m.N_JOINTS - (_free(m) >= 0) != 6:
         return {"robot": name, "skipped": "not six solved joints (det J needs a square Jacobian)"}
     rows = sweep_joints(m, rng)
-    design = [0.0] if m.DESIGN_NAMES else None
+    design = _design(m)
     random_q = rng.uniform(-math.pi, math.pi, (200, m.N_JOINTS))
-    if m._FREE >= 0:
-        random_q[:, m._FREE] = 0.0
+    if _free(m) >= 0:
+        random_q[:, _free(m)] = 0.0
     poses = [m.fk_matrix(q, design) for _, _, q in rows] + [m.fk_matrix(q, design) for q in random_q]
-    res = run_c(out, name, poses)
+    res = run_c(out, m.NAME, poses, params=not derived)
     c = read_c(res, len(poses), m.MAX_IK, m.N_JOINTS)
     median = float(np.median([r["ns"] for r in c[len(rows):]]))
     sweep_ns = np.array([r["ns"] for r in c[: len(rows)]])
@@ -182,9 +200,9 @@ def bench_robot(spec: Path) -> dict:
     by_joint: dict[str, dict] = {}
     for (j, delta, q), cr, T in zip(rows, c, poses, strict=False):
         ps = py.ik(T, design)
-        psets = [ps.values[k] for k in range(ps.count) if ps.valid[k]]
-        c_miss, c_err = missing(q, cr["sets"], delta, m._FREE)
-        p_miss, _ = missing(q, psets, delta, m._FREE)
+        psets = [ps.values[k] for k in np.flatnonzero(ps.valid)]
+        c_miss, c_err = missing(q, cr["sets"], delta, _free(m))
+        p_miss, _ = missing(q, psets, delta, _free(m))
         key = f"q{j + 1}"
         d = by_joint.setdefault(key, {"poses": 0, "c_missing": {}, "py_missing": {}, "worst": 0.0})
         d["poses"] += 1
@@ -197,7 +215,8 @@ def bench_robot(spec: Path) -> dict:
             d["py_missing"][f"{delta:.0e}"] = d["py_missing"].get(f"{delta:.0e}", 0) + 1
         if math.isfinite(c_err):
             d["worst"] = max(d["worst"], c_err * delta)
-    return {"robot": name, "decomposition": m.DECOMPOSITION.split(":")[0], "poses": len(rows),
+    return {"robot": name, "decomposition": ("derived straight-line stages (--stages derived)" if derived else
+                                             m.DECOMPOSITION.split(":")[0]), "poses": len(rows),
             "median_us": median / 1e3, "p99_over_median": float(np.percentile(sweep_ns, 99)) / median,
             "max_over_median": float(sweep_ns.max()) / median,
             "c_missing": sum(sum(d["c_missing"].values()) for d in by_joint.values()),
@@ -205,7 +224,10 @@ def bench_robot(spec: Path) -> dict:
 
 
 def report(names=None, json_path: Path = ROOT / "build" / "bench" / "near_singular.json") -> str:
-    rows = [bench_robot(p) for p in specs() if names is None or p.stem.removesuffix("_dh") in names]
+    from own_robots import DERIVED_ROBOTS  # bench/own_robots.py: the robots --stages derived covers
+
+    chosen = [p for p in specs() if names is None or p.stem.removesuffix("_dh") in names]
+    rows = [bench_robot(p) for p in chosen] + [bench_robot(p, derived=True) for p in chosen if p.stem in DERIVED_ROBOTS]
     lines = [f"Near-singular sweeps: each joint's singular configurations (det J = 0, found by bisection) moved off "
              f"by +-delta, delta = {', '.join(f'{d:.0e}' for d in DELTAS)} rad (machine: "
              f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores):", "",
