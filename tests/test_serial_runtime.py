@@ -78,7 +78,7 @@ def test_trig_linear_returns_the_generating_root_and_one_double_root_at_a_tangen
         q, c, s = [0.0], [1.0], [0.0]
         a1 = [1.0]
         assert st._trig_linear((a, b, t), 0, 1.0, q, c, s, None, a1) == (True, FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE)
-        assert a1[0] == 1e6  # a double root: 1 / sqrt(DOUBLE_ROOT_TOL)
+        assert a1[0] == 1.0 / math.sqrt(py.stages.ROOT_GAP_TOL)  # a double root: 1 / its band
         assert abs(math.remainder(q[0] - math.atan2(b, a), 2 * math.pi)) <= 1e-12
         assert st._trig_linear((a, b, t), 0, -1.0, q, c, s, None, [1.0]) == (False, 0)
     # a vanishing equation: the family's representative, previous's value when given

@@ -117,7 +117,7 @@ def stage_view(spec) -> list[dict]:
         nxt = spec.stages[k] if k < len(spec.stages) else None
         view["probe"] = k + 1 if st.probe_next and nxt is not None and nxt.kind == "trig_linear" and any(
             spec.joints[st.joints[0]] in sp.sympify(e).free_symbols for e in nxt.exprs) else None
-        view["gap_tol"] = {"distance": "DOUBLE_ROOT_TOL", "wrist": "WRIST_EXACT_TOL"}[st.gap]
+        view["gap_tol"] = {"distance": "ROOT_GAP_TOL", "wrist": "WRIST_EXACT_TOL"}[st.gap]
         if st.kind == "wrist":
             view["signs"] = list(st.signs)
             view["joint_kinds"] = [spec.kinds[j] for j in st.joints]

@@ -51,9 +51,11 @@ def py_stage_body(st: dict) -> list[str]:
     j = st["joints"][0]
     if st["kind"] == "trig_linear":
         if not st.get("factored"):
-            return [f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp)"]
+            return [f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp,",
+                    "                    size=_design_size(dp))"]
         return [f"a = {_amp_before(st)}  # the angle stages' amplification",
-                f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp, a, {st['gap_tol']})"]
+                f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp, a, {st['gap_tol']},",
+                "                    _design_size(dp))"]
     if st["kind"] == "rotation2d":
         if st.get("probe"):  # a family's member is the one its next stage reaches (serial_stages._family_by_reach)
             return [f"return _rotation2d({out}, {j}, q, c, s, prev, amp, _k_stage{st['probe']}, pose, dp)"]
@@ -81,7 +83,8 @@ def c_stage_body(st: dict) -> list[str]:
     if st["kind"] == "trig_linear":
         gap_tol = f"SR_{st['gap_tol']}" if st.get("factored") else "0.0"
         return head + [call, f"return sr_trig_linear(out, {int(bool(st.get('factored')))}, {gap_tol}, {j}, "
-                             f"sr_sign(k, {st['bit']}), q, c, s, prev, amp, {_amp_before(st)}, f);"]
+                             f"sr_sign(k, {st['bit']}), q, c, s, prev, amp, {_amp_before(st)}, "
+                             "sr_design_size(dp), f);"]
     if st["kind"] == "rotation2d":
         probe = f"sr_k_stage{st['probe']}" if st.get("probe") else "NULL"
         return head + [call, f"return sr_rotation2d(out, {j}, q, c, s, prev, amp, f, {probe}, pose, dp);"]

@@ -18,6 +18,8 @@ from serial_stand_in import (
     FLAG_INDETERMINATE,
     FLAG_SINGULAR_INVERSE,
     N_JOINTS,
+    ON_AXIS_TOL,
+    ROOT_GAP_TOL,
     SINGULAR_EPS,
     TANGENT_TOL,
     WRIST_EXACT_TOL,
@@ -40,14 +42,21 @@ def _family_member(j, q, c, s, prev):
     q[j], c[j], s[j] = (v, 1.0, 0.0) if v == 0.0 else (v, math.cos(v), math.sin(v))
 
 
-def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=DOUBLE_ROOT_TOL):
+def _design_size(dp):
+    """The design's size: its largest length, at least 1 (a stage's coefficients carry rounding of that order)."""
+    return max([1.0, *(abs(v) for v in dp)])
+
+
+def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=ROOT_GAP_TOL, size=1.0):
     """Joint j from A cos q + B sin q + C = 0 (out = (A, B, C), a factored stage's also (Dm, Dp, Em)): q = atan2(B, A)
     + sgn acos(-C / sqrt(A^2 + B^2)), its cos and sin from (A, B, u) without trigonometry; amp[j]: how much its roots
     amplify the input's rounding; amp_before: the angle stages' before it; gap_tol: a factored stage's band
-    (_root_gap). Returns (ok, flags)."""
+    (_root_gap); size: the design's (_design_size), the scale of (A, B)'s rounding. Returns (ok, flags)."""
     a, b, cc = out[0], out[1], out[2]
     r = math.hypot(a, b)
-    if r <= DEGENERATE_EPS:
+    # (A, B) at the rounding of the design's lengths: a family (a KR 6's wrist centre 1e-12 m off its shoulder axis,
+    # DEGENERATE_EPS, came back as the family's member 2 rad off; the pose fixes the joint to eps / r)
+    if r <= ON_AXIS_TOL * size:
         # |C| within sqrt(DOUBLE_ROOT_TOL): a double root upstream (resolved to sqrt(eps)) can leave this stage a
         # residue of that size where it is really a family (PUMA with a3 = 0, a2 = d4, the arm folded onto the
         # shoulder); the representative is kept only if the set then passes the FK check
@@ -81,14 +90,14 @@ def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=DOUBLE
 def _root_gap(out, r, u, amp_before, gap_tol):
     """(sin w, band): the half-gap w of the roots phi +- w, and the sin w below which they are one double root.
 
-    From u alone 1 - u^2 carries eps of rounding, so the band is sqrt(DOUBLE_ROOT_TOL). A factored stage gives the
+    From u alone 1 - u^2 carries a few eps of rounding, so the band is sqrt(ROOT_GAP_TOL). A factored stage gives the
     factors (Dm, Dp) of 4 R^2 (1 - u^2), each to its own precision, and Em, the scale of Dm's rounding: when Dm is the
     small factor its rounding is Em / (2 R) of what 1 - u^2 carries (times the angle stages' amplification before
     it), and the band narrows by its square root (a SCARA with a1 = a2 folded to 1e-8 keeps both elbows). Its
-    gap_tol: a distance stage's DOUBLE_ROOT_TOL; a wrist's half-gap (Dm = 2 |n x w|^2, Em = 4 |n x w|: the band is
+    gap_tol: a distance stage's ROOT_GAP_TOL; a wrist's half-gap (Dm = 2 |n x w|^2, Em = 4 |n x w|: the band is
     2 gap_tol amp_before on |n x w|) takes WRIST_EXACT_TOL, the DH wrist's family band on |sin theta5|."""
     if len(out) == 3:
-        return math.sqrt(1.0 - u * u), math.sqrt(DOUBLE_ROOT_TOL)
+        return math.sqrt(1.0 - u * u), math.sqrt(ROOT_GAP_TOL)
     dm, dp, em = out[3], out[4], out[5]
     # the product and |Dm| <= |Dp|: a length derived as positive and given negative swaps the factors and their signs
     sg = math.sqrt(max(dm * dp, 0.0)) / (2.0 * r)

@@ -31,16 +31,26 @@ static double sr_clamp1(double x)
     return x > 1.0 ? 1.0 : (x < -1.0 ? -1.0 : x);
 }
 
+/* The design's size: its largest length, at least 1 (Python's _design_size) */
+static inline double sr_design_size(const double *dp)
+{
+    double size = 1.0;
+    int i;
+    for (i = 0; i < SR_N_PARAMS; ++i)
+        if (fabs(dp[i]) > size) size = fabs(dp[i]);
+    return size;
+}
+
 /* (sin w, band) of the roots phi +- w: below the band they are one double root (Python's _root_gap). From u alone
- * 1 - u^2 carries eps of rounding (band sqrt(SR_DOUBLE_ROOT_TOL)); a factored stage gives the factors Dm, Dp of
+ * 1 - u^2 carries a few eps of rounding (band sqrt(SR_ROOT_GAP_TOL)); a factored stage gives the factors Dm, Dp of
  * 4 R^2 (1 - u^2), each to its own precision, and Em, the scale of Dm's rounding, and its band's gap_tol (a distance:
- * SR_DOUBLE_ROOT_TOL, a wrist's half-gap: SR_WRIST_EXACT_TOL) */
+ * SR_ROOT_GAP_TOL, a wrist's half-gap: SR_WRIST_EXACT_TOL) */
 static inline void sr_root_gap(const double *out, int factored, double gap_tol, double r, double u,
                                double amp_before, double *sg, double *band)
 {
     if (!factored) {
         *sg = sqrt(1.0 - u * u);
-        *band = sqrt(SR_DOUBLE_ROOT_TOL);
+        *band = sqrt(SR_ROOT_GAP_TOL);
     } else {
         /* the product and |Dm| <= |Dp|: a length derived as positive and given negative swaps the factors and their
          * signs (Python's _root_gap) */
@@ -55,11 +65,12 @@ static inline void sr_root_gap(const double *out, int factored, double gap_tol, 
  * sgn acos(-C / sqrt(A^2 + B^2)). inline: each stage of this kind calls it with its own constant joint, bit and form,
  * as straight-line code would */
 static inline int sr_trig_linear(const double *out, int factored, double gap_tol, int j, double sgn, double *q,
-                                 double *c, double *s, const double *prev, double *amp, double amp_before, unsigned *f)
+                                 double *c, double *s, const double *prev, double *amp, double amp_before, double size,
+                                 unsigned *f)
 {
     const double r = sqrt(out[0] * out[0] + out[1] * out[1]);
     double u, sg, band, ca, sa;
-    if (r <= SR_DEGENERATE_EPS) {
+    if (r <= SR_ON_AXIS_TOL * size) { /* (A, B) at the rounding of the design's lengths (Python's _trig_linear) */
         /* |C| within sqrt(SR_DOUBLE_ROOT_TOL): an upstream double root's residue (see Python); the FK check decides */
         if (fabs(out[2]) > sqrt(SR_DOUBLE_ROOT_TOL) || sgn < 0.0) return 0;
         sr_family_member(j, q, c, s, prev); /* one-parameter family: its representative */
