@@ -102,6 +102,14 @@ def _conditioned(mod, design, sets):
     return np.where(regular, np.maximum(SPECIAL_TOL, CONDITIONED * EPS / np.where(regular, sigma, 1.0)), SPECIAL_TOL)
 
 
+def _regular(mod, design, sets):
+    """Per set: REGULAR_TOL x 10, or CONDITIONED x eps / sigma_min of the Jacobian there where that is larger (a random
+    arm near a singularity: seed 4242 drew a framed PUMA whose C and numpy sets differed by 2.6e-10, both on the pose
+    to rounding)."""
+    sigma = np.array([np.linalg.svd(mod.jacobian(q, design), compute_uv=False)[-1] for q in sets])
+    return np.maximum(REGULAR_TOL * 10, CONDITIONED * EPS / np.maximum(sigma, 1e-300))
+
+
 def _joints(mod, rng, special: bool):
     q = np.where(np.array(mod.JOINT_KINDS) == "R", rng.uniform(-math.pi, math.pi, mod.N_JOINTS),
                  rng.uniform(-0.4, 0.4, mod.N_JOINTS))
@@ -385,7 +393,7 @@ def test_a_serial_arm_takes_base_and_tool_frames_on_both_paths(name):
             np.testing.assert_allclose(mod.fk_batch(np.array([q, q]), c_design).values[:, 0],
                                        np.array([want[:3].ravel()] * 2), atol=1e-12, rtol=0)
             a, b = mod.ik(want, c_design), mod.ik(want, py_design)
-            _same(a, b, REGULAR_TOL * 10, f"{name} framed ik", rev)
+            _same(a, b, _regular(mod, c_design, a.values[a.valid]), f"{name} framed ik", rev)
             assert min(float(np.max(np.abs(_diff(v, q, rev)))) for v in a.values[a.valid]) <= 1e-9
             jac = mod.jacobian(q, c_design)
             np.testing.assert_allclose(jac, mod.jacobian(q, py_design), atol=1e-12, rtol=0)
