@@ -169,6 +169,24 @@ def test_the_folder_extension_and_numpy_give_the_same_answers(robot):
         assert batch.values.shape == (5, m.MAX_IK, m.N_JOINTS)
 
 
+def test_a_user_s_own_c_file_in_the_folder_leaves_the_extension_built(tmp_path):
+    """The extension compiles the C files wristkin wrote, not every file in OUT/c: a user's test harness with its own
+    main beside them made the build fail, and the solvers fell back to numpy with an empty reason."""
+    if os.environ.get("WRISTKIN_BACKEND") == "numpy":
+        pytest.skip("the numpy backend is forced")
+    own_robot.derive(ROBOTS / "kr6" / "kr6.urdf", tmp_path, name="kr6_mine", progress=lambda _: None)
+    # a timing harness as users write one: built on its own with -D_POSIX_C_SOURCE, which the extension's flags lack
+    (tmp_path / "c" / "my_harness.c").write_text('#include <time.h>\n#include "kr6_mine.h"\n'
+                                                 "int main(void) { struct timespec t; clock_gettime(CLOCK_MONOTONIC, "
+                                                 "&t); return 0; }\n")
+    said = []
+    own_robot.derive(ROBOTS / "kr6" / "kr6.urdf", tmp_path, name="kr6_mine", progress=said.append)
+    assert not any("no C extension" in line for line in said), said
+    m = own_robot.import_solver(tmp_path, "kr6_mine")
+    assert m.BACKEND == "c"
+    assert (tmp_path / "c" / "my_harness.c").is_file()  # the user's file stays
+
+
 def test_the_decomposition_is_read_from_the_axes():
     assert "spherical wrist" in solver("kr6").DECOMPOSITION
     assert "three parallel axes" in solver("ur5e").DECOMPOSITION
