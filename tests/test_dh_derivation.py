@@ -7,12 +7,14 @@ import math
 
 import numpy as np
 import sympy as sp
+from reference.dh import dh_matrix
 from seeding import case_rng
 
 from derive.catalogue import registry
 from derive.families.serial import dh_serial
 from derive.identities.dh import (
     DHRow,
+    chain,
     dh_modified,
     dh_modified_explicit,
     dh_standard,
@@ -57,6 +59,54 @@ def test_modified_dh_chain_equals_standard_chain():
                                    atol=1e-12)
         np.testing.assert_allclose(np.array(f[1](*vals), dtype=float), np.array(f[3](*vals), dtype=float),
                                    atol=1e-12)
+
+
+def _rx(t):
+    c, s = math.cos(t), math.sin(t)
+    return np.array([[1, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1.0]])
+
+
+def _rz(t):
+    c, s = math.cos(t), math.sin(t)
+    return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1.0]])
+
+
+def _shift(x, z):
+    m = np.eye(4)
+    m[0, 3], m[2, 3] = x, z
+    return m
+
+
+def test_the_folded_chain_is_the_product_of_its_links():
+    """identities/dh.chain writes each run of parallel axes with the sum of its angles (twists 0 and +-pi keep the
+    run, pi flipping the sign the later angles enter with); every cumulative frame must still be the plain product of
+    the link matrices. Reference: numpy products of tests/reference/dh.dh_matrix (standard) and of elementary
+    rotations and shifts (modified), at random tables whose twists mix 0, +-pi, +-pi/2 and a generic angle."""
+    rng = case_rng(2402)
+    twists = (0, sp.pi, -sp.pi, sp.pi / 2, -sp.pi / 2, sp.Rational(7, 10))
+    for convention in ("standard", "modified"):
+        for _ in range(8):
+            n = 6
+            qs = sp.symbols(f"q1:{n + 1}", real=True)
+            alphas = [twists[i] for i in rng.integers(0, len(twists), n)]
+            a = rng.uniform(-0.5, 0.5, n)
+            d = rng.uniform(-0.5, 0.5, n)
+            off = rng.uniform(-math.pi, math.pi, n)
+            rows = [DHRow(sp.Float(a[i]), alphas[i], sp.Float(d[i]), qs[i] + sp.Float(off[i]), qs[i]) for i in range(n)]
+            base = trans(0.1, -0.2, 0.3) * hrot_x(sp.Rational(3, 10))
+            tool = trans(0.0, 0.05, 0.12) * hrot_x(-sp.pi / 2)
+            frames = chain(rows, convention, tool, base)
+            fns = [sp.lambdify(qs, f, "numpy") for f in frames]
+            for _ in range(5):
+                q = rng.uniform(-math.pi, math.pi, n)
+                t = np.array(base, dtype=float)
+                for i in range(n):
+                    al, th = float(alphas[i]), q[i] + off[i]
+                    link = (dh_matrix(a[i], al, d[i], th) if convention == "standard" else
+                            _rx(al) @ _shift(a[i], 0.0) @ _rz(th) @ _shift(0.0, d[i]))
+                    t = t @ link
+                    want = t @ np.array(tool, dtype=float) if i == n - 1 else t
+                    np.testing.assert_allclose(np.array(fns[i](*q), dtype=float), want, atol=1e-13, rtol=0)
 
 
 def test_mirrored_wrist_set_has_its_base_sets_fk_bit_for_bit():

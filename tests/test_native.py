@@ -94,20 +94,14 @@ def _same_batch(a, b, tol, what, revolute=None):
     assert not np.any(np.abs(d) > np.reshape(tol, (-1, 1) if np.ndim(tol) else ())), what
 
 
-def _conditioned(mod, design, sets):
-    """Per set: SPECIAL_TOL, or CONDITIONED x eps / sigma_min of the Jacobian there where that is larger and the set
-    is not singular to rounding (lengths are O(1 m), so the mixed units do not move sigma_min's order)."""
+def _conditioned(mod, design, sets, floor=SPECIAL_TOL):
+    """Per set: `floor`, or CONDITIONED x eps / sigma_min of the Jacobian there where that is larger and the set is not
+    singular to rounding (lengths are O(1 m), so the mixed units do not move sigma_min's order). The floor: SPECIAL_TOL
+    at special joints; REGULAR_TOL x 10 at random ones (seed 4242 drew a framed PUMA 1.4e-6 from singular whose C and
+    numpy sets differed by 2.6e-10, both on the pose to rounding)."""
     sigma = np.array([np.linalg.svd(mod.jacobian(q, design), compute_uv=False)[-1] for q in sets])
     regular = sigma > CONDITIONED * EPS
-    return np.where(regular, np.maximum(SPECIAL_TOL, CONDITIONED * EPS / np.where(regular, sigma, 1.0)), SPECIAL_TOL)
-
-
-def _regular(mod, design, sets):
-    """Per set: REGULAR_TOL x 10, or CONDITIONED x eps / sigma_min of the Jacobian there where that is larger (a random
-    arm near a singularity: seed 4242 drew a framed PUMA whose C and numpy sets differed by 2.6e-10, both on the pose
-    to rounding)."""
-    sigma = np.array([np.linalg.svd(mod.jacobian(q, design), compute_uv=False)[-1] for q in sets])
-    return np.maximum(REGULAR_TOL * 10, CONDITIONED * EPS / np.maximum(sigma, 1e-300))
+    return np.where(regular, np.maximum(floor, CONDITIONED * EPS / np.where(regular, sigma, 1.0)), floor)
 
 
 def _joints(mod, rng, special: bool):
@@ -393,7 +387,7 @@ def test_a_serial_arm_takes_base_and_tool_frames_on_both_paths(name):
             np.testing.assert_allclose(mod.fk_batch(np.array([q, q]), c_design).values[:, 0],
                                        np.array([want[:3].ravel()] * 2), atol=1e-12, rtol=0)
             a, b = mod.ik(want, c_design), mod.ik(want, py_design)
-            _same(a, b, _regular(mod, c_design, a.values[a.valid]), f"{name} framed ik", rev)
+            _same(a, b, _conditioned(mod, c_design, a.values[a.valid], REGULAR_TOL * 10), f"{name} framed ik", rev)
             assert min(float(np.max(np.abs(_diff(v, q, rev)))) for v in a.values[a.valid]) <= 1e-9
             jac = mod.jacobian(q, c_design)
             np.testing.assert_allclose(jac, mod.jacobian(q, py_design), atol=1e-12, rtol=0)

@@ -44,7 +44,7 @@ def _family_member(j, q, c, s, prev):
 
 def _design_size(dp):
     """The design's size: its largest length, at least 1 (a stage's coefficients carry rounding of that order)."""
-    return max([1.0, *(abs(v) for v in dp)])
+    return max(1.0, max(map(abs, dp), default=0.0))
 
 
 def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=ROOT_GAP_TOL, size=1.0):
