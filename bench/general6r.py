@@ -67,7 +67,7 @@ def bench(name, path, free, n):
     free_value = 0.0
     if m._FREE >= 0:
         joints[:, m._FREE] = free_value
-    design = [free_value] if m.DESIGN_NAMES else None
+    design = [free_value] if m._FREE >= 0 or m._ARM_ANGLE else None
     poses = [m.fk_matrix(q, design) for q in joints]
     sols = [m.ik(T, design) for T in poses]
     found = sum(any(max(abs(math.remainder(a - b, 2 * math.pi)) for a, b in zip(v, q, strict=True)) < 1e-9

@@ -180,7 +180,7 @@ def bench_robot(spec: Path, derived: bool = False) -> dict:
     if derived:
         own_robot.derive(spec, out, stages="derived", progress=lambda _: None)
     else:
-        own_robot.derive(spec, out, free=FREE.get(name), progress=lambda _: None)
+        own_robot.derive(spec, out, free=FREE.get(name), stages="interpreted", progress=lambda _: None)
     m = own_robot.import_solver(out, spec.stem)
     name = m.NAME + (" (derived)" if derived else "")
     rng = np.random.default_rng(20261126)
@@ -228,7 +228,9 @@ def report(names=None, json_path: Path = ROOT / "build" / "bench" / "near_singul
 
     chosen = [p for p in specs() if names is None or p.stem.removesuffix("_dh") in names]
     rows = [bench_robot(p) for p in chosen] + [bench_robot(p, derived=True) for p in chosen if p.stem in DERIVED_ROBOTS]
-    lines = [f"Near-singular sweeps: each joint's singular configurations (det J = 0, found by bisection) moved off "
+    lines = [f"Near-singular sweeps (the plain rows `--stages interpreted`, the \"(derived)\" rows the derived stages, "
+             "the default where they cover the robot): each joint's singular configurations (det J = 0, found by "
+             "bisection) moved off "
              f"by +-delta, delta = {', '.join(f'{d:.0e}' for d in DELTAS)} rad (machine: "
              f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores):", "",
              "| robot | decomposition | poses | generating joints missing C / numpy | "

@@ -91,7 +91,8 @@ def _check(solve, m, poses, free_value):
             full = list(s)
             if m._FREE >= 0:
                 full.insert(m._FREE, free_value)
-            err = max(err, float(np.max(np.abs(m.fk_matrix(full, [free_value] if m.DESIGN_NAMES else None) - T))))
+            design = [free_value] if m._FREE >= 0 or m._ARM_ANGLE else None
+            err = max(err, float(np.max(np.abs(m.fk_matrix(full, design) - T))))
     return err, counts
 
 
@@ -208,7 +209,7 @@ def bench_robot(urdf: Path, n: int, arm_angle: bool = False, derived: bool = Fal
     elif derived:
         own_robot.derive(urdf, out, stages="derived", progress=lambda _: None)
     else:
-        own_robot.derive(urdf, out, free=FREE.get(robot), progress=lambda _: None)
+        own_robot.derive(urdf, out, free=FREE.get(robot), stages="interpreted", progress=lambda _: None)
     derive_s = time.perf_counter() - t0
     m = own_robot.import_solver(out, robot)
     rng = np.random.default_rng(7)
@@ -257,7 +258,9 @@ def report(n: int = 200, json_path: Path = ROOT / "build" / "bench" / "own_robot
             versions[mod] = version(mod.replace("_", "-"))
         except Exception:  # noqa: BLE001
             versions[mod] = "not installed"
-    lines = [f"Your own robots: `wristkin derive` on each test robot's URDF, {n} poses each (machine: "
+    lines = [f"Your own robots: `wristkin derive` on each test robot's URDF, {n} poses each; the plain rows with "
+             "`--stages interpreted` (the plan interpreter), the \"(derived)\" rows with the derived straight-line "
+             "stages, the default for the robots they cover (machine: "
              f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores, Python "
              f"{platform.python_version()}; peers: EAIK {versions['eaik']}, ik-geo {versions['ik_geo']}):", "",
              "| robot | C loop / EAIK | decomposition | derive s | IK sets/pose | wristkin C loop us | "

@@ -73,7 +73,7 @@ def check_robot(name: str, n: int) -> dict:
         q = np.array([rng.uniform(max(lo, -math.pi), min(hi, math.pi)) for lo, hi in r.limits])
         if m._FREE >= 0:
             q[m._FREE] = 0.0
-        d = [q[m._FREE]] if m.DESIGN_NAMES else None
+        d = [q[m._FREE]] if m._FREE >= 0 or m._ARM_ANGLE else None
         T = m.fk_matrix(q, d)
         fk_err = max(fk_err, float(np.max(np.abs(T - r(q)))))
         sol = m.ik(T, d)
@@ -83,8 +83,8 @@ def check_robot(name: str, n: int) -> dict:
         for v in sol:
             worst = max(worst, float(np.max(np.abs(m.fk_matrix(v, d) - T))))
         joints.append(q)
-    poses = [m.fk_matrix(q, [q[m._FREE]] if m.DESIGN_NAMES else None) for q in joints]
-    ours = [m.ik(T, [0.0] if m.DESIGN_NAMES else None).count for T in poses]
+    poses = [m.fk_matrix(q, [q[m._FREE]] if m._FREE >= 0 or m._ARM_ANGLE else None) for q in joints]
+    ours = [m.ik(T, [0.0] if m._FREE >= 0 or m._ARM_ANGLE else None).count for T in poses]
     eaik = eaik_counts(m, poses)
     same = None if eaik is None or isinstance(eaik, str) else sum(a == b for a, b in zip(eaik[0], ours, strict=True))
     return {"robot": name, "file": rel, "joints": m.N_JOINTS, "free": free or "-", "derive_s": derive_s,

@@ -42,4 +42,7 @@ def own_api_literals(api) -> dict:
             "strategy_literal": text_literal(api.strategy), "controls_literal": text_literal(api.controls),
             "branch_names": api.branches, "roles": pprint.pformat(tuple(api.roles), width=110),
             "ideal_axes": vectors(api.ideal_axes), "ideal_points": vectors(api.ideal_points),
-            "ideal_home": vectors(api.ideal_home)}
+            "ideal_home": vectors(api.ideal_home), "scale": repr(float(api.scale)),
+            "geometry_tol": repr(float(api.geometry_tol)), "geometry_deviation": repr(float(api.deviation)),
+            "description_tol": repr(float(api.description_tol)),
+            "calibrated": bool(api.calibrated)}

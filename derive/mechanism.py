@@ -83,9 +83,9 @@ class MechanismDefaults:
     def robot_table(self) -> Any:
         """The mechanism as a DH table for `--stages derived` (kinematics/dh_table.RobotTable); a mechanism that
         is no user's robot description refuses."""
-        from .model import NotDerivable
+        from .model import NotARobot
 
-        raise NotDerivable(f"{self.NAME}: --stages derived takes a robot description (URDF, DH or POE); a catalogue "
+        raise NotARobot(f"{self.NAME}: --stages derived takes a robot description (URDF, DH or POE); a catalogue "
                            "mechanism's stages are derived already")
 
     def audit_numbers(self, dv: Derivation, solver: Any, audit_dir: Path) -> dict:

@@ -24,12 +24,22 @@ class NoDecomposition(ValueError):
 
 
 class NotDerivable(NoDecomposition):
-    """`--stages derived` does not cover the robot (the message says why, and that the plan interpreter solves it)."""
+    """`--stages derived` does not cover the robot (the message says why, and that the plan interpreter solves it);
+    `why` is the reason alone (what `--stages auto` reports when it falls back to the interpreter)."""
+
+    def __init__(self, message: str, why: str | None = None):
+        super().__init__(message)
+        self.why = why or message
 
     @classmethod
-    def because(cls, name: str, why: str) -> NotDerivable:
-        return cls(f"{name}: --stages derived does not cover this robot ({why}); without --stages derived the plan "
-                   "interpreter solves it")
+    def because(cls, name: str, why: str, short: str | None = None) -> NotDerivable:
+        """`short`: the reason in a few words where `why` is long (a planner's full refusal)."""
+        return cls(f"{name}: --stages derived does not cover this robot ({why}); --stages interpreted (the plan "
+                   "interpreter) solves it", short or why)
+
+
+class NotARobot(NotDerivable):
+    """A mechanism that is no user's robot description (a catalogue mechanism: its stages are derived already)."""
 
 
 class CheckFailed(AssertionError):

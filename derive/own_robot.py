@@ -21,16 +21,25 @@ from pathlib import Path
 
 from . import runtime_files
 from .families import FAMILIES
+from .model import NotARobot, NotDerivable
 from .render import header_lines
 from .spec import Spec, SpecError
+
+STAGES = ("auto", "derived", "interpreted")
 
 
 def load(source: str | Path, name=None, base=None, tip=None, free=None, geometry_tol=None, xacro_args=None,
          packages=None, redundancy=None, stages=None):
-    """The mechanism of a URDF / xacro or a spec file (command-line options override the spec's own fields).
-    `stages` "derived" (or the spec's `stages` field): the robot's IK derived as straight-line code (its
-    mechanism's robot_table, handed to the family with from_table) instead of the plan interpreter ("interpreted",
-    the default)."""
+    """The mechanism of a URDF / xacro or a spec file (command-line options override the spec's own fields), its IK
+    as `stages` (or the spec's `stages` field) says: "auto" (the default) derived as straight-line code where the
+    derived stages cover the robot, else the plan interpreter; "derived" that or a refusal (NotDerivable);
+    "interpreted" the plan interpreter."""
+    return with_stages(*_read(source, name, base, tip, free, geometry_tol, xacro_args, packages, redundancy,
+                              stages))[0]
+
+
+def _read(source, name, base, tip, free, geometry_tol, xacro_args, packages, redundancy, stages):
+    """The family's mechanism of the description and the stages asked for."""
     path = Path(source)
     readers = [f for f in FAMILIES.values() if path.suffix.lower() in f.SOURCE_SUFFIXES]
     if readers:  # a description file a family reads itself (a URDF, a xacro file)
@@ -56,12 +65,27 @@ def load(source: str | Path, name=None, base=None, tip=None, free=None, geometry
     family = FAMILIES.get(spec.data.get("family"))
     if family is None:
         raise spec.error("family", f"one of the families {', '.join(sorted(FAMILIES))}", spec.data.get("family"))
-    derived = spec.has("stages") and spec.choice("stages", ("interpreted", "derived")) == "derived"
-    mech = family.from_spec(spec)
-    if derived:  # the robot's DH table, derived by the family that emits straight-line stages
-        emitter = next(f for f in FAMILIES.values() if f.from_table is not None)
-        return emitter.from_table(mech.robot_table())
-    return mech
+    choice = spec.choice("stages", STAGES) if spec.has("stages") else "auto"
+    return family.from_spec(spec), choice
+
+
+def with_stages(mech, choice: str):
+    """(mechanism, note): a robot description's mechanism with derived straight-line stages (its robot_table
+    handed to the family with from_table) where `choice` allows and they cover it; the note says which IK the
+    solver has and, where auto fell back to the plan interpreter, why (None for a catalogue mechanism)."""
+    if choice == "interpreted":
+        return mech, "IK: the plan interpreter (--stages interpreted)"
+    emitter = next(f for f in FAMILIES.values() if f.from_table is not None)
+    try:
+        return emitter.from_table(mech.robot_table()), "IK: derived straight-line stages"
+    except NotARobot:
+        if choice == "derived":
+            raise
+        return mech, None
+    except NotDerivable as exc:
+        if choice == "derived":
+            raise
+        return mech, f"IK: the plan interpreter (the derived stages do not cover this robot: {exc.why})"
 
 
 def import_solver(out: Path, name: str, backend: str | None = None):
@@ -129,10 +153,13 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
         progress(f"  {text} ({now - last[0]:.1f} s)")
         last[0] = now
 
-    mech = load(source, name, base, tip, free, geometry_tol, xacro_args, packages, redundancy, stages)
+    mech, note = with_stages(*_read(source, name, base, tip, free, geometry_tol, xacro_args, packages, redundancy,
+                                    stages))
     out = Path(out)
     nm = mech.NAME
     progress(f"wristkin derive: {nm} from {source}")
+    if note:
+        progress(f"  {note}")
     stage("read the description")
     dv = mech.derive()
     stage(f"derived {len(dv.steps)} steps, {sum(len(s.checks) for s in dv.steps)} checks passed")

@@ -479,8 +479,8 @@ def test_previous_changes_no_set_near_the_wrist_singularity(solvers, name):
         assert a.status == b.status and a.count >= 1, (name, i, a.reason, b.reason)
         _assert_same(py, a, c.ik(pose), f"{name} near {i}", tol=1.0)  # the sets, flags, status; values below
         _assert_same(py, b, c.ik(pose, None, q), f"{name} near {i} previous", tol=1.0)
-        regular = [[k for k in range(s.count) if not s.flags[k] & FLAG_INDETERMINATE] for s in (a, b)]
-        family = [[k for k in range(s.count) if s.flags[k] & FLAG_INDETERMINATE] for s in (a, b)]
+        regular = [[k for k in np.flatnonzero(s.valid) if not s.flags[k] & FLAG_INDETERMINATE] for s in (a, b)]
+        family = [[k for k in np.flatnonzero(s.valid) if s.flags[k] & FLAG_INDETERMINATE] for s in (a, b)]
         assert len(regular[0]) == len(regular[1]) and bool(family[0]) == bool(family[1]), (name, i, a.reason,
                                                                                          b.reason)
         for ka, kb in zip(*regular, strict=True):  # a regular set stays, flags and all
@@ -508,7 +508,7 @@ def test_offset_wrist_singularity_equals_python(solvers):
         s = py.ik(pose)
         _assert_same(py, s, c.ik(pose), f"ur_off singular {i}")
         assert s.count >= 1 and s.status == STATUS_INDETERMINATE, (i, s.reason)
-        assert any(s.flags[k] & FLAG_INDETERMINATE for k in range(s.count))
+        assert any(s.flags[k] & FLAG_INDETERMINATE for k in np.flatnonzero(s.valid))
         near = py.ik(pose, None, q)
         _assert_same(py, near, c.ik(pose, None, q), f"ur_off singular {i} near")
         assert min(_gap(v, q, py.JOINT_KINDS) for v in near) < 1e-7

@@ -63,7 +63,7 @@ def test_the_dh_table_is_the_description_at_every_joint(path):
     product to rounding: 1e-15 m per unit of the robot's size, x 20 for the products' depth, over the smallest sine
     between consecutive axes not parallel (the common normal's feet divide by it: the calibrated KR 6's axes 2 and
     3 are 2e-7 rad apart, and its table is 1.3e-10 m off)."""
-    chain = own_robot.load(path).desc.chain
+    chain = own_robot.load(path, stages="interpreted").desc.chain
     table = standard_dh(chain)
     reference = ref.load(path)
     rng = case_rng(2301)
@@ -140,7 +140,8 @@ def test_the_derived_module_offers_what_the_interpreted_one_does(robot, tmp_path
     select(branch=) a set of that branch), the same pose forms (xyz + rpy, quaternion) and the same command line
     (the sets' branches and values, text and JSON)."""
     m, _, out = derived(robot)
-    own_robot.derive(_file(robot, "urdf"), tmp_path, name=f"{robot}_interp", native=False, progress=lambda _: None)
+    own_robot.derive(_file(robot, "urdf"), tmp_path, name=f"{robot}_interp", native=False, stages="interpreted",
+                     progress=lambda _: None)
     interp = own_robot.import_solver(tmp_path, f"{robot}_interp")
     public = {n for n in dir(interp) if not n.startswith("_")} - INTERPRETER_ONLY
     assert public <= {n for n in dir(m) if not n.startswith("_")}
@@ -194,7 +195,8 @@ def test_base_and_tool_frames_replace_the_description_s_as_in_the_interpreted_mo
     m = own_robot.import_solver(tmp_path / "d", "kr6_framed")
     py = own_robot.import_solver(tmp_path / "d", "kr6_framed", backend="numpy")
     reference = ref.load(path)
-    own_robot.derive(path, tmp_path / "i", name="kr6_interp", native=False, progress=lambda _: None)
+    own_robot.derive(path, tmp_path / "i", name="kr6_interp", native=False, stages="interpreted",
+                     progress=lambda _: None)
     interp = own_robot.import_solver(tmp_path / "i", "kr6_interp")
     assert m._TOOL != m._BASE and np.array_equal(m._TOOL, interp.make_design().tool)
     assert np.array_equal(m._BASE, interp.make_design().base)
@@ -313,7 +315,7 @@ def test_the_design_is_the_table_s_lengths_and_moves_the_robot():
     with that length changed, the module's FK equals (1e-12), and whose own IK returns the generating joints."""
     m, _, _ = derived("irb120")
     assert len(m.DESIGN_NAMES) == len(m.DESIGN_DEFAULT) >= 4
-    mech = own_robot.load(_file("irb120", "urdf"))
+    mech = own_robot.load(_file("irb120", "urdf"), stages="interpreted")  # its plan and chain
     table = standard_dh(mech.plan()[1])
     base = mech.chain.base @ table.frame0
     rng = case_rng(2305)
@@ -341,7 +343,26 @@ def test_the_design_is_the_table_s_lengths_and_moves_the_robot():
 def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, why):
     with pytest.raises(NotDerivable, match=why) as exc:
         own_robot.load(path, stages="derived")
-    assert "without --stages derived the plan interpreter solves it" in str(exc.value)
+    assert "--stages interpreted (the plan interpreter) solves it" in str(exc.value)
+
+
+@pytest.mark.parametrize("robot,derived", [("kr6", True), ("ur5e", True), ("youbot", False),
+                                           ("kr6_calibrated", False)])
+def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_told_which(robot, derived, tmp_path):
+    """`--stages auto` (the default): the derived stages' module (the serial family's: ROOT_GAP_TOL, no plan) where
+    they cover the robot, else the interpreter's (FAMILY_TOL), and the command's progress says which and why."""
+    said = []
+    own_robot.derive(_file(robot, "urdf"), tmp_path, native=False, progress=said.append)
+    m = own_robot.import_solver(tmp_path, robot)
+    assert hasattr(m, "ROOT_GAP_TOL") == derived and hasattr(m, "FAMILY_TOL") == (not derived)
+    note = said[1]
+    if derived:
+        assert note.strip() == "IK: derived straight-line stages"
+    else:
+        assert note.strip().startswith("IK: the plan interpreter (the derived stages do not cover this robot: ")
+        assert ("calibrated" if robot == "kr6_calibrated" else "two intersecting axes at the end") in note
+    q = np.linspace(-1.0, 1.0, m.N_JOINTS)
+    assert m.ik(m.fk_matrix(q)).count >= 1
 
 
 def test_the_command_refuses_in_one_line_and_writes_nothing(tmp_path):
@@ -438,7 +459,7 @@ def test_description_files_as_shipped_are_derived(case, tmp_path):
     m = own_robot.import_solver(tmp_path, case)
     reference = ref.urdf_fk(_rtb(twin), base, tip)
     rng = case_rng(2307)
-    size = max(own_robot.load(_rtb(rel), **options).scale(), 1.0)
+    size = max(own_robot.load(_rtb(rel), stages="interpreted", **options).scale(), 1.0)
     frame = max(float(np.max(np.abs(m.fk_matrix(q) - reference(q)))) for q in rng.uniform(-math.pi, math.pi, (30, 6)))
     assert frame <= 1e-12 + (12 * ANGLE_SNAP + 12 * ROUNDING_DEVIATION) * size
     for _ in range(30):

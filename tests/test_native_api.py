@@ -31,10 +31,14 @@ def test_the_catalogue_declares_the_verbs_its_header_has(name):
     assert {f: getattr(api, f) for f in api.__dataclass_fields__} == declared_in(header, name)
 
 
-def test_a_derived_robot_declares_the_verbs_its_header_has(tmp_path):
-    own_robot.derive(ROOT / "tests" / "robots" / "ur5e" / "ur5e.urdf", tmp_path, name="ur", native=False,
-                     progress=lambda _: None)
-    api = ChainMechanism.C_API
+@pytest.mark.parametrize("stages", ["interpreted", "derived"])
+def test_a_derived_robot_declares_the_verbs_its_header_has(stages, tmp_path):
+    """A user robot's module either way its IK runs: the plan interpreter's chain module or derived stages."""
+    urdf = ROOT / "tests" / "robots" / "ur5e" / "ur5e.urdf"
+    own_robot.derive(urdf, tmp_path, name="ur", native=False, stages=stages, progress=lambda _: None)
+    api = own_robot.load(urdf, name="ur", stages=stages).C_API
+    if stages == "interpreted":
+        assert api == ChainMechanism.C_API
     header = (tmp_path / "c" / "ur.h").read_text()
     assert {f: getattr(api, f) for f in api.__dataclass_fields__} == declared_in(header, "ur")
 

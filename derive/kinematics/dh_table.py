@@ -142,3 +142,10 @@ class OwnRobotApi:
     controls: str
     base: np.ndarray  # 4x4: the description's base and tool frames (make_design(base=, tool=) replaces them)
     tool: np.ndarray
+    scale: float  # metres: the robot's size
+    geometry_tol: float  # the planner's tolerance on parallel / meeting axes
+    deviation: float  # largest deviation of the description's axes from the ideal ones the stages solve
+    calibrated: bool  # that deviation beyond rounding (the interpreter polishes on the true axes)
+    # the module's FK off the description's own product by at most this (metres and rotation entries): rounding on
+    # the true axes; the derived stages' exact geometry adds the description's rounding (from_table)
+    description_tol: float

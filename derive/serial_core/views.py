@@ -170,6 +170,8 @@ def serial_views(ctx: dict) -> dict:
     names = [f'"{n}"' for n in ctx["design_names"]]
     return {**ctx, "design_names_literal": _py_tuple(names), "design_default_literal": _py_tuple(ctx["design_values"]),
             "design_checks": design_checks, "image_checks": image_checks,
+            # a user's chain of fewer than six joints says what it controls when a pose is out of reach
+            "unreachable_note": ctx.get("unreachable_note", "None"),
             "lengths_floor": bool(ctx.get("lengths_floor")),
             "design_check_kernel": "_k_design_check" if has_design_kernel else "None",
             "image_check_kernel": "_k_image_check" if has_image_kernel else "None",
@@ -180,6 +182,9 @@ def serial_views(ctx: dict) -> dict:
             "revolute": [1 if k == "R" else 0 for k in ctx["joint_kinds"]], "c_flags": c_flags, "c_tables": c_tables,
             "own_api": own or None, "own_partials": OWN_PARTIALS if own else (), "base0": base0, "tool0": tool0,
             "identity": [repr(float(v)) for v in IDENTITY_3X4],
+            # C has no empty arrays or initialisers: a chain without lengths (one joint on its axis) keeps one
+            # unused slot (WK_NAME_N_PARAMS stays 0)
+            "c_params_slots": max(1, len(ctx["design_values"])), "c_design_values": ctx["design_values"] or ["0.0"],
             "py_base0": _frame_literal(base0), "py_tool0": _frame_literal(tool0), "design_fields": DESIGN_FIELDS,
             "py_runtime_files": PY_RUNTIME_FILES + (PY_OWN_RUNTIME_FILES if own else (PY_SELECT_FILE,)),
             "select_doc": ("Joint limits (NULL = the description's limits, as the Python select); nearest valid set "

@@ -86,6 +86,8 @@ int wk_normal_solve(const double *jac, int n, const double *e, double damping, d
 typedef double (*wk_refit_fn)(double *q, double max_step, const void *ctx);
 #define WK_MERGE_MAX_JOINTS 16
 #define WK_MERGE_ULPS 16.0
+/* The FK's own rounding of a pose of size `scale` (max |p|): WK_MERGE_ULPS eps max(1, scale) */
+double wk_fk_rounding(double scale);
 int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bits, int n_bits, double *values,
                         int *valid, unsigned *flags, double *aux, int aux_stride, wk_refit_fn refit, const void *ctx,
                         double scale);

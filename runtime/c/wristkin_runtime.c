@@ -490,11 +490,16 @@ int wk_select(int max_sets, int n, const int *valid, const unsigned *flags, cons
    WK_MERGE_SPAN in a joint are not compared: at a curvature above 1e-7 their midpoint misses by more than the
    floor, and it bounds the extra work to near-coincident pairs. Returns the number of sets removed. */
 #define WK_MERGE_SPAN 1e-3
+double wk_fk_rounding(double scale)
+{
+    return WK_MERGE_ULPS * DBL_EPSILON * (scale > 1.0 ? scale : 1.0);
+}
+
 int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bits, int n_bits, double *values,
                         int *valid, unsigned *flags, double *aux, int aux_stride, wk_refit_fn refit, const void *ctx,
                         double scale)
 {
-    const double floor_ = WK_MERGE_ULPS * DBL_EPSILON * (scale > 1.0 ? scale : 1.0);
+    const double floor_ = wk_fk_rounding(scale);
     int b, k, j, removed = 0;
     double mid[WK_MERGE_MAX_JOINTS];
     if (n > WK_MERGE_MAX_JOINTS || !revolute || !bits || !values || !valid || !flags || !aux || !refit) return 0;

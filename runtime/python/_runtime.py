@@ -384,6 +384,11 @@ MERGE_ULPS = 16.0  # the FK of 6-7 joints rounds to a few eps of the pose's size
 MERGE_SPAN = 1e-3  # sets farther apart in a joint are distinct at any curvature above 1e-7: not compared
 
 
+def fk_rounding(scale):
+    """The FK's own rounding of a pose of size `scale` (max |p|): MERGE_ULPS eps max(1, scale)."""
+    return MERGE_ULPS * 2.220446049250313e-16 * max(1.0, scale)
+
+
 def merge_indistinct(values, valid, flags, aux, bits, revolute, refit, scale):
     """Two valid sets that differ only in the branch of one two-root stage (k and k | 1 << bit) are one solution, a
     double root, when the pose cannot tell them apart: a point between them fits the pose as well as they do. At a
@@ -394,7 +399,7 @@ def merge_indistinct(values, valid, flags, aux, bits, revolute, refit, scale):
     `refit(midpoint, span / 8)` (the residual after one such step, the midpoint updated in place) within MERGE_ULPS
     eps max(1, scale) of the pair's residuals. The pair becomes whichever of the two and the refitted midpoint fits
     best, flagged a double root (in place; the C runtime's wk_merge_indistinct). Returns the sets removed."""
-    floor = MERGE_ULPS * 2.220446049250313e-16 * max(1.0, scale)
+    floor = fk_rounding(scale)
     removed = 0
     for b in bits:
         m = 1 << b

@@ -20,7 +20,9 @@ from serial_stand_in import (
     _IK_RESULT,
     _IMAGE_CHECK,
     _STAGES,
+    _UNREACHABLE_NOTE,
     _WRIST_STAGE,
+    FLAG_DOUBLE_ROOT,
     FLAG_INDETERMINATE,
     FLAG_PROJECTED,
     IK_VERIFY_TOL,
@@ -84,6 +86,8 @@ def _ik_numpy(pose, d, previous):
     key = [-1] * len(_STAGES)
     state = [(False, 0)] * len(_STAGES)
     unreachable = beyond = 0
+    size = max(abs(p[3]), abs(p[7]), abs(p[11]))
+    rounding = _runtime.fk_rounding(size)  # the FK's own rounding of this pose (the merge's floor)
     for k in range(MAX_IK):
         f, alive = 0, True
         for i, (solve, shift) in enumerate(_STAGES):
@@ -99,8 +103,11 @@ def _ik_numpy(pose, d, previous):
             continue
         err = max(abs(x - y) for x, y in zip(_k_fk_cs(q, c, s, d.params), p, strict=True))
         qk = list(q)
-        if err > IK_VERIFY_TOL:  # a tangent root leaves a sqrt(eps) error downstream: polish a copy
-            qk, err = _polish(qk, p, d.params)
+        if err > IK_VERIFY_TOL or (f & FLAG_DOUBLE_ROOT and err > rounding):
+            # a tangent root leaves a sqrt(eps) error downstream, and a double root's centre the square root of its
+            # stage's noise (a UR's folded elbow behind a wrist 1e-5 from singular: the pose within 3e-12, not
+            # rounding): polish a copy, a double root's to rounding
+            qk, err = _polish(qk, p, d.params, target=rounding if f & FLAG_DOUBLE_ROOT else IK_VERIFY_TOL)
         if not err <= IK_VERIFY_TOL:
             continue
         if _HAS_PRISMATIC and not all(abs(x) <= LENGTH_MAX
@@ -118,8 +125,7 @@ def _ik_numpy(pose, d, previous):
     if _FOLD_BITS:
         # a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when)
         _runtime.merge_indistinct(values, valid, flags, aux, _FOLD_BITS, _REVOLUTE,
-                                  lambda x, step: _refit(x, p, d.params, step),
-                                  max(abs(p[3]), abs(p[7]), abs(p[11])))
+                                  lambda x, step: _refit(x, p, d.params, step), size)
     reasons = [f"{unreachable} of {MAX_IK} branch words have a stage with no real solution"] if unreachable else []
     if beyond:
         reasons.append(f"{beyond} set(s) need a prismatic joint beyond LENGTH_MAX = {LENGTH_MAX:g} m (fk rejects them)")
@@ -129,8 +135,9 @@ def _ik_numpy(pose, d, previous):
         return Solutions(values, valid, flags, aux, status, "; ".join([f"{int(valid.sum())} solution(s)"] +
                                                                       ([note] if note else [])))
     return Solutions(values, valid, flags, aux, STATUS_UNREACHABLE,
-                     "pose not reachable: " + ("; ".join(reasons) or "no branch passes the FK check") +
-                     (f"; {note}" if note else ""))
+                     "pose not reachable: " + "; ".join((reasons or ["no branch passes the FK check"]) +
+                                                        ([_UNREACHABLE_NOTE] if _UNREACHABLE_NOTE else []) +
+                                                        ([note] if note else [])))
 
 
 def ik_batch(poses, design=None) -> BatchSolutions:

@@ -70,7 +70,7 @@ def make_design(params=None, base=None, tool=None) -> Design:
             return params
         params, base, tool = params.params, params.base if base is None else base, params.tool if tool is None else tool
     vals = _design_values(params)
-    scale = max(abs(v) for v in vals)
+    scale = max((abs(v) for v in vals), default=0.0)  # a chain without lengths: none
     if scale > LENGTH_MAX:
         raise InvalidDesign(f"design values must be within {LENGTH_MAX:g} m, got {scale:g}")
     if 0.0 < scale < DESIGN_SCALE_MIN:

@@ -39,12 +39,13 @@ def _gn_step(q, e, err, pose, dp, max_step=math.inf):
     return (trial, e2, err2) if err2 < err else (q, e, err)
 
 
-def _polish(q, pose, dp, iters=6):
-    """Damped Gauss-Newton on the pose error: removes the sqrt(eps) error a tangent root passes downstream."""
+def _polish(q, pose, dp, iters=6, target=IK_VERIFY_TOL):
+    """Damped Gauss-Newton on the pose error until it is at most `target`: removes the sqrt(eps) error a tangent
+    root passes downstream (and a double root's, to rounding)."""
     q = list(q)
     err, e = _pose_error(q, pose, dp)
     for _ in range(iters):
-        if err <= IK_VERIFY_TOL:
+        if err <= target:
             break
         q, e, err2 = _gn_step(q, e, err, pose, dp)
         if not err2 < err:

@@ -287,8 +287,10 @@ class ChainMechanism(MechanismDefaults):
         """The module's constants beyond the verbs: the interpreted module's, and the derived one's (robot_table)."""
         c = self.chain
         roles, labels = _roles(plan, self.solver_chain(c, 0.0, plan.reversed))
+        deviation = self.deviation()
         return OwnRobotApi(c.lower, c.upper, labels, tuple(roles), ideal.axes, ideal.points, ideal.home,
-                           plan.strategy, self.controls(), c.base, c.tool)
+                           plan.strategy, self.controls(), c.base, c.tool, self.scale(), self.desc.geometry_tol,
+                           deviation, deviation > CALIBRATED_DEVIATION, 1e-12 * self.scale())  # the chain step's
 
     def scale(self) -> float:
         c = self.chain
@@ -412,20 +414,16 @@ class ChainMechanism(MechanismDefaults):
         solver = self.solver_chain(c, 0.0, plan.reversed)
         api = self._own_api(plan, ideal)
         free = self.desc.free
-        deviation = self.deviation()
-        calibrated = deviation > CALIBRATED_DEVIATION
+        deviation = api.deviation
         return {"name": self.NAME, "title": self.title, "joint_names": list(c.joint_names),
                 "joint_kinds": list(c.kinds), "n_joints": c.n, "max_ik": plan.branches,
                 "design_names": [c.joint_names[free]] if free >= 0 else (["arm_angle"] if self.arm_angle else []),
                 "design_values": ["0.0"] if free >= 0 or self.arm_angle else [],
                 "arm_angle": self.arm_angle,
                 **own_api_literals(api), "strategy": api.strategy, "controls": api.controls,
-                "scale": repr(self.scale()), "geometry_tol": repr(self.desc.geometry_tol),
-                "geometry_deviation": repr(deviation),
-                "calibrated": calibrated,
                 "degenerate_held": repr(self.degenerate_held_reasons()),
                 "tangent_tol": repr(max(float(TOLERANCES["stage_tangent"]),
-                                        8.0 * deviation / min(1.0, self.scale()))),
+                                        8.0 * deviation / min(1.0, api.scale))),
                 "axes": vectors(c.axes), "points": vectors(c.points), "home": vectors(c.home),
                 "base": vectors(c.base), "tool_frame": vectors(c.tool),
                 "free": free, "reversed": plan.reversed, "plan": _plan_literal(plan),
@@ -435,7 +433,7 @@ class ChainMechanism(MechanismDefaults):
                 "has_poly": any(op["op"] in ("spatial3", "sp6") for op in plan.ops),
                 "c_plan_rows": views.c_plan_rows([stage(i, op) for i, op in enumerate(plan.ops)], solver.joint_names),
                 "c_runtime_files": views.c_runtime_files(plan.ops),
-                "c_flags": views.c_flags(plan.ops, free, plan.reversed, calibrated, self.degenerate_held(),
+                "c_flags": views.c_flags(plan.ops, free, plan.reversed, api.calibrated, self.degenerate_held(),
                                          self.desc.geometry_tol),
                 **views.stage_tolerances(plan.ops),
                 "py_runtime_files": views.py_runtime_files(plan.ops),

@@ -18,7 +18,7 @@ import sympy as sp
 from ...checks import numeric_predicate, sampler
 from ...identities.dh import DHRow
 from ...kinematics.dh_table import OwnRobotApi, RobotTable
-from ...literals import c_num, own_api_literals
+from ...literals import c_num, own_api_literals, text_literal
 from ...model import NotDerivable, Step
 from .dh_serial import SerialSpec
 from .mechanism import SerialMechanism
@@ -118,12 +118,15 @@ def from_table(robot: RobotTable) -> SerialMechanism:
             what = f"the ops {', '.join(missing)}" if missing else "the chain solved from the tool"
             raise NotDerivable.because(name, f"its decomposition, {robot.api.strategy.split(':')[0]}, needs {what}, "
                                              "which the derived stages do not have yet") from None
-        raise NotDerivable.because(name, f"no decomposition in the derived stage kinds: {exc}") from None
+        raise NotDerivable.because(name, f"no decomposition in the derived stage kinds: {exc}",
+                                   f"its decomposition, {robot.api.strategy.split(':')[0]}, is none the derived "
+                                   "stages express") from None
     # each angle's change turns the links after it, at most the robot's size away (and the frame's axes by as
     # much), and each axis's deviation (direction and point) moves the end frame by at most twice its size: the end
     # frame moves by at most their sum times the size, on top of the products' rounding
     tol = 1e-12 + (snapped + 2 * n * robot.deviation) * max(robot.size, 1.0)
-    mech = _DerivedRobot(name, lambda: replace(spec, stages=stage_list), robot.description_fk, tol, robot.api)
+    mech = _DerivedRobot(name, lambda: replace(spec, stages=stage_list), robot.description_fk, tol,
+                         replace(robot.api, description_tol=tol))
     mech.DERIVE_SECONDS = 0.2 * 2 ** n
     return mech
 
@@ -141,12 +144,28 @@ class _DerivedRobot(SerialMechanism):
         constants, read on the same ideal chain."""
         api = self.api
         lit = own_api_literals(api)
+        n = len(api.lower)
         return {**{k: lit[k] for k in ("limits_lower", "limits_upper", "strategy_literal", "controls_literal",
-                                       "branch_names")},
-                "own_api": {**{k: lit[k] for k in ("ideal_axes", "ideal_points", "ideal_home", "roles")},
+                                       "branch_names", "description_tol")},
+                "unreachable_note": text_literal(f"this chain controls {api.controls} only") if n < 6 else "None",
+                "own_api": {**{k: lit[k] for k in ("ideal_axes", "ideal_points", "ideal_home", "roles", "scale",
+                                                   "geometry_tol", "geometry_deviation")},
                             "c_lower": [c_num(v) for v in api.lower], "c_upper": [c_num(v) for v in api.upper],
                             "base0": [repr(float(v)) for v in api.base[:3].ravel()],
                             "tool0": [repr(float(v)) for v in api.tool[:3].ravel()]}}
+
+    def audit_numbers(self, dv, solver, audit_dir) -> dict:
+        """The serial family's round trips, after what the report of a user's robot should say first: the
+        decomposition its stages follow and how far its description is from the exact geometry they solve."""
+        out = super().audit_numbers(dv, solver, audit_dir)
+        api = self.api
+        out["summary"] = [("decomposition (derived straight-line stages)", api.strategy),
+                          ("what the joints control", api.controls),
+                          ("the description's axes off the exact geometry", f"{api.deviation:.2g} (geometry "
+                           f"tolerance {api.geometry_tol:g}; the end frame's difference is checked in the last "
+                           "step)"),
+                          *out["summary"]]
+        return out
 
     def derive(self):
         dv = super().derive()

@@ -79,7 +79,8 @@ static inline int sr_trig_linear(const double *out, int factored, double gap_tol
         return 1;
     }
     u = -out[2] / r;
-    if (!(fabs(u) <= 1.0 + SR_TANGENT_TOL)) return 0;
+    /* the band grows with the rounding the stages before amplified into u (Python's TANGENT_MAX says why it may) */
+    if (!(fabs(u) <= 1.0 + fmax(SR_TANGENT_TOL, fmin(SR_TANGENT_MAX, SR_STAGE_NOISE * amp_before)))) return 0;
     u = sr_clamp1(u);
     sr_root_gap(out, factored, gap_tol, r, u, amp_before, &sg, &band);
     if (sg <= band) {
