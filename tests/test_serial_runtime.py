@@ -30,6 +30,7 @@ D = ctypes.POINTER(ctypes.c_double)
 IP = ctypes.POINTER(ctypes.c_int)
 U = ctypes.POINTER(ctypes.c_uint)
 FLAG_SINGULAR_INVERSE, FLAG_DOUBLE_ROOT, FLAG_INDETERMINATE = 1, 8, 16
+FLAG_MERGE_CANDIDATE = 0x10000  # internal (the runtime's): a pair within its stage's noise of a double root
 
 
 def _p(a, t=D):
@@ -92,7 +93,9 @@ def test_a_distance_stage_keeps_both_roots_of_a_fold_onto_its_centre(py):
     """Two equal links L folded to pi -+ delta: |w|^2 = 2 L^2 (1 + cos q), so L^2 cos q + (L^2 - |w|^2 / 2) = 0. From
     u alone the roots merge below delta ~ sqrt(eps) (1 - u^2 = sin^2 delta is lost next to 1); from the factors
     Dm = |w|^2 - (L - L)^2, Dp = (L + L)^2 - |w|^2 they are the two generating roots to eps relative in delta, down
-    to delta = 1e-12 (|w| is known to eps of itself, so delta is). A fold whose links differ keeps the old band."""
+    to delta = 1e-12 (|w| is known to eps of itself, so delta is), marked a merge candidate (sin^2 delta within
+    ROOT_GAP_TOL: an exact fold split by that noise would look the same; the merge asks the pose) but not a double
+    root. A fold whose links differ keeps the old band."""
     st = py.stages
     for length in (0.3, 1.7):
         for delta in (1e-4, 1e-8, 1e-12):
@@ -102,7 +105,8 @@ def test_a_distance_stage_keeps_both_roots_of_a_fold_onto_its_centre(py):
             got = []
             for sgn in (1.0, -1.0):
                 q, c, s, amp = [0.0], [1.0], [0.0], [1.0]
-                assert st._trig_linear(out, 0, sgn, q, c, s, None, amp) == (True, 0)
+                near = math.sin(delta) ** 2 <= st.ROOT_GAP_TOL
+                assert st._trig_linear(out, 0, sgn, q, c, s, None, amp) == (True, FLAG_MERGE_CANDIDATE if near else 0)
                 got.append(abs(math.remainder(q[0] - math.pi, 2 * math.pi)))
                 assert amp[0] == pytest.approx(1.0 / math.sin(delta), rel=1e-9)
             assert got == pytest.approx([delta, delta], rel=1e-10, abs=1e-16)
@@ -126,7 +130,8 @@ def test_a_wrist_gap_stage_separates_its_roots_down_to_the_wrists_rounding(py):
     DH wrist's family band on |sin theta5|: 2 WRIST_EXACT_TOL amp_before on |n x w|) the two generating roots come
     back at delta = 1e-10 behind an arm that amplifies the rounding 100-fold (the distance band, 4500 eps, merged
     them: a 60-degree wrist 1e-10 from straight lost its generating joints); |n x w| at the rounding of such an
-    input (eps x amp_before) is one double root, flagged."""
+    input (eps x amp_before) is one double root, flagged. Within WRIST_EXACT_TOL amp_before of it (sin^2 delta) the
+    pair is a merge candidate: the merge asks the pose whether it tells them apart."""
     st = py.stages
     amp_before = 100.0
     for delta in (1e-4, 1e-8, 1e-10):
@@ -134,7 +139,9 @@ def test_a_wrist_gap_stage_separates_its_roots_down_to_the_wrists_rounding(py):
         got = []
         for sgn in (1.0, -1.0):
             q, c, s, amp = [0.0], [1.0], [0.0], [1.0]
-            assert st._trig_linear(out, 0, sgn, q, c, s, None, amp, amp_before, st.WRIST_EXACT_TOL) == (True, 0)
+            near = math.sin(delta) ** 2 <= st.WRIST_EXACT_TOL * amp_before
+            assert st._trig_linear(out, 0, sgn, q, c, s, None, amp, amp_before, st.WRIST_EXACT_TOL) == \
+                (True, FLAG_MERGE_CANDIDATE if near else 0)
             got.append(q[0])
         assert got == pytest.approx([delta, -delta], rel=1e-12)
     noise = 4 * float(np.finfo(float).eps) * amp_before
@@ -143,6 +150,11 @@ def test_a_wrist_gap_stage_separates_its_roots_down_to_the_wrists_rounding(py):
     flags = st._trig_linear(out, 0, 1.0, q, c, s, None, [1.0], amp_before, st.WRIST_EXACT_TOL)
     assert flags == (True, FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE) and q == [0.0]
     assert st._trig_linear(out, 0, -1.0, q, c, s, None, [1.0], amp_before, st.WRIST_EXACT_TOL) == (False, 0)
+    # the exact singularity with nothing left to round (|n x w| = 0: Dm = Em = 0, u one ulp past 1), as a UR at q5 = 0
+    # gave it (seed 2): one double root and a finite amplification (it divided by a band of 0)
+    out, amp = (1.0, 0.0, -1.0000000000000002, 0.0, 2.0, 0.0), [1.0]
+    flags = st._trig_linear(out, 0, 1.0, q, c, s, None, amp, 1.02, st.WRIST_EXACT_TOL)
+    assert flags == (True, FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE) and q == [0.0] and math.isfinite(amp[0])
 
 
 def test_rotation2d_is_the_angle_between_the_two_vectors(py):

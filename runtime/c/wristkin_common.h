@@ -28,6 +28,9 @@ extern "C" {
 #define WK_FLAG_DOUBLE_ROOT 8u
 #define WK_FLAG_INDETERMINATE 16u
 #define WK_FLAG_PROJECTED 32u /* the input rotation was projected onto SO(3) (max|R^T R - I| <= 1e-6) */
+/* internal, never in a returned set: a two-root stage's half-gap within its upstream noise of a double root (the
+   pairs wk_merge_indistinct compares) */
+#define WK_FLAG_MERGE_CANDIDATE 0x10000u
 
 /* Input rotations: max|R^T R - I| <= WK_ROTATION_PROJECT_TOL is projected onto SO(3) (polar factor),
  * farther is WK_ERR_RANGE; below WK_ROTATION_EXACT_TOL the matrix is used as given. */
@@ -85,12 +88,16 @@ int wk_normal_solve(const double *jac, int n, const double *e, double damping, d
  * (q updated when the step helps); ctx: the pose and the design */
 typedef double (*wk_refit_fn)(double *q, double max_step, const void *ctx);
 #define WK_MERGE_MAX_JOINTS 16
+#define WK_MERGE_MAX_SETS 64
 #define WK_MERGE_ULPS 16.0
 /* The FK's own rounding of a pose of size `scale` (max |p|): WK_MERGE_ULPS eps max(1, scale) */
 double wk_fk_rounding(double scale);
+/* candidates_only: only pairs both flagged WK_FLAG_MERGE_CANDIDATE are compared (a square chain, whose stages'
+ * noise their amplification bounds; a chain of fewer than six joints over-determined by the pose carries the pose's
+ * own inconsistency into its stages: every pair within the span). The flag is cleared from every set. */
 int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bits, int n_bits, double *values,
                         int *valid, unsigned *flags, double *aux, int aux_stride, wk_refit_fn refit, const void *ctx,
-                        double scale);
+                        double scale, int candidates_only);
 
 /* The selection rule of every mechanism (docs/API.md, `select`): among valid sets (values: max_sets x n,
  * row-major) within [lower, upper] (either may be NULL), with `previous` the nearest by weighted distance

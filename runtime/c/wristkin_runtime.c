@@ -497,18 +497,27 @@ double wk_fk_rounding(double scale)
 
 int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bits, int n_bits, double *values,
                         int *valid, unsigned *flags, double *aux, int aux_stride, wk_refit_fn refit, const void *ctx,
-                        double scale)
+                        double scale, int candidates_only)
 {
     const double floor_ = wk_fk_rounding(scale);
     int b, k, j, removed = 0;
     double mid[WK_MERGE_MAX_JOINTS];
-    if (n > WK_MERGE_MAX_JOINTS || !revolute || !bits || !values || !valid || !flags || !aux || !refit) return 0;
+    unsigned candidate[WK_MERGE_MAX_SETS];
+    if (!flags) return 0;
+    for (k = 0; k < max_sets; ++k) {
+        if (k < WK_MERGE_MAX_SETS) candidate[k] = flags[k] & WK_FLAG_MERGE_CANDIDATE;
+        flags[k] &= ~WK_FLAG_MERGE_CANDIDATE; /* internal: never returned */
+    }
+    if (n > WK_MERGE_MAX_JOINTS || max_sets > WK_MERGE_MAX_SETS || !revolute || !bits || !values || !valid || !aux ||
+        !refit)
+        return 0;
     for (b = 0; b < n_bits; ++b) {
         const int m = 1 << bits[b];
         for (k = 0; k < max_sets; ++k) {
             const int k2 = k | m;
             double *x, *y, rx, ry, rm, span = 0.0;
             if ((k & m) || k2 >= max_sets || !valid[k] || !valid[k2]) continue;
+            if (candidates_only && !(candidate[k] && candidate[k2])) continue; /* beyond their stage's noise */
             x = values + (size_t)k * (size_t)n;
             y = values + (size_t)k2 * (size_t)n;
             for (j = 0; j < n && span <= WK_MERGE_SPAN; ++j) { /* most pairs are apart: stop at the first joint */

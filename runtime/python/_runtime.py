@@ -28,6 +28,9 @@ FLAG_GIMBAL = 4
 FLAG_DOUBLE_ROOT = 8
 FLAG_INDETERMINATE = 16
 FLAG_PROJECTED = 32  # the input rotation was projected onto SO(3) before solving (deviation in `reason`)
+# internal, never in a returned set: a two-root stage's half-gap within its upstream noise of a double root (the
+# pairs merge_indistinct compares)
+FLAG_MERGE_CANDIDATE = 0x10000
 FLAG_NAMES = {1: "singular_inverse", 2: "singular_direct", 4: "gimbal", 8: "double_root", 16: "indeterminate",
               32: "projected"}
 # An input rotation R with max|R^T R - I| <= ROTATION_PROJECT_TOL is replaced by its polar factor U V^T (the
@@ -389,7 +392,7 @@ def fk_rounding(scale):
     return MERGE_ULPS * 2.220446049250313e-16 * max(1.0, scale)
 
 
-def merge_indistinct(values, valid, flags, aux, bits, revolute, refit, scale):
+def merge_indistinct(values, valid, flags, aux, bits, revolute, refit, scale, candidates_only=True):
     """Two valid sets that differ only in the branch of one two-root stage (k and k | 1 << bit) are one solution, a
     double root, when the pose cannot tell them apart: a point between them fits the pose as well as they do. At a
     fold of the chain the residual grows with the square of the distance along the fold, so the joints solved before
@@ -398,8 +401,14 @@ def merge_indistinct(values, valid, flags, aux, bits, revolute, refit, scale):
     Two distinct roots leave the midpoint off by curvature x (span / 2)^2, which a short step cannot remove. So:
     `refit(midpoint, span / 8)` (the residual after one such step, the midpoint updated in place) within MERGE_ULPS
     eps max(1, scale) of the pair's residuals. The pair becomes whichever of the two and the refitted midpoint fits
-    best, flagged a double root (in place; the C runtime's wk_merge_indistinct). Returns the sets removed."""
+    best, flagged a double root (in place; the C runtime's wk_merge_indistinct). `candidates_only`: only pairs both
+    flagged FLAG_MERGE_CANDIDATE (their stage's half-gap within its upstream noise) are compared (a square chain; one
+    of fewer than six joints carries the pose's own inconsistency into its stages, which their amplification does
+    not bound: every pair within MERGE_SPAN). The flag is cleared from every set. Returns the sets removed."""
     floor = fk_rounding(scale)
+    candidate = [bool(int(f) & FLAG_MERGE_CANDIDATE) for f in flags]
+    for k in range(len(flags)):
+        flags[k] = int(flags[k]) & ~FLAG_MERGE_CANDIDATE  # internal: never returned
     removed = 0
     for b in bits:
         m = 1 << b
@@ -407,6 +416,8 @@ def merge_indistinct(values, valid, flags, aux, bits, revolute, refit, scale):
             k2 = k | m
             if k & m or k2 >= len(values) or not (valid[k] and valid[k2]):
                 continue
+            if candidates_only and not (candidate[k] and candidate[k2]):
+                continue  # apart beyond their stage's noise: distinct
             x, y = values[k], values[k2]
             d = [_wrap(float(v - u)) if r else float(v - u) for u, v, r in zip(x, y, revolute, strict=True)]
             span = max(abs(e) for e in d)

@@ -125,7 +125,7 @@ def _ik_numpy(pose, d, previous):
     if _FOLD_BITS:
         # a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when)
         _runtime.merge_indistinct(values, valid, flags, aux, _FOLD_BITS, _REVOLUTE,
-                                  lambda x, step: _refit(x, p, d.params, step), size)
+                                  lambda x, step: _refit(x, p, d.params, step), size, N_JOINTS >= 6)
     reasons = [f"{unreachable} of {MAX_IK} branch words have a stage with no real solution"] if unreachable else []
     if beyond:
         reasons.append(f"{beyond} set(s) need a prismatic joint beyond LENGTH_MAX = {LENGTH_MAX:g} m (fk rejects them)")

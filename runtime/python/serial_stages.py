@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 
+import _runtime
 from serial_stand_in import (
     DEGENERATE_EPS,
     DOUBLE_ROOT_TOL,
@@ -29,8 +30,10 @@ from serial_stand_in import (
     _wrap,
 )
 
-
 # wristkin: inlined from here
+_EPS = 2.220446049250313e-16
+
+
 def _sign(k, bit):
     """The root a two-root stage takes in set k: +1 when bit `bit` of k is 0 (the +acos root, the first wrist
     branch), else -1."""
@@ -80,10 +83,16 @@ def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=ROOT_G
         # at its centre phi: within the band sin w is rounding (Dm's noise reads as sqrt(noise), 6e-9 for a PUMA
         # elbow folded onto its shoulder), and a stage after it would take that for geometry
         sg = 0.0
+    elif sg * sg <= (gap_tol if len(out) > 3 else ROOT_GAP_TOL) * amp_before:
+        # within the stages' noise of a double root (sin^2 of the half-gap at most its band times the angle stages'
+        # amplification: an exact double root split by that noise): merge_indistinct decides whether the pose tells
+        # the pair apart; a pair farther apart is two roots and costs no refit (4 refits a call made the IRB 120's
+        # slowest 1 % near its elbow 4x its median)
+        f = _runtime.FLAG_MERGE_CANDIDATE
     # the roots phi +- w amplify the input's rounding by 1 / sin w (a double root: 1 / band): a wrist after them reads
     # its rotation with that much more rounding (seed 627229: a PUMA shoulder 0.0022 from its double root left
     # |sin theta5| = 1.3e-13 at an exact wrist singularity, which came back as 8 "regular" sets)
-    amp[j] = 1.0 / (band if f else sg)
+    amp[j] = 1.0 / (band if f & FLAG_DOUBLE_ROOT else sg)
     ca, sa = a / r, b / r  # q = atan2(B, A) + sgn acos(u)
     c[j], s[j] = ca * u - sgn * sa * sg, sa * u + sgn * ca * sg
     q[j] = math.atan2(s[j], c[j])
@@ -104,7 +113,9 @@ def _root_gap(out, r, u, amp_before, gap_tol):
     dm, dp, em = out[3], out[4], out[5]
     # the product and |Dm| <= |Dp|: a length derived as positive and given negative swaps the factors and their signs
     sg = math.sqrt(max(dm * dp, 0.0)) / (2.0 * r)
-    scale = min(1.0, em * amp_before / (2.0 * r)) if abs(dm) <= abs(dp) else 1.0
+    # Dm's rounding is never below eps of the stage's size r: Em = 0 exactly (a UR wrist at q5 = 0, |n x w| = 0) gave
+    # a band of 0 and an amplification 1 / 0 (numpy raised, C went on with inf)
+    scale = min(1.0, max(em, _EPS * r) * amp_before / (2.0 * r)) if abs(dm) <= abs(dp) else 1.0
     return sg, math.sqrt(gap_tol * scale)
 
 

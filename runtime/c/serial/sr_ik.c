@@ -163,7 +163,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         out->count -= wk_merge_indistinct(SR_MAX_IK, SR_N, sr_revolute, sr_fold_bits, SR_N_FOLD_BITS,
                                           &out->values[0][0],
                                           out->valid, out->flags, &out->aux[0][0], SR_N_IK_AUX,
-                                          sr_refit, &fit, scale);
+                                          sr_refit, &fit, scale, SR_N >= 6);
     }
 #endif
     out->status = out->count == 0 ? WK_STATUS_UNREACHABLE : (indeterminate ? WK_STATUS_INDETERMINATE : WK_STATUS_OK);

@@ -55,7 +55,9 @@ static inline void sr_root_gap(const double *out, int factored, double gap_tol, 
         /* the product and |Dm| <= |Dp|: a length derived as positive and given negative swaps the factors and their
          * signs (Python's _root_gap) */
         const double prod = out[3] * out[4];
-        const double scale = fabs(out[3]) <= fabs(out[4]) ? fmin(1.0, out[5] * amp_before / (2.0 * r)) : 1.0;
+        /* Dm's rounding is never below eps of the stage's size r (Em = 0 exactly: a UR wrist at q5 = 0) */
+        const double scale = fabs(out[3]) <= fabs(out[4]) ? fmin(1.0, fmax(out[5], DBL_EPSILON * r) * amp_before /
+                                                                  (2.0 * r)) : 1.0;
         *sg = prod > 0.0 ? sqrt(prod) / (2.0 * r) : 0.0;
         *band = sqrt(gap_tol * scale);
     }
@@ -87,9 +89,11 @@ static inline int sr_trig_linear(const double *out, int factored, double gap_tol
         if (sgn < 0.0) return 0; /* a double root is one solution: reported once, by the + branch */
         *f = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
         sg = 0.0; /* at its centre: within the band sin w is rounding (see Python) */
+    } else if (sg * sg <= (factored ? gap_tol : SR_ROOT_GAP_TOL) * amp_before) {
+        *f = WK_FLAG_MERGE_CANDIDATE; /* within the stages' noise of a double root: the merge decides (see Python) */
     }
     /* the roots phi +- w amplify the input's rounding by 1 / sin w (a double root: 1 / band) */
-    amp[j] = 1.0 / (*f ? band : sg);
+    amp[j] = 1.0 / ((*f & WK_FLAG_DOUBLE_ROOT) ? band : sg);
     /* q = atan2(B, A) + sgn acos(u): its cos and sin follow from (A, B, u) */
     ca = out[0] / r;
     sa = out[1] / r;
