@@ -85,8 +85,8 @@ int wk_normal_solve(const double *jac, int n, const double *e, double damping, d
  * wristkin_runtime.c says why). values: max_sets x n row-major; aux: the residual at aux[k * aux_stride].
  * Returns the number of sets removed. */
 /* refit: the residual max |FK(q) - pose| after at most one damped Gauss-Newton step of at most max_step per joint
- * (q updated when the step helps); ctx: the pose and the design */
-typedef double (*wk_refit_fn)(double *q, double max_step, const void *ctx);
+ * (q updated when the step helps), none when q's residual is already at most `accept`; ctx: the pose and the design */
+typedef double (*wk_refit_fn)(double *q, double max_step, double accept, const void *ctx);
 #define WK_MERGE_MAX_JOINTS 16
 #define WK_MERGE_MAX_SETS 64
 #define WK_MERGE_ULPS 16.0

@@ -529,7 +529,7 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bit
             if (!(span <= WK_MERGE_SPAN)) continue;
             rx = aux[(size_t)k * (size_t)aux_stride];
             ry = aux[(size_t)k2 * (size_t)aux_stride];
-            rm = refit(mid, 0.125 * span, ctx);
+            rm = refit(mid, 0.125 * span, (rx > ry ? rx : ry) + floor_, ctx); /* a midpoint on the pose takes no step */
             if (!(rm <= (rx > ry ? rx : ry) + floor_)) continue;
             if (rm < rx && rm < ry) {
                 for (j = 0; j < n; ++j) x[j] = mid[j];

@@ -22,6 +22,7 @@ from serial_stand_in import (
     _STAGES,
     _UNREACHABLE_NOTE,
     _WRIST_STAGE,
+    DOUBLE_ROOT_POLISH_TOL,
     FLAG_DOUBLE_ROOT,
     FLAG_INDETERMINATE,
     FLAG_PROJECTED,
@@ -88,6 +89,7 @@ def _ik_numpy(pose, d, previous):
     unreachable = beyond = 0
     size = max(abs(p[3]), abs(p[7]), abs(p[11]))
     rounding = _runtime.fk_rounding(size)  # the FK's own rounding of this pose (the merge's floor)
+    polish_double = DOUBLE_ROOT_POLISH_TOL * max(1.0, size)
     for k in range(MAX_IK):
         f, alive = 0, True
         for i, (solve, shift) in enumerate(_STAGES):
@@ -103,10 +105,10 @@ def _ik_numpy(pose, d, previous):
             continue
         err = max(abs(x - y) for x, y in zip(_k_fk_cs(q, c, s, d.params), p, strict=True))
         qk = list(q)
-        if err > IK_VERIFY_TOL or (f & FLAG_DOUBLE_ROOT and err > rounding):
-            # a tangent root leaves a sqrt(eps) error downstream, and a double root's centre the square root of its
-            # stage's noise (a UR's folded elbow behind a wrist 1e-5 from singular: the pose within 3e-12, not
-            # rounding): polish a copy, a double root's to rounding
+        if err > IK_VERIFY_TOL or (f & FLAG_DOUBLE_ROOT and err > polish_double):
+            # a tangent root leaves a sqrt(eps) error downstream, and a double root's centre its stage's noise (a
+            # UR's folded elbow behind a wrist 1e-5 from singular: the pose within 3e-12): polish a copy, a double
+            # root's to rounding (DOUBLE_ROOT_POLISH_TOL says when)
             qk, err = _polish(qk, p, d.params, target=rounding if f & FLAG_DOUBLE_ROOT else IK_VERIFY_TOL)
         if not err <= IK_VERIFY_TOL:
             continue
@@ -125,7 +127,7 @@ def _ik_numpy(pose, d, previous):
     if _FOLD_BITS:
         # a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when)
         _runtime.merge_indistinct(values, valid, flags, aux, _FOLD_BITS, _REVOLUTE,
-                                  lambda x, step: _refit(x, p, d.params, step), size, N_JOINTS >= 6)
+                                  lambda x, step, accept: _refit(x, p, d.params, step, accept), size, N_JOINTS >= 6)
     reasons = [f"{unreachable} of {MAX_IK} branch words have a stage with no real solution"] if unreachable else []
     if beyond:
         reasons.append(f"{beyond} set(s) need a prismatic joint beyond LENGTH_MAX = {LENGTH_MAX:g} m (fk rejects them)")

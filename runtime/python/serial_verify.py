@@ -54,10 +54,13 @@ def _polish(q, pose, dp, iters=6, target=IK_VERIFY_TOL):
     return [_wrap(x) if k == "R" else x for x, k in zip(q, JOINT_KINDS, strict=True)], err
 
 
-def _refit(q, pose, dp, max_step):
+def _refit(q, pose, dp, max_step, accept):
     """The residual after at most one damped Gauss-Newton step no longer than max_step in any joint (q updated in
-    place when it helps): the runtime's merge_indistinct asks whether a point between two sets fits the pose."""
+    place when it helps), none when it is at most `accept` already: the runtime's merge_indistinct asks whether a
+    point between two sets fits the pose."""
     err, e = _pose_error(q, pose, dp)
+    if err <= accept:
+        return err
     moved, _, err2 = _gn_step(q, e, err, pose, dp, max_step)
     if err2 < err:
         q[:] = [_wrap(x) if k == "R" else x for x, k in zip(moved, JOINT_KINDS, strict=True)]

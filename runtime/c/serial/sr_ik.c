@@ -8,7 +8,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
                           sr_ik_solutions *out)
 {
     const sr_design *d = sr_design_or_default(design);
-    double q[SR_N], c[SR_N], s[SR_N], amp[SR_N], pose[12], rot[9], deviation = 0.0, rounding;
+    double q[SR_N], c[SR_N], s[SR_N], amp[SR_N], pose[12], rot[9], deviation = 0.0, rounding, size, polish_double;
     long key[SR_N_STAGES];
     int stage_ok[SR_N_STAGES];
     unsigned stage_flags[SR_N_STAGES], projected;
@@ -80,7 +80,9 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         amp[j] = 1.0;
     }
     /* the FK's own rounding of a pose of this size (wk_merge_indistinct's floor) */
-    rounding = wk_fk_rounding(fmax(fabs(pose[3]), fmax(fabs(pose[7]), fabs(pose[11]))));
+    size = fmax(fabs(pose[3]), fmax(fabs(pose[7]), fabs(pose[11])));
+    rounding = wk_fk_rounding(size);
+    polish_double = SR_DOUBLE_ROOT_POLISH_TOL * fmax(1.0, size);
     for (k = 0; k < SR_MAX_IK; ++k) {
         double t[12], err = 0.0;
         unsigned f = 0u;
@@ -113,10 +115,10 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         }
 #endif
         for (j = 0; j < SR_N; ++j) out->values[k][j] = q[j];
-        if (!(err <= SR_IK_VERIFY_TOL) || ((f & WK_FLAG_DOUBLE_ROOT) && err > rounding)) {
-            /* a tangent root leaves a sqrt(eps) error downstream, and a double root's centre the square root of its
-               stage's noise (a UR's folded elbow behind a wrist 1e-5 from singular: the pose within 3e-12, not
-               rounding): polish a copy of the set, a double root's to rounding */
+        if (!(err <= SR_IK_VERIFY_TOL) || ((f & WK_FLAG_DOUBLE_ROOT) && err > polish_double)) {
+            /* a tangent root leaves a sqrt(eps) error downstream, and a double root's centre its stage's noise (a
+               UR's folded elbow behind a wrist 1e-5 from singular: the pose within 3e-12): polish a copy of the
+               set, a double root's to rounding (Python's DOUBLE_ROOT_POLISH_TOL says when) */
             err = sr_polish(out->values[k], pose, d->params, (f & WK_FLAG_DOUBLE_ROOT) ? rounding : SR_IK_VERIFY_TOL);
             for (j = 0; j < SR_N; ++j)
                 if (sr_revolute[j]) out->values[k][j] = wk_wrap(out->values[k][j]);

@@ -67,14 +67,16 @@ typedef struct {
     const double *dp;
 } sr_fit;
 
-/* the residual after at most one damped Gauss-Newton step no longer than max_step in any joint */
-static double sr_refit(double *q, double max_step, const void *ctx)
+/* the residual after at most one damped Gauss-Newton step no longer than max_step in any joint; none when the
+ * residual is at most `accept` already (a midpoint the pose cannot tell from the pair: one FK, no Jacobian) */
+static double sr_refit(double *q, double max_step, double accept, const void *ctx)
 {
     const sr_fit *fit = (const sr_fit *)ctx;
-    double e[6];
+    double e[6], err2;
     const double err = sr_pose_error(q, fit->pose, fit->dp, e);
-    const double err2 = sr_gn_step(q, fit->pose, fit->dp, e, err, max_step);
     int j;
+    if (err <= accept) return err;
+    err2 = sr_gn_step(q, fit->pose, fit->dp, e, err, max_step);
     if (err2 < err)
         for (j = 0; j < SR_N; ++j)
             if (sr_revolute[j]) q[j] = wk_wrap(q[j]);
