@@ -54,6 +54,7 @@ class Mechanism(Protocol):
     CASADI_DESIGN_NAMES: tuple[str, ...] | None  # the CasADi functions' design inputs (None: the solver's)
     CASADI_DOCS: dict[str, str] | None  # the CasADi index's function texts
     C_API: CApi  # the optional C verbs its templates emit
+    ROBOT_DESCRIPTION: bool  # a user's robot description (its IK's stages are chosen: `wristkin derive --stages`)
 
     def derive(self) -> Derivation: ...
 
@@ -79,13 +80,14 @@ class MechanismDefaults:
     CASADI_DESIGN_NAMES: ClassVar[tuple[str, ...] | None] = None
     CASADI_DOCS: ClassVar[dict[str, str] | None] = None
     C_API: ClassVar[CApi] = CApi()
+    ROBOT_DESCRIPTION: ClassVar[bool] = False
 
     def robot_table(self) -> Any:
         """The mechanism as a DH table for `--stages derived` (kinematics/dh_table.RobotTable); a mechanism that
         is no user's robot description refuses."""
-        from .model import NotARobot
+        from .model import NotDerivable
 
-        raise NotARobot(f"{self.NAME}: --stages derived takes a robot description (URDF, DH or POE); a catalogue "
+        raise NotDerivable(f"{self.NAME}: --stages derived takes a robot description (URDF, DH or POE); a catalogue "
                            "mechanism's stages are derived already")
 
     def audit_numbers(self, dv: Derivation, solver: Any, audit_dir: Path) -> dict:

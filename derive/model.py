@@ -38,10 +38,6 @@ class NotDerivable(NoDecomposition):
                    "interpreter) solves it", short or why)
 
 
-class NotARobot(NotDerivable):
-    """A mechanism that is no user's robot description (a catalogue mechanism: its stages are derived already)."""
-
-
 class CheckFailed(AssertionError):
     """A derivation step failed its checks: nothing built on it is emitted. The message names the step and the
     claims that failed (`wristkin derive` prints it as a refusal of the robot, not a traceback)."""

@@ -21,7 +21,7 @@ from pathlib import Path
 
 from . import runtime_files
 from .families import FAMILIES
-from .model import NotARobot, NotDerivable
+from .model import NotDerivable
 from .render import header_lines
 from .spec import Spec, SpecError
 
@@ -73,15 +73,13 @@ def with_stages(mech, choice: str):
     """(mechanism, note): a robot description's mechanism with derived straight-line stages (its robot_table
     handed to the family with from_table) where `choice` allows and they cover it; the note says which IK the
     solver has and, where auto fell back to the plan interpreter, why (None for a catalogue mechanism)."""
+    if not mech.ROBOT_DESCRIPTION:  # a catalogue mechanism: its stages are derived already (its spec has no `stages`)
+        return mech, None
     if choice == "interpreted":
         return mech, "IK: the plan interpreter (--stages interpreted)"
     emitter = next(f for f in FAMILIES.values() if f.from_table is not None)
     try:
         return emitter.from_table(mech.robot_table()), "IK: derived straight-line stages"
-    except NotARobot:
-        if choice == "derived":
-            raise
-        return mech, None
     except NotDerivable as exc:
         if choice == "derived":
             raise

@@ -39,6 +39,7 @@ SELF_MOTION_RATIO = 1e-9
 class ChainMechanism(MechanismDefaults):
     """A serial chain from a description (DH, POE, URDF), solved by the planner's decomposition."""
 
+    ROBOT_DESCRIPTION = True
     C_API = CApi(pose12=True, ik_near=True, jacobian=True, fk_matrix=True, frames=True)
 
     TEMPLATES = ("python/chain.py.jinja", "c/chain.h.jinja", "c/chain.c.jinja")

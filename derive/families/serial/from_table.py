@@ -135,6 +135,8 @@ class _DerivedRobot(SerialMechanism):
     """The serial family's derivation plus the step that proves the DH table is the user's robot (its description's
     own FK, to `description_tol`)."""
 
+    ROBOT_DESCRIPTION = True
+
     def __init__(self, name: str, build, description_fk, description_tol: float, api: OwnRobotApi):
         super().__init__(name, build)
         self.description_fk, self.description_tol, self.api = description_fk, description_tol, api
