@@ -515,7 +515,7 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bit
         const int m = 1 << bits[b];
         for (k = 0; k < max_sets; ++k) {
             const int k2 = k | m;
-            double *x, *y, rx, ry, rm, span = 0.0;
+            double *x, *y, rx, ry, rm, accept, span = 0.0;
             if ((k & m) || k2 >= max_sets || !valid[k] || !valid[k2]) continue;
             if (candidates_only && !(candidate[k] && candidate[k2])) continue; /* beyond their stage's noise */
             x = values + (size_t)k * (size_t)n;
@@ -529,8 +529,9 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bit
             if (!(span <= WK_MERGE_SPAN)) continue;
             rx = aux[(size_t)k * (size_t)aux_stride];
             ry = aux[(size_t)k2 * (size_t)aux_stride];
-            rm = refit(mid, 0.125 * span, (rx > ry ? rx : ry) + floor_, ctx); /* a midpoint on the pose takes no step */
-            if (!(rm <= (rx > ry ? rx : ry) + floor_)) continue;
+            accept = (rx > ry ? rx : ry) + floor_;
+            rm = refit(mid, 0.125 * span, accept, ctx); /* a midpoint on the pose takes no step */
+            if (!(rm <= accept)) continue;
             if (rm < rx && rm < ry) {
                 for (j = 0; j < n; ++j) x[j] = mid[j];
                 aux[(size_t)k * (size_t)aux_stride] = rm;

@@ -426,8 +426,9 @@ def merge_indistinct(values, valid, flags, aux, bits, revolute, refit, scale, ca
             mid = [_wrap(float(u) + 0.5 * e) if r else float(u) + 0.5 * e
                    for u, e, r in zip(x, d, revolute, strict=True)]
             rx, ry = float(aux[k][0]), float(aux[k2][0])
-            rm = refit(mid, 0.125 * span, max(rx, ry) + floor)  # a midpoint on the pose takes no step
-            if not rm <= max(rx, ry) + floor:
+            accept = max(rx, ry) + floor
+            rm = refit(mid, 0.125 * span, accept)  # a midpoint on the pose takes no step
+            if not rm <= accept:
                 continue
             if rm < rx and rm < ry:
                 values[k], aux[k][0] = mid, rm

@@ -157,15 +157,12 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
     {
         /* a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when) */
         sr_fit fit;
-        double scale = fabs(pose[3]);
-        if (fabs(pose[7]) > scale) scale = fabs(pose[7]);
-        if (fabs(pose[11]) > scale) scale = fabs(pose[11]);
         fit.pose = pose;
         fit.dp = d->params;
         out->count -= wk_merge_indistinct(SR_MAX_IK, SR_N, sr_revolute, sr_fold_bits, SR_N_FOLD_BITS,
                                           &out->values[0][0],
                                           out->valid, out->flags, &out->aux[0][0], SR_N_IK_AUX,
-                                          sr_refit, &fit, scale, SR_N >= 6);
+                                          sr_refit, &fit, size, SR_N >= 6);
     }
 #endif
     out->status = out->count == 0 ? WK_STATUS_UNREACHABLE : (indeterminate ? WK_STATUS_INDETERMINATE : WK_STATUS_OK);
