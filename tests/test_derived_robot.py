@@ -30,8 +30,10 @@ from derive.model import NotDerivable
 ROBOTS = Path(__file__).parent / "robots"
 MERGE_CANDIDATE = 0x10000  # the runtime's internal flag: a pair within its stage's noise of a double root
 ROOT = Path(__file__).resolve().parent.parent
-DERIVED = ("irb120", "kr6", "lrmate", "tx2_60", "ur5e")  # the fixtures whose decomposition the derived stages cover
-CASES = [(r, "urdf") for r in DERIVED] + [("irb120", "dh"), ("kr6", "poe"), ("ur5e", "poe")]
+# the fixtures whose decomposition the derived stages cover (the youBot: 5 joints, two intersecting axes at the end)
+DERIVED = ("irb120", "kr6", "lrmate", "tx2_60", "ur5e", "youbot")
+CASES = [(r, "urdf") for r in DERIVED] + [("irb120", "dh"), ("kr6", "poe"), ("ur5e", "poe"), ("youbot", "dh"),
+                                          ("youbot", "poe")]
 _CACHE: dict = {}
 
 
@@ -101,8 +103,9 @@ def test_the_derived_solver_returns_every_set_and_only_true_ones(robot, fmt):
     m, _, _ = derived(robot, fmt)
     reference = ref.load(_file(robot, fmt))
     rng = case_rng(2302)
+    n = m.N_JOINTS
     for k in range(60):
-        q = rng.uniform(-math.pi, math.pi, 6)
+        q = rng.uniform(-math.pi, math.pi, n)
         T = reference(q)
         sol = m.ik(T)
         assert sol.status == m.STATUS_OK and 1 <= sol.count <= m.MAX_IK
@@ -110,7 +113,7 @@ def test_the_derived_solver_returns_every_set_and_only_true_ones(robot, fmt):
         assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
         if k < 4:  # every solution the multistart finds is among the sets (it may find fewer: 20 starts found
             # none of a KR 6 pose's 8 at seed 269036, 200 found 6; each set is on the pose, checked above)
-            found = ref.ik_all(reference, 6, T, seed=k, starts=60)
+            found = ref.ik_all(reference, n, T, seed=k, starts=60)
             assert len(found) <= sol.count
             assert all(min(_gap(v, f) for v in sol) <= 1e-6 for f in found)
 
@@ -124,10 +127,30 @@ def test_c_returns_the_numpy_sets(robot):
     assert py.BACKEND == "numpy"
     rng = case_rng(2303)
     for _ in range(30):
-        T = m.fk_matrix(rng.uniform(-math.pi, math.pi, 6))
+        T = m.fk_matrix(rng.uniform(-math.pi, math.pi, m.N_JOINTS))
         a, b = m.ik(T), py.ik(T)
         assert a.count == b.count and list(a.valid) == list(b.valid) and list(a.flags) == list(b.flags)
         assert np.max(np.abs(np.asarray(a.values)[a.valid] - np.asarray(b.values)[b.valid])) <= 1e-12
+
+
+def test_a_five_joint_arm_answers_what_it_cannot_reach_with_what_it_controls(tmp_path):
+    """The derived youBot (two intersecting axes at the end: its orientation stages read R_d h_5, then the turn
+    about h_5): its reachable poses are a 5-dimensional set, so a reachable pose turned about a random direction
+    is out of reach; it is refused, C and numpy alike, with what the chain controls, as the interpreter does."""
+    m, py, _ = derived("youbot")
+    own_robot.derive(_file("youbot", "urdf"), tmp_path, name="youbot_interp", native=False, stages="interpreted",
+                     progress=lambda _: None)
+    interp = own_robot.import_solver(tmp_path, "youbot_interp")
+    reference = ref.load(_file("youbot", "urdf"))
+    rng = case_rng(2304)
+    for _ in range(20):
+        T = reference(rng.uniform(-math.pi, math.pi, 5))
+        axis = rng.normal(size=3)
+        T[:3, :3] = ref.axis_angle(axis / np.linalg.norm(axis), rng.uniform(0.05, 1.0)) @ T[:3, :3]
+        for mod in (m, py, interp):
+            sol = mod.ik(T)
+            assert sol.count == 0 and sol.status == mod.STATUS_UNREACHABLE
+            assert "controls 5 of the 6 pose components" in sol.reason
 
 
 INTERPRETER_ONLY = {"CALIBRATED", "FAMILY_ANGLES", "FAMILY_TOL", "GEOMETRY_DEVIATION", "GEOMETRY_TOL", "ON_AXIS_TOL",
@@ -350,7 +373,7 @@ def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, w
     assert "--stages interpreted (the plan interpreter) solves it" in str(exc.value)
 
 
-@pytest.mark.parametrize("robot,derived", [("kr6", True), ("ur5e", True), ("youbot", False),
+@pytest.mark.parametrize("robot,derived", [("kr6", True), ("ur5e", True), ("youbot", True), ("iiwa14", False),
                                            ("kr6_calibrated", False)])
 def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_told_which(robot, derived, tmp_path):
     """`--stages auto` (the default): the derived stages' module (the serial family's: ROOT_GAP_TOL, no plan) where
@@ -364,13 +387,15 @@ def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_t
         assert note.strip() == "IK: derived straight-line stages"
     else:
         assert note.strip().startswith("IK: the plan interpreter (the derived stages do not cover this robot: ")
-        assert ("calibrated" if robot == "kr6_calibrated" else "two intersecting axes at the end") in note
+        assert ("calibrated" if robot == "kr6_calibrated" else "held joint") in note
     q = np.linspace(-1.0, 1.0, m.N_JOINTS)
+    if getattr(m, "_FREE", -1) >= 0:  # a held joint (the iiwa's): at its default value, 0
+        q[m._FREE] = 0.0
     assert m.ik(m.fk_matrix(q)).count >= 1
 
 
 def test_the_command_refuses_in_one_line_and_writes_nothing(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(ROBOTS / "youbot" / "youbot.urdf"), "--out",
+    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(_file("kr6_calibrated", "urdf")), "--out",
                         str(tmp_path / "out"), "--stages", "derived"], capture_output=True, text=True, cwd=ROOT,
                        timeout=300)
     assert r.returncode == 1 and len(r.stderr.strip().splitlines()) == 1 and "--stages derived" in r.stderr

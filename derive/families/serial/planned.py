@@ -10,6 +10,7 @@ relation that held only at the defaults fails there, with the stage named.
   orient (three axes at the end)                -> wrist        (dh_serial.wrist_stage)
   orient (a parallel group, then two axes)      -> trig_linear + rotation2d  (_GroupThenTwo: the UR type)
   orient (three axes, not the DH wrist's form)  -> trig_linear + 2 rotation2d  (_GroupThenTwo, a group of one)
+  orient (two axes at the end, a 5-joint arm)   -> 2 rotation2d  (_two_axes)
   group_rest (the group's last joint)           -> rotation2d   (from the group's rotation)
 """
 
@@ -158,7 +159,8 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                                           num(end[:3, 3])[:, None]]), [0, 0, 0, 1]]))
     try:
         plan = find_plan(numeric, 1e-9, lambda _c, p: not p.reversed and all(o["op"] in SUPPORTED for o in p.ops)
-                         and all(o["op"] != "orient" or len(o["units"]) in (1, 3) for o in p.ops))
+                         and all(o["op"] != "orient" or len(o["units"]) in (1, 3) or (
+                             len(o["units"]) == 2 and all(len(u) == 1 for u in o["units"])) for o in p.ops))
     except NoClosedForm as exc:
         raise PlanError(str(exc)) from None
     target = _Motion(R_POSE, P_POSE) * home.inv()  # the product of the joints' exponentials
@@ -229,6 +231,9 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             if len(op["units"]) == 3 and len(op["units"][0]) == 3:  # a parallel group, then two axes (UR type)
                 group = _GroupThenTwo(rd, op["units"][0], units[1], units[2], axes, joints)
                 out += group.stages
+                continue
+            if len(units) == 2:
+                out += _two_axes(rd, units[0], units[1], axes, joints)
                 continue
             if len(units) == 1:
                 h = axes[units[0]]
@@ -303,6 +308,27 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         else:
             x = _reduced_motion(e).apply(x).applyfunc(_tidy)
     return out, plan.strategy
+
+
+def _two_axes(rd, ja, jb, axes, joints) -> list[Stage]:
+    """The orientation R_d = rot(h_a, q_a) rot(h_b, q_b) of two axes (a 5-joint arm's last two: the pose's
+    orientation has one degree of freedom more than they control, and the FK check refuses a pose they miss):
+
+    - q_a from rot(h_a, q_a) h_b = R_d h_b (b keeps its own axis; subproblem 1 in the plane normal to h_a, whose
+      projections vanish only for parallel axes, which the decomposition excludes);
+    - q_b from rot(h_b, q_b) w = rot(h_a, -q_a) R_d w for w normal to h_b (subproblem 1)."""
+    ha, hb = axes[ja], axes[jb]
+    e1 = _perp(ha)
+    e2 = ha.cross(e1)
+    wb = rd * hb
+    f1 = _perp(hb)
+    f2 = hb.cross(f1)
+    p1 = _rodrigues(ha, -joints[ja]) * rd * f1
+    return [Stage("rotation2d", (ja,), (e1.dot(wb), e2.dot(wb), e1.dot(hb), e2.dot(hb)), f"angle {joints[ja]}",
+                  "subproblem 1: rot(h_a, q_a) h_b = R_d h_b in the plane normal to h_a (the last axis keeps its own "
+                  "direction)"),
+            Stage("rotation2d", (jb,), (f1.dot(p1), f2.dot(p1), sp.Integer(1), sp.Integer(0)), f"angle {joints[jb]}",
+                  "subproblem 1: rot(h_b, q_b) w = rot(h_a, -q_a) R_d w for w normal to h_b")]
 
 
 def _reduced_motion(m: _Motion) -> _Motion:
