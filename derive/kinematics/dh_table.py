@@ -123,6 +123,10 @@ class RobotTable:
     reversed_: bool  # solved from the tool
     deviation: float  # the description's axes and points off the ideal ones the table is read from (metres, sines)
     api: OwnRobotApi  # what the robot's module offers beyond the verbs, the same whichever way its IK runs
+    held: int = -1  # a joint held at a run-time value (a 7-joint arm's free joint), or -1
+    # (value, why) per held value at which the IK is undefined (the others a self-motion, or the decomposition's
+    # meeting point at infinity): refused within the geometry tolerance
+    degenerate_held: tuple = ()
 
 
 @dataclass(frozen=True)

@@ -140,6 +140,13 @@ def serial_views(ctx: dict) -> dict:
         "SR_REUSE_MIRROR_CHECK": int(reuse),
         "SR_N_FOLD_BITS": len(ctx["fold_bits"]),
         "SR_LENGTHS_FLOOR": int(bool(ctx.get("lengths_floor"))),
+        # the design's first SR_N_LENGTHS values are lengths (a held joint's angle follows them); SR_HELD: that
+        # joint (-1: none), which the Gauss-Newton steps and the conditioning leave out
+        "SR_N_LENGTHS": ctx.get("n_lengths", len(ctx["design_values"])),
+        "SR_HELD": ctx.get("held", -1),
+        # the default design violates a design condition (a held joint's default value the IK refuses): ik with a
+        # NULL design returns WK_ERR_DESIGN, as Python's ik without a design raises InvalidDesign
+        "SR_DEFAULT_REFUSED": int(bool(ctx.get("default_refused"))),
         "SR_N_DESIGN_CHECKS": len(design_checks) if has_design_kernel else 0,
         "SR_N_IMAGE_CHECKS": len(image_checks) if has_image_kernel else 0,
     }
@@ -173,6 +180,7 @@ def serial_views(ctx: dict) -> dict:
             # a user's chain of fewer than six joints says what it controls when a pose is out of reach
             "unreachable_note": ctx.get("unreachable_note", "None"),
             "lengths_floor": bool(ctx.get("lengths_floor")),
+            "n_lengths": ctx.get("n_lengths", len(ctx["design_values"])), "held": ctx.get("held", -1),
             "design_check_kernel": "_k_design_check" if has_design_kernel else "None",
             "image_check_kernel": "_k_image_check" if has_image_kernel else "None",
             "py_stages": [{"index": st["index"], "shift": st["shift"], "body": py_stage_body(st)} for st in stages],

@@ -22,7 +22,6 @@ from chain_stand_in import (
     _FREE,
     _ROLES,
     BRANCHES,
-    DESIGN_NAMES,
     JOINT_KINDS,
     JOINT_NAMES,
     LOWER,
@@ -95,10 +94,11 @@ def _cli_joints(values, free, deg):
     q = [math.radians(v) if deg and kind == "R" else v for v, kind in zip(values, kinds, strict=False)]
     if _FREE >= 0 and len(q) == N_JOINTS - 1:
         if free is None:
-            raise InvalidInput(f"joints: {len(q)} values given: give all {N_JOINTS}, or --free for {DESIGN_NAMES[0]}")
+            raise InvalidInput(f"joints: {len(q)} values given: give all {N_JOINTS}, or --free for "
+                               f"{JOINT_NAMES[_FREE]}")
         q.insert(_FREE, free)
     elif _FREE >= 0 and free is not None and len(q) == N_JOINTS and q[_FREE] != free:
-        raise InvalidInput(f"joints: {DESIGN_NAMES[0]} differs between --joints and --free: give it once (--joints "
+        raise InvalidInput(f"joints: {JOINT_NAMES[_FREE]} differs between --joints and --free: give it once (--joints "
                            "without it, or the same value)")
     return q
 
@@ -132,7 +132,7 @@ def main(argv=None) -> int:
         s.add_argument("--json", action="store_true", help="print one JSON object")
         if _FREE >= 0:
             s.add_argument("--free", type=float, default=None,
-                           help=f"the free joint {DESIGN_NAMES[0]} (default 0; radians unless --deg)")
+                           help=f"the free joint {JOINT_NAMES[_FREE]} (default 0; radians unless --deg)")
         elif _ARM_ANGLE and verb == "ik":
             s.add_argument("--arm-angle", type=float, default=0.0, dest="free",
                            help="the arm angle: the elbow's place on its circle about the shoulder-wrist line (default "
@@ -144,7 +144,9 @@ def main(argv=None) -> int:
         math.radians(args.free) if deg and (_ARM_ANGLE or JOINT_KINDS[_FREE] == "R") else args.free)
     try:
         if args.verb == "ik":
-            design = [0.0 if free is None else free] if held else None
+            value = 0.0 if free is None else free
+            # by name: the held joint's value (a derived module's design also has the lengths), or the arm angle
+            design = ({JOINT_NAMES[_FREE]: value} if _FREE >= 0 else [value]) if held else None
             out = ik(_cli_pose(args.pose, deg), design)
         else:
             q = _cli_joints(args.joints, free, deg)

@@ -44,9 +44,12 @@ def _jacobian_in_frames(q, d, v0=None):
 
 
 def _conditioning(q, d, v0=None):
-    """(manipulability sqrt(det J^T J), sigma_min / sigma_max of J), both from the eigenvalues of J^T J."""
+    """(manipulability sqrt(det J^T J) (J J^T for more than 6 joints), sigma_min / sigma_max of J), both from its
+    eigenvalues."""
     j = _jacobian_in_frames(q, d, v0)
-    lam = np.maximum(np.linalg.eigvalsh(j.T @ j), 0.0)
+    # a redundant arm (a held joint's 7 joints): J J^T, whose eigenvalues are J's nonzero sigma^2 (as the
+    # interpreted module's: the arm's conditioning, whichever joint its IK holds)
+    lam = np.maximum(np.linalg.eigvalsh(j.T @ j if N_JOINTS <= 6 else j @ j.T), 0.0)
     return math.sqrt(float(np.prod(lam))), (math.sqrt(lam[0] / lam[-1]) if lam[-1] > 0.0 else 0.0)
 
 
@@ -55,8 +58,8 @@ def _fk_flag(ratio):
 
 
 def fk(joints, design=None) -> Solutions:
-    """The end pose (one solution; values = entries of [R | p]); aux = manipulability sqrt(det J^T J); flagged
-    singular when sigma_min / sigma_max of J is at or below SINGULAR_EPS."""
+    """The end pose (one solution; values = entries of [R | p]); aux = manipulability sqrt(det J^T J) (J J^T past 6
+    joints); flagged singular when sigma_min / sigma_max of J is at or below SINGULAR_EPS."""
     d = _design(design)
     if d.native is not None:
         sol = _C_FK(joints, d.native, _FK_RESULT)

@@ -12,7 +12,16 @@ from __future__ import annotations
 import _runtime
 import numpy as np
 from serial_frames import _unframe
-from serial_input import _HAS_PRISMATIC, _JOINT_SHAPE, _POSE_SHAPES, _REVOLUTE, _design, _joints, _pose
+from serial_input import (
+    _DEFAULT_REFUSED,
+    _HAS_PRISMATIC,
+    _JOINT_SHAPE,
+    _POSE_SHAPES,
+    _REVOLUTE,
+    _design,
+    _joints,
+    _pose,
+)
 from serial_stand_in import (
     _C_IK,
     _C_IK_BATCH,
@@ -36,6 +45,7 @@ from serial_stand_in import (
     STATUS_OK,
     STATUS_UNREACHABLE,
     BatchSolutions,
+    InvalidDesign,
     InvalidInput,
     Solutions,
     _array,
@@ -53,6 +63,8 @@ def ik(pose, design=None, previous=None) -> Solutions:
     at |sin theta5| <= WRIST_EXACT_TOL, or a stage whose equation vanishes) is returned once: its member nearest
     `previous` when given (previous's q4, or previous's value of that stage's joint), else the one at 0.
     `previous` changes nothing else: not the regular sets, not the status."""
+    if design is None and _DEFAULT_REFUSED:
+        raise InvalidDesign(_DEFAULT_REFUSED)
     d = _design(design)
     if d.native is not None:
         prev = None if previous is None else _runtime.c_floats(previous, _JOINT_SHAPE)
@@ -147,6 +159,8 @@ def ik_batch(poses, design=None) -> BatchSolutions:
     a = _array(poses, "poses")
     if not (a.ndim == 3 and a.shape[1:] in ((4, 4), (3, 4))) and not (a.ndim == 2 and a.shape[1] in (12, 16)):
         raise InvalidInput(f"poses: expected an (N, 4, 4), (N, 3, 4), (N, 12) or (N, 16) array, got shape {a.shape}")
+    if design is None and _DEFAULT_REFUSED:
+        raise InvalidDesign(_DEFAULT_REFUSED)
     d = _design(design)
     if d.native is not None:
         n, c = a.shape[0], np.ascontiguousarray(a)

@@ -25,6 +25,7 @@ from serial_stand_in import (
     LENGTH_MIN,
     LENGTHS_FLOOR,
     N_JOINTS,
+    N_LENGTHS,
     ROTATION_TOL,
     Design,
     InvalidDesign,
@@ -70,7 +71,8 @@ def make_design(params=None, base=None, tool=None) -> Design:
             return params
         params, base, tool = params.params, params.base if base is None else base, params.tool if tool is None else tool
     vals = _design_values(params)
-    scale = max((abs(v) for v in vals), default=0.0)  # a chain without lengths: none
+    # the lengths (a held joint's angle after them is any finite value: the stage wraps it)
+    scale = max((abs(v) for v in vals[:N_LENGTHS]), default=0.0)  # a chain without lengths: none
     if scale > LENGTH_MAX:
         raise InvalidDesign(f"design values must be within {LENGTH_MAX:g} m, got {scale:g}")
     if 0.0 < scale < DESIGN_SCALE_MIN:
@@ -80,22 +82,38 @@ def make_design(params=None, base=None, tool=None) -> Design:
     if LENGTHS_FLOOR:
         # a nonzero DH length below LENGTH_MIN makes products of two lengths (stage coefficients) vanish against
         # DEGENERATE_EPS: a near-degenerate design whose IK would come back empty
-        tiny = [f"{n} = {v!r}" for n, v in zip(DESIGN_NAMES, vals, strict=True) if 0.0 < abs(v) < LENGTH_MIN]
+        tiny = [f"{n} = {v!r}" for n, v in zip(DESIGN_NAMES[:N_LENGTHS], vals[:N_LENGTHS], strict=True)
+                if 0.0 < abs(v) < LENGTH_MIN]
         if tiny:
             raise InvalidDesign(f"DH lengths must be 0 or at least {LENGTH_MIN:g} m in magnitude, got "
                                 f"{', '.join(tiny)}: set a vanishing length to exactly 0 (a different structure) "
                                 "or express the lengths in smaller units")
+    why = _design_refusal(vals)
+    if why:
+        raise InvalidDesign(why)
+    return _built(vals, base, tool)
+
+
+def _design_refusal(vals):
+    """The first design condition (DESIGN_CHECKS) the values violate, in words, or None."""
     if _DESIGN_CHECK is not None:
         for v, (kind, tol, what) in zip(_DESIGN_CHECK(vals), DESIGN_CHECKS, strict=True):
             if (abs(v) > tol) if kind == "zero" else (abs(v) <= tol):
-                raise InvalidDesign(f"design violates: {what} (value {v:.3g}, tolerance {tol:g})")
+                return f"design violates: {what} (value {v:.3g}, tolerance {tol:g})"
+    return None
+
+
+def _built(vals, base, tool):
     b = _BASE if base is None else _frame(base, "base")
     t = _TOOL if tool is None else _frame(tool, "tool")
     return Design(vals, _c_design(vals + tuple(v for m in (b, t) for row in m[:3] for v in row)), b, t,
                   _frames_of(b, t))
 
 
-_DEFAULT_DESIGN = make_design()
+# a held joint's default value (0) may be one the IK refuses (the iiwa's a2 held: the others a self-motion there):
+# fk takes the default design, ik without a design raises why (as the interpreted module's)
+_DEFAULT_REFUSED = _design_refusal(_design_values(None))
+_DEFAULT_DESIGN = _built(_design_values(None), None, None) if _DEFAULT_REFUSED else make_design()
 _JOINT_SHAPE = ((N_JOINTS,),)
 _POSE_SHAPES = ((4, 4), (3, 4), (12,), (16,))
 _REVOLUTE = tuple(k == "R" for k in JOINT_KINDS)

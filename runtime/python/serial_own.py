@@ -9,19 +9,20 @@ stand-in robot, whose constants have the same names), so that it is linted and t
 
 from __future__ import annotations
 
-from chain_poe import _full_chain
-from chain_stand_in import _IDEAL_AXES, _IDEAL_HOME, _IDEAL_POINTS
+from chain_poe import _full_chain, _held
+from chain_stand_in import _FREE, _IDEAL_AXES, _IDEAL_HOME, _IDEAL_POINTS, JOINT_NAMES
 
 # wristkin: inlined from here
 _IDEAL = _full_chain(_IDEAL_AXES, _IDEAL_POINTS, _IDEAL_HOME)
 
 
 def _branch_chain(d):
-    """The chain the named branches are read on: the description's ideal one, whatever the design (a branch is a
-    name for a configuration, read on one geometry)."""
-    return _IDEAL
+    """The chain the named branches are read on: the description's ideal one, whatever the lengths (a branch is a
+    name for a configuration, read on one geometry), with a held joint at the design's value (its last), as the
+    interpreted module's."""
+    return _IDEAL if _FREE < 0 else _held(_IDEAL, _FREE, d.params[-1])
 
 
 def _fk_design(q):
-    """The design `fk` takes with the command line's joints: the default (lengths as the description's)."""
-    return None
+    """The design `fk` takes with the command line's joints: the default lengths, and a held joint's value."""
+    return None if _FREE < 0 else {JOINT_NAMES[_FREE]: q[_FREE]}

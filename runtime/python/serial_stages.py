@@ -19,6 +19,7 @@ from serial_stand_in import (
     FLAG_INDETERMINATE,
     FLAG_SINGULAR_INVERSE,
     N_JOINTS,
+    N_LENGTHS,
     ON_AXIS_TOL,
     ROOT_GAP_TOL,
     SINGULAR_EPS,
@@ -49,7 +50,7 @@ def _family_member(j, q, c, s, prev):
 
 def _design_size(dp):
     """The design's size: its largest length, at least 1 (a stage's coefficients carry rounding of that order)."""
-    return max(1.0, max(map(abs, dp), default=0.0))
+    return max(1.0, max(map(abs, dp[:N_LENGTHS]), default=0.0))
 
 
 def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=ROOT_GAP_TOL, size=1.0):

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from serial_stand_in import _WRIST_JOINTS, IK_VERIFY_TOL, JOINT_KINDS, N_JOINTS, _k_fk, _k_jacobian, _wrap
+from serial_stand_in import _HELD, _WRIST_JOINTS, IK_VERIFY_TOL, JOINT_KINDS, N_JOINTS, _k_fk, _k_jacobian, _wrap
 
 
 # wristkin: inlined from here
@@ -28,6 +28,8 @@ def _gn_step(q, e, err, pose, dp, max_step=math.inf):
     """One damped Gauss-Newton step from q (pose error e, residual err), no longer than max_step in any joint:
     (q, e, err) moved, or as given when the step is refused (singular, too long) or does not help."""
     j = np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)
+    if _HELD >= 0:  # the held joint keeps its value (the damping then leaves its step 0)
+        j[:, _HELD] = 0.0
     try:
         step = np.linalg.solve(j.T @ j + 1e-12 * np.eye(N_JOINTS), j.T @ e)
     except np.linalg.LinAlgError:

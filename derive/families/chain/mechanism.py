@@ -265,13 +265,14 @@ class ChainMechanism(MechanismDefaults):
         return normalised(replace(c, axes=axes, points=points))
 
     def robot_table(self):
-        """The robot as a DH table for `--stages derived` (kinematics/dh_table.RobotTable) on its ideal axes; a
-        held joint, the arm angle, more than six joints or a slide refused with the reason (the deviation of the
+        """The robot as a DH table for `--stages derived` (kinematics/dh_table.RobotTable) on its ideal axes, with
+        its held joint and the held values the IK refuses; the arm angle, more than six solved joints or a slide
+        refused with the reason (the deviation of the
         true axes from the ideal ones goes with it: the deriving family decides what it takes)."""
         desc = self.desc
-        if desc.free >= 0 or desc.redundancy != "joint":
-            raise NotDerivable.because(self.NAME, "a held joint or the arm angle as a run-time parameter")
-        if self.chain.n > 6:
+        if desc.redundancy != "joint":
+            raise NotDerivable.because(self.NAME, "the arm angle as a run-time parameter")
+        if self.chain.n - (desc.free >= 0) > 6:
             raise NotDerivable.because(self.NAME, f"{self.chain.n} joints")
         plan, ideal = self.plan()
         try:
@@ -282,7 +283,7 @@ class ChainMechanism(MechanismDefaults):
         api = self._own_api(plan, ideal)
         return RobotTable(self.NAME, self.title, desc.source, desc.rule, c.joint_names, table, c.base @ table.frame0,
                           desc.fk, self.scale(), frozenset(o["op"] for o in plan.ops), plan.reversed,
-                          self.deviation(), api)
+                          self.deviation(), api, desc.free, self.degenerate_held_reasons())
 
     def _own_api(self, plan, ideal) -> OwnRobotApi:
         """The module's constants beyond the verbs: the interpreted module's, and the derived one's (robot_table)."""

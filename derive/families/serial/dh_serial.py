@@ -43,13 +43,17 @@ class SerialSpec:
     convention: str = "standard"  # or "modified" (Craig): A_i = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta_i) Tz(d_i)
     tool: sp.Matrix | None = None  # constant end transform (e.g. the last Tx(a_n) Rx(alpha_n) of a modified table)
     base: sp.Matrix | None = None  # constant frame 0 in the world (a robot whose first axis is off the world's z)
+    # (joint index, design symbol): a joint held at a run-time value (a 7-joint arm's free joint), its stage reading
+    # the symbol (the last design entry: the lengths come first)
+    held: tuple[int, sp.Symbol] | None = None
 
 
 # ------------------------------------------------------------------------------------------- checks
 def _sample_design(spec: SerialSpec, rng) -> dict:
-    # lengths drawn around the defaults (never zero, so no accidental degeneracy)
-    return {s: v * rng.uniform(0.5, 1.5) if v != 0 else rng.uniform(0.0, 0.2)
-            for s, v in zip(spec.design, spec.design_default, strict=True)}
+    # lengths drawn around the defaults (never zero, so no accidental degeneracy); a held joint's value at random
+    held = spec.held[1] if spec.held else None
+    return {s: rng.uniform(-math.pi, math.pi) if s == held else v * rng.uniform(0.5, 1.5) if v != 0 else
+            rng.uniform(0.0, 0.2) for s, v in zip(spec.design, spec.design_default, strict=True)}
 
 
 def _sample_joints(spec: SerialSpec, rng) -> dict:
@@ -161,6 +165,8 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
         def err(rng, st=st, at_fk=at_fk, wrist=wrist):
             q = _sample_joints(spec, rng)
             dsn = _sample_design(spec, rng)
+            if spec.held:  # the held joint at the design's value: the stages solve for that pose
+                dsn[spec.held[1]] = q[spec.joints[spec.held[0]]]
             vals = at_fk(q, dsn)
             qs = [q[spec.joints[j]] for j in st.joints]
             if st.kind == "trig_linear":
@@ -185,7 +191,10 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
         if st.factored:
             def factors(rng, at_fk=at_fk):
                 q = _sample_joints(spec, rng)
-                a, b, c, dm, dp, em = at_fk(q, _sample_design(spec, rng))
+                dsn = _sample_design(spec, rng)
+                if spec.held:
+                    dsn[spec.held[1]] = q[spec.joints[spec.held[0]]]
+                a, b, c, dm, dp, em = at_fk(q, dsn)
                 # relative to (A^2 + B^2): both sides are sums of squares of metre-sized terms
                 return abs(dm * dp / 4 - (a * a + b * b - c * c)) / max(a * a + b * b, 1e-300) + (em < abs(dm)) * 1.0
             checks.append(numeric_predicate(factors, "Dm Dp / 4 = A^2 + B^2 - C^2 and Em >= |Dm| on the FK",

@@ -3,9 +3,11 @@ standard DH table, kinematics/dh_table.py), derived as this family's straight-li
 PUMA-560's are (no plan interpreted at run time). The table's lengths stay design parameters (defaults: the
 robot's), its angles are made exact, and a derivation step proves the table is the user's robot.
 
-The robot's family refuses what the table cannot hold (a held joint, more than six joints, a calibrated robot, a
-slide); here the angles must be multiples of pi / 36 and the planner's decomposition must fit the stage kinds
-dh_serial emits (a spherical wrist at the end), else the robot is refused with the reason."""
+The robot's family refuses what the table cannot hold (the arm angle, more than six solved joints, a slide); here
+the robot must not be calibrated, the angles must be multiples of pi / 36 and the planner's decomposition must fit
+the stage kinds planned.py emits, else the robot is refused with the reason. A 7-joint arm's held joint stays a
+joint of the table, its value the design (the lengths folded, so the design is the interpreted module's); its stage
+reads it, and the others are planned with it held."""
 
 from __future__ import annotations
 
@@ -100,18 +102,26 @@ def from_table(robot: RobotTable) -> SerialMechanism:
             if abs(v) <= LENGTH_ZERO * robot.size:
                 lengths.append(sp.Integer(0))
                 continue
+            if robot.held >= 0:  # with a held joint the design is its value alone, as the interpreted module's
+                lengths.append(sp.Float(v))
+                continue
             sym = sp.Symbol(_identifier(f"{label}{k}", taken), real=True)
             design.append(sym)
             defaults.append(float(v))
             lengths.append(sym)
         rows.append(DHRow(lengths[0], angles[0], lengths[1], q + angles[1], q, "R"))
+    held = None
+    if robot.held >= 0:  # the held joint's value: the design (the lengths folded), 0 by default
+        held = (robot.held, sp.Symbol(_identifier(f"held_{robot.joint_names[robot.held]}", taken), real=True))
+        design.append(held[1])
+        defaults.append(0.0)
     base, tool = _constant(robot.base), _constant(table.tool)
     spec = SerialSpec(name, robot.title, robot.source, rows, tuple(joints), ("R",) * n, tuple(design),
                       tuple(defaults), [], notes=f"standard DH table read from the description ({robot.rule})",
-                      tool=tool, base=base)
+                      tool=tool, base=base, held=held)
     try:
         stage_list, _ = planned_stages(rows, tuple(joints), spec.kinds, tuple(design), tuple(defaults), "standard",
-                                       [str(q) for q in joints], base, tool)
+                                       [str(q) for q in joints], base, tool, held)
     except (PlanError, ValueError) as exc:
         missing = sorted(robot.ops - SUPPORTED)
         if missing or robot.reversed_:  # say what the interpreter's decomposition needs, not the search's refusal
@@ -126,7 +136,7 @@ def from_table(robot: RobotTable) -> SerialMechanism:
     # frame moves by at most their sum times the size, on top of the products' rounding
     tol = 1e-12 + (snapped + 2 * n * robot.deviation) * max(robot.size, 1.0)
     mech = _DerivedRobot(name, lambda: replace(spec, stages=stage_list), robot.description_fk, tol,
-                         replace(robot.api, description_tol=tol))
+                         replace(robot.api, description_tol=tol), robot.joint_names, robot.degenerate_held)
     mech.DERIVE_SECONDS = 0.2 * 2 ** n
     return mech
 
@@ -137,9 +147,31 @@ class _DerivedRobot(SerialMechanism):
 
     ROBOT_DESCRIPTION = True
 
-    def __init__(self, name: str, build, description_fk, description_tol: float, api: OwnRobotApi):
+    def __init__(self, name: str, build, description_fk, description_tol: float, api: OwnRobotApi,
+                 joint_names=(), degenerate_held=()):
         super().__init__(name, build)
         self.description_fk, self.description_tol, self.api = description_fk, description_tol, api
+        self.joint_names, self.degenerate_held = tuple(joint_names), tuple(degenerate_held)
+
+    def _held_checks(self) -> list:
+        """(what, expression, value) per held value the IK refuses: 2 sin((v_held - v) / 2), |.| = the angle's distance
+        to v (0 only there, mod 2 pi), refused within the geometry tolerance as the interpreted module refuses it."""
+        held = self.spec.held
+        if not held:
+            return []
+        name = self.joint_names[held[0]]
+        return [(f"{name} (held) not within GEOMETRY_TOL of {v!r}, where {why}", 2 * sp.sin((held[1] - v) / 2), v)
+                for v, why in self.degenerate_held]
+
+    def kernels(self, dv):
+        from ...lower import Kernel
+
+        ks = super().kernels(dv)
+        checks = self._held_checks()
+        if checks:
+            ks.append(Kernel("design_check", "Design conditions (see DESIGN_CHECKS): the held values refused.",
+                             (("dp", self.spec.design),), tuple((f"d{i}", e) for i, (_, e, _) in enumerate(checks))))
+        return ks
 
     def own_context(self) -> dict:
         """The interpreted module's limits, named branches and command line (runtime/python/own_api.py): the same
@@ -147,9 +179,20 @@ class _DerivedRobot(SerialMechanism):
         api = self.api
         lit = own_api_literals(api)
         n = len(api.lower)
-        return {**{k: lit[k] for k in ("limits_lower", "limits_upper", "strategy_literal", "controls_literal",
-                                       "branch_names", "description_tol")},
-                "unreachable_note": text_literal(f"this chain controls {api.controls} only") if n < 6 else "None",
+        held = self.spec.held
+        extra = {}
+        if held:  # the held joint's value: the design, named as the joint (as the interpreted module's)
+            extra = {"held": held[0], "n_lengths": 0, "design_names": [self.joint_names[held[0]]]}
+            checks = self._held_checks()
+            if checks:
+                extra["design_checks"] = [{"kind": "nonzero", "tol": repr(api.geometry_tol), "what": what}
+                                          for what, _, _ in checks]
+                # the default value, 0, is one of them (the iiwa's a2: a self-motion): ik without a design refuses
+                extra["default_refused"] = any(abs(2 * math.sin(-v / 2)) <= api.geometry_tol for _, _, v in checks)
+        return {**extra, **{k: lit[k] for k in ("limits_lower", "limits_upper", "strategy_literal",
+                                                "controls_literal", "branch_names", "description_tol")},
+                "unreachable_note": text_literal(f"this chain controls {api.controls} only") if n - bool(held) < 6
+                else "None",
                 "own_api": {**{k: lit[k] for k in ("ideal_axes", "ideal_points", "ideal_home", "roles", "scale",
                                                    "geometry_tol", "geometry_deviation")},
                             "c_lower": [c_num(v) for v in api.lower], "c_upper": [c_num(v) for v in api.upper],

@@ -45,25 +45,29 @@ class SerialMechanism(SerialArm):
         counts: dict[int, int] = {}
         worst_ok, contains = True, 0
         n = 300
+        spec = self.spec
         for _ in range(n):
             q = [rng.uniform(-math.pi, math.pi) if k == "R" else rng.uniform(-0.5, 0.5) for k in solver.JOINT_KINDS]
-            sol = solver.ik(solver.fk_matrix(q))
+            # a held joint: at its joint value (the design's last entry)
+            design = {solver.DESIGN_NAMES[-1]: q[spec.held[0]]} if spec.held else None
+            sol = solver.ik(solver.fk_matrix(q), design)
             counts[sol.count] = counts.get(sol.count, 0) + 1
             worst_ok &= all(float(np.max(np.abs(solver.fk_matrix(v) - solver.fk_matrix(q)))) < 1e-9 for v in sol)
             diffs = [np.where(np.array(solver.JOINT_KINDS) == "R", np.remainder(v - q + math.pi, 2 * math.pi) - math.pi,
                               v - q) for v in sol]
             contains += any(float(np.max(np.abs(dq))) < 1e-6 for dq in diffs)
-        spec = self.spec
+        held = spec.held[1] if spec.held else None
         return {
-            "summary": [("design (defaults)", ", ".join(f"{d} = {v:g} m" for d, v in zip(spec.design,
-                                                                                         spec.design_default,
-                                                                                         strict=True))),
+            "summary": [("design (defaults)", ", ".join(f"{d} = {v:g} {'rad (the held joint)' if d == held else 'm'}"
+                                                        for d, v in zip(spec.design, spec.design_default,
+                                                                        strict=True))),
                         ("joints", ", ".join(f"{q} ({'revolute' if k == 'R' else 'prismatic'})"
                                              for q, k in zip(spec.joints, spec.kinds, strict=True))),
                         ("IK solution sets per pose (max)", str(solver.MAX_IK))],
             "sections": [{"title": "Round trips through the generated solver",
                           "body": f"{n} seeded random joint vectors (revolute uniform in (-pi, pi], prismatic in "
-                                  f"(-0.5, 0.5) m): IK solution counts {dict(sorted(counts.items()))}; the generating "
+                                  f"(-0.5, 0.5) m{', the held joint at its value' if held else ''}): IK solution "
+                                  f"counts {dict(sorted(counts.items()))}; the generating "
                                   f"joints were among the solutions {contains} of {n} times; every returned solution "
                                   f"reproduced the pose to 1e-9: {'yes' if worst_ok else 'NO'}. The independent "
                                   "reference comparison (multistart Levenberg-Marquardt over joint space) is in "

@@ -16,6 +16,8 @@ relation that held only at the defaults fails there, with the stage named.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import sympy as sp
 
@@ -26,6 +28,8 @@ from ...kinematics.poe import Chain
 from ...serial_core.stages import P_POSE, POSE_SYMBOLS, R_POSE, Stage
 from .dh_serial import wrist_stage
 
+# the held joint's value the decomposition is planned at (any value where no two axes line up by accident)
+HELD_PLAN_VALUE = 0.7
 SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient",
              "group_rest"}
 
@@ -61,8 +65,13 @@ def _screw(kind, h, r, q):
     return _Motion(rot, r - rot * r)
 
 
-def _perp(h):
-    """A unit vector normal to the (constant) axis direction h, exact when h is."""
+def _perp(h, about=None):
+    """A unit vector normal to the axis direction h, exact when h is. An axis turned by a held joint (h in its
+    symbol) takes h x `about`, the held joint's axis: the turn keeps its length, so it is normal to h at every held
+    value (h along `about` does not turn)."""
+    if h.free_symbols:
+        v = h.cross(about)
+        return (v / sp.sqrt(sp.simplify(v.dot(v)))).applyfunc(sp.simplify)
     hn = np.array([float(v) for v in h])
     e = sp.Matrix([1, 0, 0]) if abs(hn[0]) <= min(abs(hn[1]), abs(hn[2])) + 1e-12 else (
         sp.Matrix([0, 1, 0]) if abs(hn[1]) <= abs(hn[2]) + 1e-12 else sp.Matrix([0, 0, 1]))
@@ -82,13 +91,14 @@ class _GroupThenTwo:
     - the group's last joint, once the planar pair set the others, from the group's rotation
       R_g = R_d rot(h_b, q_b)^T rot(h_a, q_a)^T (subproblem 1 about its axis)."""
 
-    def __init__(self, rd, grp, ja, jb, axes, joints):
+    def __init__(self, rd, grp, ja, jb, axes, joints, about=None):
         self.rd, self.grp, self.ja, self.jb, self.axes, self.joints = rd, list(grp), ja, jb, axes, joints
+        self.about = about  # a held joint's axis (_perp)
         hg, ha, hb = axes[grp[0]], axes[ja], axes[jb]
         hab = ha.dot(hb)
         a, b = hg.dot(hb - ha * hab), hg.dot(ha.cross(hb))
         c = hg.dot(rd * hb) - hab * hg.dot(ha)
-        e1 = _perp(hb)
+        e1 = _perp(hb, about)
         e2 = hb.cross(e1)
         p0, p1 = rd.T * hg, _rodrigues(ha, -joints[ja]) * hg
         exprs, rule = (a, b, -c), ("subproblem 4 on the rotation: h_g . rot(h_a, q) h_b = h_g . R_d h_b (the "
@@ -127,7 +137,7 @@ class _GroupThenTwo:
         h = axes[j]
         rg = self.rd * _rodrigues(axes[self.jb], joints[self.jb]).T * _rodrigues(axes[self.ja], joints[self.ja]).T
         others = sum((sp.sign(sp.simplify(axes[o].dot(h))) * joints[o] for o in self.grp if o != j), sp.Integer(0))
-        e1 = _perp(h)
+        e1 = _perp(h, self.about)
         e2 = h.cross(e1)
         v = rg * e1
         return Stage("rotation2d", (j,), (e1.dot(v), e2.dot(v), sp.cos(others), sp.sin(others)),
@@ -136,24 +146,35 @@ class _GroupThenTwo:
                      "sense)")
 
 
-def stages(rows, joints, kinds, design, defaults, convention="standard", names=None, base=None, tool=None):
+def stages(rows, joints, kinds, design, defaults, convention="standard", names=None, base=None, tool=None,
+           held=None):
     """(stages, strategy) for the DH rows (after the constant `base`, before the constant `tool`, 4x4 each): the
-    planner's decomposition as symbolic stages."""
+    planner's decomposition as symbolic stages. `held`: (joint index, design symbol) of a joint held at a run-time
+    value (a 7-joint arm's free joint): its stage reads the value, and the others are planned on the chain with it
+    held, its rotation kept as its symbol (so every stage holds at every held value, which the derivation checks)."""
     if convention != "standard":
         raise PlanError("the serial family's stages are built for standard DH tables")
     ts = dh_chain(rows, convention, None, base)
-    zero = {q: 0 for q in joints}
+    hj = None if held is None else held[0]
+    idx = [i for i in range(len(rows)) if i != hj]  # the solved joints (all but a held one)
+    zero = {joints[i]: 0 for i in idx}
     frames = [sp.eye(4) if base is None else base] + [sp.simplify(t.subs(zero)) for t in ts]
-    axes = [sp.simplify(frames[i][:3, 2]) for i in range(len(rows))]
-    points = [frames[i][:3, 3] for i in range(len(rows))]
+    # the solved chain: axis i is z of the frame before row i; after a held joint, turned by its symbol
+    axes = [sp.simplify(frames[i][:3, 2]) for i in idx]
+    points = [frames[i][:3, 3] for i in idx]
+    about = None if hj is None else sp.simplify(frames[hj][:3, 2])  # the held joint's axis (_perp)
+    all_joints, joints, kinds = joints, tuple(joints[i] for i in idx), tuple(kinds[i] for i in idx)
     end = frames[-1] if tool is None else sp.simplify(frames[-1] * tool)
     home = _Motion(end[:3, :3], end[:3, 3])
     untool = sp.eye(3) if tool is None else tool[:3, :3].T  # R_POSE = R_n R_tool
-    at = dict(zip(design, defaults, strict=True))
+    # planned at a generic held value: at a special one two axes can line up (parallel at 0) where no other value
+    # has them; the stages are then checked at random held values
+    at = dict(zip(design, defaults, strict=True)) | ({} if hj is None else {all_joints[hj]: HELD_PLAN_VALUE})
 
     def num(v):
         return np.array([float(sp.sympify(x).subs(at)) for x in v])
-    numeric = Chain("dh", tuple(names or (str(q) for q in joints)), tuple(kinds),
+    labels = tuple(names or (str(q) for q in all_joints))
+    numeric = Chain("dh", tuple(labels[i] for i in idx), tuple(kinds),
                     np.array([num(a) for a in axes]), np.array([num(p) for p in points]),
                     np.vstack([np.hstack([np.array(end[:3, :3].subs(at), dtype=float),
                                           num(end[:3, 3])[:, None]]), [0, 0, 0, 1]]))
@@ -164,7 +185,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
     except NoClosedForm as exc:
         raise PlanError(str(exc)) from None
     target = _Motion(R_POSE, P_POSE) * home.inv()  # the product of the joints' exponentials
-    n = len(rows)
+    n = len(idx)
 
     def point(spec):
         if spec[0] == "home":
@@ -229,29 +250,32 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             units = [u[0] for u in op["units"]]
             rd = (prefix(range(op["lo"])).inv() * target * prefix(range(op["hi"] + 1, n)).inv()).r
             if len(op["units"]) == 3 and len(op["units"][0]) == 3:  # a parallel group, then two axes (UR type)
-                group = _GroupThenTwo(rd, op["units"][0], units[1], units[2], axes, joints)
+                group = _GroupThenTwo(rd, op["units"][0], units[1], units[2], axes, joints, about)
                 out += group.stages
                 continue
             if len(units) == 2:
-                out += _two_axes(rd, units[0], units[1], axes, joints)
+                out += _two_axes(rd, units[0], units[1], axes, joints, about)
                 continue
             if len(units) == 1:
                 h = axes[units[0]]
-                w = _perp(h)
+                w = _perp(h, about)
                 v = rd * w
                 out.append(Stage("value", (units[0],), (sp.atan2(h.dot(w.cross(v)), w.dot(v)),),
                                  f"turn {joints[units[0]]} from the rotation", "subproblem 1: rot(h, q) w = R_d w "
                                  "for w normal to h"))
             else:
                 lo = op["lo"]
-                m = (frames[0][:3, :3].T if lo == 0 else ts[lo - 1][:3, :3].T) * R_POSE * untool
+                row = idx[lo]  # the wrist's first row (a held joint before it is part of the arm)
+                m = (frames[0][:3, :3].T if row == 0 else ts[row - 1][:3, :3].T) * R_POSE * untool
                 try:
-                    out.append(wrist_stage(list(rows[lo:]), joints[lo:], tuple(m), "spherical wrist from R_6^3 = "
+                    if hj is not None and hj >= row:
+                        raise ValueError("a held joint among the wrist's rows")
+                    out.append(wrist_stage(list(rows[row:]), joints[lo:], tuple(m), "spherical wrist from R_6^3 = "
                                            "(R_3^0)^T R (flip / no flip)" if lo else "spherical wrist from R",
                                            "kinematic decoupling at the wrist centre" if lo else "three "
                                            "intersecting axes", tuple(range(lo, n))))
                 except ValueError:  # a wrist of another form (twists off 90 degrees): read from its axes
-                    wrist = _GroupThenTwo(rd, [units[0]], units[1], units[2], axes, joints)
+                    wrist = _GroupThenTwo(rd, [units[0]], units[1], units[2], axes, joints, about)
                     out += [*wrist.stages, wrist.rest(units[0])]
             continue
         if k == "group_rest":
@@ -273,7 +297,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                 y, x = ((y - h * q).applyfunc(sp.expand), x) if first else (y, (x + h * q).applyfunc(sp.expand))
             continue
         if k == "single":
-            e1 = _perp(h)
+            e1 = _perp(h, about)
             e2 = h.cross(e1)
             p0, p1 = x - r, y - r
             out.append(Stage("rotation2d", (j,), (e1.dot(p1), e2.dot(p1), e1.dot(p0), e2.dot(p0)), f"angle {q}",
@@ -307,10 +331,16 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             y = _reduced_motion(e.inv()).apply(y).applyfunc(_tidy)
         else:
             x = _reduced_motion(e).apply(x).applyfunc(_tidy)
+    out = [replace(st, joints=tuple(idx[j] for j in st.joints)) for st in out]  # the solved chain's -> the rows'
+    if hj is not None:
+        q = all_joints[hj]
+        out.insert(0, Stage("value", (hj,), (held[1],), f"the held joint {q}", f"{q} is held at the design's value "
+                            f"{held[1]} (a run-time parameter); the other stages are planned on the chain with it "
+                            "held, its rotation kept as its symbol"))
     return out, plan.strategy
 
 
-def _two_axes(rd, ja, jb, axes, joints) -> list[Stage]:
+def _two_axes(rd, ja, jb, axes, joints, about=None) -> list[Stage]:
     """The orientation R_d = rot(h_a, q_a) rot(h_b, q_b) of two axes (a 5-joint arm's last two: the pose's
     orientation has one degree of freedom more than they control, and the FK check refuses a pose they miss):
 
@@ -318,10 +348,10 @@ def _two_axes(rd, ja, jb, axes, joints) -> list[Stage]:
       projections vanish only for parallel axes, which the decomposition excludes);
     - q_b from rot(h_b, q_b) w = rot(h_a, -q_a) R_d w for w normal to h_b (subproblem 1)."""
     ha, hb = axes[ja], axes[jb]
-    e1 = _perp(ha)
+    e1 = _perp(ha, about)
     e2 = ha.cross(e1)
     wb = rd * hb
-    f1 = _perp(hb)
+    f1 = _perp(hb, about)
     f2 = hb.cross(f1)
     p1 = _rodrigues(ha, -joints[ja]) * rd * f1
     return [Stage("rotation2d", (ja,), (e1.dot(wb), e2.dot(wb), e1.dot(hb), e2.dot(hb)), f"angle {joints[ja]}",

@@ -3,8 +3,8 @@
  * (a wristkin runtime source, inlined whole into every serial arm's generated C after its SR_* constants and
  * switches, the sr_design / sr_ik_solutions / sr_fk_solutions types, its derived kernels sr_k_* and stage
  * functions; derive/runtime_files.py, derive/families/serial/views.py, tests/test_serial_runtime.py) */
-/* The manipulability sqrt(det J^T J) of the geometric Jacobian; *singular: sigma_min / sigma_max of J at or below
- * SR_SINGULAR_EPS. A well-conditioned J is proven so by Cholesky factors (the runtime's wk_conditioning_bound);
+/* The manipulability sqrt(det J^T J) (J J^T past 6 joints) of the geometric Jacobian; *singular: sigma_min /
+ * sigma_max of J at or below SR_SINGULAR_EPS. A well-conditioned J is proven so by Cholesky factors (the runtime's wk_conditioning_bound);
  * else the Jacobi eigenvalues of J^T J decide (the Python module's eigvalsh). */
 /* the Jacobian in the design's base and tool frames (sr_frames.c); pose0: the kernels' end pose at q when the caller
  * has it, else NULL */
@@ -30,12 +30,22 @@ static double sr_conditioning(const double *q, const sr_design *d, const double 
         *singular = 0;
         return man;
     }
+#if SR_N <= 6
     for (i = 0; i < SR_N; ++i)
         for (j = 0; j < SR_N; ++j) {
             g[i * SR_N + j] = 0.0;
             for (k = 0; k < 6; ++k) g[i * SR_N + j] += jac[k * SR_N + i] * jac[k * SR_N + j];
         }
     man = wk_jacobi_spectrum(g, SR_N, &ratio);
+#else
+    /* a redundant arm (a held joint's 7): J J^T, the 6 x 6 whose eigenvalues are J's nonzero sigma^2 */
+    for (i = 0; i < 6; ++i)
+        for (j = 0; j < 6; ++j) {
+            g[i * 6 + j] = 0.0;
+            for (k = 0; k < SR_N; ++k) g[i * 6 + j] += jac[i * SR_N + k] * jac[j * SR_N + k];
+        }
+    man = wk_jacobi_spectrum(g, 6, &ratio);
+#endif
     *singular = ratio <= SR_SINGULAR_EPS;
     return man;
 }

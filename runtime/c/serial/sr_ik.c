@@ -30,6 +30,12 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         out->status = WK_ERR_NULL;
         return WK_ERR_NULL;
     }
+#if SR_DEFAULT_REFUSED
+    if (!design) { /* the default design violates a design condition (SR_DEFAULT_REFUSED) */
+        out->status = WK_ERR_DESIGN;
+        return WK_ERR_DESIGN;
+    }
+#endif
     if (!wk_all_finite(pose_in, 12) || (previous && !wk_all_finite(previous, SR_N))) {
         out->status = WK_ERR_NONFINITE;
         return WK_ERR_NONFINITE;

@@ -45,14 +45,15 @@ static int sr_api_design_init(const double *params, sr_design *design)
     }
     if (!wk_all_finite(params, SR_N_PARAMS)) return WK_ERR_NONFINITE;
     {
-        /* every value within SR_LENGTH_MAX; the largest 0 or at least SR_DESIGN_SCALE_MIN (see DESIGN_SCALE_MIN) */
+        /* every length within SR_LENGTH_MAX; the largest 0 or at least SR_DESIGN_SCALE_MIN (see DESIGN_SCALE_MIN);
+         * a held joint's angle after the lengths is any finite value (its stage wraps it) */
         double scale = 0.0;
-        for (i = 0; i < SR_N_PARAMS; ++i)
+        for (i = 0; i < SR_N_LENGTHS; ++i)
             if (fabs(params[i]) > scale) scale = fabs(params[i]);
         if (scale > SR_LENGTH_MAX || (scale > 0.0 && scale < SR_DESIGN_SCALE_MIN)) return WK_ERR_DESIGN;
 #if SR_LENGTHS_FLOOR
         /* DH lengths: each 0 or at least SR_LENGTH_MIN in magnitude (Python LENGTH_MIN) */
-        for (i = 0; i < SR_N_PARAMS; ++i)
+        for (i = 0; i < SR_N_LENGTHS; ++i)
             if (params[i] != 0.0 && fabs(params[i]) < SR_LENGTH_MIN) return WK_ERR_DESIGN;
 #endif
     }

@@ -36,7 +36,7 @@ static inline double sr_design_size(const double *dp)
 {
     double size = 1.0;
     int i;
-    for (i = 0; i < SR_N_PARAMS; ++i)
+    for (i = 0; i < SR_N_LENGTHS; ++i)
         if (fabs(dp[i]) > size) size = fabs(dp[i]);
     return size;
 }
@@ -215,7 +215,7 @@ static double sr_wrist_sigma(int up, const double *dp, const int *w)
     qb[w[2]] = 0.5;
     sr_k_fk(qa, dp, ta);
     sr_k_fk(qb, dp, tb);
-    for (j = 0; j < SR_N_PARAMS; ++j)
+    for (j = 0; j < SR_N_LENGTHS; ++j)
         if (fabs(dp[j]) + 1.0 > scale) scale = fabs(dp[j]) + 1.0;
     for (j = 0; j < 12; ++j)
         if (fabs(ta[j] - tb[j]) > diff) diff = fabs(ta[j] - tb[j]);

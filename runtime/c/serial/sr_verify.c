@@ -35,6 +35,9 @@ static double sr_gn_step(double *q, const double *pose, const double *dp, double
     double jac[6 * SR_N], dq[SR_N], trial[SR_N], e2[6], err2;
     int j;
     sr_k_jacobian(q, dp, jac);
+#if SR_HELD >= 0
+    for (j = 0; j < 6; ++j) jac[j * SR_N + SR_HELD] = 0.0; /* the held joint keeps its value (its step: 0) */
+#endif
     if (!wk_normal_solve(jac, SR_N, e, 1e-12, dq)) return err;
     for (j = 0; j < SR_N; ++j) {
         if (!(fabs(dq[j]) <= max_step)) return err;
