@@ -729,7 +729,9 @@ def test_panda_sets_meet_their_reported_residual_on_the_modules_own_fk(free, tmp
     """Franka Panda (modified DH, tests/robots/panda) with a free joint, joint2 = +-1e-7 (axes 1 and 3 nearly
     line up): every valid set's residual is the module's own fk_matrix residual and at most IK_VERIFY_TOL, in C
     (the folder's extension) and on numpy. Was: fk_matrix missed the pose by up to 1.6e-9 while the set reported
-    9.8e-10 (measured on the held, reversed solver chain, not on base . chain . tool)."""
+    9.8e-10 (measured on the held, reversed solver chain, not on base . chain . tool). The derived stages check a set
+    on the FK from its joints' cos and sin as the stages gave them, fk_matrix takes them from the values: the two
+    differ by the FK's own rounding (fk_rounding: 16 eps of the pose's size), which the bound allows."""
     own_robot.derive(_file("panda", "dh"), tmp_path, name="panda_t", free=free, progress=lambda _: None, native=True)
     m = own_robot.import_solver(tmp_path, "panda_t")
     assert m.DESIGN_NAMES == (free,)
@@ -744,7 +746,8 @@ def test_panda_sets_meet_their_reported_residual_on_the_modules_own_fk(free, tmp
             assert s.count >= 1, (i, s.reason)
             for k in np.flatnonzero(s.valid):
                 e = float(np.max(np.abs(m.fk_matrix(s.values[k], d) - T)))
-                assert e <= m.IK_VERIFY_TOL and e <= s.aux[k, 0] * (1 + 1e-12), (i, k, e, s.aux[k, 0])
+                rounding = m._runtime.fk_rounding(float(np.max(np.abs(T[:3, 3]))))
+                assert e <= m.IK_VERIFY_TOL and e <= s.aux[k, 0] * (1 + 1e-12) + rounding, (i, k, e, s.aux[k, 0])
                 checked += 1
     assert checked >= 300
 

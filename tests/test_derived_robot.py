@@ -154,7 +154,10 @@ def test_a_five_joint_arm_answers_what_it_cannot_reach_with_what_it_controls(tmp
 
 
 # ------------------------------------------------------------------------------------------------ a held joint
-HELD = [("iiwa14", "urdf", None), ("iiwa14", "dh", "a2"), ("iiwa14", "poe", "a3")]  # None: the command's choice, a1
+# None: the command's choice (the iiwa's a1, the Panda's joint4); the Panda and the iiwa's a6 are solved from the tool,
+# the Panda's joint6 with axes 5 and 7 meeting across it
+HELD = [("iiwa14", "urdf", None), ("iiwa14", "dh", "a2"), ("iiwa14", "poe", "a3"), ("iiwa14", "urdf", "a6"),
+        ("panda", "dh", None), ("panda", "dh", "joint6")]
 
 
 def held(robot: str, fmt: str, free):
@@ -173,12 +176,13 @@ def held(robot: str, fmt: str, free):
 
 @pytest.mark.parametrize("robot,fmt,free", HELD)
 def test_a_held_joint_is_the_design_s_last_value_and_every_set_comes_back(robot, fmt, free):
-    """A 7-joint arm with a joint held (the iiwa 14's a1, the command's choice; a2; a3), derived: the design is the
+    """A 7-joint arm with a joint held (the iiwa 14's a1, the command's choice, a2, a3, a6; the Panda's joint4, the
+    command's choice, and joint6), derived: the design is the
     held value alone, named as the joint (the lengths folded: the interpreted module's design, [v] or {name: v}). For
     random joints, the held one at its value: the generating joints among the sets (1e-9 rad), every set on the
     independent reference's pose (1e-9) with the held joint at its value exactly, as many sets as the interpreted
-    module, C equal to numpy (1e-12); fk's singular flag reads the six solved columns (a 6 x 7 Jacobian's
-    sigma_min is 0 at every configuration) and jacobian is 6 x 7."""
+    module, C equal to numpy (1e-12); fk's conditioning is the 7-joint arm's (from J J^T: J^T J of a 6 x 7 Jacobian
+    is singular at every configuration) and jacobian is 6 x 7."""
     m, py, interp = held(robot, fmt, free)
     reference = ref.load(_file(robot, fmt))
     f = m._FREE
@@ -190,8 +194,9 @@ def test_a_held_joint_is_the_design_s_last_value_and_every_set_comes_back(robot,
         T = reference(q)
         sol, sol_py, sol_i = m.ik(T, [q[f]]), py.ik(T, py.make_design({name: q[f]})), interp.ik(T, [q[f]])
         assert sol.status == m.STATUS_OK and min(_gap(v, q) for v in sol) <= 1e-9
-        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 and v[f] == sol.values[0][f] for v in sol)
-        assert abs(math.remainder(sol.values[np.flatnonzero(sol.valid)[0]][f] - q[f], 2 * math.pi)) <= 1e-15
+        first = sol.values[np.flatnonzero(sol.valid)[0]]
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 and v[f] == first[f] for v in sol)
+        assert abs(math.remainder(first[f] - q[f], 2 * math.pi)) <= 1e-15
         assert sol.count == sol_i.count == sol_py.count and list(sol.valid) == list(sol_py.valid)
         assert np.max(np.abs(np.asarray(sol.values)[sol.valid] - np.asarray(sol_py.values)[sol_py.valid])) <= 1e-12
         if k < 10:
@@ -211,16 +216,17 @@ int main(void) {
 
 
 def test_a_held_value_where_the_others_are_a_self_motion_is_refused(tmp_path):
-    """The iiwa 14 with a2 held: at a2 = 0 axes a1 and a3 line up (every pose a self-motion), so a value within the
-    geometry tolerance of 0 is refused (InvalidDesign, naming why), the module's default (0) included: ik without a
-    design raises, C's with a NULL design returns WK_ERR_DESIGN; fk takes it. 1e-3 rad off, the sets come back."""
+    """The iiwa 14 with a2 held: at a2 = 0 axes a1 and a3 line up (every pose a self-motion), so ik refuses a value
+    within the geometry tolerance of 0 (InvalidDesign, naming why), the module's default (0) included: ik without a
+    design raises, C's with a NULL design returns WK_ERR_DESIGN; make_design and fk take it, as the interpreted
+    module's. 1e-3 rad off, the sets come back."""
     m, py, _ = held("iiwa14", "dh", "a2")
     for mod in (m, py):
         with pytest.raises(mod.InvalidDesign, match="a2 .held. not within GEOMETRY_TOL of 0.0, where the other six"):
             mod.ik(mod.fk_matrix(np.zeros(7)))
         with pytest.raises(mod.InvalidDesign, match="self-motion"):
-            mod.make_design({"a2": 1e-9})
-        assert mod.fk(np.zeros(7)).count == 1
+            mod.ik(mod.fk_matrix(np.zeros(7)), mod.make_design({"a2": 1e-9}))  # make_design and fk take it
+        assert mod.fk(np.zeros(7), [1e-9]).count == 1
         q = np.array([0.3, 1e-3, -0.4, 1.1, 0.2, -0.7, 0.5])
         sol = mod.ik(mod.fk_matrix(q), {"a2": 1e-3})
         assert min(_gap(v, q) for v in sol) <= 1e-9
@@ -468,11 +474,11 @@ def test_the_design_is_the_table_s_lengths_and_moves_the_robot():
 @pytest.mark.parametrize("path,why", [
     (ROBOTS / "kr6_calibrated" / "kr6_calibrated.urdf", "calibrated"),
     (ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml", "offset wrist.* needs the ops sp6, which the derived stages"),
-    (ROBOTS / "iiwa14" / "iiwa14.urdf", "from the tool"),  # with a7 held: the chain solved from the tool
+    (ROBOTS / "panda" / "panda_dh.toml", "general6r"),  # with joint1 held: the general 6R by elimination
     (ROBOTS / "iiwa14" / "iiwa14_dh.toml", "arm angle"),
 ], ids=lambda v: v.name if isinstance(v, Path) else v)
 def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, why):
-    options = {"free": "a7"} if why == "from the tool" else {"redundancy": "arm-angle"} if why == "arm angle" else {}
+    options = {"free": "joint1"} if why == "general6r" else {"redundancy": "arm-angle"} if why == "arm angle" else {}
     with pytest.raises(NotDerivable, match=why) as exc:
         own_robot.load(path, stages="derived", **options)
     assert "--stages interpreted (the plan interpreter) solves it" in str(exc.value)

@@ -120,7 +120,6 @@ class RobotTable:
     description_fk: Callable  # q -> 4x4, the description's own products, base and tool included
     size: float  # metres: the robot's scale (lengths below LENGTH_ZERO of it are 0)
     ops: frozenset  # its op kinds
-    reversed_: bool  # solved from the tool
     deviation: float  # the description's axes and points off the ideal ones the table is read from (metres, sines)
     api: OwnRobotApi  # what the robot's module offers beyond the verbs, the same whichever way its IK runs
     held: int = -1  # a joint held at a run-time value (a 7-joint arm's free joint), or -1

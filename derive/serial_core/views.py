@@ -144,9 +144,6 @@ def serial_views(ctx: dict) -> dict:
         # joint (-1: none), which the Gauss-Newton steps and the conditioning leave out
         "SR_N_LENGTHS": ctx.get("n_lengths", len(ctx["design_values"])),
         "SR_HELD": ctx.get("held", -1),
-        # the default design violates a design condition (a held joint's default value the IK refuses): ik with a
-        # NULL design returns WK_ERR_DESIGN, as Python's ik without a design raises InvalidDesign
-        "SR_DEFAULT_REFUSED": int(bool(ctx.get("default_refused"))),
         "SR_N_DESIGN_CHECKS": len(design_checks) if has_design_kernel else 0,
         "SR_N_IMAGE_CHECKS": len(image_checks) if has_image_kernel else 0,
     }
@@ -156,8 +153,9 @@ def serial_views(ctx: dict) -> dict:
         bits = ", ".join(map(str, ctx["fold_bits"]))
         c_tables.append(f"static const int sr_fold_bits[SR_N_FOLD_BITS] = {{ {bits} }};")
     if c_flags["SR_N_DESIGN_CHECKS"]:
-        zero = ", ".join("1" if c["kind"] == "zero" else "0" for c in design_checks)
-        c_tables += ["/* design conditions (Python DESIGN_CHECKS): 1 = |v| <= tol required, 0 = |v| > tol required */",
+        zero = ", ".join({"zero": "1", "nonzero": "0", "held": "2"}[c["kind"]] for c in design_checks)
+        c_tables += ["/* design conditions (Python DESIGN_CHECKS): 1 = |v| <= tol required, 0 = |v| > tol required, "
+                     "2 = |v| > tol required by ik (a held joint's value) */",
                      f"static const int sr_check_zero[SR_N_DESIGN_CHECKS] = {{ {zero} }};",
                      f"static const double sr_check_tol[SR_N_DESIGN_CHECKS] = "
                      f"{{ {', '.join(c['tol'] for c in design_checks)} }};"]

@@ -13,12 +13,13 @@ import _runtime
 import numpy as np
 from serial_frames import _unframe
 from serial_input import (
-    _DEFAULT_REFUSED,
     _HAS_PRISMATIC,
+    _HELD_CHECKS,
     _JOINT_SHAPE,
     _POSE_SHAPES,
     _REVOLUTE,
     _design,
+    _design_refusal,
     _joints,
     _pose,
 )
@@ -63,9 +64,11 @@ def ik(pose, design=None, previous=None) -> Solutions:
     at |sin theta5| <= WRIST_EXACT_TOL, or a stage whose equation vanishes) is returned once: its member nearest
     `previous` when given (previous's q4, or previous's value of that stage's joint), else the one at 0.
     `previous` changes nothing else: not the regular sets, not the status."""
-    if design is None and _DEFAULT_REFUSED:
-        raise InvalidDesign(_DEFAULT_REFUSED)
     d = _design(design)
+    if _HELD_CHECKS:
+        why = _design_refusal(d.params, held=True)
+        if why:
+            raise InvalidDesign(why)
     if d.native is not None:
         prev = None if previous is None else _runtime.c_floats(previous, _JOINT_SHAPE)
         if prev is not None or previous is None:
@@ -159,9 +162,11 @@ def ik_batch(poses, design=None) -> BatchSolutions:
     a = _array(poses, "poses")
     if not (a.ndim == 3 and a.shape[1:] in ((4, 4), (3, 4))) and not (a.ndim == 2 and a.shape[1] in (12, 16)):
         raise InvalidInput(f"poses: expected an (N, 4, 4), (N, 3, 4), (N, 12) or (N, 16) array, got shape {a.shape}")
-    if design is None and _DEFAULT_REFUSED:
-        raise InvalidDesign(_DEFAULT_REFUSED)
     d = _design(design)
+    if _HELD_CHECKS:
+        why = _design_refusal(d.params, held=True)
+        if why:
+            raise InvalidDesign(why)
     if d.native is not None:
         n, c = a.shape[0], np.ascontiguousarray(a)
         out = (np.empty((n, MAX_IK, N_JOINTS)), np.empty((n, MAX_IK), bool), np.empty((n, MAX_IK), np.int64),

@@ -94,10 +94,13 @@ def make_design(params=None, base=None, tool=None) -> Design:
     return _built(vals, base, tool)
 
 
-def _design_refusal(vals):
-    """The first design condition (DESIGN_CHECKS) the values violate, in words, or None."""
+def _design_refusal(vals, held=False):
+    """The first design condition (DESIGN_CHECKS) the values violate, in words, or None: "zero" and "nonzero" ones
+    (make_design), or with `held` the "held" ones (a held joint's values ik refuses; fk takes them)."""
     if _DESIGN_CHECK is not None:
         for v, (kind, tol, what) in zip(_DESIGN_CHECK(vals), DESIGN_CHECKS, strict=True):
+            if (kind == "held") != held:
+                continue
             if (abs(v) > tol) if kind == "zero" else (abs(v) <= tol):
                 return f"design violates: {what} (value {v:.3g}, tolerance {tol:g})"
     return None
@@ -110,10 +113,10 @@ def _built(vals, base, tool):
                   _frames_of(b, t))
 
 
-# a held joint's default value (0) may be one the IK refuses (the iiwa's a2 held: the others a self-motion there):
-# fk takes the default design, ik without a design raises why (as the interpreted module's)
-_DEFAULT_REFUSED = _design_refusal(_design_values(None))
-_DEFAULT_DESIGN = _built(_design_values(None), None, None) if _DEFAULT_REFUSED else make_design()
+_DEFAULT_DESIGN = make_design()
+# a held joint's values the IK refuses (the iiwa's a2 at 0: the others a self-motion), its default among them: ik
+# checks them, not make_design (fk takes them), as the interpreted module's
+_HELD_CHECKS = any(kind == "held" for kind, _, _ in DESIGN_CHECKS)
 _JOINT_SHAPE = ((N_JOINTS,),)
 _POSE_SHAPES = ((4, 4), (3, 4), (12,), (16,))
 _REVOLUTE = tuple(k == "R" for k in JOINT_KINDS)

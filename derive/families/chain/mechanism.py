@@ -282,7 +282,7 @@ class ChainMechanism(MechanismDefaults):
         c = self.chain
         api = self._own_api(plan, ideal)
         return RobotTable(self.NAME, self.title, desc.source, desc.rule, c.joint_names, table, c.base @ table.frame0,
-                          desc.fk, self.scale(), frozenset(o["op"] for o in plan.ops), plan.reversed,
+                          desc.fk, self.scale(), frozenset(o["op"] for o in plan.ops),
                           self.deviation(), api, desc.free, self.degenerate_held_reasons())
 
     def _own_api(self, plan, ideal) -> OwnRobotApi:

@@ -124,10 +124,10 @@ def from_table(robot: RobotTable) -> SerialMechanism:
                                        [str(q) for q in joints], base, tool, held)
     except (PlanError, ValueError) as exc:
         missing = sorted(robot.ops - SUPPORTED)
-        if missing or robot.reversed_:  # say what the interpreter's decomposition needs, not the search's refusal
-            what = f"the ops {', '.join(missing)}" if missing else "the chain solved from the tool"
-            raise NotDerivable.because(name, f"its decomposition, {robot.api.strategy.split(':')[0]}, needs {what}, "
-                                             "which the derived stages do not have yet") from None
+        if missing:  # say what the interpreter's decomposition needs, not the search's refusal
+            why = (f"its decomposition, {robot.api.strategy.split(':')[0]}, needs the ops {', '.join(missing)}, which "
+                   "the derived stages do not have yet")
+            raise NotDerivable.because(name, why) from None
         raise NotDerivable.because(name, f"no decomposition in the derived stage kinds: {exc}",
                                    f"its decomposition, {robot.api.strategy.split(':')[0]}, is none the derived "
                                    "stages express") from None
@@ -185,10 +185,8 @@ class _DerivedRobot(SerialMechanism):
             extra = {"held": held[0], "n_lengths": 0, "design_names": [self.joint_names[held[0]]]}
             checks = self._held_checks()
             if checks:
-                extra["design_checks"] = [{"kind": "nonzero", "tol": repr(api.geometry_tol), "what": what}
+                extra["design_checks"] = [{"kind": "held", "tol": repr(api.geometry_tol), "what": what}
                                           for what, _, _ in checks]
-                # the default value, 0, is one of them (the iiwa's a2: a self-motion): ik without a design refuses
-                extra["default_refused"] = any(abs(2 * math.sin(-v / 2)) <= api.geometry_tol for _, _, v in checks)
         return {**extra, **{k: lit[k] for k in ("limits_lower", "limits_upper", "strategy_literal",
                                                 "controls_literal", "branch_names", "description_tol")},
                 "unreachable_note": text_literal(f"this chain controls {api.controls} only") if n - bool(held) < 6
@@ -196,6 +194,7 @@ class _DerivedRobot(SerialMechanism):
                 "own_api": {**{k: lit[k] for k in ("ideal_axes", "ideal_points", "ideal_home", "roles", "scale",
                                                    "geometry_tol", "geometry_deviation")},
                             "c_lower": [c_num(v) for v in api.lower], "c_upper": [c_num(v) for v in api.upper],
+                            "degenerate_held": repr(tuple(self.degenerate_held)),
                             "base0": [repr(float(v)) for v in api.base[:3].ravel()],
                             "tool0": [repr(float(v)) for v in api.tool[:3].ravel()]}}
 

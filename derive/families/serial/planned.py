@@ -12,6 +12,11 @@ relation that held only at the defaults fails there, with the stage named.
   orient (three axes, not the DH wrist's form)  -> trig_linear + 2 rotation2d  (_GroupThenTwo, a group of one)
   orient (two axes at the end, a 5-joint arm)   -> 2 rotation2d  (_two_axes)
   group_rest (the group's last joint)           -> rotation2d   (from the group's rotation)
+  a held joint (a 7-joint arm's)                -> value        (the design's value; the rest planned with it held)
+
+A plan read from the tool solves the reversed chain (its axes and home from the same DH frames, turned by M^-1) for
+the pose T^-1; its three-axis orientation is read from its axes (_GroupThenTwo), the DH wrist's form being the
+base-side rows'.
 """
 
 from __future__ import annotations
@@ -24,7 +29,7 @@ import sympy as sp
 from ...identities.dh import chain as dh_chain
 from ...identities.frames import rodrigues
 from ...kinematics.planner import NoClosedForm, find_plan
-from ...kinematics.poe import Chain
+from ...kinematics.poe import Chain, reverse
 from ...serial_core.stages import P_POSE, POSE_SYMBOLS, R_POSE, Stage
 from .dh_serial import wrist_stage
 
@@ -179,13 +184,26 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                     np.vstack([np.hstack([np.array(end[:3, :3].subs(at), dtype=float),
                                           num(end[:3, 3])[:, None]]), [0, 0, 0, 1]]))
     try:
-        plan = find_plan(numeric, 1e-9, lambda _c, p: not p.reversed and all(o["op"] in SUPPORTED for o in p.ops)
+        plan = find_plan(numeric, 1e-9, lambda _c, p: all(o["op"] in SUPPORTED for o in p.ops)
                          and all(o["op"] != "orient" or len(o["units"]) in (1, 3) or (
                              len(o["units"]) == 2 and all(len(u) == 1 for u in o["units"])) for o in p.ops))
     except NoClosedForm as exc:
         raise PlanError(str(exc)) from None
-    target = _Motion(R_POSE, P_POSE) * home.inv()  # the product of the joints' exponentials
     n = len(idx)
+    pose = _Motion(R_POSE, P_POSE)
+    origins = [f[:3, 3] for f in frames]  # where axes meet: a DH frame's origin
+    if plan.reversed:
+        # the chain read from the tool: T^-1 = M^-1 exp(-S_n q_n) ... exp(-S_1 q_1), each axis turned by M^-1 and
+        # flipped (the values stay), its home M^-1, its pose T^-1 = (R^T, -R^T p)
+        minv = home.inv()
+        order = list(range(n))[::-1]
+        axes = [(-(minv.r * axes[i])).applyfunc(sp.simplify) for i in order]
+        points = [minv.apply(points[i]).applyfunc(_trig_reduced) for i in order]
+        joints, kinds, idx = tuple(joints[i] for i in order), tuple(kinds[i] for i in order), [idx[i] for i in order]
+        origins = [minv.apply(o).applyfunc(_trig_reduced) for o in origins]
+        about = None if about is None else (minv.r * about).applyfunc(sp.simplify)  # constant: M turns about it
+        home, pose, numeric = minv, pose.inv(), reverse(numeric)
+    target = pose * home.inv()  # the product of the joints' exponentials
 
     def point(spec):
         if spec[0] == "home":
@@ -193,10 +211,21 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         if spec[0] == "on":
             return points[spec[1]]
         w = numeric_point(numeric, spec[1:])
-        for f in frames:  # the meeting point as the frame origin it is (exact, design-symbolic)
-            if np.allclose(num(f[:3, 3]), w, atol=1e-9):
-                return f[:3, 3]
-        raise PlanError(f"axes {spec[1:]} meet at {w}, which is no DH frame origin")
+        for o in origins:  # the meeting point as the frame origin it is (exact, design-symbolic)
+            if np.allclose(num(o), w, atol=1e-9):
+                return o
+        # axes that meet across a held joint (the Panda's 5 and 7 with joint6 held): the foot on the first of the
+        # common normal to the second, p_i + t u_i (their common point, wherever the held joint is)
+        i, j = spec[1], spec[2]
+        u, v, d = axes[i], axes[j], points[j] - points[i]
+        uv = sp.simplify(u.dot(v))
+        if sp.simplify(1 - uv ** 2) == 0:
+            raise PlanError(f"axes {spec[1:]} meet at {w} but are parallel")
+        o = (points[i] + u * sp.simplify((d.dot(u) - uv * d.dot(v)) / (1 - uv ** 2))).applyfunc(_trig_reduced)
+        if not np.allclose(num(o), w, atol=1e-9):
+            raise PlanError(f"axes {spec[1:]} meet at {w}, which neither a DH frame origin nor their common normal "
+                            "gives")
+        return o
 
     def direction(spec):
         if spec[0] == "dir":
@@ -236,7 +265,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             # run time), the pose applied to it and the prefix undone as products: the stages' kernels then read
             # the target point as a few shared values (expanded, a UR's elbow stage took 278 operations)
             u = (home.inv() * prefix(range(op["hi"] + 1, n)).inv()).apply(x).applyfunc(_trig_reduced)
-            y = _reduced_motion(prefix(range(op["lo"])).inv()).apply(R_POSE * u + P_POSE)
+            y = _reduced_motion(prefix(range(op["lo"])).inv()).apply(pose.apply(u))
             continue
         if k == "linear":
             js = op["js"]
@@ -268,8 +297,8 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                 row = idx[lo]  # the wrist's first row (a held joint before it is part of the arm)
                 m = (frames[0][:3, :3].T if row == 0 else ts[row - 1][:3, :3].T) * R_POSE * untool
                 try:
-                    if hj is not None and hj >= row:
-                        raise ValueError("a held joint among the wrist's rows")
+                    if plan.reversed or (hj is not None and hj >= row):
+                        raise ValueError("not the DH wrist's rows (read from the tool, or a held joint among them)")
                     out.append(wrist_stage(list(rows[row:]), joints[lo:], tuple(m), "spherical wrist from R_6^3 = "
                                            "(R_3^0)^T R (flip / no flip)" if lo else "spherical wrist from R",
                                            "kinematic decoupling at the wrist centre" if lo else "three "

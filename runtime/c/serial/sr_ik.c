@@ -30,10 +30,15 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         out->status = WK_ERR_NULL;
         return WK_ERR_NULL;
     }
-#if SR_DEFAULT_REFUSED
-    if (!design) { /* the default design violates a design condition (SR_DEFAULT_REFUSED) */
-        out->status = WK_ERR_DESIGN;
-        return WK_ERR_DESIGN;
+#if SR_N_DESIGN_CHECKS > 0 && SR_HELD >= 0
+    { /* a held joint's values ik refuses (kind 2: nonzero required; design_init takes them, as fk does) */
+        double v[SR_N_DESIGN_CHECKS];
+        sr_k_design_check(d->params, v);
+        for (k = 0; k < SR_N_DESIGN_CHECKS; ++k)
+            if (sr_check_zero[k] == 2 && !(fabs(v[k]) > sr_check_tol[k])) {
+                out->status = WK_ERR_DESIGN;
+                return WK_ERR_DESIGN;
+            }
     }
 #endif
     if (!wk_all_finite(pose_in, 12) || (previous && !wk_all_finite(previous, SR_N))) {

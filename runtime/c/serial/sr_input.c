@@ -62,9 +62,11 @@ static int sr_api_design_init(const double *params, sr_design *design)
         /* design conditions (Python DESIGN_CHECKS): zero = |v| <= tol required, nonzero = |v| > tol required */
         double v[SR_N_DESIGN_CHECKS];
         sr_k_design_check(params, v);
-        for (i = 0; i < SR_N_DESIGN_CHECKS; ++i)
+        for (i = 0; i < SR_N_DESIGN_CHECKS; ++i) {
+            if (sr_check_zero[i] == 2) continue; /* a held joint's value: ik refuses it (sr_ik.c), fk takes it */
             if (sr_check_zero[i] ? !(fabs(v[i]) <= sr_check_tol[i]) : !(fabs(v[i]) > sr_check_tol[i]))
                 return WK_ERR_DESIGN;
+        }
     }
 #endif
     for (i = 0; i < SR_N_PARAMS; ++i) design->params[i] = params[i];
