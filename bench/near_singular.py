@@ -60,7 +60,7 @@ int main(int argc, char **argv) {
     fclose(f);
     double free_value[1] = {0.0};
     wk_NAME_design d;
-    (void)free_value; /* a derived module's design: its defaults (NULL) */
+    (void)free_value; /* without a held joint: the defaults (NULL) */
     wk_NAME_design_init(PARAMS, &d);
     FILE *o = fopen(argv[2], "wb");
     if (!o) return 2;
@@ -96,12 +96,12 @@ def specs() -> list[Path]:
 
 
 def _free(m) -> int:
-    """The held joint's index, -1 for none (a derived module holds none)."""
+    """The held joint's index, -1 for none."""
     return getattr(m, "_FREE", -1)
 
 
 def _design(m):
-    """The design the poses and sets are read with: the held joint at 0 (interpreted), the defaults (derived)."""
+    """The design the poses and sets are read with: the held joint at 0, else the defaults."""
     return [0.0] if _free(m) >= 0 else None
 
 
@@ -178,7 +178,7 @@ def bench_robot(spec: Path, derived: bool = False) -> dict:
     out = Path(tempfile.mkdtemp(prefix="wk_near_"))
     name = spec.stem.removesuffix("_dh")
     if derived:
-        own_robot.derive(spec, out, stages="derived", progress=lambda _: None)
+        own_robot.derive(spec, out, free=FREE.get(name), stages="derived", progress=lambda _: None)
     else:
         own_robot.derive(spec, out, free=FREE.get(name), stages="interpreted", progress=lambda _: None)
     m = own_robot.import_solver(out, spec.stem)
@@ -192,7 +192,7 @@ def bench_robot(spec: Path, derived: bool = False) -> dict:
     if _free(m) >= 0:
         random_q[:, _free(m)] = 0.0
     poses = [m.fk_matrix(q, design) for _, _, q in rows] + [m.fk_matrix(q, design) for q in random_q]
-    res = run_c(out, m.NAME, poses, params=not derived)
+    res = run_c(out, m.NAME, poses, params=not derived or _free(m) >= 0)
     c = read_c(res, len(poses), m.MAX_IK, m.N_JOINTS)
     median = float(np.median([r["ns"] for r in c[len(rows):]]))
     sweep_ns = np.array([r["ns"] for r in c[: len(rows)]])

@@ -43,7 +43,8 @@ ROBOTS = ROOT / "tests" / "robots"
 FREE = {"iiwa14": "a3"}
 ARM_ANGLE_ROBOTS = ("iiwa14",)  # also benched with --redundancy arm-angle
 ARM_ANGLE = 0.3  # rad: the arm angle every such pose is solved at
-DERIVED_ROBOTS = ("irb120", "kr6", "lrmate", "tx2_60", "ur5e")  # also benched with --stages derived (those it covers)
+# also benched with --stages derived (the robots it covers; the calibrated KR 6 only with --stages derived)
+DERIVED_ROBOTS = ("irb120", "kr6", "lrmate", "tx2_60", "ur5e", "kr6_calibrated", "iiwa14", "youbot")
 C_FLAGS = ["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 
 
@@ -198,7 +199,8 @@ def c_loop(out: Path, name: str, poses, free_value, params: bool = True) -> floa
 def bench_robot(urdf: Path, n: int, arm_angle: bool = False, derived: bool = False) -> dict:
     """One robot's row; `arm_angle`: derived with --redundancy arm-angle and solved at arm angle ARM_ANGLE for every
     pose (8 sets each; no peer has this IK); `derived`: with --stages derived (straight-line stages, its design the
-    table's lengths at their defaults), on the same poses as the interpreted row (the peers are timed there)."""
+    table's lengths at their defaults, a held joint's value), on the same poses as the interpreted row (the peers are
+    timed there)."""
     from derive import own_robot
 
     robot = urdf.stem
@@ -207,7 +209,7 @@ def bench_robot(urdf: Path, n: int, arm_angle: bool = False, derived: bool = Fal
     if arm_angle:
         own_robot.derive(urdf, out, redundancy="arm-angle", progress=lambda _: None)
     elif derived:
-        own_robot.derive(urdf, out, stages="derived", progress=lambda _: None)
+        own_robot.derive(urdf, out, free=FREE.get(robot), stages="derived", progress=lambda _: None)
     else:
         own_robot.derive(urdf, out, free=FREE.get(robot), stages="interpreted", progress=lambda _: None)
     derive_s = time.perf_counter() - t0
@@ -215,14 +217,14 @@ def bench_robot(urdf: Path, n: int, arm_angle: bool = False, derived: bool = Fal
     rng = np.random.default_rng(7)
     joints = rng.uniform(-math.pi, math.pi, (n, m.N_JOINTS))
     free_value = ARM_ANGLE if arm_angle else 0.0
-    held = getattr(m, "_FREE", -1)  # the derived stages' module has no held joint
+    held = getattr(m, "_FREE", -1)  # the held joint (both kinds of module take its value as the design)
     if held >= 0:
         joints[:, held] = free_value
-    design = [free_value] if m.DESIGN_NAMES and not derived else None
+    design = [free_value] if held >= 0 or arm_angle else None
     poses = [m.fk_matrix(q, design) for q in joints]
     ours = [m.ik(T, design).count for T in poses]
     py_us = per_call(lambda T: m.ik(T, design), poses[: min(n, 100)], 3, warmup=5) * 1e6
-    c_us = c_loop(out, robot, poses, free_value, params=not derived)
+    c_us = c_loop(out, robot, poses, free_value, params=not derived or held >= 0)
     if derived:
         return {"robot": robot + " (derived)", "decomposition": "derived straight-line stages (--stages derived)",
                 "derive_s": derive_s, "py_us": py_us, "c_us": c_us, "sets": sum(ours) / len(ours),

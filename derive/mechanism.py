@@ -109,6 +109,7 @@ class Family(Protocol):
 
     def from_spec(self, spec: Any) -> Mechanism: ...  # reads and validates its fields, SpecError naming them
 
-    # a robot's DH table (kinematics/dh_table.RobotTable) -> a Mechanism with derived stages, or None: the family
-    # that emits `--stages derived` (one does)
+    # a robot's DH table (kinematics/dh_table.RobotTable), auto -> a Mechanism with derived stages, or None: the
+    # family that emits `--stages derived` (one does); with auto (`--stages auto`) it may decline a robot the
+    # interpreter serves better, saying why (NotDerivable)
     from_table: Any

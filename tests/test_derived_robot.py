@@ -153,6 +153,46 @@ def test_a_five_joint_arm_answers_what_it_cannot_reach_with_what_it_controls(tmp
             assert "controls 5 of the 6 pose components" in sol.reason
 
 
+# ------------------------------------------------------------------------------------------------ a calibrated robot
+@pytest.mark.parametrize("fmt", ["urdf", "poe"])
+def test_a_calibrated_robot_is_solved_on_its_ideal_geometry_and_polished_on_its_own(fmt, tmp_path):
+    """The calibrated KR 6 (axes 1e-7 off meeting and parallel; `--stages derived`, auto leaves it to the
+    interpreter): its stages solve the ideal table (twists within the geometry tolerance made exact), its FK and
+    Jacobian are the description's true chain (a derivation step checks them against its 4 x 4 product), every set
+    polished on it, and a set whose polish fails (outside Gauss-Newton's basin: near a singularity the ideal answer is
+    ~1e-7 / sigma_min off) solved again for the compensated pose. Random poses, and poses 1e-3 and 1e-4 from each
+    singular joint (det J = 0 bisected from random joints): the generating joints among the sets (1e-9 rad; near a
+    singularity 1e-6 + 1e-13 / delta, the conditioning allowance), every set on the independent reference's pose
+    (1e-9), as many sets as the interpreted module on the random poses, C and numpy within their polish's reach
+    (DOUBLE_ROOT_POLISH_TOL / sigma_min of J)."""
+    path = _file("kr6_calibrated", fmt)
+    own_robot.derive(path, tmp_path, name="kr6c", stages="derived", native=fmt == "urdf", progress=lambda _: None)
+    own_robot.derive(path, tmp_path, name="kr6c_interp", stages="interpreted", native=False, progress=lambda _: None)
+    m, py = own_robot.import_solver(tmp_path, "kr6c"), own_robot.import_solver(tmp_path, "kr6c", backend="numpy")
+    interp = own_robot.import_solver(tmp_path, "kr6c_interp")
+    assert m.CALIBRATED and hasattr(m, "ROOT_GAP_TOL") and "true_chain" in (tmp_path / "audit" / "kr6c.md").read_text()
+    reference = ref.load(path)
+    rng = case_rng(2330)
+    poses = [(rng.uniform(-math.pi, math.pi, 6), 1e-9) for _ in range(40)]
+    for j, qs in singular_configurations(m.jacobian, 6, rng, bases=2, per_base=2):  # det J = 0 along joint j
+        for delta in (1e-3, 1e-4):  # closer, the ideal answer is 1e-7 / delta off: see the README's Known defects
+            q = qs.copy()
+            q[j] += delta * rng.choice([-1.0, 1.0])
+            poses.append((q, 1e-6 + 1e-13 / delta))
+    assert len(poses) >= 40 + 2 * 6
+    for q, allowance in poses:
+        T = reference(q)
+        a, b = m.ik(T), py.ik(T)
+        assert min(_gap(v, q) for v in a) <= allowance and min(_gap(v, q) for v in b) <= allowance, (q, allowance)
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in a)
+        assert a.count == b.count and list(a.valid) == list(b.valid)
+        if allowance == 1e-9:  # a regular pose: the interpreter's sets (near a singularity it misses some)
+            assert a.count == interp.ik(T).count
+        for va, vb in zip(a, b, strict=True):
+            sigma = np.linalg.svd(m.jacobian(va), compute_uv=False)[-1]
+            assert _gap(va, vb) <= 1e-12 + 4 * m.DOUBLE_ROOT_POLISH_TOL * max(1.0, m.SCALE) / sigma
+
+
 # ------------------------------------------------------------------------------------------------ a held joint
 # None: the command's choice (the iiwa's a1, the Panda's joint4); the Panda and the iiwa's a6 are solved from the tool,
 # the Panda's joint6 with axes 5 and 7 meeting across it
@@ -472,7 +512,6 @@ def test_the_design_is_the_table_s_lengths_and_moves_the_robot():
 
 # ------------------------------------------------------------------------------------------------ refusals
 @pytest.mark.parametrize("path,why", [
-    (ROBOTS / "kr6_calibrated" / "kr6_calibrated.urdf", "calibrated"),
     (ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml", "offset wrist.* needs the ops sp6, which the derived stages"),
     (ROBOTS / "panda" / "panda_dh.toml", "general6r"),  # with joint1 held: the general 6R by elimination
     (ROBOTS / "iiwa14" / "iiwa14_dh.toml", "arm angle"),
@@ -484,21 +523,23 @@ def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, w
     assert "--stages interpreted (the plan interpreter) solves it" in str(exc.value)
 
 
-@pytest.mark.parametrize("robot,derived", [("kr6", True), ("ur5e", True), ("youbot", True), ("iiwa14", True),
-                                           ("kr6_calibrated", False)])
-def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_told_which(robot, derived, tmp_path):
+@pytest.mark.parametrize("robot,fmt,derived", [("kr6", "urdf", True), ("ur5e", "urdf", True), ("youbot", "urdf", True),
+                                               ("iiwa14", "urdf", True), ("kr6_calibrated", "urdf", False),
+                                               ("ur5e_offset", "dh", False)])
+def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_told_which(robot, fmt, derived,
+                                                                                          tmp_path):
     """`--stages auto` (the default): the derived stages' module (the serial family's: ROOT_GAP_TOL, no plan) where
     they cover the robot, else the interpreter's (FAMILY_TOL), and the command's progress says which and why."""
     said = []
-    own_robot.derive(_file(robot, "urdf"), tmp_path, native=False, progress=said.append)
-    m = own_robot.import_solver(tmp_path, robot)
+    own_robot.derive(_file(robot, fmt), tmp_path, native=False, progress=said.append)
+    m = own_robot.import_solver(tmp_path, f"{robot}_dh" if fmt == "dh" else robot)
     assert hasattr(m, "ROOT_GAP_TOL") == derived and hasattr(m, "FAMILY_TOL") == (not derived)
     note = said[1]
     if derived:
         assert note.strip() == "IK: derived straight-line stages"
     else:
         assert note.strip().startswith("IK: the plan interpreter (the derived stages do not cover this robot: ")
-        assert "calibrated" in note
+        assert ("calibrated" if robot == "kr6_calibrated" else "sp6") in note
     q = np.linspace(-1.0, 1.0, m.N_JOINTS)
     if getattr(m, "_FREE", -1) >= 0:  # a held joint (the iiwa's): at its default value, 0
         q[m._FREE] = 0.0
@@ -506,7 +547,7 @@ def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_t
 
 
 def test_the_command_refuses_in_one_line_and_writes_nothing(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(_file("kr6_calibrated", "urdf")), "--out",
+    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(_file("ur5e_offset", "dh")), "--out",
                         str(tmp_path / "out"), "--stages", "derived"], capture_output=True, text=True, cwd=ROOT,
                        timeout=300)
     assert r.returncode == 1 and len(r.stderr.strip().splitlines()) == 1 and "--stages derived" in r.stderr

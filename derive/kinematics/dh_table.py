@@ -126,6 +126,7 @@ class RobotTable:
     # (value, why) per held value at which the IK is undefined (the others a self-motion, or the decomposition's
     # meeting point at infinity): refused within the geometry tolerance
     degenerate_held: tuple = ()
+    chain: object = None  # the description's true chain (kinematics/poe.Chain, base and tool included)
 
 
 @dataclass(frozen=True)

@@ -144,6 +144,9 @@ def serial_views(ctx: dict) -> dict:
         # joint (-1: none), which the Gauss-Newton steps and the conditioning leave out
         "SR_N_LENGTHS": ctx.get("n_lengths", len(ctx["design_values"])),
         "SR_HELD": ctx.get("held", -1),
+        # a calibrated robot: the stages solve its ideal geometry, its FK is the true chain's, every set polished
+        "SR_CALIBRATED": int(bool(ctx.get("calibrated"))),
+        "SR_POLISH_STEPS": 12 if ctx.get("calibrated") else 6,  # Python's POLISH_STEPS says why
         "SR_N_DESIGN_CHECKS": len(design_checks) if has_design_kernel else 0,
         "SR_N_IMAGE_CHECKS": len(image_checks) if has_image_kernel else 0,
     }
@@ -179,7 +182,9 @@ def serial_views(ctx: dict) -> dict:
             "unreachable_note": ctx.get("unreachable_note", "None"),
             "lengths_floor": bool(ctx.get("lengths_floor")),
             "n_lengths": ctx.get("n_lengths", len(ctx["design_values"])), "held": ctx.get("held", -1),
+            "calibrated": bool(ctx.get("calibrated")),
             "design_check_kernel": "_k_design_check" if has_design_kernel else "None",
+            "fk_ideal_kernel": "_k_fk_ideal" if ctx.get("calibrated") else "None",
             "image_check_kernel": "_k_image_check" if has_image_kernel else "None",
             "py_stages": [{"index": st["index"], "shift": st["shift"], "body": py_stage_body(st)} for st in stages],
             "c_stages": [{"index": st["index"], "shift": st["shift"], "body": c_stage_body(st)} for st in stages],

@@ -9,9 +9,11 @@ the PUMA-560), so that it is linted and tested as it is (tests/test_serial_runti
 
 from __future__ import annotations
 
+import math
+
 import _runtime
 import numpy as np
-from serial_frames import _unframe
+from serial_frames import _as4, _rigid_inverse, _unframe
 from serial_input import (
     _HAS_PRISMATIC,
     _HELD_CHECKS,
@@ -26,12 +28,14 @@ from serial_input import (
 from serial_stand_in import (
     _C_IK,
     _C_IK_BATCH,
+    _FK_IDEAL,
     _FOLD_BITS,
     _IK_RESULT,
     _IMAGE_CHECK,
     _STAGES,
     _UNREACHABLE_NOTE,
     _WRIST_STAGE,
+    CALIBRATED,
     DOUBLE_ROOT_POLISH_TOL,
     FLAG_DOUBLE_ROOT,
     FLAG_INDETERMINATE,
@@ -120,11 +124,17 @@ def _ik_numpy(pose, d, previous):
             continue
         err = max(abs(x - y) for x, y in zip(_k_fk_cs(q, c, s, d.params), p, strict=True))
         qk = list(q)
-        if err > IK_VERIFY_TOL or (f & FLAG_DOUBLE_ROOT and err > polish_double):
+        if err > IK_VERIFY_TOL or ((f & FLAG_DOUBLE_ROOT or CALIBRATED) and err > polish_double):
             # a tangent root leaves a sqrt(eps) error downstream, and a double root's centre its stage's noise (a
             # UR's folded elbow behind a wrist 1e-5 from singular: the pose within 3e-12): polish a copy, a double
-            # root's to rounding (DOUBLE_ROOT_POLISH_TOL says when)
-            qk, err = _polish(qk, p, d.params, target=rounding if f & FLAG_DOUBLE_ROOT else IK_VERIFY_TOL)
+            # root's to rounding (DOUBLE_ROOT_POLISH_TOL says when); a calibrated robot's (the stages solve its ideal
+            # geometry) every set to DOUBLE_ROOT_POLISH_TOL
+            qk, err = _polish(qk, p, d.params, target=rounding if f & FLAG_DOUBLE_ROOT else (
+                polish_double if CALIBRATED else IK_VERIFY_TOL))
+        if not err <= IK_VERIFY_TOL and CALIBRATED:
+            # the ideal stages' answer outside Gauss-Newton's basin on the true chain (near a singularity the ideal
+            # geometry's 1e-7 moves it by 1e-7 / sigma_min): solved again for the compensated pose
+            qk, err = _compensated(k, p, qk, d.params, prev, polish_double)
         if not err <= IK_VERIFY_TOL:
             continue
         if _HAS_PRISMATIC and not all(abs(x) <= LENGTH_MAX
@@ -155,6 +165,25 @@ def _ik_numpy(pose, d, previous):
                      "pose not reachable: " + "; ".join((reasons or ["no branch passes the FK check"]) +
                                                         ([_UNREACHABLE_NOTE] if _UNREACHABLE_NOTE else []) +
                                                         ([note] if note else [])))
+
+
+def _compensated(k, p, qk, dp, prev, target):
+    """Set k solved again by the ideal stages for the pose the ideal chain must reach so that the true one reaches p,
+    T_c = p true(q)^-1 ideal(q) at the failed candidate q, then polished on the true chain: (q, residual)."""
+    c = [math.cos(v) if kind == "R" else 1.0 for v, kind in zip(qk, JOINT_KINDS, strict=True)]
+    s = [math.sin(v) if kind == "R" else 0.0 for v, kind in zip(qk, JOINT_KINDS, strict=True)]
+    ideal = _as4(_FK_IDEAL(qk, c, s, dp))
+    true = _as4(_k_fk_cs(qk, c, s, dp))
+    tc = tuple(float(x) for x in (_as4(p) @ _rigid_inverse(true) @ ideal)[:3].ravel())
+    q, c, s, amp = [0.0] * N_JOINTS, [1.0] * N_JOINTS, [0.0] * N_JOINTS, [1.0] * N_JOINTS
+    key = [-1] * len(_STAGES)
+    for word in (k - 1, k) if k & 1 else (k,):  # an odd set's wrist mirrors the even one's (its prefix first)
+        for i, (solve, shift) in enumerate(_STAGES):
+            if word >> shift != key[i]:
+                key[i] = word >> shift
+                if not solve(word, tc, q, c, s, dp, prev, amp)[0]:
+                    return qk, math.inf
+    return _polish(q, p, dp, target=target)
 
 
 def ik_batch(poses, design=None) -> BatchSolutions:

@@ -13,6 +13,7 @@ import math
 
 import _runtime
 from serial_stand_in import (
+    _FK_IDEAL,
     DEGENERATE_EPS,
     DOUBLE_ROOT_TOL,
     FLAG_DOUBLE_ROOT,
@@ -184,14 +185,18 @@ def _prismatic_value(out, j, q):
 def _wrist_sigma(up, dp, joints):
     """+1 when turning q4 by a moves the end frame as turning q6 by a does at theta5 = 0 (up) or pi (down),
     else -1: the two axes coincide there, so q6 + sigma q4 is what the pose defines. Probed on the chain's
-    own FK (a structural sign: the DH twists fix it)."""
+    own FK (a structural sign: the DH twists fix it; a calibrated robot's ideal table's, whose axes coincide)."""
     j4, j5, j6 = joints
     q = [0.0] * N_JOINTS
     q[j5] = 0.0 if up else math.pi
     qa, qb = list(q), list(q)
     qa[j4], qb[j6] = 0.5, 0.5
-    same = max(abs(x - y) for x, y in zip(_k_fk(qa, dp), _k_fk(qb, dp), strict=True))
-    return 1.0 if same <= 1e-9 * (1.0 + max(abs(v) for v in dp)) else -1.0
+    if _FK_IDEAL is None:
+        ta, tb = _k_fk(qa, dp), _k_fk(qb, dp)
+    else:
+        ta, tb = (_FK_IDEAL(x, [math.cos(v) for v in x], [math.sin(v) for v in x], dp) for x in (qa, qb))
+    same = max(abs(x - y) for x, y in zip(ta, tb, strict=True))
+    return 1.0 if same <= 1e-9 * (1.0 + max((abs(v) for v in dp[:N_LENGTHS]), default=0.0)) else -1.0
 
 
 def _wrist_mirror(joints, q, c, s):

@@ -11,7 +11,17 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from serial_stand_in import _HELD, _WRIST_JOINTS, IK_VERIFY_TOL, JOINT_KINDS, N_JOINTS, _k_fk, _k_jacobian, _wrap
+from serial_stand_in import (
+    _HELD,
+    _WRIST_JOINTS,
+    IK_VERIFY_TOL,
+    JOINT_KINDS,
+    N_JOINTS,
+    POLISH_STEPS,
+    _k_fk,
+    _k_jacobian,
+    _wrap,
+)
 
 
 # wristkin: inlined from here
@@ -41,7 +51,7 @@ def _gn_step(q, e, err, pose, dp, max_step=math.inf):
     return (trial, e2, err2) if err2 < err else (q, e, err)
 
 
-def _polish(q, pose, dp, iters=6, target=IK_VERIFY_TOL):
+def _polish(q, pose, dp, iters=POLISH_STEPS, target=IK_VERIFY_TOL):
     """Damped Gauss-Newton on the pose error until it is at most `target`: removes the sqrt(eps) error a tangent
     root passes downstream (and a double root's, to rounding)."""
     q = list(q)

@@ -283,7 +283,7 @@ class ChainMechanism(MechanismDefaults):
         api = self._own_api(plan, ideal)
         return RobotTable(self.NAME, self.title, desc.source, desc.rule, c.joint_names, table, c.base @ table.frame0,
                           desc.fk, self.scale(), frozenset(o["op"] for o in plan.ops),
-                          self.deviation(), api, desc.free, self.degenerate_held_reasons())
+                          self.deviation(), api, desc.free, self.degenerate_held_reasons(), c)
 
     def _own_api(self, plan, ideal) -> OwnRobotApi:
         """The module's constants beyond the verbs: the interpreted module's, and the derived one's (robot_table)."""

@@ -4,6 +4,44 @@
  * (a wristkin runtime source, inlined whole into every serial arm's generated C after its SR_* constants and
  * switches, the sr_design / sr_ik_solutions / sr_fk_solutions types, its derived kernels sr_k_* and stage
  * functions; derive/runtime_files.py, derive/families/serial/views.py, tests/test_serial_runtime.py) */
+#if SR_CALIBRATED
+/* A calibrated robot's set k whose polish on the true chain failed (the ideal stages' answer outside Gauss-Newton's
+ * basin: near a singularity the ideal geometry's 1e-7 moves it by 1e-7 / sigma_min), solved again by the ideal
+ * stages for the pose the ideal chain must reach so that the true one reaches `pose`, T_c = pose true(q)^-1
+ * ideal(q), then polished: the residual, qk replaced when it improves on err (Python's _compensated). */
+static double sr_compensated(int k, const double *pose, double *qk, const double *dp, const double *prev,
+                             double target, double err)
+{
+    double q[SR_N], c[SR_N], s[SR_N], amp[SR_N], ideal[12], truth[12], inv[12], rel[12], tc[12], err2;
+    long key[SR_N_STAGES];
+    int stage_ok[SR_N_STAGES], j;
+    unsigned stage_flags[SR_N_STAGES], f = 0u;
+    for (j = 0; j < SR_N; ++j) {
+        c[j] = sr_revolute[j] ? cos(qk[j]) : 1.0;
+        s[j] = sr_revolute[j] ? sin(qk[j]) : 0.0;
+    }
+    sr_k_fk_ideal(qk, c, s, dp, ideal);
+    sr_k_fk_cs(qk, c, s, dp, truth);
+    sr_invert(truth, inv);
+    sr_compose(inv, ideal, rel);
+    sr_compose(pose, rel, tc);
+    for (j = 0; j < SR_N_STAGES; ++j) key[j] = -1;
+    for (j = 0; j < SR_N; ++j) {
+        q[j] = 0.0;
+        c[j] = 1.0;
+        s[j] = 0.0;
+        amp[j] = 1.0;
+    }
+    /* an odd set's wrist mirrors the even one's: its prefix first */
+    if ((k & 1) && !sr_run_stages(k - 1, tc, q, c, s, dp, prev, amp, key, stage_ok, stage_flags, &f)) return err;
+    if (!sr_run_stages(k, tc, q, c, s, dp, prev, amp, key, stage_ok, stage_flags, &f)) return err;
+    err2 = sr_polish(q, pose, dp, target);
+    if (!(err2 < err)) return err;
+    for (j = 0; j < SR_N; ++j) qk[j] = sr_revolute[j] ? wk_wrap(q[j]) : q[j];
+    return err2;
+}
+#endif
+
 static int sr_api_ik_near(const double pose_in[12], const sr_design *design, const double *previous,
                           sr_ik_solutions *out)
 {
@@ -126,14 +164,19 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         }
 #endif
         for (j = 0; j < SR_N; ++j) out->values[k][j] = q[j];
-        if (!(err <= SR_IK_VERIFY_TOL) || ((f & WK_FLAG_DOUBLE_ROOT) && err > polish_double)) {
+        if (!(err <= SR_IK_VERIFY_TOL) || (((f & WK_FLAG_DOUBLE_ROOT) || SR_CALIBRATED) && err > polish_double)) {
             /* a tangent root leaves a sqrt(eps) error downstream, and a double root's centre its stage's noise (a
                UR's folded elbow behind a wrist 1e-5 from singular: the pose within 3e-12): polish a copy of the
-               set, a double root's to rounding (Python's DOUBLE_ROOT_POLISH_TOL says when) */
-            err = sr_polish(out->values[k], pose, d->params, (f & WK_FLAG_DOUBLE_ROOT) ? rounding : SR_IK_VERIFY_TOL);
+               set, a double root's to rounding (Python's DOUBLE_ROOT_POLISH_TOL says when); a calibrated robot's
+               (the stages solve its ideal geometry) every set to DOUBLE_ROOT_POLISH_TOL */
+            err = sr_polish(out->values[k], pose, d->params, (f & WK_FLAG_DOUBLE_ROOT) ? rounding :
+                            (SR_CALIBRATED ? polish_double : SR_IK_VERIFY_TOL));
             for (j = 0; j < SR_N; ++j)
                 if (sr_revolute[j]) out->values[k][j] = wk_wrap(out->values[k][j]);
         }
+#if SR_CALIBRATED
+        if (!(err <= SR_IK_VERIFY_TOL)) err = sr_compensated(k, pose, out->values[k], d->params, prev, polish_double, err);
+#endif
 #if SR_HAS_PRISMATIC
         if (!(err <= SR_IK_VERIFY_TOL) || !sr_prismatic_in_range(out->values[k])) {
 #else

@@ -204,7 +204,8 @@ static int sr_prismatic_value(const double *out, int j, double *q, double *c, do
 
 #if SR_WRIST_STAGE >= 0
 /* +1 when turning q4 by a moves the end frame as turning q6 by a does at theta5 = 0 (up) or pi (down), else
- * -1: the axes coincide there, so q6 + sigma q4 is what the pose defines (probed on the chain's own FK). */
+ * -1: the axes coincide there, so q6 + sigma q4 is what the pose defines (probed on the FK of the geometry the
+ * stages solve: a calibrated robot's ideal table, whose axes coincide exactly). */
 static double sr_wrist_sigma(int up, const double *dp, const int *w)
 {
     double qa[SR_N], qb[SR_N], ta[12], tb[12], scale = 1.0, diff = 0.0;
@@ -213,8 +214,22 @@ static double sr_wrist_sigma(int up, const double *dp, const int *w)
     qa[w[1]] = qb[w[1]] = up ? 0.0 : SR_PI;
     qa[w[0]] = 0.5;
     qb[w[2]] = 0.5;
+#if SR_CALIBRATED
+    {
+        double ca[SR_N], sa[SR_N], cb[SR_N], sb[SR_N];
+        for (j = 0; j < SR_N; ++j) {
+            ca[j] = cos(qa[j]);
+            sa[j] = sin(qa[j]);
+            cb[j] = cos(qb[j]);
+            sb[j] = sin(qb[j]);
+        }
+        sr_k_fk_ideal(qa, ca, sa, dp, ta);
+        sr_k_fk_ideal(qb, cb, sb, dp, tb);
+    }
+#else
     sr_k_fk(qa, dp, ta);
     sr_k_fk(qb, dp, tb);
+#endif
     for (j = 0; j < SR_N_LENGTHS; ++j)
         if (fabs(dp[j]) + 1.0 > scale) scale = fabs(dp[j]) + 1.0;
     for (j = 0; j < 12; ++j)

@@ -50,12 +50,12 @@ static double sr_gn_step(double *q, const double *pose, const double *dp, double
     return err2;
 }
 
-/* At most 6 damped Gauss-Newton steps, until the residual is at most `target` or a step no longer helps */
+/* At most SR_POLISH_STEPS damped Gauss-Newton steps, until the residual is at most `target` or a step no longer helps */
 static double sr_polish(double *q, const double *pose, const double *dp, double target)
 {
     double e[6], err = sr_pose_error(q, pose, dp, e);
     int it;
-    for (it = 0; it < 6 && err > target; ++it) {
+    for (it = 0; it < SR_POLISH_STEPS && err > target; ++it) {
         const double err2 = sr_gn_step(q, pose, dp, e, err, HUGE_VAL);
         if (!(err2 < err)) break;
         err = err2;
