@@ -284,6 +284,11 @@ def _array(v, what):
 
 
 def _vector(v, n, what):
+    if v.__class__ in (list, tuple) and len(v) == n and all(x.__class__ is float for x in v):
+        # plain floats (a design or joints per call): numpy's conversion costs more than the call it feeds
+        if all(math.isfinite(x) for x in v):
+            return tuple(v)
+        raise InvalidInput(f"{what}: values must be finite, got {list(v)}")
     a = _array(v, what)
     if a.shape != (n,):
         raise InvalidInput(f"{what}: expected {n} numbers, got shape {a.shape}")

@@ -109,8 +109,11 @@ def _design_refusal(vals, held=False):
 def _built(vals, base, tool):
     b = _BASE if base is None else _frame(base, "base")
     t = _TOOL if tool is None else _frame(tool, "tool")
-    return Design(vals, _c_design(vals + tuple(v for m in (b, t) for row in m[:3] for v in row)), b, t,
-                  _frames_of(b, t))
+    frames = _FRAME_VALUES0 if b is _BASE and t is _TOOL else tuple(v for m in (b, t) for row in m[:3] for v in row)
+    return Design(vals, _c_design(vals + frames), b, t, _frames_of(b, t))
+
+
+_FRAME_VALUES0 = tuple(v for m in (_BASE, _TOOL) for row in m[:3] for v in row)  # the chain's own frames' 24
 
 
 _DEFAULT_DESIGN = make_design()
