@@ -99,3 +99,19 @@ def identity(lhs, rhs, claim: str, ranges: dict[sp.Symbol, tuple[float, float]],
         checks.append(symbolic_identity(lhs, rhs, claim))
     checks.append(numeric_identity(lhs, rhs, claim, ranges, samples, tol))
     return tuple(checks)
+
+
+def jacobian_fd_error(fk: Callable, jac: np.ndarray, q: np.ndarray, h: float = 1e-6) -> float:
+    """The largest difference between a geometric Jacobian `jac` (6 x n, linear velocity of the end frame's origin
+    first, then angular velocity) at q and central differences of the end frame fk (q -> 4 x 4): the origin's
+    velocity, and the angular velocity read from dR/dq R^T (skew)."""
+    q = np.asarray(q, dtype=float)
+    t0, out = np.asarray(fk(q), dtype=float), 0.0
+    for k in range(q.size):
+        dq = np.zeros(q.size)
+        dq[k] = h
+        tp, tm = np.asarray(fk(q + dq), dtype=float), np.asarray(fk(q - dq), dtype=float)
+        v = (tp[:3, 3] - tm[:3, 3]) / (2 * h)
+        w = (tp[:3, :3] - tm[:3, :3]) / (2 * h) @ t0[:3, :3].T
+        out = max(out, float(np.max(np.abs(np.concatenate([v, [w[2, 1], w[0, 2], w[1, 0]]]) - jac[:, k]))))
+    return out

@@ -24,7 +24,8 @@ IDENTITY_3X4 = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0)
 # a serial arm's Design beyond (params, native): its base and tool frames (serial_frames.py)
 DESIGN_FIELDS = ("base: tuple = _BASE  # 4x4 rows: the base frame (the chain's own unless make_design(base=))",
                  "tool: tuple = _TOOL  # 4x4 rows: the tool frame",
-                 "frames: tuple | None = field(default=None, compare=False, repr=False)  # (left, right, inverses)")
+                 "frames: tuple | None = field(default=None, compare=False, repr=False)  # (left, right, inverses)",
+                 "refused: str | None = field(default=None, compare=False, repr=False)  # why ik refuses a held value")
 
 
 def _frame_literal(top12) -> str:
@@ -141,7 +142,7 @@ def serial_views(ctx: dict) -> dict:
         "SR_N_FOLD_BITS": len(ctx["fold_bits"]),
         "SR_LENGTHS_FLOOR": int(bool(ctx.get("lengths_floor"))),
         # the design's first SR_N_LENGTHS values are lengths (a held joint's angle follows them); SR_HELD: that
-        # joint (-1: none), which the Gauss-Newton steps and the conditioning leave out
+        # joint (-1: none), which the Gauss-Newton steps leave alone
         "SR_N_LENGTHS": ctx.get("n_lengths", len(ctx["design_values"])),
         "SR_HELD": ctx.get("held", -1),
         # a calibrated robot: the stages solve its ideal geometry, its FK is the true chain's, every set polished

@@ -16,12 +16,10 @@ import numpy as np
 from serial_frames import _as4, _rigid_inverse, _unframe
 from serial_input import (
     _HAS_PRISMATIC,
-    _HELD_CHECKS,
     _JOINT_SHAPE,
     _POSE_SHAPES,
     _REVOLUTE,
     _design,
-    _design_refusal,
     _joints,
     _pose,
 )
@@ -69,10 +67,8 @@ def ik(pose, design=None, previous=None) -> Solutions:
     `previous` when given (previous's q4, or previous's value of that stage's joint), else the one at 0.
     `previous` changes nothing else: not the regular sets, not the status."""
     d = _design(design)
-    if _HELD_CHECKS:
-        why = _design_refusal(d.params, held=True)
-        if why:
-            raise InvalidDesign(why)
+    if d.refused:
+        raise InvalidDesign(d.refused)
     if d.native is not None:
         prev = None if previous is None else _runtime.c_floats(previous, _JOINT_SHAPE)
         if prev is not None or previous is None:
@@ -192,10 +188,8 @@ def ik_batch(poses, design=None) -> BatchSolutions:
     if not (a.ndim == 3 and a.shape[1:] in ((4, 4), (3, 4))) and not (a.ndim == 2 and a.shape[1] in (12, 16)):
         raise InvalidInput(f"poses: expected an (N, 4, 4), (N, 3, 4), (N, 12) or (N, 16) array, got shape {a.shape}")
     d = _design(design)
-    if _HELD_CHECKS:
-        why = _design_refusal(d.params, held=True)
-        if why:
-            raise InvalidDesign(why)
+    if d.refused:
+        raise InvalidDesign(d.refused)
     if d.native is not None:
         n, c = a.shape[0], np.ascontiguousarray(a)
         out = (np.empty((n, MAX_IK, N_JOINTS)), np.empty((n, MAX_IK), bool), np.empty((n, MAX_IK), np.int64),

@@ -110,16 +110,16 @@ def _built(vals, base, tool):
     b = _BASE if base is None else _frame(base, "base")
     t = _TOOL if tool is None else _frame(tool, "tool")
     frames = _FRAME_VALUES0 if b is _BASE and t is _TOOL else tuple(v for m in (b, t) for row in m[:3] for v in row)
-    return Design(vals, _c_design(vals + frames), b, t, _frames_of(b, t))
+    # a held joint's values ik refuses (read here once: ik raises the reason, fk takes the design)
+    refused = _design_refusal(vals, held=True) if _HELD_CHECKS else None
+    return Design(vals, _c_design(vals + frames), b, t, _frames_of(b, t), refused)
 
 
 _FRAME_VALUES0 = tuple(v for m in (_BASE, _TOOL) for row in m[:3] for v in row)  # the chain's own frames' 24
-
-
-_DEFAULT_DESIGN = make_design()
 # a held joint's values the IK refuses (the iiwa's a2 at 0: the others a self-motion), its default among them: ik
-# checks them, not make_design (fk takes them), as the interpreted module's
+# refuses them, not make_design (fk takes them), as the interpreted module's
 _HELD_CHECKS = any(kind == "held" for kind, _, _ in DESIGN_CHECKS)
+_DEFAULT_DESIGN = make_design()
 _JOINT_SHAPE = ((N_JOINTS,),)
 _POSE_SHAPES = ((4, 4), (3, 4), (12,), (16,))
 _REVOLUTE = tuple(k == "R" for k in JOINT_KINDS)

@@ -8,7 +8,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...checks import numeric_predicate
+from ...checks import jacobian_fd_error, numeric_predicate
 from ...kinematics import general6r
 from ...kinematics.dh_table import NoDHTable, OwnRobotApi, RobotTable, standard_dh
 from ...kinematics.geometry import common_point
@@ -266,9 +266,9 @@ class ChainMechanism(MechanismDefaults):
 
     def robot_table(self):
         """The robot as a DH table for `--stages derived` (kinematics/dh_table.RobotTable) on its ideal axes, with
-        its held joint and the held values the IK refuses; the arm angle, more than six solved joints or a slide
-        refused with the reason (the deviation of the
-        true axes from the ideal ones goes with it: the deriving family decides what it takes)."""
+        its held joint, the held values the IK refuses and its true chain; the arm angle, more than six solved joints
+        or a slide refused with the reason (the deviation of the true axes from the ideal ones goes with it: the
+        deriving family decides what it takes)."""
         desc = self.desc
         if desc.redundancy != "joint":
             raise NotDerivable.because(self.NAME, "the arm angle as a run-time parameter")
@@ -360,16 +360,7 @@ class ChainMechanism(MechanismDefaults):
 
         def jac_err(rng):
             q = _random_joints(c, rng)
-            j0, h, out = c.jacobian(q), 1e-6, 0.0
-            t0 = c.fk_full(q)
-            for i in range(c.n):
-                dq = np.zeros(c.n)
-                dq[i] = h
-                tp, tm = c.fk_full(q + dq), c.fk_full(q - dq)
-                v = (tp[:3, 3] - tm[:3, 3]) / (2 * h)
-                w = (tp[:3, :3] - tm[:3, :3]) / (2 * h) @ t0[:3, :3].T
-                out = max(out, float(np.max(np.abs(np.concatenate([v, [w[2, 1], w[0, 2], w[1, 0]]]) - j0[:, i]))))
-            return out
+            return jacobian_fd_error(c.fk_full, c.jacobian(q), q)
         dv.add(Step("jacobian", "Geometric Jacobian", "column i: (w_i x (p - o_i), w_i) for a revolute joint, "
                     "(w_i, 0) for a prismatic one, with w_i, o_i the joint's axis and point moved by the joints "
                     "before it; linear velocity first", ("chain",), {"columns": f"{c.n}"},

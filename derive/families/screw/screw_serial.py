@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from ...checks import numeric_predicate, sampler
+from ...checks import jacobian_fd_error, numeric_predicate, sampler
 from ...identities import screws
 from ...identities.frames import skew
 from ...lower import Kernel
@@ -267,17 +267,7 @@ def derive_spec(spec: ScrewSpec) -> Derivation:
     def jac_err(rng):
         dsn, q = sample_design(spec, rng), np.array(list(sample_joints(spec, rng).values()))
         d = list(dsn.values())
-        J0 = np.asarray(f_j(*q, *d), float)
-        T0 = np.asarray(f_t(*q, *d), float)
-        h, err = 1e-6, 0.0
-        for k in range(n):
-            dq = np.zeros(n)
-            dq[k] = h
-            Tp, Tm = np.asarray(f_t(*(q + dq), *d), float), np.asarray(f_t(*(q - dq), *d), float)
-            v = (Tp[:3, 3] - Tm[:3, 3]) / (2 * h)
-            W = (Tp[:3, :3] - Tm[:3, :3]) / (2 * h) @ T0[:3, :3].T
-            err = max(err, float(np.max(np.abs(np.concatenate([v, [W[2, 1], W[0, 2], W[1, 0]]]) - J0[:, k]))))
-        return err
+        return jacobian_fd_error(lambda x: f_t(*x, *d), np.asarray(f_j(*q, *d), float), q)
     dv.add(Step("jacobian", "Geometric Jacobian (end point velocity, angular velocity)",
                 "column k from joint k's current twist axis: (s' x (p - r'), s') for R, (s', 0) for P, with "
                 "(s', r') = (R_{<k} s_k, T_{<k} r_k); the twist is the first-order term of the joint's finite screw",

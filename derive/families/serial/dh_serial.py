@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from ...checks import numeric_predicate, sampler, symbolic_identity
+from ...checks import jacobian_fd_error, numeric_predicate, sampler, symbolic_identity
 from ...identities.dh import DHRow, chain, explicit
 from ...model import Check, Derivation, Finding, Step
 from ...serial_core.stages import POSE_SYMBOLS, Stage, stage_output_names
@@ -130,18 +130,7 @@ def _jacobian_step(dv: Derivation, spec: SerialSpec, ts, t_end) -> None:
     def jac_err(rng):
         q = np.array(list(_sample_joints(spec, rng).values()))
         dsn = list(_sample_design(spec, rng).values())
-        J0 = np.array(fJ(*q, *dsn), dtype=float)
-        h, err = 1e-6, 0.0
-        T0 = np.array(fT(*q, *dsn), dtype=float)
-        for k in range(len(q)):
-            dq = np.zeros(len(q))
-            dq[k] = h
-            Tp, Tm = np.array(fT(*(q + dq), *dsn), dtype=float), np.array(fT(*(q - dq), *dsn), dtype=float)
-            v = (Tp[:3, 3] - Tm[:3, 3]) / (2 * h)
-            W = (Tp[:3, :3] - Tm[:3, :3]) / (2 * h) @ T0[:3, :3].T
-            w = np.array([W[2, 1], W[0, 2], W[1, 0]])
-            err = max(err, float(np.max(np.abs(np.concatenate([v, w]) - J0[:, k]))))
-        return err
+        return jacobian_fd_error(lambda x: fT(*x, *dsn), np.array(fJ(*q, *dsn), dtype=float), q)
     dv.add(Step("jacobian", "Geometric Jacobian", "column i: (z_{i-1} x (p - o_{i-1}), z_{i-1}) for a revolute "
                 "joint, (z_{i-1}, 0) for a prismatic one; linear velocity first", ("T",), {"J": J},
                 (numeric_predicate(jac_err, "columns equal central differences of FK (h = 1e-6)", samples=40,

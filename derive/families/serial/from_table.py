@@ -17,7 +17,7 @@ from dataclasses import replace
 import numpy as np
 import sympy as sp
 
-from ...checks import numeric_predicate, sampler
+from ...checks import jacobian_fd_error, numeric_predicate, sampler
 from ...identities.dh import DHRow
 from ...kinematics.dh_table import OwnRobotApi, RobotTable
 from ...kinematics.poe_symbolic import joint_symbols, number, symbolic_chain
@@ -146,9 +146,9 @@ def from_table(robot: RobotTable, auto: bool = False) -> SerialMechanism:
     # each angle's change turns the links after it, at most the robot's size away (and the frame's axes by as
     # much), and each axis's deviation (direction and point) moves the end frame by at most twice its size: the end
     # frame moves by at most their sum times the size, on top of the products' rounding
-    tol = 1e-12 + (snapped + 2 * n * robot.deviation) * max(robot.size, 1.0)
-    if calibrated:  # the module's FK is the true chain: the description's product to rounding
-        tol = 1e-12 * max(robot.size, 1.0)
+    # (a calibrated robot's FK is its true chain: the description's product to rounding)
+    tol = 1e-12 * max(robot.size, 1.0) if calibrated else \
+        1e-12 + (snapped + 2 * n * robot.deviation) * max(robot.size, 1.0)
     mech = _DerivedRobot(name, lambda: replace(spec, stages=stage_list), robot.description_fk, tol,
                          replace(robot.api, description_tol=tol), robot.joint_names, robot.degenerate_held,
                          robot.chain if calibrated else None)
@@ -206,7 +206,7 @@ class _DerivedRobot(SerialMechanism):
         held = self.spec.held
         extra = {"calibrated": self.true_chain is not None}
         if held:  # the held joint's value: the design, named as the joint (as the interpreted module's)
-            extra = {"held": held[0], "n_lengths": 0, "design_names": [self.joint_names[held[0]]]}
+            extra.update(held=held[0], n_lengths=0, design_names=[self.joint_names[held[0]]])
             checks = self._held_checks()
             if checks:
                 extra["design_checks"] = [{"kind": "held", "tol": repr(api.geometry_tol), "what": what}
@@ -291,17 +291,7 @@ class _DerivedRobot(SerialMechanism):
 
         def jac_err(rng):
             q = rng.uniform(-math.pi, math.pi, chain.n)
-            j0, h = np.array(f_j(*q), dtype=float), 1e-6
-            out = 0.0
-            t0 = np.array(f_t(*q), dtype=float)
-            for k in range(chain.n):
-                dq = np.zeros(chain.n)
-                dq[k] = h
-                tp, tm = np.array(f_t(*(q + dq)), dtype=float), np.array(f_t(*(q - dq)), dtype=float)
-                v = (tp[:3, 3] - tm[:3, 3]) / (2 * h)
-                w = (tp[:3, :3] - tm[:3, :3]) / (2 * h) @ t0[:3, :3].T
-                out = max(out, float(np.max(np.abs(np.concatenate([v, [w[2, 1], w[0, 2], w[1, 0]]]) - j0[:, k]))))
-            return out
+            return jacobian_fd_error(lambda x: f_t(*x), np.array(f_j(*q), dtype=float), q)
         dv.add(Step("true_chain", "The FK, Jacobian and polish of a calibrated robot: its true chain",
                     f"the stages solve the ideal table (axes {self.api.deviation:.2g} off the description's); the "
                     "module's FK and Jacobian are the description's product of exponentials exp(S_1 q_1) ... "

@@ -216,12 +216,10 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                 return o
         # axes that meet across a held joint (the Panda's 5 and 7 with joint6 held): the foot on the first of the
         # common normal to the second, p_i + t u_i (their common point, wherever the held joint is)
-        i, j = spec[1], spec[2]
-        u, v, d = axes[i], axes[j], points[j] - points[i]
-        uv = sp.simplify(u.dot(v))
-        if sp.simplify(1 - uv ** 2) == 0:
+        t = _foot(axes[spec[1]], points[spec[1]], axes[spec[2]], points[spec[2]])
+        if t is None:
             raise PlanError(f"axes {spec[1:]} meet at {w} but are parallel")
-        o = (points[i] + u * sp.simplify((d.dot(u) - uv * d.dot(v)) / (1 - uv ** 2))).applyfunc(_trig_reduced)
+        o = (points[spec[1]] + axes[spec[1]] * t).applyfunc(_trig_reduced)
         if not np.allclose(num(o), w, atol=1e-9):
             raise PlanError(f"axes {spec[1:]} meet at {w}, which neither a DH frame origin nor their common normal "
                             "gives")
@@ -241,12 +239,10 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         if spec[0] != "on":
             return point(spec)
         i = spec[1]
-        u, v, w = axes[i], axes[j], points[j] - points[i]
-        uv = sp.simplify(u.dot(v))
-        if sp.simplify(1 - uv ** 2) == 0:  # parallel axes: no point of axis i is on axis j unless they coincide
+        t = _foot(axes[i], points[i], axes[j], points[j])
+        if t is None:  # parallel axes: no point of axis i is on axis j unless they coincide
             return points[i]
-        t = sp.simplify((w.dot(u) - uv * w.dot(v)) / (1 - uv ** 2))
-        return (points[i] + u * (t + 1)).applyfunc(sp.simplify)
+        return (points[i] + axes[i] * (t + 1)).applyfunc(sp.simplify)
 
     def prefix(js):
         m = _Motion(sp.eye(3), sp.zeros(3, 1))
@@ -367,6 +363,15 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                             f"{held[1]} (a run-time parameter); the other stages are planned on the chain with it "
                             "held, its rotation kept as its symbol"))
     return out, plan.strategy
+
+
+def _foot(u, p, v, r):
+    """t such that p + t u is the foot on the axis (p, u) of its common normal with the axis (r, v) (their common
+    point where they meet); None for parallel axes."""
+    d, uv = r - p, sp.simplify(u.dot(v))
+    if sp.simplify(1 - uv ** 2) == 0:
+        return None
+    return sp.simplify((d.dot(u) - uv * d.dot(v)) / (1 - uv ** 2))
 
 
 def _two_axes(rd, ja, jb, axes, joints, about=None) -> list[Stage]:

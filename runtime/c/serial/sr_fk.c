@@ -4,8 +4,8 @@
  * switches, the sr_design / sr_ik_solutions / sr_fk_solutions types, its derived kernels sr_k_* and stage
  * functions; derive/runtime_files.py, derive/families/serial/views.py, tests/test_serial_runtime.py) */
 /* The manipulability sqrt(det J^T J) (J J^T past 6 joints) of the geometric Jacobian; *singular: sigma_min /
- * sigma_max of J at or below SR_SINGULAR_EPS. A well-conditioned J is proven so by Cholesky factors (the runtime's wk_conditioning_bound);
- * else the Jacobi eigenvalues of J^T J decide (the Python module's eigvalsh). */
+ * sigma_max of J at or below SR_SINGULAR_EPS. A well-conditioned J is proven so by Cholesky factors (the runtime's
+ * wk_conditioning_bound); else the Jacobi eigenvalues of J^T J (J J^T past 6 joints) decide (Python's eigvalsh). */
 /* the Jacobian in the design's base and tool frames (sr_frames.c); pose0: the kernels' end pose at q when the caller
  * has it, else NULL */
 static void sr_jacobian_in_frames(const double *q, const sr_design *d, const double *pose0, double *jac)

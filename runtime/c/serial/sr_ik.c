@@ -175,7 +175,8 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
                 if (sr_revolute[j]) out->values[k][j] = wk_wrap(out->values[k][j]);
         }
 #if SR_CALIBRATED
-        if (!(err <= SR_IK_VERIFY_TOL)) err = sr_compensated(k, pose, out->values[k], d->params, prev, polish_double, err);
+        if (!(err <= SR_IK_VERIFY_TOL))
+            err = sr_compensated(k, pose, out->values[k], d->params, prev, polish_double, err);
 #endif
 #if SR_HAS_PRISMATIC
         if (!(err <= SR_IK_VERIFY_TOL) || !sr_prismatic_in_range(out->values[k])) {

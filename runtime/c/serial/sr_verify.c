@@ -50,7 +50,8 @@ static double sr_gn_step(double *q, const double *pose, const double *dp, double
     return err2;
 }
 
-/* At most SR_POLISH_STEPS damped Gauss-Newton steps, until the residual is at most `target` or a step no longer helps */
+/* At most SR_POLISH_STEPS damped Gauss-Newton steps, until the residual is at most `target` or a step no longer
+ * helps */
 static double sr_polish(double *q, const double *pose, const double *dp, double target)
 {
     double e[6], err = sr_pose_error(q, pose, dp, e);
