@@ -222,7 +222,8 @@ def test_a_held_joint_is_the_design_s_last_value_and_every_set_comes_back(robot,
     """A 7-joint arm with a joint held (the iiwa 14's a1, the command's choice, a2, a3, a6; the Panda's joint4, the
     command's choice, and joint6), derived: the design is the
     held value alone, named as the joint (the lengths folded: the interpreted module's design, [v] or {name: v}). For
-    random joints, the held one at its value: the generating joints among the sets (1e-9 rad), every set on the
+    random joints, the held one at its value: the generating joints among the sets (1e-9 rad, or the nearest set's
+    residual over sigma_min near the Panda's joint4 self-motion), every set on the
     independent reference's pose (1e-9) with the held joint at its value exactly, as many sets as the interpreted
     module, C equal to numpy to 1e-12 plus their residuals over sigma_min of the six solved columns (1.8e-3 from the
     Panda's joint4 self-motion that is 1.7e-7 rad); fk's conditioning is the 7-joint arm's (from J J^T: J^T J of a
@@ -237,7 +238,13 @@ def test_a_held_joint_is_the_design_s_last_value_and_every_set_comes_back(robot,
         q = rng.uniform(-math.pi, math.pi, 7)
         T = reference(q)
         sol, sol_py, sol_i = m.ik(T, [q[f]]), py.ik(T, py.make_design({name: q[f]})), interp.ik(T, [q[f]])
-        assert sol.status == m.STATUS_OK and min(_gap(v, q) for v in sol) <= 1e-9
+        assert sol.status == m.STATUS_OK
+        # the generating joints within 1e-9, or the nearest set's residual over sigma_min of the six solved columns
+        # where that is larger (the Panda's joint4 held 1.5e-3 from its self-motion, seed 222631: 8e-9 off, on the
+        # pose to 2e-13)
+        near = min(np.flatnonzero(sol.valid), key=lambda i: _gap(sol.values[i], q))
+        sigma = np.linalg.svd(np.delete(m.jacobian(sol.values[near]), f, axis=1), compute_uv=False)[-1]
+        assert _gap(sol.values[near], q) <= 1e-9 + 4 * (sol.aux[near, 0] + 1e-15 * max(1.0, m.SCALE)) / sigma
         first = sol.values[np.flatnonzero(sol.valid)[0]]
         assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 and v[f] == first[f] for v in sol)
         assert abs(math.remainder(first[f] - q[f], 2 * math.pi)) <= 1e-15

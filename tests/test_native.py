@@ -133,11 +133,13 @@ def test_serial_c_and_numpy_give_the_same_solution_sets(name):
         T = mod.fk_matrix(q, py_design)
         np.testing.assert_allclose(mod.fk_matrix(q, c_design), T, atol=tol, rtol=0)
         py_ik = mod.ik(T, py_design)
-        sets_tol = _conditioned(mod, py_design, py_ik.values[py_ik.valid]) if special else tol
+        # a random pose can also sit near a singularity (seed 222631 under Haswell: a PUMA with sigma_min 4e-6, its
+        # C and numpy sets 5e-12 apart, both on the pose to 2e-15): the conditioning's bound above the floor
+        sets_tol = _conditioned(mod, py_design, py_ik.values[py_ik.valid], floor=tol)
         _same(mod.ik(T, c_design), py_ik, sets_tol, f"{name} ik of fk({q.tolist()})", rev)
         prev = _joints(mod, rng, False)
         py_near = mod.ik(T, py_design, previous=prev)
-        near_tol = _conditioned(mod, py_design, py_near.values[py_near.valid]) if special else tol
+        near_tol = _conditioned(mod, py_design, py_near.values[py_near.valid], floor=tol)
         _same(mod.ik(T, c_design, previous=prev), py_near, near_tol, f"{name} ik near {prev.tolist()}", rev)
         poses.append(T)
     # poses the chain cannot reach, and rotations a little off SO(3) (projected, reported): C answers, the numpy
