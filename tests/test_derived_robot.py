@@ -284,6 +284,16 @@ def test_a_held_value_where_the_others_are_a_self_motion_is_refused(tmp_path):
         q = np.array([0.3, 1e-3, -0.4, 1.1, 0.2, -0.7, 0.5])
         sol = mod.ik(mod.fk_matrix(q), {"a2": 1e-3})
         assert min(_gap(v, q) for v in sol) <= 1e-9
+        # ik(pose, [v]) reuses the design it built for the same list: the refusal and the value come with it
+        for v, refused in ((1e-3, False), (1e-3, False), (1e-9, True), (1e-9, True), (1e-3, False)):
+            if refused:
+                with pytest.raises(mod.InvalidDesign, match="self-motion"):
+                    mod.ik(mod.fk_matrix(q), [v])
+            else:
+                assert min(_gap(w, q) for w in mod.ik(mod.fk_matrix(q), [v])) <= 1e-9
+        assert mod.ik(mod.fk_matrix(q), [1e-3]).count == mod.ik(mod.fk_matrix(q), (1e-3,)).count
+        with pytest.raises(mod.InvalidDesign, match="expected 1 numbers"):
+            mod.ik(mod.fk_matrix(q), [1e-3, 0.0])
     out = Path(m.__file__).parent.parent
     src = tmp_path / "driver.c"
     src.write_text(NULL_DESIGN_DRIVER.replace("NAME", m.NAME))
