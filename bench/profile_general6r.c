@@ -12,7 +12,13 @@
  * After it (same machine, load ~4 from other jobs on its 2 cores; the sections now as wk_g6_solve runs hidden t3):
  *   wk_g6_solve 38 us: the deflated 16 x 16 roots 23 (wk_eig_real on 16 x 16 alone ~16: Hessenberg ~5, Francis QR
  *   ~11 with ~26 double-shift sweeps; the rest the structure's QRs, the rows per phi and K's LU), null vectors 5.5,
- *   refine 2.8, complete 2.6, QR and N P 2.1, the 14 equations 1.1, A/B/C 0.8. */
+ *   refine 2.8, complete 2.6, QR and N P 2.1, the 14 equations 1.1, A/B/C 0.8.
+ * Then (2026-11-27, AMD EPYC 2 cores; wall times on it vary by +-10 % run to run, so counted with cachegrind, the
+ * emitted ur5e_tilted module's IK over 1,000 poses): 690k -> 664k instructions per IK from N as six columns of H
+ * (not H^T in full), one running maximum per four columns in the complete pivoting's search (its compare-and-move
+ * chain was the null vectors' bottleneck), the eigen scalings as one multiplication, one division per bulge step.
+ * What is left is spread thin: wk_eig_real 30 %, the per-root work (null vector, complete, refine) 23 %, the
+ * structure's QRs 7 %; the eigenproblem alone (Hessenberg + ~26 Francis sweeps, latency-bound) is ~16 us. */
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
 #include <stdlib.h>
@@ -82,7 +88,7 @@ int main(void)
         for (arm = 0; arm < ARMS; ++arm)
             for (p = 0; p < POSES; ++p) {
                 double loop[6][16], links[6][16], P[G6_NEQ][27], Q[G6_NEQ][G6_NY], r[G6_NEQ], t6[6][27];
-                double W[G6_NEQ][G6_NEQ], A[144], B[144], C[144], zinv[16], pinv[16], t0, t1;
+                double N[6][G6_NEQ], A[144], B[144], C[144], zinv[16], pinv[16], t0, t1;
                 const double *fr = frames[arm], *pose = poses[arm][p];
                 int e, k, root, c;
                 g6_qr f;
@@ -101,22 +107,17 @@ int main(void)
                 g6_equations(links, P, Q, r);
                 t1 = now(); tsec[S_EQ] += t1 - t0; t0 = t1;
                 if (!g6_qr_factor(Q, &f)) continue;
-                for (j = 0; j < G6_NEQ; ++j) {
-                    double col[G6_NEQ];
-                    for (i = 0; i < G6_NEQ; ++i) col[i] = i == j ? 1.0 : 0.0;
-                    g6_qr_apply(&f, col);
-                    for (i = 0; i < G6_NEQ; ++i) W[i][j] = col[i];
-                }
+                g6_left_null(&f, N);
                 for (e = 0; e < 6; ++e)
                     for (k = 0; k < 27; ++k) {
                         double s = 0.0;
-                        for (i = 0; i < G6_NEQ; ++i) s += W[8 + e][i] * P[i][k];
+                        for (i = 0; i < G6_NEQ; ++i) s += N[e][i] * P[i][k];
                         t6[e][k] = s;
                     }
                 t1 = now(); tsec[S_QR] += t1 - t0; t0 = t1;
                 {
                     double t6r[6][27], xr[16], phi = 0.0, M[144], m[G6_MAXK][12], angles[3], tq[6];
-                    int nr = g6_deflated_roots(t6, W, &phi, xr), count;
+                    int nr = g6_deflated_roots(t6, N, &phi, xr), count;
                     t1 = now(); tsec[S_QEP] += t1 - t0; t0 = t1;
                     if (nr < 0) continue;
                     if (rep == 0) real_roots += nr;

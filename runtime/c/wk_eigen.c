@@ -265,9 +265,12 @@ static int wk_eig_hqr(int n, double *h, double *wr, double *wi)
             scal = fabs(p) + fabs(q) + fabs(r);
             if (scal == 0.0)
                 continue;
-            p /= scal;
-            q /= scal;
-            r /= scal;
+            { /* one division on the bulge's critical path, not three (as LAPACK's dlarfg scales by a reciprocal) */
+                const double inv = 1.0 / scal;
+                p *= inv;
+                q *= inv;
+                r *= inv;
+            }
             nrm = copysign(sqrt(p * p + q * q + r * r), p);
             if (k > l) {
                 h[k * n + k - 1] = -nrm * scal;
@@ -277,8 +280,11 @@ static int wk_eig_hqr(int n, double *h, double *wr, double *wi)
             }
             /* reflector I - tau u u^T with u = (1, v1, v2) maps (p, q, r) to (-nrm, 0, 0) */
             tau = (p + nrm) / nrm;
-            v1 = q / (p + nrm);
-            v2 = r / (p + nrm);
+            {
+                const double inv = 1.0 / (p + nrm); /* |p + nrm| >= |nrm| > 0: p and nrm share their sign */
+                v1 = q * inv;
+                v2 = r * inv;
+            }
             last = (k + 3 < hi) ? k + 3 : hi;
             /* rows k.. from the left (columns k..hi), columns k.. from the right (rows l..last); the 3- and
              * 2-row cases as separate loops without branches, which the compiler can vectorise */
@@ -316,6 +322,23 @@ static int wk_eig_hqr(int n, double *h, double *wr, double *wi)
     return WK_EIG_OK;
 }
 
+/* x[i] := x[i] 2^e for count entries: one multiplication by the power of two where it is a normal number (then
+ * exactly ldexp's result, rounding included where a product falls into the subnormal range), ldexp beyond */
+static void wk_eig_times_pow2(int count, double *x, int e)
+{
+    int i;
+    if (e == 0)
+        return;
+    if (e > -1000 && e < 1000) {
+        const double f = ldexp(1.0, e);
+        for (i = 0; i < count; ++i)
+            x[i] *= f;
+    } else {
+        for (i = 0; i < count; ++i)
+            x[i] = ldexp(x[i], e);
+    }
+}
+
 int wk_eig_real(int n, double *a, double *wr, double *wi, double *work)
 {
     int e, e2, i, rc;
@@ -331,14 +354,12 @@ int wk_eig_real(int n, double *a, double *wr, double *wi, double *work)
      * (32 terms below 2^1017). */
     e = wk_eig_exponent(n * n, a);
     e = (e > 960 || e < -960) ? e : 0;
-    for (i = 0; i < n * n && e != 0; ++i)
-        a[i] = ldexp(a[i], -e);
+    wk_eig_times_pow2(n * n, a, -e);
     wk_eig_balance(n, a, work);
     /* then to max ~ 1 (balancing can also shrink a graded matrix as a whole by 2^-500 and more): else the
      * shifts' products in the QR step fall into the subnormal range and lose their bits */
     e2 = wk_eig_exponent(n * n, a);
-    for (i = 0; i < n * n; ++i)
-        a[i] = ldexp(a[i], -e2);
+    wk_eig_times_pow2(n * n, a, -e2);
     e += e2;
     wk_eig_hessenberg(n, a, work + n, work); /* the balancing scales are not needed any more */
     rc = wk_eig_hqr(n, a, wr, wi);
@@ -347,9 +368,9 @@ int wk_eig_real(int n, double *a, double *wr, double *wi, double *work)
             wr[i] = wi[i] = 0.0;
         return rc;
     }
+    wk_eig_times_pow2(n, wr, e);
+    wk_eig_times_pow2(n, wi, e);
     for (i = 0; i < n; ++i) {
-        wr[i] = ldexp(wr[i], e);
-        wi[i] = ldexp(wi[i], e);
         if (!isfinite(wr[i]) || !isfinite(wi[i]))
             rc = WK_EIG_ERR_INPUT; /* |lambda| <= n max|a| can exceed DBL_MAX: refused, not returned as inf */
     }

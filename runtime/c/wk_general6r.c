@@ -215,6 +215,30 @@ static void g6_qr_apply(const g6_qr *f, double *x)
     }
 }
 
+/* x := H x = H_1 ... H_8 x (the reflections applied in reverse order): H e_j is column j of the orthogonal factor */
+static void g6_qr_apply_back(const g6_qr *f, double *x)
+{
+    int i, k;
+    for (k = G6_NY - 1; k >= 0; --k) {
+        double s = f->head[k] * x[k];
+        for (i = k + 1; i < G6_NEQ; ++i) s += f->a[i][k] * x[i];
+        s *= f->beta[k];
+        x[k] -= s * f->head[k];
+        for (i = k + 1; i < G6_NEQ; ++i) x[i] -= s * f->a[i][k];
+    }
+}
+
+/* N (6 x 14): the left null space of Q, the last six columns of its orthogonal factor H (six applications, not
+ * the fourteen of H^T in full) */
+static void g6_left_null(const g6_qr *f, double N[6][G6_NEQ])
+{
+    int e, i;
+    for (e = 0; e < 6; ++e) {
+        for (i = 0; i < G6_NEQ; ++i) N[e][i] = i == G6_NY + e ? 1.0 : 0.0;
+        g6_qr_apply_back(f, N[e]);
+    }
+}
+
 /* the least-squares y of Q y = b */
 static void g6_qr_solve(const g6_qr *f, const double *b, double *y)
 {
@@ -284,6 +308,31 @@ static int g6_small_solve(int k, double *a, double *b)
 
 #define G6_MAXK 4
 
+/* max |a[i][j]| over i, j >= k of the 12 x 12 a (-1 when every entry there is NaN): four running maxima, not one
+ * chain of compare-and-move through (12 - k)^2 entries, which bounded the complete pivoting's time */
+static double g6_abs_max(const double *a, int k)
+{
+    double m[4] = {-1.0, -1.0, -1.0, -1.0};
+    int i, j;
+    for (i = k; i < 12; ++i) {
+        const double *row = a + 12 * i;
+        for (j = k; j + 3 < 12; j += 4) {
+            const double x0 = fabs(row[j]), x1 = fabs(row[j + 1]), x2 = fabs(row[j + 2]), x3 = fabs(row[j + 3]);
+            m[0] = x0 > m[0] ? x0 : m[0];
+            m[1] = x1 > m[1] ? x1 : m[1];
+            m[2] = x2 > m[2] ? x2 : m[2];
+            m[3] = x3 > m[3] ? x3 : m[3];
+        }
+        for (; j < 12; ++j) {
+            const double x = fabs(row[j]);
+            m[0] = x > m[0] ? x : m[0];
+        }
+    }
+    if (m[1] > m[0]) m[0] = m[1];
+    if (m[3] > m[2]) m[2] = m[3];
+    return m[2] > m[0] ? m[2] : m[0];
+}
+
 /* The null vector of M (12 x 12) by LU with complete pivoting (rank-revealing in practice: the pivots decrease):
  * U's last pivot ~ 0, the rest solved by back substitution with z_last = 1. Returns 0 (the caller takes the SVD
  * path) when the second-smallest pivot is within WK_G6_NULL_TOL of the largest: a null space of dimension > 1. */
@@ -294,14 +343,15 @@ static int g6_lu_null(const double *M, double *v)
     memcpy(a, M, sizeof a);
     for (i = 0; i < 12; ++i) rp[i] = cp[i] = i;
     for (k = 0; k < 12; ++k) {
-        int pi = k, pj = k;
-        big = -1.0;
-        for (i = k; i < 12; ++i)
+        int pi = k, pj = k, found = 0;
+        big = g6_abs_max(a, k);
+        for (i = k; i < 12 && !found; ++i) /* the first entry (row by row) that large */
             for (j = k; j < 12; ++j)
-                if (fabs(a[12 * i + j]) > big) {
-                    big = fabs(a[12 * i + j]);
+                if (fabs(a[12 * i + j]) == big) {
                     pi = i;
                     pj = j;
+                    found = 1;
+                    break;
                 }
         if (pi != k) {
             for (j = 0; j < 12; ++j) {
@@ -781,7 +831,7 @@ static double g6_rcond(int n, const double *k, const double *lu, const int *piv)
  * eigenproblem, phi chosen as the Python does (the first of g6_phis whose K has rcond > G6_RCOND_GOOD, else the
  * best). Returns the number of real roots, or -1 when the structure is not met (the caller takes the 24 x 24 path)
  * or the eigenvalues fail. */
-static int g6_deflated_roots(double t6[6][27], double W[G6_NEQ][G6_NEQ], double *phi_out, double *xr)
+static int g6_deflated_roots(double t6[6][27], double N[6][G6_NEQ], double *phi_out, double *xr)
 {
     static const int blocks[4] = {0, 3, 8, 11};
     double z[12 * 8], xy[6 * 8], qz[144], qr0[36], ab[12 * 4], r0[6 * 2], span[6 * 8], qs[36], comp[6 * 4];
@@ -791,7 +841,7 @@ static int g6_deflated_roots(double t6[6][27], double W[G6_NEQ][G6_NEQ], double 
     int piv[12], best_piv[12], e, j, k, i, n = 0, rank, d0, nab, nc, nm, nl, nq;
     for (e = 0; e < 6; ++e) /* [[X, Y], [-Y, X]], X + i Y = N W4 */
         for (j = 0; j < 4; ++j) {
-            const double x = W[8 + e][blocks[j]], y = W[8 + e][blocks[j] + 1];
+            const double x = N[e][blocks[j]], y = N[e][blocks[j] + 1];
             z[8 * e + j] = x;
             z[8 * e + 4 + j] = y;
             z[8 * (6 + e) + j] = -y;
@@ -1146,9 +1196,9 @@ static int g6_emit(const double *A, const double *B, const double *C, double x, 
 int wk_g6_solve(const double *frames, const double *home, const double *pose, int shift, int reverse, int hidden,
                 double *q, int max_out)
 {
-    double loop[6][16], links[6][16], P[G6_NEQ][27], Q[G6_NEQ][G6_NY], r[G6_NEQ], t6[6][27], W[G6_NEQ][G6_NEQ];
+    double loop[6][16], links[6][16], P[G6_NEQ][27], Q[G6_NEQ][G6_NY], r[G6_NEQ], t6[6][27], N[6][G6_NEQ];
     double A[144], B[144], C[144], zinv[16], pinv[16];
-    int joints[6], i, j, e, n = 0, k, root;
+    int joints[6], i, e, n = 0, k, root;
     double sign;
     g6_qr f;
     wk_qep_result qep;
@@ -1177,22 +1227,16 @@ int wk_g6_solve(const double *frames, const double *home, const double *pose, in
     sign = reverse ? -1.0 : 1.0;
     g6_equations(links, P, Q, r);
     if (!g6_qr_factor(Q, &f)) return -1;
-    /* N: rows 8..13 of H^T, the left null space of Q */
-    for (j = 0; j < G6_NEQ; ++j) {
-        double col[G6_NEQ];
-        for (i = 0; i < G6_NEQ; ++i) col[i] = i == j ? 1.0 : 0.0;
-        g6_qr_apply(&f, col);
-        for (i = 0; i < G6_NEQ; ++i) W[i][j] = col[i];
-    }
+    g6_left_null(&f, N);
     for (e = 0; e < 6; ++e)
         for (k = 0; k < 27; ++k) {
             double s = 0.0;
-            for (i = 0; i < G6_NEQ; ++i) s += W[8 + e][i] * P[i][k];
+            for (i = 0; i < G6_NEQ; ++i) s += N[e][i] * P[i][k];
             t6[e][k] = s;
         }
     if (hidden == 0) { /* the (1 + x^2)^4 deflated: a 16 x 16 eigenproblem */
         double t6r[6][27], xr[16], phi = 0.0;
-        const int nr = g6_deflated_roots(t6, W, &phi, xr);
+        const int nr = g6_deflated_roots(t6, N, &phi, xr);
         if (nr >= 0) {
             g6_rotate_hidden(t6, phi, t6r);
             g6_quadratic(t6r, 0, A, B, C);
