@@ -44,7 +44,7 @@ FREE = {"iiwa14": "a3"}
 ARM_ANGLE_ROBOTS = ("iiwa14",)  # also benched with --redundancy arm-angle
 ARM_ANGLE = 0.3  # rad: the arm angle every such pose is solved at
 # also benched with --stages derived (the robots it covers; the calibrated KR 6 only with --stages derived)
-DERIVED_ROBOTS = ("irb120", "kr6", "lrmate", "tx2_60", "ur5e", "kr6_calibrated", "iiwa14", "youbot")
+DERIVED_ROBOTS = ("irb120", "kr6", "lrmate", "tx2_60", "ur5e", "kr6_calibrated", "iiwa14", "youbot", "scara")
 C_FLAGS = ["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 
 
@@ -102,6 +102,8 @@ def peer_eaik(m, joints, poses, free_value):
         from eaik.IK_HP import HPRobot
     except Exception as exc:  # noqa: BLE001 - not installed: skipped with a note
         return {"note": f"skipped: {exc!r}"}
+    if "P" in m.JOINT_KINDS:
+        return {"note": "revolute joints only"}
     H, P, R = _hp(m, free_value)
     try:
         bot = HPRobot(H, P)

@@ -23,17 +23,18 @@ from seeding import case_rng
 
 from derive import own_robot
 from derive.families.serial.from_table import ANGLE_SNAP, ROUNDING_DEVIATION
-from derive.kinematics.dh_table import PARALLEL_TOL, NoDHTable, standard_dh
+from derive.kinematics.dh_table import PARALLEL_TOL, standard_dh
 from derive.kinematics.poe import Chain
 from derive.model import NotDerivable
 
 ROBOTS = Path(__file__).parent / "robots"
 MERGE_CANDIDATE = 0x10000  # the runtime's internal flag: a pair within its stage's noise of a double root
 ROOT = Path(__file__).resolve().parent.parent
-# the fixtures whose decomposition the derived stages cover (the youBot: 5 joints, two intersecting axes at the end)
-DERIVED = ("irb120", "kr6", "lrmate", "tx2_60", "ur5e", "youbot")
+# the fixtures whose decomposition the derived stages cover (the youBot: 5 joints, two intersecting axes at the end;
+# the SCARA: a slide)
+DERIVED = ("irb120", "kr6", "lrmate", "scara", "tx2_60", "ur5e", "youbot")
 CASES = [(r, "urdf") for r in DERIVED] + [("irb120", "dh"), ("kr6", "poe"), ("ur5e", "poe"), ("youbot", "dh"),
-                                          ("youbot", "poe")]
+                                          ("youbot", "poe"), ("scara", "dh"), ("scara", "poe")]
 _CACHE: dict = {}
 
 
@@ -78,20 +79,49 @@ def test_the_dh_table_is_the_description_at_every_joint(path):
         assert np.max(np.abs(chain.base @ table.fk(q) - reference(q))) <= 20 * 1e-15 * size * chain.n / s_min
 
 
-def test_a_prismatic_joint_has_no_table_and_the_robot_is_refused_with_the_reason(tmp_path):
-    """A slide's axis has no position to put a DH frame on: NoDHTable, and `--stages derived` names it."""
-    c = Chain("rp", ("a", "b"), ("R", "P"), np.array([[0, 0, 1.0], [1.0, 0, 0]]), np.zeros((2, 3)), np.eye(4))
-    with pytest.raises(NoDHTable, match="prismatic"):
-        standard_dh(c)
-    spec = tmp_path / "rpp.toml"
-    spec.write_text('family = "chain"\nname = "rpp"\ntitle = "R P P"\nsource = "a test"\nconvention = "poe"\n'
-                    'stages = "derived"\n'
-                    '[[joint]]\nname = "a"\ntype = "revolute"\naxis = [0, 0, 1]\npoint = [0, 0, 0]\n'
-                    '[[joint]]\nname = "b"\ntype = "prismatic"\naxis = [0, 0, 1]\npoint = [0, 0, 0]\n'
-                    '[[joint]]\nname = "c"\ntype = "prismatic"\naxis = [1, 0, 0]\npoint = [0, 0, 0]\n'
-                    "[home]\nposition = [0.2, 0, 0]\n")
-    with pytest.raises(NotDerivable, match="prismatic"):
-        own_robot.load(spec)
+def test_a_slide_is_placed_through_the_origin_before_it_and_the_table_is_the_chain():
+    """A slide moves along a direction, not a line: its DH frame is put on the previous frame's origin (the base
+    origin for the first joint), so the table adds no length the robot does not have (a = d = 0 in the row before a
+    slide not parallel to its axis; q adds to d). A gantry's three slides and a wrist, an R P P arm, slides first,
+    last and between revolute axes: the table's product equals the chain's at random joints (prismatic values in
+    metres), to rounding."""
+    z, x, y = [0, 0, 1.0], [1.0, 0, 0], [0, 1.0, 0]
+    chains = [
+        Chain("gantry", tuple("xyzabc"), ("P", "P", "P", "R", "R", "R"), np.array([x, y, [0, 0, -1.0], z, y, z]),
+              np.array([[0.3, 0.1, 0], [0, 0, 0.2], [0, 0, 0], [0.1, 0.2, 0.8], [0.1, 0.2, 0.7], [0.1, 0.2, 0.7]]),
+              np.eye(4)),
+        Chain("rpp", tuple("abc"), ("R", "P", "P"), np.array([z, z, x]), np.array([[0, 0, 0], [0.4, 0, 0], [0, 0, .5]]),
+              np.eye(4)),
+        Chain("rprp", tuple("abcd"), ("R", "P", "R", "P"), np.array([z, x, y, z]),
+              np.array([[0.1, 0, 0], [0, 0.3, 0.2], [0.2, 0.1, 0.5], [1.0, 1.0, 1.0]]), np.eye(4)),
+    ]
+    rng = case_rng(2306)
+    for c in chains:
+        table = standard_dh(c)
+        assert table.kinds == c.kinds
+        for k in range(1, c.n):  # before a slide not parallel to the axis before it: no length
+            if c.kinds[k] == "P" and np.linalg.norm(np.cross(c.axes[k - 1], c.axes[k])) > 0.5:
+                assert table.rows[k - 1][0] == 0.0 and table.rows[k - 1][2] == 0.0
+        for _ in range(20):
+            q = np.where(np.array(c.kinds) == "R", rng.uniform(-math.pi, math.pi, c.n), rng.uniform(-1, 1, c.n))
+            assert np.max(np.abs(table.fk(q) - c.fk(q))) <= 1e-14
+
+
+def test_a_joint_named_as_the_kernels_own_names_is_renamed_in_them(tmp_path):
+    """Joints named "c", "s", "t3", "q" or "for" (the kernels' cosine and sine arrays, a CSE temporary, the joints'
+    array, a C keyword) get other identifiers in the emitted code; the module keeps their names, and its C compiles
+    and solves."""
+    spec = tmp_path / "names.toml"
+    spec.write_text('family = "chain"\nname = "names"\ntitle = "R P P"\nsource = "a test"\nconvention = "poe"\n'
+                    + "".join(f'[[joint]]\nname = "{n}"\ntype = "{t}"\naxis = {a}\npoint = [0, 0, 0]\n'
+                              for n, t, a in (("c", "revolute", "[0, 0, 1]"), ("s", "prismatic", "[0, 0, 1]"),
+                                              ("t3", "prismatic", "[1, 0, 0]")))
+                    + "[home]\nposition = [0.2, 0, 0]\n")
+    own_robot.derive(spec, tmp_path / "out", stages="derived", progress=lambda _: None)
+    m = own_robot.import_solver(tmp_path / "out", "names")
+    assert m.BACKEND == "c" and m.JOINT_NAMES == ("c", "s", "t3")
+    q = np.array([0.4, 0.1, -0.2])
+    assert min(_gap(v, q) for v in m.ik(m.fk_matrix(q))) <= 1e-12
 
 
 # ------------------------------------------------------------------------------------------------ the solvers
@@ -489,6 +519,27 @@ def test_every_singularity_delta_off_gives_back_the_generating_joints(robot):
     assert tested >= 6
 
 
+def test_the_scara_s_elbow_straight_or_folded_delta_off_gives_back_the_generating_joints():
+    """The derived SCARA (a slide between revolute axes) at its only singularities, the elbow straight (joint_2 = 0)
+    or folded (pi), moved off by delta = 1e-3 .. 1e-12 and exactly on them: the generating joints within the
+    conditioning's allowance 1e-6 + 1e-13 / delta (1e-6 on the singularity, where the elbow's two sets meet), C and
+    numpy, the slide's value to the same bound."""
+    m, py, _ = derived("scara")
+    reference = ref.load(_file("scara", "urdf"))
+    rng = case_rng(2322)
+    for _ in range(12):
+        q0 = np.array([rng.uniform(-3, 3), rng.choice([0.0, math.pi]), rng.uniform(0.0, 0.2), rng.uniform(-3, 3)])
+        for delta in (1e-3, 1e-6, 1e-8, 1e-10, 1e-12, 0.0):
+            q = q0.copy()
+            q[1] += delta * rng.choice([-1.0, 1.0])
+            T = reference(q)
+            for mod in (m, py):
+                sol = mod.ik(T)
+                allow = 1e-6 + (1e-13 / delta if delta else 0.0)
+                assert min((_gap(v, q) for v in sol), default=math.inf) <= allow, (delta, q)
+                assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+
+
 def test_at_the_ur_wrist_singularity_the_family_is_returned():
     """At q5 = 0 or pi a UR's axes 4 and 6 are parallel but apart: q6 and the group trade along a self-motion that
     carries the planar pair's target round a circle. The member is the one the pair reaches (three probes of its
@@ -548,6 +599,7 @@ def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, w
 
 
 @pytest.mark.parametrize("robot,fmt,derived", [("kr6", "urdf", True), ("ur5e", "urdf", True), ("youbot", "urdf", True),
+                                               ("scara", "urdf", True),
                                                ("iiwa14", "urdf", True), ("kr6_calibrated", "urdf", False),
                                                ("ur5e_offset", "dh", False)])
 def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_told_which(robot, fmt, derived,

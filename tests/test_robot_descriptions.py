@@ -19,9 +19,10 @@ from reference import chain
 from seeding import case_rng
 
 ROBOTS_DIR = Path(__file__).resolve().parent / "robots"
-ROBOTS = ("kr6", "irb120", "tx2_60", "ur5e", "lrmate", "youbot", "iiwa14", "kr6_calibrated")
+ROBOTS = ("kr6", "irb120", "tx2_60", "ur5e", "lrmate", "youbot", "iiwa14", "kr6_calibrated", "scara")
 NO_DH = {"kr6_calibrated"}
-JOINTS = {"youbot": 5, "iiwa14": 7}   # 6 otherwise
+JOINTS = {"youbot": 5, "iiwa14": 7, "scara": 4}   # 6 otherwise
+TYPES = {"scara": ("revolute", "revolute", "prismatic", "revolute")}  # all revolute otherwise
 # flange position at the zero pose, base_link frame: from the data-sheet lengths, independent of the files
 HOME_FLANGE = {
     "kr6": (0.025 + 0.455 + 0.42 + 0.08, 0.0, 0.4 + 0.035),
@@ -31,6 +32,7 @@ HOME_FLANGE = {
     "lrmate": (0.05 + 0.335 + 0.08, 0.0, 0.33 + 0.33 + 0.035),
     "youbot": (0.143 + 0.033, 0.0, 0.046 + 0.147 + 0.155 + 0.135 + 0.2175),
     "iiwa14": (0.0, 0.0, 0.36 + 0.42 + 0.4 + 0.126),
+    "scara": (0.325 + 0.275, 0.0, 0.2 - 0.17),
 }
 # real IK solution counts by geometry (chain.offset_wrist_solution_count / chain.ur_solution_count)
 SOLUTION_COUNT = {
@@ -38,6 +40,10 @@ SOLUTION_COUNT = {
     "ur5e": lambda T: chain.ur_solution_count(T, d1=0.1625, a2=-0.425, a3=-0.3922, d4=0.1333, d5=0.0997,
                                               d6=0.0996),
 }
+
+
+def _types(robot: str) -> tuple[str, ...]:
+    return TYPES.get(robot, ("revolute",) * JOINTS.get(robot, 6))
 
 
 def robot_files(robot: str) -> dict[str, Path]:
@@ -82,8 +88,8 @@ def test_toml_metadata(robot):
         for key in ("title", "source"):
             assert isinstance(data[key], str) and data[key].strip() and "\n" not in data[key], (path, key)
         assert data["convention"] in (("standard", "modified") if kind == "dh" else ("poe",))
-        for joint in data["joint"]:
-            assert joint["type"] == "revolute"
+        for joint, jtype in zip(data["joint"], _types(robot), strict=True):
+            assert joint["type"] == jtype
             assert chain.number(joint["lower"]) < chain.number(joint["upper"]), (path, joint["name"])
             if kind == "poe":
                 assert abs(np.linalg.norm([chain.number(v) for v in joint["axis"]]) - 1.0) < 1e-15
@@ -93,7 +99,8 @@ def test_toml_metadata(robot):
 def test_both_dh_conventions_are_used():
     conventions = {r: _toml(robot_files(r)["dh"])["convention"] for r in ROBOTS if r not in NO_DH}
     assert sorted(r for r, c in conventions.items() if c == "modified") == ["kr6", "lrmate", "tx2_60"]
-    assert sorted(r for r, c in conventions.items() if c == "standard") == ["iiwa14", "irb120", "ur5e", "youbot"]
+    assert sorted(r for r, c in conventions.items() if c == "standard") == ["iiwa14", "irb120", "scara", "ur5e",
+                                                                             "youbot"]
 
 
 @pytest.mark.parametrize("robot", ROBOTS)
@@ -116,9 +123,9 @@ def test_urdf_structure(robot):
     kinds = [j.get("type") for j in path]
     assert kinds[-1] == "fixed"
     assert kinds.count("fixed") >= 2
-    assert kinds.count("revolute") == JOINTS.get(robot, 6)
+    assert [k for k in kinds if k != "fixed"] == list(_types(robot))
     for joint in path:
-        if joint.get("type") == "revolute":
+        if joint.get("type") in ("revolute", "prismatic"):
             limit = joint.find("limit")
             assert float(limit.get("lower")) < float(limit.get("upper")), joint.get("name")
 
@@ -130,7 +137,7 @@ def test_joint_names_and_limits_agree(robot):
     assert urdf.n == JOINTS.get(robot, 6)
     for kind, c in chains.items():
         assert c.names == urdf.names, kind
-        assert c.types == ("revolute",) * urdf.n, kind
+        assert c.types == _types(robot), kind
         np.testing.assert_array_equal(c.lower, urdf.lower, err_msg=kind)
         np.testing.assert_array_equal(c.upper, urdf.upper, err_msg=kind)
 

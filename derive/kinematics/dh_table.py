@@ -7,9 +7,10 @@ constant `tool`. Frame 0 sits in the chain's base frame at `frame0`: the identit
 z axis through the base origin (the usual URDF and DH robot), else a constant the caller carries as the base.
 
 Where the common normal is not unique (parallel axes) it is taken through the previous frame's origin (d = 0);
-where two axes coincide the frame is the previous one. Revolute joints only: a slide's axis has no position, so
-its frame's origin is a choice this reader does not make yet (the caller keeps such chains on the plan
-interpreter)."""
+where two axes coincide the frame is the previous one. A slide (prismatic joint k: A_k = Rz(theta_k)
+Tz(d_k + q_k) Tx(a_k) Rx(alpha_k)) moves along a direction, not a line: its axis is placed through the previous
+frame's origin (the base origin for the first joint), so that its common normal with the axis before has no length
+(a = 0, d = 0) and the table no parameter the robot does not have."""
 
 from __future__ import annotations
 
@@ -27,7 +28,7 @@ PARALLEL_TOL = 1e-12
 
 
 class NoDHTable(ValueError):
-    """The chain has no standard DH table this reader builds (a prismatic joint)."""
+    """The chain has no standard DH table this reader builds."""
 
 
 @dataclass(frozen=True)
@@ -35,12 +36,14 @@ class DHTable:
     rows: tuple[tuple[float, float, float, float], ...]  # (a, alpha, d, theta offset) per joint
     frame0: np.ndarray  # 4x4: frame 0 in the chain's base frame
     tool: np.ndarray  # 4x4: the chain's end frame (its home and tool) in frame n at every q
+    kinds: tuple[str, ...] = ()  # "R" (q adds to theta) or "P" (q adds to d) per row; () for all revolute
 
     def fk(self, q) -> np.ndarray:
         """The end frame in the chain's base frame (before the chain's own base transform)."""
         t = self.frame0.copy()
-        for (a, alpha, d, theta), v in zip(self.rows, q, strict=True):
-            t = t @ link(a, alpha, d, theta + v)
+        kinds = self.kinds or ("R",) * len(self.rows)
+        for (a, alpha, d, theta), v, kind in zip(self.rows, q, kinds, strict=True):
+            t = t @ (link(a, alpha, d + v, theta) if kind == "P" else link(a, alpha, d, theta + v))
         return t @ self.tool
 
 
@@ -63,12 +66,12 @@ def _angle(u: np.ndarray, v: np.ndarray, about: np.ndarray) -> float:
 def standard_dh(chain: Chain) -> DHTable:
     """The chain's standard DH table (module docstring): frame0 @ A_0(q_0) ... A_{n-1}(q_{n-1}) @ tool equals
     chain.fk(q) @ chain.tool at every q (checked by the callers' derivation on sampled joints)."""
-    if any(k != "R" for k in chain.kinds):
-        raise NoDHTable("a prismatic joint (its axis has no position to place a DH frame on)")
     size = max(1.0, float(np.max(np.abs(chain.points))), float(np.max(np.abs(chain.home[:3, 3]))))
     axes = [_unit(np.asarray(h, float)) for h in chain.axes]
+    slide = [k == "P" for k in chain.kinds]
     z = axes[0]
-    o = chain.points[0] - np.dot(chain.points[0], z) * z  # the base origin's foot on axis 0
+    # the base origin's foot on axis 0 (a slide's axis placed through the base origin)
+    o = np.zeros(3) if slide[0] else chain.points[0] - np.dot(chain.points[0], z) * z
     if np.linalg.norm(np.cross(z, [0.0, 0.0, 1.0])) <= PARALLEL_TOL:
         x = np.array([1.0, 0.0, 0.0])  # axis 0 along +-z: x as the base's (frame 0 = the base when on it)
     else:
@@ -78,7 +81,7 @@ def standard_dh(chain: Chain) -> DHTable:
     frame0[:3, 3] = o
     rows = []
     for k in range(chain.n - 1):
-        zn, rn = axes[k + 1], chain.points[k + 1]
+        zn, rn = axes[k + 1], o if slide[k + 1] else chain.points[k + 1]  # a slide's axis through this origin
         c = np.cross(z, zn)
         w = rn - o
         if np.linalg.norm(c) <= PARALLEL_TOL:  # parallel: the normal through o (d = 0)
@@ -101,7 +104,7 @@ def standard_dh(chain: Chain) -> DHTable:
     last[:3, :3] = np.column_stack([x, np.cross(z, x), z])
     last[:3, 3] = o
     tool = np.linalg.inv(last) @ chain.home @ chain.tool
-    return DHTable(tuple(rows), frame0, tool)
+    return DHTable(tuple(rows), frame0, tool, tuple(chain.kinds))
 
 
 @dataclass(frozen=True)

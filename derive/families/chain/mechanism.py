@@ -266,8 +266,8 @@ class ChainMechanism(MechanismDefaults):
 
     def robot_table(self):
         """The robot as a DH table for `--stages derived` (kinematics/dh_table.RobotTable) on its ideal axes, with
-        its held joint, the held values the IK refuses and its true chain; the arm angle, more than six solved joints
-        or a slide refused with the reason (the deviation of the true axes from the ideal ones goes with it: the
+        its held joint, the held values the IK refuses and its true chain; the arm angle or more than six solved
+        joints refused with the reason (the deviation of the true axes from the ideal ones goes with it: the
         deriving family decides what it takes)."""
         desc = self.desc
         if desc.redundancy != "joint":

@@ -3,15 +3,18 @@ standard DH table, kinematics/dh_table.py), derived as this family's straight-li
 PUMA-560's are (no plan interpreted at run time). The table's lengths stay design parameters (defaults: the
 robot's), its angles are made exact, and a derivation step proves the table is the user's robot.
 
-The robot's family refuses what the table cannot hold (the arm angle, more than six solved joints, a slide); here
+The robot's family refuses what the table cannot hold (the arm angle, more than six solved joints); here
 the robot must not be calibrated, the angles must be multiples of pi / 36 and the planner's decomposition must fit
 the stage kinds planned.py emits, else the robot is refused with the reason. A 7-joint arm's held joint stays a
 joint of the table, its value the design (the lengths folded, so the design is the interpreted module's); its stage
-reads it, and the others are planned with it held."""
+reads it, and the others are planned with it held. A slide's row adds q to d (its DH frame on the previous
+frame's origin: kinematics/dh_table.py)."""
 
 from __future__ import annotations
 
+import keyword
 import math
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -72,10 +75,20 @@ def _constant(m: np.ndarray) -> sp.Matrix | None:
     return out
 
 
+# names the emitted kernels use for their own (serial_core.stages, lower.py) or the targets reserve: a joint named
+# "c", "t3" or "for" would shadow the cosines' array, a CSE temporary or a keyword
+_RESERVED = frozenset({"q", "c", "s", "dp", "pose", "out", "math", "np", "t", *map(str, POSE_SYMBOLS),
+                       *keyword.kwlist, "auto", "break", "case", "char", "const", "continue", "default", "do", "double",
+                       "enum", "extern", "float", "goto", "inline", "int", "long", "register", "restrict", "short",
+                       "signed", "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void",
+                       "volatile", "main", "NAN", "INFINITY"})
+_GENERATED = re.compile(r"[cst]\d+|j\d\d")  # cos / sin of joint i, CSE temporaries, Jacobian entries
+
+
 def _identifier(name: str, taken: set[str]) -> str:
     s = "".join(c if c.isalnum() else "_" for c in name).strip("_") or "q"
     s = s if s[0].isalpha() else "q_" + s
-    while s in taken:
+    while s in taken or s in _RESERVED or _GENERATED.fullmatch(s):
         s += "_"
     taken.add(s)
     return s
@@ -97,6 +110,9 @@ def from_table(robot: RobotTable, auto: bool = False) -> SerialMechanism:
     # polish on the true chain takes the difference)
     snap = max(ANGLE_SNAP, robot.api.geometry_tol) if calibrated else ANGLE_SNAP
     n = len(robot.joint_names)
+    kinds = table.kinds or ("R",) * n
+    if robot.held >= 0 and kinds[robot.held] == "P":
+        raise NotDerivable.because(name, "a held slide (the derived stages hold a revolute joint)")
     taken: set[str] = set()
     joints = [sp.Symbol(_identifier(j, taken), real=True) for j in robot.joint_names]
     design, defaults, rows = [], [], []
@@ -121,14 +137,17 @@ def from_table(robot: RobotTable, auto: bool = False) -> SerialMechanism:
             design.append(sym)
             defaults.append(float(v))
             lengths.append(sym)
-        rows.append(DHRow(lengths[0], angles[0], lengths[1], q + angles[1], q, "R"))
+        if kinds[k - 1] == "P":  # a slide: q adds to d (its constant part the table's d, a length as any other)
+            rows.append(DHRow(lengths[0], angles[0], lengths[1] + q, angles[1], q, "P"))
+        else:
+            rows.append(DHRow(lengths[0], angles[0], lengths[1], q + angles[1], q, "R"))
     held = None
     if robot.held >= 0:  # the held joint's value: the design (the lengths folded), 0 by default
         held = (robot.held, sp.Symbol(_identifier(f"held_{robot.joint_names[robot.held]}", taken), real=True))
         design.append(held[1])
         defaults.append(0.0)
     base, tool = _constant(robot.base), _constant(table.tool)
-    spec = SerialSpec(name, robot.title, robot.source, rows, tuple(joints), ("R",) * n, tuple(design),
+    spec = SerialSpec(name, robot.title, robot.source, rows, tuple(joints), tuple(kinds), tuple(design),
                       tuple(defaults), [], notes=f"standard DH table read from the description ({robot.rule})",
                       tool=tool, base=base, held=held)
     try:
@@ -204,7 +223,8 @@ class _DerivedRobot(SerialMechanism):
         lit = own_api_literals(api)
         n = len(api.lower)
         held = self.spec.held
-        extra = {"calibrated": self.true_chain is not None}
+        # the description's joint names (the kernels' identifiers may differ: "c" or "shoulder-lift" are renamed there)
+        extra = {"calibrated": self.true_chain is not None, "joint_names": list(self.joint_names)}
         if held:  # the held joint's value: the design, named as the joint (as the interpreted module's)
             extra.update(held=held[0], n_lengths=0, design_names=[self.joint_names[held[0]]])
             checks = self._held_checks()
