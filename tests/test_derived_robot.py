@@ -356,6 +356,51 @@ def test_the_held_joint_s_command_line_is_the_interpreted_module_s():
     assert np.max(np.abs(a - b)) <= 1e-12 and np.max(np.abs(a.reshape(3, 4) - T[:3])) <= 1e-12
 
 
+def _on_a_rail(tmp_path) -> Path:
+    """The KR 6 (its POE fixture) on a linear track along y: a slide, then the six arm joints."""
+    import tomllib
+
+    kr6 = tomllib.loads(_file("kr6", "poe").read_text())
+    rows = ['[[joint]]\nname = "rail"\ntype = "prismatic"\naxis = [0.0, 1.0, 0.0]\npoint = [0.0, 0.0, 0.0]\n'
+            "lower = -3.0\nupper = 3.0\n"]
+    for j in kr6["joint"]:
+        rows.append("[[joint]]\n" + "".join(f"{k} = {v!r}\n" if not isinstance(v, str) else f'{k} = "{v}"\n'
+                                            for k, v in j.items()))
+    home = "".join(f"{k} = {v!r}\n" for k, v in kr6["home"].items())
+    path = tmp_path / "kr6_rail.toml"
+    path.write_text('family = "chain"\nname = "kr6_rail"\ntitle = "KR 6 on a linear track"\nsource = "a test"\n'
+                    'convention = "poe"\n' + "".join(rows) + "[home]\n" + home)
+    return path
+
+
+def test_a_held_slide_is_the_design_and_the_arm_solves_around_it(tmp_path):
+    """A 6R arm on a linear track (a slide, then the KR 6) with the track held (`--free rail`): derived, the design
+    is the track's position alone (metres, never wrapped: 4 m is 4 m); for random joints with the track anywhere in
+    +-4 m, the generating joints among the sets (1e-9), every set on the reference's pose with the track at its
+    value, as many sets as the interpreted module, C equal to numpy (1e-12 plus the sets' residuals over sigma_min)."""
+    spec = _on_a_rail(tmp_path)
+    mods = []
+    for stages in ("derived", "interpreted"):
+        own_robot.derive(spec, tmp_path / stages, stages=stages, free="rail", progress=lambda _: None)
+        mods.append(own_robot.import_solver(tmp_path / stages, "kr6_rail"))
+    m, interp = mods
+    py = own_robot.import_solver(tmp_path / "derived", "kr6_rail", backend="numpy")
+    assert hasattr(m, "ROOT_GAP_TOL") and m.DESIGN_NAMES == interp.DESIGN_NAMES == ("rail",) and m._FREE == 0
+    reference = ref.load(spec)
+    rng = case_rng(2323)
+    for _ in range(40):
+        q = np.concatenate([[rng.uniform(-4.0, 4.0)], rng.uniform(-math.pi, math.pi, 6)])
+        T = reference(q)
+        sol, sol_py, sol_i = m.ik(T, [q[0]]), py.ik(T, {"rail": q[0]}), interp.ik(T, [q[0]])
+        assert sol.status == m.STATUS_OK and sol.count == sol_py.count == sol_i.count
+        assert min(max(abs(v[0] - q[0]), _gap(v[1:], q[1:])) for v in sol) <= 1e-9
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 and v[0] == q[0] for v in sol)
+        for k in np.flatnonzero(sol.valid):
+            sigma = np.linalg.svd(m.jacobian(sol.values[k])[:, 1:], compute_uv=False)[-1]
+            bound = 1e-12 + 4 * (sol.aux[k, 0] + sol_py.aux[k, 0]) / sigma
+            assert np.max(np.abs(sol.values[k] - sol_py.values[k])) <= bound
+
+
 INTERPRETER_ONLY = {"CALIBRATED", "FAMILY_ANGLES", "FAMILY_TOL", "GEOMETRY_DEVIATION", "GEOMETRY_TOL", "ON_AXIS_TOL",
                     "POLISH_STEPS", "POLISH_TOL", "SCALE", "STAGE_NOISE"}  # the plan interpreter's own tolerances
 

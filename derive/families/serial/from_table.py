@@ -111,8 +111,6 @@ def from_table(robot: RobotTable, auto: bool = False) -> SerialMechanism:
     snap = max(ANGLE_SNAP, robot.api.geometry_tol) if calibrated else ANGLE_SNAP
     n = len(robot.joint_names)
     kinds = table.kinds or ("R",) * n
-    if robot.held >= 0 and kinds[robot.held] == "P":
-        raise NotDerivable.because(name, "a held slide (the derived stages hold a revolute joint)")
     taken: set[str] = set()
     joints = [sp.Symbol(_identifier(j, taken), real=True) for j in robot.joint_names]
     design, defaults, rows = [], [], []
