@@ -315,17 +315,21 @@ def g6_candidates(links, hidden=0):
     qpinv = (vt.T / sq) @ u[:, :8].T
     roots, phi, a, b, c = _g6_roots(t6, n, hidden)
     others = [k for k in range(3) if k != hidden]
-    out = []
-    for x in roots:
-        if x.imag < 0.0 or abs(x.imag) > G6_REAL_TOL * (1.0 + abs(x)):  # a near-real pair once, at its real part
-            continue
-        x = float(x.real)
-        for v in _g6_monomial_vectors(a * x * x + b * x + c):
-            angles = [0.0, 0.0, 0.0]
-            angles[hidden] = phi + 2.0 * math.atan(x)
-            angles[others[0]], angles[others[1]] = _g6_half_angle(v, 0), _g6_half_angle(v, 1)
-            out.append(_g6_complete(angles, links, pc, qpinv))
-    return out
+    xs = np.array([x.real for x in roots  # a near-real pair once, at its real part
+                   if x.imag >= 0.0 and abs(x.imag) <= G6_REAL_TOL * (1.0 + abs(x))])
+    if len(xs) == 0:
+        return []
+    ms = (a * xs[:, None, None] + b) * xs[:, None, None] + c  # M(x) of every real root at once
+    _, svs, vts = np.linalg.svd(ms)
+    angles = []
+    for x, m, sv, vt in zip(xs, ms, svs, vts, strict=True):
+        vs = [vt[-1]] if np.sum(sv <= G6_NULL_TOL * sv[0]) <= 1 else _g6_monomial_vectors(m)
+        for v in vs:
+            row = [0.0, 0.0, 0.0]
+            row[hidden] = phi + 2.0 * math.atan(x)
+            row[others[0]], row[others[1]] = _g6_half_angle(v, 0), _g6_half_angle(v, 1)
+            angles.append(row)
+    return _g6_complete_many(np.array(angles), links, pc, qpinv) if angles else []
 
 
 def _g6_monomial_vectors(m):
@@ -346,19 +350,26 @@ def _g6_monomial_vectors(m):
             if abs(vals[i].imag) <= G6_SHIFT_REAL_TOL * (1.0 + abs(vals[i]))]
 
 
-def _g6_complete(angles, links, P, Q):
-    """theta1, theta2 (least-squares Y of the 14 equations) and theta6 (what the loop leaves) for theta3..5 (P with
-    its constant term, Q the pseudo-inverse of the equations' Q)."""
+def _g6_complete_many(angles, links, P, Q):
+    """_g6_complete for every row of angles (k x 3: theta3..5) at once: the k x 6 loop angles."""
     k1, k2, k3, k4, k5, k6 = links
-    t3, t4, t5 = angles
-    f3, f4, f5 = (np.array([1.0, math.cos(t), math.sin(t)]) for t in angles)
-    lhs = np.einsum("eabc,a,b,c->e", P, f3, f4, f5)
-    y = Q @ lhs  # Q: the pseudo-inverse (least squares)
-    t1, t2 = math.atan2(y[4], y[5]), math.atan2(y[6], y[7])
+    cs = np.stack([np.ones_like(angles), np.cos(angles), np.sin(angles)], axis=2)  # (k, 3 angles, (1, c, s))
+    outer = (cs[:, 0, :, None, None] * cs[:, 1, None, :, None] * cs[:, 2, None, None, :]).reshape(-1, 27)
+    y = outer @ (P.reshape(14, 27).T @ Q.T)  # Q: the pseudo-inverse (least squares)
+    t1, t2 = np.arctan2(y[:, 4], y[:, 5]), np.arctan2(y[:, 6], y[:, 7])
     # Rz(t6) = (Rz(t1) K1 ... Rz(t5) K5)^-1 K6^-1
-    f = g6_rz(t1) @ k1 @ g6_rz(t2) @ k2 @ g6_rz(t3) @ k3 @ g6_rz(t4) @ k4 @ g6_rz(t5) @ k5
-    r6 = g6_inverse(f) @ g6_inverse(k6)
-    return [t1, t2, t3, t4, t5, math.atan2(r6[1, 0], r6[0, 0])]
+    f = _g6_rz_many(t1) @ k1
+    for t, k in ((t2, k2), (angles[:, 0], k3), (angles[:, 1], k4), (angles[:, 2], k5)):
+        f = (f @ _g6_rz_many(t)) @ k
+    r6 = np.swapaxes(f[:, :3, :3], 1, 2) @ g6_inverse(k6)[:3, :3]  # rotation of f^-1 K6^-1
+    return np.column_stack([t1, t2, angles, np.arctan2(r6[:, 1, 0], r6[:, 0, 0])]).tolist()
+
+
+def _g6_rz_many(t):
+    out = np.zeros((len(t), 4, 4))
+    c, s = np.cos(t), np.sin(t)
+    out[:, 0, 0], out[:, 0, 1], out[:, 1, 0], out[:, 1, 1], out[:, 2, 2], out[:, 3, 3] = c, -s, s, c, 1.0, 1.0
+    return out
 
 
 def g6_z_frames(axes, points) -> list[np.ndarray]:
