@@ -60,7 +60,7 @@ def py_stage_body(st: dict) -> list[str]:
     if st["kind"] == "rotation2d":
         if st.get("probe"):  # a family's member is the one its next stage reaches (serial_stages._family_by_reach)
             return [f"return _rotation2d({out}, {j}, q, c, s, prev, amp, _k_stage{st['probe']}, pose, dp)"]
-        return [f"return _rotation2d({out}, {j}, q, c, s, prev, amp)"]
+        return [f"return _rotation2d({out}, {j}, q, c, s, prev, amp, None, pose, dp)"]
     if st["kind"] == "value":
         return [f"return _revolute_value({out}, {j}, q, c, s)" if st["joint_kind"] == "R" else
                 f"return _prismatic_value({out}, {j}, q)"]

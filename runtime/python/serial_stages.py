@@ -122,12 +122,16 @@ def _root_gap(out, r, u, amp_before, gap_tol):
 
 
 def _rotation2d(out, j, q, c, s, prev, amp, probe=None, pose=None, dp=None):
-    """Joint j as the angle from (u0, v0) to (u, v) (out = (u, v, u0, v0)); a family where either vanishes (its member
-    by _family_by_reach when the stage has a `probe`, the next stage's kernel, read at pose and dp). amp[j]: the angle
-    carries the vectors' rounding (a few eps of the metre-sized terms) over the shorter one's length."""
+    """Joint j as the angle from (u0, v0) to (u, v) (out = (u, v, u0, v0)); a family where either vanishes at the
+    rounding of the design's lengths, ON_AXIS_TOL of its size (its member by _family_by_reach when the stage has a
+    `probe`, the next stage's kernel, read at pose and dp). Above that the pose fixes the angle to eps over the
+    shorter length: a SCARA with equal links folded 1e-12 rad from straight puts its flange 3e-13 m off axis 1, which
+    fixes joint 1 to 1e-3 rad (a 1e-12 m band made it a family, its member pi off). amp[j]: the angle carries the
+    vectors' rounding (a few eps of the metre-sized terms) over the shorter one's length."""
     u, v, u0, v0 = out
     nu, n0 = math.hypot(u, v), math.hypot(u0, v0)
-    if n0 <= DEGENERATE_EPS or nu <= DEGENERATE_EPS:
+    tol = ON_AXIS_TOL * (1.0 if dp is None else _design_size(dp))
+    if n0 <= tol or nu <= tol:
         if probe is None:
             _family_member(j, q, c, s, prev)
         else:

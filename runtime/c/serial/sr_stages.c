@@ -153,7 +153,9 @@ static int sr_rotation2d(const double *out, int j, double *q, double *c, double 
                          double *amp, unsigned *f, sr_stage_kernel probe, const double *pose, const double *dp)
 {
     const double nu = sqrt(out[0] * out[0] + out[1] * out[1]), n0 = sqrt(out[2] * out[2] + out[3] * out[3]);
-    if (n0 <= SR_DEGENERATE_EPS || nu <= SR_DEGENERATE_EPS) {
+    /* a family at the rounding of the design's lengths (Python's _rotation2d: above it the pose fixes the angle) */
+    const double tol = SR_ON_AXIS_TOL * sr_design_size(dp);
+    if (n0 <= tol || nu <= tol) {
 #if SR_HAS_FAMILY_PROBE
         if (probe)
             sr_family_by_reach(j, q, c, s, prev, probe, pose, dp);
