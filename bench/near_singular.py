@@ -7,8 +7,10 @@ For every test robot (tests/robots: the URDFs and the offset-wrist UR5e's DH fil
 held at 0 as in bench/own_robots.py), `wristkin derive` writes its solvers, then:
 
 * singular configurations are found from the Jacobian alone (tests/reference/singular.py): for each joint j and
-  two random joint sets, det J (the 6 x 6 Jacobian of the held chain) is scanned over q_j on a 720-point grid and
-  every sign change bisected to the last bit: q_j* is a singular configuration (wrist, elbow or shoulder);
+  two random joint sets, det J (the 6 x 6 Jacobian of the held chain; for fewer joints, J projected on the image
+  it spans at a random configuration, each zero confirmed on J's singular values) is scanned over q_j on a
+  720-point grid and every sign change bisected to the last bit: q_j* is a singular configuration (wrist, elbow
+  or shoulder);
 * each is moved off by delta = +-1e-12 ... 1e-3 rad in q_j and its FK pose solved, in C (a C loop timing every
   call on its own, best of 3) and in numpy;
 * "generating joints returned": some valid set lies within the conditioning allowance of the joints that
@@ -41,6 +43,7 @@ from reference.singular import singular_configurations as reference_singular  # 
 ROBOTS = ROOT / "tests" / "robots"
 FREE = {"iiwa14": "a3"}
 DELTAS = (1e-12, 1e-10, 1e-8, 1e-6, 1e-5, 1e-4, 1e-3)
+SINGULAR_REL = 1e-10  # a projected det's zero is the chain's singularity when J's sigma_min / sigma_max is this small
 VERBOSE = bool(os.environ.get("NEAR_SINGULAR_VERBOSE"))
 C_FLAGS = ["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic", "-D_POSIX_C_SOURCE=199309L"]
 
@@ -112,10 +115,24 @@ def held_jacobian(m, q):
 
 
 def singular_configurations(m, rng):
-    """(joint index, q*) with det J(q*) = 0 to the last bit (tests/reference/singular.py), the free joint held."""
+    """(joint index, q*) with det J(q*) = 0 to the last bit (tests/reference/singular.py), the free joint held. A
+    chain of n < 6 solved joints (the youBot's 5, the SCARA's 4) has a 6 x n J: its det is taken of B^T J, B the n
+    left singular vectors of J at a random configuration, and a sign change kept only where J itself is singular
+    there (sigma_min / sigma_max <= SINGULAR_REL: the image turning away from B is no singularity)."""
     free = {_free(m): 0.0} if _free(m) >= 0 else {}
     joints = [j for j in range(m.N_JOINTS) if j != _free(m)]
-    return reference_singular(lambda q: held_jacobian(m, q), m.N_JOINTS, rng, joints, fixed=free)
+    n = m.N_JOINTS - (_free(m) >= 0)
+    if n == 6:
+        return reference_singular(lambda q: held_jacobian(m, q), m.N_JOINTS, rng, joints, fixed=free)
+    q0 = rng.uniform(-math.pi, math.pi, m.N_JOINTS)
+    b = np.linalg.svd(held_jacobian(m, q0))[0][:, :n]
+    found = reference_singular(lambda q: b.T @ held_jacobian(m, q), m.N_JOINTS, rng, joints, fixed=free)
+    out = []
+    for j, q in found:
+        sv = np.linalg.svd(held_jacobian(m, q), compute_uv=False)
+        if sv[-1] <= SINGULAR_REL * sv[0]:
+            out.append((j, q))
+    return out
 
 
 def sweep_joints(m, rng):
@@ -184,8 +201,6 @@ def bench_robot(spec: Path, derived: bool = False) -> dict:
     m = own_robot.import_solver(out, spec.stem)
     name = m.NAME + (" (derived)" if derived else "")
     rng = np.random.default_rng(20261126)
-    if m.N_JOINTS - (_free(m) >= 0) != 6:
-        return {"robot": name, "skipped": "not six solved joints (det J needs a square Jacobian)"}
     rows = sweep_joints(m, rng)
     design = _design(m)
     random_q = rng.uniform(-math.pi, math.pi, (200, m.N_JOINTS))

@@ -401,6 +401,68 @@ def test_a_held_slide_is_the_design_and_the_arm_solves_around_it(tmp_path):
             assert np.max(np.abs(sol.values[k] - sol_py.values[k])) <= bound
 
 
+STANFORD = """family = "chain"
+name = "stanford"
+title = "Stanford arm: RRPRRR"
+source = "Stanford arm, standard DH (Spong and Vidyasagar): d2 = 0.154 m, d3 the slide, d6 = 0.263 m"
+convention = "standard"
+""" + "".join(f'[[joint]]\nname = "{n}"\ntype = "{t}"\na = 0.0\nalpha = "{al}"\nd = {d}\ntheta = "{th}"\n'
+              for n, t, al, d, th in (("t1", "revolute", "-pi/2", 0.412, "0"), ("t2", "revolute", "pi/2", 0.154, "0"),
+                                      ("d3", "prismatic", "0", 0.3, "-pi/2"), ("t4", "revolute", "-pi/2", 0.0, "0"),
+                                      ("t5", "revolute", "pi/2", 0.0, "0"), ("t6", "revolute", "0", 0.263, "0")))
+
+
+def test_a_slide_placed_by_a_distance_is_a_quadratic_stage_with_both_roots(tmp_path):
+    """The Stanford arm (its slide d3 carries the wrist centre along the arm: |x + h d3 - s| = |y - s|, (d3 + B)^2 =
+    D, both roots), derived: its stages, the generating joints among the sets (1e-9), every set on the reference's
+    pose, as many sets as the interpreted module, C equal to numpy within the conditioning; near each singular
+    configuration (det J = 0, the slide's double root among them) delta off, the generating joints within
+    1e-6 + 1e-13 / delta, C and numpy."""
+    spec = tmp_path / "stanford.toml"
+    spec.write_text(STANFORD)
+    mods = []
+    for stages in ("derived", "interpreted"):
+        own_robot.derive(spec, tmp_path / stages, stages=stages, progress=lambda _: None)
+        mods.append(own_robot.import_solver(tmp_path / stages, "stanford"))
+    m, interp = mods
+    py = own_robot.import_solver(tmp_path / "derived", "stanford", backend="numpy")
+    assert hasattr(m, "ROOT_GAP_TOL") and m.JOINT_NAMES == ("t1", "t2", "d3", "t4", "t5", "t6")
+    assert "quadratic" in (tmp_path / "derived" / "c" / "stanford.c").read_text()
+    reference = ref.load(spec)
+    rng = case_rng(2324)
+    revolute = np.array(m.JOINT_KINDS) == "R"
+
+    def gap(v, q):
+        d = np.asarray(v) - q
+        d[revolute] = np.remainder(d[revolute] + np.pi, 2 * np.pi) - np.pi
+        return float(np.max(np.abs(d)))
+    for _ in range(40):
+        q = np.where(revolute, rng.uniform(-math.pi, math.pi, 6), rng.uniform(-0.5, 0.5, 6))
+        T = reference(q)
+        sol, sol_py, sol_i = m.ik(T), py.ik(T), interp.ik(T)
+        assert sol.status == m.STATUS_OK and sol.count == sol_py.count == sol_i.count
+        assert min(gap(v, q) for v in sol) <= 1e-9
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+        for k in np.flatnonzero(sol.valid):
+            sigma = np.linalg.svd(m.jacobian(sol.values[k]), compute_uv=False)[-1]
+            assert gap(sol.values[k], sol_py.values[k]) <= 1e-12 + 4 * (sol.aux[k, 0] + sol_py.aux[k, 0]) / sigma
+    tested = 0
+    for j, qs in singular_configurations(m.jacobian, 6, rng, bases=3, per_base=2):
+        off = qs.copy()
+        off[j] += 1e-2
+        sv = np.linalg.svd(m.jacobian(off), compute_uv=False)
+        if sv[-1] <= 1e-4 * sv[0]:  # a second singularity nearby compounds the conditioning
+            continue
+        tested += 1
+        for delta in (1e-3, 1e-6, 1e-8, 1e-10, 1e-12):
+            q = qs.copy()
+            q[j] += delta * rng.choice([-1.0, 1.0])
+            T = reference(q)
+            for mod in (m, py):
+                assert min((gap(v, q) for v in mod.ik(T)), default=math.inf) <= 1e-6 + 1e-13 / delta, (j, delta)
+    assert tested >= 4
+
+
 INTERPRETER_ONLY = {"CALIBRATED", "FAMILY_ANGLES", "FAMILY_TOL", "GEOMETRY_DEVIATION", "GEOMETRY_TOL", "ON_AXIS_TOL",
                     "POLISH_STEPS", "POLISH_TOL", "SCALE", "STAGE_NOISE"}  # the plan interpreter's own tolerances
 

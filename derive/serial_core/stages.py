@@ -19,9 +19,11 @@ P_POSE = POSE[:, 3]
 
 @dataclass(frozen=True)
 class Stage:
-    kind: str  # trig_linear | rotation2d | value | wrist
+    kind: str  # trig_linear | rotation2d | value | wrist | quadratic
     joints: tuple[int, ...]
-    exprs: tuple  # trig_linear (A, B, C); rotation2d (u, v, u0, v0); value (q,); wrist (3x3 M as 9 entries)
+    # trig_linear (A, B, C); rotation2d (u, v, u0, v0); value (q,); wrist (3x3 M as 9 entries); quadratic (a slide
+    # from a distance: (q + B)^2 = D, E the scale of D's rounding)
+    exprs: tuple
     title: str
     rule: str
     signs: tuple[int, ...] = ()  # wrist: (e0, e1, e2, e3, k00@0, k10@0, k00@pi, k10@pi)
@@ -37,7 +39,7 @@ class Stage:
 
     @property
     def branches(self) -> int:
-        return 2 if self.kind in ("trig_linear", "wrist") else 1
+        return 2 if self.kind in ("trig_linear", "wrist", "quadratic") else 1
 
     @property
     def factored(self) -> bool:
@@ -49,6 +51,7 @@ def stage_output_names(st: Stage) -> list[str]:
     if st.factored:
         return ["A", "B", "C", "Dm", "Dp", "Em"]
     return {"trig_linear": ["A", "B", "C"], "rotation2d": ["u", "v", "u0", "v0"], "value": ["q"],
+            "quadratic": ["B", "D", "E"],
             "wrist": [f"m{i}{j}" for i in range(3) for j in range(3)]}[st.kind]
 
 

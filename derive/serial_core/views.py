@@ -64,6 +64,8 @@ def py_stage_body(st: dict) -> list[str]:
     if st["kind"] == "value":
         return [f"return _revolute_value({out}, {j}, q, c, s)" if st["joint_kind"] == "R" else
                 f"return _prismatic_value({out}, {j}, q)"]
+    if st["kind"] == "quadratic":
+        return [f"return _slide_quadratic({out}, {j}, _sign(k, {st['bit']}), q)"]
     if st["kind"] == "wrist":
         joints, signs = "(" + ", ".join(map(str, st["joints"])) + ")", "(" + ", ".join(map(str, st["signs"])) + ")"
         mirror = ["if k & 1:  # the second branch mirrors the first (set k - 1's prefix)",
@@ -75,7 +77,8 @@ def py_stage_body(st: dict) -> list[str]:
 
 def c_stage_body(st: dict) -> list[str]:
     """The body of the generated `sr_solve_stage<k>`: as py_stage_body, on the C runtime's solvers."""
-    size = {"trig_linear": 6 if st.get("factored") else 3, "rotation2d": 4, "value": 1, "wrist": 9}[st["kind"]]
+    size = {"trig_linear": 6 if st.get("factored") else 3, "rotation2d": 4, "value": 1, "wrist": 9,
+            "quadratic": 3}[st["kind"]]
     call = f"sr_k_stage{st['index']}(pose, q, c, s, dp, out);"
     j = st["joints"][0]
     head = [f"double out[{size}];", "(void)k;", "(void)prev; /* a family's representative (trig_linear, "
@@ -92,6 +95,8 @@ def c_stage_body(st: dict) -> list[str]:
     if st["kind"] == "value":
         return head + [call, f"return sr_revolute_value(out, {j}, q, c, s);" if st["joint_kind"] == "R" else
                        f"return sr_prismatic_value(out, {j}, q, c, s);"]
+    if st["kind"] == "quadratic":
+        return head + [call, f"return sr_slide_quadratic(out, {j}, sr_sign(k, {st['bit']}), q, c, s, f);"]
     if st["kind"] == "wrist":
         joints = ", ".join(map(str, st["joints"]))
         signs = ", ".join(f"{v}.0" for v in st["signs"])
@@ -137,6 +142,7 @@ def serial_views(ctx: dict) -> dict:
         "SR_HAS_FAMILY_PROBE": int(any(st.get("probe") for st in stages)),
         "SR_HAS_REVOLUTE_VALUE": int(any(st["kind"] == "value" and st["joint_kind"] == "R" for st in stages)),
         "SR_HAS_PRISMATIC_VALUE": int(any(st["kind"] == "value" and st["joint_kind"] != "R" for st in stages)),
+        "SR_HAS_SLIDE_QUADRATIC": int(any(st["kind"] == "quadratic" for st in stages)),
         "SR_HAS_WRIST_MIRROR": int(bool(wrist) and wrist[0]["bit"] == 0),
         "SR_REUSE_MIRROR_CHECK": int(reuse),
         "SR_N_FOLD_BITS": len(ctx["fold_bits"]),

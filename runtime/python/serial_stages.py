@@ -186,6 +186,23 @@ def _prismatic_value(out, j, q):
     return True, 0
 
 
+def _slide_quadratic(out, j, sgn, q):
+    """A slide from a distance (out = (B, D, E): (q + B)^2 = D, E the scale of D's rounding): q = -B + sgn sqrt(D).
+    D within ROOT_GAP_TOL of E is one double root (reported once, by the + branch: the moving point's line touches
+    the target's sphere), below that no real root."""
+    b, d, e = out
+    band = ROOT_GAP_TOL * e
+    if not d >= -band:
+        return False, 0
+    if d <= band:
+        if sgn < 0.0:
+            return False, 0
+        q[j] = -b
+        return True, FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE
+    q[j] = -b + sgn * math.sqrt(d)
+    return True, 0
+
+
 def _wrist_sigma(up, dp, joints):
     """+1 when turning q4 by a moves the end frame as turning q6 by a does at theta5 = 0 (up) or pi (down),
     else -1: the two axes coincide there, so q6 + sigma q4 is what the pose defines. Probed on the chain's

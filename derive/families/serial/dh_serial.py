@@ -161,6 +161,9 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
             if st.kind == "trig_linear":
                 a, b, c = vals[:3]
                 return abs(a * math.cos(qs[0]) + b * math.sin(qs[0]) + c)
+            if st.kind == "quadratic":  # (q + B)^2 = D, relative to D's scale E
+                b, d, e = vals
+                return abs((qs[0] + b) ** 2 - d) / max(e, 1e-300)
             if st.kind == "rotation2d":
                 u, v, u0, v0 = vals
                 cq, sq = math.cos(qs[0]), math.sin(qs[0])
@@ -175,7 +178,7 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
             return float(np.max(np.abs(m - w)))
         claim = {"trig_linear": "A cos q + B sin q + C = 0 on the FK",
                  "rotation2d": "(u, v) = Rot(q)(u0, v0) on the FK", "value": "q = expression on the FK",
-                 "wrist": "M = wrist rotation on the FK"}[st.kind]
+                 "wrist": "M = wrist rotation on the FK", "quadratic": "(q + B)^2 = D on the FK"}[st.kind]
         checks: list[Check] = [numeric_predicate(err, claim, samples=200, tol=1e-9)]
         if st.factored:
             def factors(rng, at_fk=at_fk):

@@ -6,7 +6,8 @@ relation that held only at the defaults fails there, with the stage named.
 
   first/last_plane, first/last_dist (revolute)  -> trig_linear  (subproblems 4 and 3)
   single (revolute)                             -> rotation2d   (subproblem 1)
-  prismatic ops, orient (one axis)              -> value
+  prismatic plane and single ops, orient (one axis) -> value
+  prismatic distance ops                        -> quadratic    ((q + B)^2 = D, both roots: the Stanford arm's d3)
   orient (three axes at the end)                -> wrist        (dh_serial.wrist_stage)
   orient (a parallel group, then two axes)      -> trig_linear + rotation2d  (_GroupThenTwo: the UR type)
   orient (three axes, not the DH wrist's form)  -> trig_linear + 2 rotation2d  (_GroupThenTwo, a group of one)
@@ -309,12 +310,15 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         h, r, q = axes[j], points[j], joints[j]
         first = k.startswith("first")
         if kinds[j] == "P":
+            if k.endswith("dist"):  # |m + g q - s| = |f - s|: a quadratic in the slide's value, two roots
+                out.append(_slide_distance(j, h if not first else -h, point(op["s"]),
+                                           *((y, x) if first else (x, y)), q, k))
+                y, x = ((y - h * q).applyfunc(sp.expand), x) if first else (y, (x + h * q).applyfunc(sp.expand))
+                continue
             if k == "single":
                 val = h.dot(y - x)
             else:
-                nv = direction(op["n"]) if "n" in op else None
-                if nv is None:
-                    raise PlanError("a prismatic distance op has no serial stage")
+                nv = direction(op["n"])
                 val = nv.dot(y - x) / nv.dot(h)
             out.append(Stage("value", (j,), (val,), f"slide {q}", f"{k}: the slide's component"))
             slides[q] = val
@@ -363,6 +367,20 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                             f"{held[1]} (a run-time parameter); the other stages are planned on the chain with it "
                             "held, its rotation kept as its symbol"))
     return out, plan.strategy
+
+
+def _slide_distance(j, g, s, m, f, q, op) -> Stage:
+    """A slide from a distance: |m + g q - s| = |f - s| (g its unit direction, signed by which side moves) is
+    (q + B)^2 = D with B = g . (m - s), D = |f - s|^2 - |(m - s) x g|^2 (the target's distance squared less the
+    moving point's squared distance from the slide's line through s): q = -B +- sqrt(D). E, the scale of D's
+    rounding, is |f - s|^2 + |m - s|^2."""
+    w, t = m - s, f - s
+    b = g.dot(w)
+    perp = w - g * b
+    d = sp.expand(t.dot(t) - perp.dot(perp))
+    e = t.dot(t) + w.dot(w)
+    return Stage("quadratic", (j,), (b, d, e), f"slide {q} (two roots)", f"{op} for a slide: |m + g q - s| = |f - s| "
+                 "is (q + B)^2 = D, q = -B +- sqrt(D)")
 
 
 def _foot(u, p, v, r):

@@ -204,6 +204,27 @@ static int sr_prismatic_value(const double *out, int j, double *q, double *c, do
 }
 #endif
 
+#if SR_HAS_SLIDE_QUADRATIC
+/* A slide from a distance (out = (B, D, E): (q + B)^2 = D, E the scale of D's rounding): q = -B + sgn sqrt(D); D
+ * within SR_ROOT_GAP_TOL of E one double root (the + branch reports it), below that no real root (Python's
+ * _slide_quadratic). */
+static int sr_slide_quadratic(const double *out, int j, double sgn, double *q, double *c, double *s, unsigned *f)
+{
+    const double band = SR_ROOT_GAP_TOL * out[2];
+    (void)c;
+    (void)s;
+    if (!(out[1] >= -band)) return 0;
+    if (out[1] <= band) {
+        if (sgn < 0.0) return 0;
+        q[j] = -out[0];
+        *f = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
+        return 1;
+    }
+    q[j] = -out[0] + sgn * sqrt(out[1]);
+    return 1;
+}
+#endif
+
 #if SR_WRIST_STAGE >= 0
 /* +1 when turning q4 by a moves the end frame as turning q6 by a does at theta5 = 0 (up) or pi (down), else
  * -1: the axes coincide there, so q6 + sigma q4 is what the pose defines (probed on the FK of the geometry the
