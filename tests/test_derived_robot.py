@@ -119,7 +119,9 @@ def test_a_joint_named_as_the_kernels_own_names_is_renamed_in_them(tmp_path):
                     + "[home]\nposition = [0.2, 0, 0]\n")
     own_robot.derive(spec, tmp_path / "out", stages="derived", progress=lambda _: None)
     m = own_robot.import_solver(tmp_path / "out", "names")
-    assert m.BACKEND == "c" and m.JOINT_NAMES == ("c", "s", "t3")
+    assert m.JOINT_NAMES == ("c", "s", "t3")
+    if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
+        assert m.BACKEND == "c"
     q = np.array([0.4, 0.1, -0.2])
     assert min(_gap(v, q) for v in m.ik(m.fk_matrix(q))) <= 1e-12
 
