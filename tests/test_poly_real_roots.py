@@ -31,6 +31,7 @@ from pathlib import Path
 
 import cbuild  # tests/ is on sys.path under pytest (as for tests/c_solvers.py)
 import mpmath
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -481,6 +482,25 @@ def test_near_double_pair_resolved_or_flagged(clib):
             near = [(x, f) for x, f in zip(res[0], res[1], strict=True) if abs(x - float(center)) < 1e-5]
             assert len(near) == 2 or (len(near) == 1 and near[0][1] == FLAG_DOUBLE), res
             assert len(res[0]) == len(near) + 2, res
+
+
+def test_a_search_landing_next_to_a_critical_point_goes_on_to_the_root(clib):
+    """The underactuated wrist's eliminant at fuzz seed 20: at its degree-5 level the first Halley step landed
+    next to an extremum of the derivative (p' ~ -0.01, p = -46), where the next step is tiny for its curvature
+    term; the ratio of the two steps predicted convergence, the search stopped 0.66 from its root and the levels
+    above lost two roots of the eliminant (two assembly modes). All six real roots (numpy's companion eigenvalues,
+    each a sign change of p checked here in exact arithmetic), C and Python bit for bit."""
+    coef = [-0.00023888917989762755, -0.011855567557413522, 0.06829027477980376, 1.1478972256751352,
+            -0.5404710226692486, -0.18555360768068818, -0.942294490649326, -0.21062696277960347, 0.3662586769457714]
+    c, py = c_roots(clib, coef), py_roots(coef)
+    assert c == py or not _gcc_x86_64()
+    expected = sorted(r.real for r in np.roots(coef[::-1]) if abs(r.imag) < 1e-12)
+    assert len(expected) == 6 and len(py[0]) == 6 and not any(py[1])
+    for x, e in zip(py[0], expected, strict=True):
+        assert abs(x - e) <= 1e-12
+        lo, hi = Fraction(x - 1e-9), Fraction(x + 1e-9)
+        value = [sum(Fraction(k) * t**i for i, k in enumerate(coef)) for t in (lo, hi)]
+        assert value[0] * value[1] < 0  # a root of the polynomial as given lies within 1e-9
 
 
 @pytest.mark.parametrize("impl", ["C", "Python"])

@@ -402,6 +402,29 @@ def test_close_roots_of_the_eliminant_keep_both_modes(uw, uw_c):
         assert min(np.max(np.abs(np.remainder(v - q + np.pi, 2 * np.pi) - np.pi)) for v in ik) < 1e-9
 
 
+@pytest.mark.parametrize("design,q,count", [
+    # fuzz seed 20: the eliminant's isolator stopped short of two roots (fixed in the root search)
+    ((1.1495084542024554, 1.0520892737782648, 0.4747603510932728, 0.70165869691749816),
+     (2.771736820857104, 6.122370955265905, 1.234660381773652), 6),
+    # fuzz seed 917: two modes 2e-5 apart whose eliminant roots (4e-8 apart) are within its rounding: one touching
+    # root, polished into the fold band from between them; split along the loop equations' near-null direction
+    ((1.0471975511965976, 1.0471975511965976, 0.5235987755982988, 0.7660250087003112),
+     (1.0764849551776707, 3.126192783918335, 5.636405366707507), 4),
+])
+def test_modes_the_eliminant_cannot_tell_apart_are_found_on_the_loop_equations(uw, uw_c, design, q, count):
+    """Every assembly mode of the independent sweep (fk_reference) is returned, by the module and by the C library,
+    each to 1e-8 (at seed 917 two are 2e-5 apart: well inside what the joints determine)."""
+    expected = ref.fk_reference(q, dict(zip(("alpha1", "alpha2", "beta1", "beta2"), design, strict=True))).rotations
+    assert len(expected) == count
+    rc, dc = uw_c.design(design)
+    assert rc == 0
+    for sol in (uw.fk(q, uw.make_design(design)), uw_c.fk(q, dc)):
+        assert sol.count == count
+        rots = py_rotations(sol)
+        for r in expected:
+            assert min(np.max(np.abs(r - x)) for x in rots) < 1e-8
+
+
 def test_euler_angles_next_to_the_gimbal_reproduce_their_rotation(uw, uw_c):
     """Just above GIMBAL_EPS psi and phi are individually ill-determined (~eps / sin theta) but the returned
     angles must reproduce the mode's own rotation matrix to rounding (phi is taken after psi)."""

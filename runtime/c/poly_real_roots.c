@@ -179,11 +179,12 @@ typedef struct {
  * level (the last step is taken when inside), when two successive steps
  * dxp, dxn predict an error below one ulp after dxn ((dxn/dxp)^3 |dxn| after
  * two Halley steps, else (dxn/dxp)^2 |dxn|) and the step did not cancel most
- * of x, or after WK_POLY_MAXIT steps. */
+ * of x, or after WK_POLY_MAXIT steps; the prediction only after a
+ * Newton-like step (Halley's denominator at most 4 p'^2). */
 static void wk_poly_step(wk_poly_job *J, double f, double df, double ddf, double sc, double tol_z, int *maxit)
 {
     double den, dxn, xn, r, pred, x = J->x;
-    int inside, hal = 0;
+    int inside, newton = 1, hal = 0;
     J->df = df;
     J->it += 1;
     if (f == 0.0) {
@@ -198,6 +199,7 @@ static void wk_poly_step(wk_poly_job *J, double f, double df, double ddf, double
         if (den > 0.0) {
             dxn = 2.0 * f * df / den;
             hal = 1;
+            newton = den <= 4.0 * df * df;
         } else {
             dxn = f / df; /* may be +-inf: then not inside */
         }
@@ -216,8 +218,10 @@ static void wk_poly_step(wk_poly_job *J, double f, double df, double ddf, double
         J->dxp = dxn;
         J->hal = hal;
         J->x = xn;
-        /* (not after a step that cancelled most of x: xn then carries the rounding error of x) */
-        if (pred <= WK_POLY_EPS * fabs(xn) + WK_POLY_TINY && fabs(xn) >= 0.5 * fabs(x)) J->done = 1;
+        /* (not after a step that cancelled most of x: xn then carries the rounding error of x; and only after a step
+         * Newton's to within a factor 2, Halley's 2 f'^2 / den >= 1/2: next to a critical point of p, f' ~ 0 and f
+         * not small, Halley's step is tiny for its curvature term and the ratio of steps predicts nothing) */
+        if (pred <= WK_POLY_EPS * fabs(xn) + WK_POLY_TINY && fabs(xn) >= 0.5 * fabs(x) && newton) J->done = 1;
     } else {
         J->dxp = 0.0; /* no step history */
         J->hal = 0;

@@ -161,25 +161,61 @@ def _fk_modes(cq, sq, d):
             z, e, err, jdet = _polish(trip, zeta, eta)
             if not err <= (FK_FOLD_TOL if touching else FK_RESIDUAL_TOL):
                 continue
-            z, e = _wrap_2pi(z), _wrap_2pi(e)
-            # the merge is confirmed, not assumed: a candidate that polishes to a regular residual is a regular
-            # mode; only one accepted within the fold band alone is the merged pair of a direct singularity
-            f = FLAG_DOUBLE_ROOT | FLAG_SINGULAR_DIRECT if touching and not err <= FK_RESIDUAL_TOL else 0
-            # Modes from a touching root closer than the fold's resolution sqrt(FK_FOLD_TOL) (a mode accepted at
-            # residual r is fixed only to ~sqrt(r) along the fold) are the two halves of one double root.
-            # Two modes polished to regular residuals are distinct beyond FK_DUPLICATE_TOL however close their roots.
-            def same(m, z=z, e=e, fold=bool(f)):
-                near = math.sqrt(FK_FOLD_TOL) if fold or m[6] else FK_DUPLICATE_TOL
-                return abs(_wrap_pi(m[0] - z)) < near and abs(_wrap_pi(m[1] - e)) < near
-            dup = next((m for m in modes if same(m)), None)
-            if dup is None:
-                modes.append([z, e, err, jdet, f, ir, bool(f)])
-            elif dup[5] != ir:  # two roots of the eliminant polish to one mode: they merge (a double root)
-                dup[4] |= FLAG_DOUBLE_ROOT | f
-            elif max(abs(_wrap_pi(dup[0] - z)), abs(_wrap_pi(dup[1] - e))) >= FK_DUPLICATE_TOL:
-                dup[4] |= FLAG_DOUBLE_ROOT | FLAG_SINGULAR_DIRECT  # a fold pair, merged: reported once, flagged
+            if touching and not err <= FK_RESIDUAL_TOL:  # in the fold band only: two modes the pose tells apart?
+                pair = _split_fold(trip, z, e)
+                if pair is not None:
+                    for z2, e2, err2, jdet2 in pair:
+                        _add_mode(modes, _wrap_2pi(z2), _wrap_2pi(e2), err2, jdet2, 0, ir)
+                    continue
+            _add_mode(modes, _wrap_2pi(z), _wrap_2pi(e), err, jdet,
+                      FLAG_DOUBLE_ROOT | FLAG_SINGULAR_DIRECT if touching and not err <= FK_RESIDUAL_TOL else 0, ir)
     modes = [m[:5] for m in modes]
     modes.sort(key=lambda m: (m[1], m[0]))
     if not modes:
         return [], STATUS_NO_ASSEMBLY, NO_ASSEMBLY_REASON
     return modes, STATUS_OK, f"{len(modes)} assembly mode(s)"
+
+
+def _split_fold(trip, zeta, eta):
+    """Two regular modes on either side of a point (zeta, eta) polished only into the fold band, or None: polished
+    from (zeta, eta) +- s v (v the near-null direction of the loop equations' Jacobian there; s = 1e-6, 1e-5,
+    1e-4), kept when both reach a regular residual FK_DUPLICATE_TOL apart. The eliminant cannot tell apart roots
+    closer than its rounding (4e-8 in its variable put two modes 2e-5 apart, fuzz seed 917), the loop equations
+    can: the merge is confirmed, not assumed."""
+    _, ((a, b), (c, d)) = _residual(trip, zeta, eta)
+    p, q, r = a * a + c * c, a * b + c * d, b * b + d * d
+    lam = 0.5 * (p + r) - math.hypot(0.5 * (p - r), q)  # J^T J's smaller eigenvalue: its vector is v
+    v = (q, lam - p) if abs(q) + abs(lam - p) >= abs(lam - r) + abs(q) else (lam - r, q)
+    nv = math.hypot(v[0], v[1])
+    if not nv > 0.0:
+        return None
+    v = (v[0] / nv, v[1] / nv)
+    for s in (1e-6, 1e-5, 1e-4):
+        one = _polish(trip, zeta + s * v[0], eta + s * v[1])
+        two = _polish(trip, zeta - s * v[0], eta - s * v[1])
+        if (one[2] <= FK_RESIDUAL_TOL and two[2] <= FK_RESIDUAL_TOL
+                and max(abs(_wrap_pi(one[0] - two[0])), abs(_wrap_pi(one[1] - two[1]))) >= FK_DUPLICATE_TOL):
+            return one, two
+    return None
+
+
+def _add_mode(modes, z, e, err, jdet, f, ir):
+    """Add a polished mode to `modes` ([zeta, eta, err, |det J|, flags, root index, fold]) or merge it into one it
+    duplicates."""
+    # the merge is confirmed, not assumed: a candidate that polishes to a regular residual is a regular
+    # mode; only one accepted within the fold band alone (and not split by _split_fold) is the merged pair
+    # of a direct singularity: its flags f
+    # Modes from a touching root closer than the fold's resolution sqrt(FK_FOLD_TOL) (a mode accepted at
+    # residual r is fixed only to ~sqrt(r) along the fold) are the two halves of one double root.
+    # Two modes polished to regular residuals are distinct beyond FK_DUPLICATE_TOL however close their roots.
+    def same(m):
+        fold = bool(f)
+        near = math.sqrt(FK_FOLD_TOL) if fold or m[6] else FK_DUPLICATE_TOL
+        return abs(_wrap_pi(m[0] - z)) < near and abs(_wrap_pi(m[1] - e)) < near
+    dup = next((m for m in modes if same(m)), None)
+    if dup is None:
+        modes.append([z, e, err, jdet, f, ir, bool(f)])
+    elif dup[5] != ir:  # two roots of the eliminant polish to one mode: they merge (a double root)
+        dup[4] |= FLAG_DOUBLE_ROOT | f
+    elif max(abs(_wrap_pi(dup[0] - z)), abs(_wrap_pi(dup[1] - e))) >= FK_DUPLICATE_TOL:
+        dup[4] |= FLAG_DOUBLE_ROOT | FLAG_SINGULAR_DIRECT  # a fold pair, merged: reported once, flagged

@@ -15,16 +15,104 @@ static void uw_fk_clear(uw_fk_solutions *out, int status)
     }
 }
 
+/* The modes found so far: (zeta, eta, cos zeta, sin zeta, cos eta, sin eta), flags, the eliminant root each came
+ * from, and whether it was accepted in the fold band (resolved only to sqrt(UW_FK_FOLD_TOL)). */
+typedef struct {
+    double modes[16][6];
+    unsigned flags[16];
+    int root[16], fold[16], n;
+} uw_mode_table;
+
+/* Add a polished mode (z, e, cs: cos, sin of both; flags tf) of eliminant root r, or merge it into one it duplicates
+ * (Python's _add_mode). */
+static void uw_add_mode(uw_mode_table *t, double z, double e, const double *cs, unsigned tf, int r)
+{
+    int m, dup = -1;
+    z = uw_wrap_2pi(z);
+    e = uw_wrap_2pi(e);
+    /* a touching root's modes closer than the fold's resolution sqrt(UW_FK_FOLD_TOL) are one double root; two
+       modes polished to regular residuals are distinct beyond UW_FK_DUPLICATE_TOL (see Python) */
+    for (m = 0; m < t->n; ++m) {
+        const double near = (tf || t->fold[m]) ? sqrt(UW_FK_FOLD_TOL) : UW_FK_DUPLICATE_TOL;
+        if (fabs(uw_wrap_pi(t->modes[m][0] - z)) < near && fabs(uw_wrap_pi(t->modes[m][1] - e)) < near) {
+            dup = m;
+            break;
+        }
+    }
+    if (dup >= 0) {
+        if (t->root[dup] != r) {
+            t->flags[dup] |= WK_FLAG_DOUBLE_ROOT | tf; /* two roots, one mode: merged */
+        } else if (fabs(uw_wrap_pi(t->modes[dup][0] - z)) >= UW_FK_DUPLICATE_TOL ||
+                   fabs(uw_wrap_pi(t->modes[dup][1] - e)) >= UW_FK_DUPLICATE_TOL) {
+            t->flags[dup] |= WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_DIRECT; /* a fold pair, merged */
+        }
+    } else if (t->n < 16) {
+        t->modes[t->n][0] = z;
+        t->modes[t->n][1] = e;
+        for (m = 0; m < 4; ++m) t->modes[t->n][2 + m] = cs[m]; /* cos, sin of zeta, eta (the wrap keeps them) */
+        t->flags[t->n] = tf;
+        t->fold[t->n] = tf != 0u;
+        t->root[t->n] = r;
+        ++t->n;
+    }
+}
+
+/* Two regular modes on either side of (zeta, eta), a point polished only into the fold band (Python's
+ * _split_fold): polished from (zeta, eta) +- s v, v the near-null direction of the loop equations' Jacobian, s =
+ * 1e-6, 1e-5, 1e-4; 1 with pair[k] = (zeta, eta, cos zeta, sin zeta, cos eta, sin eta) when both reach a regular
+ * residual UW_FK_DUPLICATE_TOL apart, else 0. */
+static int uw_split_fold(const uw_fk_coef *cf, double zeta, double eta, const double *cs, double pair[2][6])
+{
+    static const double steps[3] = {1e-6, 1e-5, 1e-4};
+    double g[2], jac[4], p, q, rr, lam, v0, v1, nv;
+    int k, side;
+    (void)uw_residual(cf, cs, g, jac);
+    p = jac[0] * jac[0] + jac[2] * jac[2];
+    q = jac[0] * jac[1] + jac[2] * jac[3];
+    rr = jac[1] * jac[1] + jac[3] * jac[3];
+    lam = 0.5 * (p + rr) - hypot(0.5 * (p - rr), q); /* J^T J's smaller eigenvalue: its vector is v */
+    if (fabs(q) + fabs(lam - p) >= fabs(lam - rr) + fabs(q)) {
+        v0 = q;
+        v1 = lam - p;
+    } else {
+        v0 = lam - rr;
+        v1 = q;
+    }
+    nv = hypot(v0, v1);
+    if (!(nv > 0.0)) return 0;
+    v0 /= nv;
+    v1 /= nv;
+    for (k = 0; k < 3; ++k) {
+        double err[2];
+        for (side = 0; side < 2; ++side) {
+            const double s = side ? -steps[k] : steps[k];
+            double z = zeta + s * v0, e = eta + s * v1;
+            pair[side][2] = cos(z);
+            pair[side][3] = sin(z);
+            pair[side][4] = cos(e);
+            pair[side][5] = sin(e);
+            err[side] = uw_polish(cf, &z, &e, pair[side] + 2);
+            pair[side][0] = z;
+            pair[side][1] = e;
+        }
+        if (err[0] <= UW_FK_RESIDUAL_TOL && err[1] <= UW_FK_RESIDUAL_TOL &&
+            (fabs(uw_wrap_pi(pair[0][0] - pair[1][0])) >= UW_FK_DUPLICATE_TOL ||
+             fabs(uw_wrap_pi(pair[0][1] - pair[1][1])) >= UW_FK_DUPLICATE_TOL))
+            return 1;
+    }
+    return 0;
+}
+
 static int uw_api_fk(const double joints[3], const uw_design *design,
                      uw_fk_solutions *out)
 {
     const uw_design *d = uw_design_or_default(design);
     uw_fk_coef cf;
-    double raw[18], kpoly[9], roots[8], best = -1.0, eta_c, modes[16][6], cq[3], sq[3], z1[9], z2[9];
-    unsigned rflags[8], mflags[16];
-    int mroot[16]; /* the eliminant root each mode came from */
-    int mfold[16]; /* the mode was accepted in the fold band (resolved only to sqrt(UW_FK_FOLD_TOL)) */
+    double raw[18], kpoly[9], roots[8], best = -1.0, eta_c, cq[3], sq[3], z1[9], z2[9];
+    unsigned rflags[8];
+    uw_mode_table t;
     int nroots, pstatus = 0, nm = 0, r, j, k, kbest = 0;
+    t.n = 0;
     if (!out) return WK_ERR_NULL;
     if (!joints) {
         uw_fk_clear(out, WK_ERR_NULL);
@@ -82,60 +170,42 @@ static int uw_api_fk(const double joints[3], const uw_design *design,
             cs[2] = ce0;
             cs[3] = se0;
             err = uw_polish(&cf, &z, &e, cs);
-            /* a merge is confirmed, not assumed: a regular residual is a regular mode (see Python) */
-            const unsigned tf = (touching && !(err <= UW_FK_RESIDUAL_TOL)) ? (WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_DIRECT) : 0u;
-            int m, dup = -1;
             if (!(err <= (touching ? UW_FK_FOLD_TOL : UW_FK_RESIDUAL_TOL))) continue;
-            z = uw_wrap_2pi(z);
-            e = uw_wrap_2pi(e);
-            {
-                /* a touching root's modes closer than the fold's resolution sqrt(UW_FK_FOLD_TOL) are one double
-                   root (see Python) */
-                /* two modes polished to regular residuals are distinct beyond UW_FK_DUPLICATE_TOL (see Python) */
-                for (m = 0; m < nm; ++m) {
-                    const double near = (tf || mfold[m]) ? sqrt(UW_FK_FOLD_TOL) : UW_FK_DUPLICATE_TOL;
-                    if (fabs(uw_wrap_pi(modes[m][0] - z)) < near && fabs(uw_wrap_pi(modes[m][1] - e)) < near) dup = m;
+            if (touching && !(err <= UW_FK_RESIDUAL_TOL)) { /* in the fold band only: two modes the pose tells apart? */
+                double pair[2][6];
+                if (uw_split_fold(&cf, z, e, cs, pair)) {
+                    uw_add_mode(&t, pair[0][0], pair[0][1], pair[0] + 2, 0u, r);
+                    uw_add_mode(&t, pair[1][0], pair[1][1], pair[1] + 2, 0u, r);
+                    continue;
                 }
             }
-            if (dup >= 0) {
-                if (mroot[dup] != r) {
-                    mflags[dup] |= WK_FLAG_DOUBLE_ROOT | tf; /* two roots, one mode: merged */
-                } else if (fabs(uw_wrap_pi(modes[dup][0] - z)) >= UW_FK_DUPLICATE_TOL ||
-                           fabs(uw_wrap_pi(modes[dup][1] - e)) >= UW_FK_DUPLICATE_TOL) {
-                    mflags[dup] |= WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_DIRECT; /* a fold pair, merged */
-                }
-            } else if (nm < 16) {
-                modes[nm][0] = z;
-                modes[nm][1] = e;
-                for (m = 0; m < 4; ++m) modes[nm][2 + m] = cs[m]; /* cos, sin of zeta, eta (the wrap keeps them) */
-                mflags[nm] = tf;
-                mfold[nm] = tf != 0u;
-                mroot[nm] = r;
-                ++nm;
-            }
+            /* a merge is confirmed, not assumed: a regular residual is a regular mode (see Python) */
+            uw_add_mode(&t, z, e, cs, (touching && !(err <= UW_FK_RESIDUAL_TOL)) ?
+                        (WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_DIRECT) : 0u, r);
         }
     }
+    nm = t.n;
     /* stable order: by eta, then zeta (insertion sort, nm <= 16) */
     for (j = 1; j < nm; ++j) {
         double mode[6];
-        unsigned f = mflags[j];
+        unsigned f = t.flags[j];
         int i = j - 1, c;
-        for (c = 0; c < 6; ++c) mode[c] = modes[j][c];
-        while (i >= 0 && (modes[i][1] > mode[1] || (modes[i][1] == mode[1] && modes[i][0] > mode[0]))) {
-            for (c = 0; c < 6; ++c) modes[i + 1][c] = modes[i][c];
-            mflags[i + 1] = mflags[i];
+        for (c = 0; c < 6; ++c) mode[c] = t.modes[j][c];
+        while (i >= 0 && (t.modes[i][1] > mode[1] || (t.modes[i][1] == mode[1] && t.modes[i][0] > mode[0]))) {
+            for (c = 0; c < 6; ++c) t.modes[i + 1][c] = t.modes[i][c];
+            t.flags[i + 1] = t.flags[i];
             --i;
         }
-        for (c = 0; c < 6; ++c) modes[i + 1][c] = mode[c];
-        mflags[i + 1] = f;
+        for (c = 0; c < 6; ++c) t.modes[i + 1][c] = mode[c];
+        t.flags[i + 1] = f;
     }
     if (nm > UW_MAX_FK) nm = UW_MAX_FK;
     uw_k_base_axes(d->c, z1);
     uw_k_middle_axes(cq, sq, d->c, z2);
     for (k = 0; k < nm; ++k) {
-        const double c3[3] = {cq[0], modes[k][2], modes[k][4]}, s3[3] = {sq[0], modes[k][3], modes[k][5]};
+        const double c3[3] = {cq[0], t.modes[k][2], t.modes[k][4]}, s3[3] = {sq[0], t.modes[k][3], t.modes[k][5]};
         double rot[9], z3[9], rows[3][3], n12[3], ci = 1.0, cd;
-        unsigned f = mflags[k];
+        unsigned f = t.flags[k];
         uw_k_fk_rotation(c3, s3, d->c, rot);
         f |= uw_euler(rot, out->values[k]);
         uw_k_platform_axes(rot, d->c, z3);
@@ -148,8 +218,8 @@ static int uw_api_fk(const double joints[3], const uw_design *design,
         if (ci <= UW_SINGULAR_EPS) f |= WK_FLAG_SINGULAR_INVERSE;
         if (cd <= UW_SINGULAR_EPS) f |= WK_FLAG_SINGULAR_DIRECT;
         for (j = 0; j < 9; ++j) out->aux[k][j] = rot[j];
-        out->aux[k][9] = modes[k][0];
-        out->aux[k][10] = modes[k][1];
+        out->aux[k][9] = t.modes[k][0];
+        out->aux[k][10] = t.modes[k][1];
         out->aux[k][11] = ci;
         out->aux[k][12] = cd;
         out->valid[k] = 1;
