@@ -193,8 +193,9 @@ def test_a_calibrated_robot_is_solved_on_its_ideal_geometry_and_polished_on_its_
     Jacobian are the description's true chain (a derivation step checks them against its 4 x 4 product), every set
     polished on it, and a set whose polish fails (outside Gauss-Newton's basin: near a singularity the ideal answer is
     ~1e-7 / sigma_min off) solved again for the compensated pose. Random poses, and poses 1e-2 from each singular
-    joint (det J = 0 bisected from random joints): the generating joints among the sets (1e-9 rad; near a
-    singularity 1e-6 + 1e-13 / delta, the conditioning allowance), every set on the independent reference's pose
+    joint (det J = 0 bisected from random joints): the generating joints among the sets (1e-9 rad, or the nearest
+    set's residual over sigma_min where a random pose is near a singularity; near a singularity 1e-6 + 1e-13 /
+    delta, the conditioning allowance), every set on the independent reference's pose
     (1e-9), as many sets as the interpreted module on the random poses, C and numpy within their polish's reach
     (DOUBLE_ROOT_POLISH_TOL / sigma_min of J)."""
     path = _file("kr6_calibrated", fmt)
@@ -217,8 +218,14 @@ def test_a_calibrated_robot_is_solved_on_its_ideal_geometry_and_polished_on_its_
     for q, allowance in poses:
         T = reference(q)
         a, b = m.ik(T), py.ik(T)
-        assert min((_gap(v, q) for v in a), default=math.inf) <= allowance, (list(q), allowance, a.reason)
-        assert min((_gap(v, q) for v in b), default=math.inf) <= allowance, (list(q), allowance, b.reason)
+        for sol in (a, b):
+            assert sol.count, (list(q), sol.reason)
+            near = min(np.flatnonzero(sol.valid), key=lambda i: _gap(sol.values[i], q))
+            # or the nearest set's residual over sigma_min where that is larger: a random pose can be near a
+            # singularity (Haswell seed 58101: sigma_min 9.5e-6, the set on the pose to 2e-13, 1.1e-8 rad off)
+            sigma = np.linalg.svd(m.jacobian(sol.values[near]), compute_uv=False)[-1]
+            bound = max(allowance, 1e-9 + 4 * (sol.aux[near, 0] + 1e-15 * max(1.0, m.SCALE)) / sigma)
+            assert _gap(sol.values[near], q) <= bound, (list(q), allowance, sol.reason)
         assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in a)
         assert a.count == b.count and list(a.valid) == list(b.valid)
         if allowance == 1e-9:  # a regular pose: the interpreter's sets (near a singularity it misses some)
