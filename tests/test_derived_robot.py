@@ -54,6 +54,17 @@ def derived(robot: str, fmt: str = "urdf"):
     return _CACHE[key]
 
 
+def _isolated_singularities(jacobian, rng, bases: int):
+    """(joint j, q) with det J(q) = 0 along joint j (tests/reference/singular.py, six joints) where the arm is regular
+    1e-2 rad off in q_j: a second singularity nearby would compound the conditioning."""
+    for j, qs in singular_configurations(jacobian, 6, rng, bases=bases, per_base=2):
+        off = qs.copy()
+        off[j] += 1e-2
+        sv = np.linalg.svd(jacobian(off), compute_uv=False)
+        if sv[-1] > 1e-4 * sv[0]:
+            yield j, qs
+
+
 def _gap(a, b) -> float:
     return max(abs(math.remainder(x - y, 2 * math.pi)) for x, y in zip(a, b, strict=True))
 
@@ -456,12 +467,7 @@ def test_a_slide_placed_by_a_distance_is_a_quadratic_stage_with_both_roots(tmp_p
             sigma = np.linalg.svd(m.jacobian(sol.values[k]), compute_uv=False)[-1]
             assert gap(sol.values[k], sol_py.values[k]) <= 1e-12 + 4 * (sol.aux[k, 0] + sol_py.aux[k, 0]) / sigma
     tested = 0
-    for j, qs in singular_configurations(m.jacobian, 6, rng, bases=3, per_base=2):
-        off = qs.copy()
-        off[j] += 1e-2
-        sv = np.linalg.svd(m.jacobian(off), compute_uv=False)
-        if sv[-1] <= 1e-4 * sv[0]:  # a second singularity nearby compounds the conditioning
-            continue
+    for j, qs in _isolated_singularities(m.jacobian, rng, bases=3):
         tested += 1
         for delta in (1e-3, 1e-6, 1e-8, 1e-10, 1e-12):
             q = qs.copy()
@@ -616,12 +622,7 @@ def test_every_singularity_delta_off_gives_back_the_generating_joints(robot):
     reference = ref.load(_file(robot, "urdf"))
     rng = case_rng(2321)
     tested = 0
-    for j, qs in singular_configurations(m.jacobian, 6, rng, bases=2, per_base=2):
-        off = qs.copy()
-        off[j] += 1e-2
-        sv = np.linalg.svd(m.jacobian(off), compute_uv=False)
-        if sv[-1] <= 1e-4 * sv[0]:  # a second singularity nearby compounds the conditioning
-            continue
+    for j, qs in _isolated_singularities(m.jacobian, rng, bases=2):
         tested += 1
         # 1e-12 but at the wrist (q5), whose family band still takes some poses there (README, Known defects)
         for delta in (1e-3, 3e-6, 1e-6, 1e-8, 1e-10) + ((1e-12,) if j != 4 else ()):
