@@ -202,30 +202,29 @@ static int g6_qr_factor(double Q[G6_NEQ][G6_NY], g6_qr *f)
     return 1;
 }
 
+/* x := H_k x, the k-th reflection (symmetric: its own inverse) */
+static void g6_qr_reflect(const g6_qr *f, int k, double *x)
+{
+    double s = f->head[k] * x[k];
+    int i;
+    for (i = k + 1; i < G6_NEQ; ++i) s += f->a[i][k] * x[i];
+    s *= f->beta[k];
+    x[k] -= s * f->head[k];
+    for (i = k + 1; i < G6_NEQ; ++i) x[i] -= s * f->a[i][k];
+}
+
 /* x := H^T x (the reflections applied in order) */
 static void g6_qr_apply(const g6_qr *f, double *x)
 {
-    int i, k;
-    for (k = 0; k < G6_NY; ++k) {
-        double s = f->head[k] * x[k];
-        for (i = k + 1; i < G6_NEQ; ++i) s += f->a[i][k] * x[i];
-        s *= f->beta[k];
-        x[k] -= s * f->head[k];
-        for (i = k + 1; i < G6_NEQ; ++i) x[i] -= s * f->a[i][k];
-    }
+    int k;
+    for (k = 0; k < G6_NY; ++k) g6_qr_reflect(f, k, x);
 }
 
 /* x := H x = H_1 ... H_8 x (the reflections applied in reverse order): H e_j is column j of the orthogonal factor */
 static void g6_qr_apply_back(const g6_qr *f, double *x)
 {
-    int i, k;
-    for (k = G6_NY - 1; k >= 0; --k) {
-        double s = f->head[k] * x[k];
-        for (i = k + 1; i < G6_NEQ; ++i) s += f->a[i][k] * x[i];
-        s *= f->beta[k];
-        x[k] -= s * f->head[k];
-        for (i = k + 1; i < G6_NEQ; ++i) x[i] -= s * f->a[i][k];
-    }
+    int k;
+    for (k = G6_NY - 1; k >= 0; --k) g6_qr_reflect(f, k, x);
 }
 
 /* N (6 x 14): the left null space of Q, the last six columns of its orthogonal factor H (six applications, not

@@ -361,7 +361,7 @@ def _g6_complete_many(angles, links, P, Q):
     f = _g6_rz_many(t1) @ k1
     for t, k in ((t2, k2), (angles[:, 0], k3), (angles[:, 1], k4), (angles[:, 2], k5)):
         f = (f @ _g6_rz_many(t)) @ k
-    r6 = np.swapaxes(f[:, :3, :3], 1, 2) @ g6_inverse(k6)[:3, :3]  # rotation of f^-1 K6^-1
+    r6 = np.swapaxes(f[:, :3, :3], 1, 2) @ k6[:3, :3].T  # rotation of f^-1 K6^-1
     return np.column_stack([t1, t2, angles, np.arctan2(r6[:, 1, 0], r6[:, 0, 0])]).tolist()
 
 

@@ -161,14 +161,14 @@ def _fk_modes(cq, sq, d):
             z, e, err, jdet = _polish(trip, zeta, eta)
             if not err <= (FK_FOLD_TOL if touching else FK_RESIDUAL_TOL):
                 continue
-            if touching and not err <= FK_RESIDUAL_TOL:  # in the fold band only: two modes the pose tells apart?
-                pair = _split_fold(trip, z, e)
-                if pair is not None:
-                    for z2, e2, err2, jdet2 in pair:
-                        _add_mode(modes, _wrap_2pi(z2), _wrap_2pi(e2), err2, jdet2, 0, ir)
-                    continue
+            fold_only = touching and not err <= FK_RESIDUAL_TOL
+            pair = _split_fold(trip, z, e) if fold_only else None  # in the fold band only: two modes after all?
+            if pair is not None:
+                for z2, e2, err2, jdet2 in pair:
+                    _add_mode(modes, _wrap_2pi(z2), _wrap_2pi(e2), err2, jdet2, 0, ir)
+                continue
             _add_mode(modes, _wrap_2pi(z), _wrap_2pi(e), err, jdet,
-                      FLAG_DOUBLE_ROOT | FLAG_SINGULAR_DIRECT if touching and not err <= FK_RESIDUAL_TOL else 0, ir)
+                      FLAG_DOUBLE_ROOT | FLAG_SINGULAR_DIRECT if fold_only else 0, ir)
     modes = [m[:5] for m in modes]
     modes.sort(key=lambda m: (m[1], m[0]))
     if not modes:
@@ -209,8 +209,7 @@ def _add_mode(modes, z, e, err, jdet, f, ir):
     # residual r is fixed only to ~sqrt(r) along the fold) are the two halves of one double root.
     # Two modes polished to regular residuals are distinct beyond FK_DUPLICATE_TOL however close their roots.
     def same(m):
-        fold = bool(f)
-        near = math.sqrt(FK_FOLD_TOL) if fold or m[6] else FK_DUPLICATE_TOL
+        near = math.sqrt(FK_FOLD_TOL) if f or m[6] else FK_DUPLICATE_TOL
         return abs(_wrap_pi(m[0] - z)) < near and abs(_wrap_pi(m[1] - e)) < near
     dup = next((m for m in modes if same(m)), None)
     if dup is None:

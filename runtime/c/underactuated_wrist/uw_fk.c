@@ -164,24 +164,22 @@ static int uw_api_fk(const double joints[3], const uw_design *design,
         const int nz = touching ? uw_zeta_all(&cf, ce0, se0, zc, zcs) : uw_zeta_candidates(&cf, ce0, se0, zc, zcs);
         for (j = 0; j < nz; ++j) {
             double z = zc[j], e = eta0, cs[4];
-            double err;
+            double err, pair[2][6];
+            int fold_only;
             cs[0] = zcs[2 * j];
             cs[1] = zcs[2 * j + 1];
             cs[2] = ce0;
             cs[3] = se0;
             err = uw_polish(&cf, &z, &e, cs);
             if (!(err <= (touching ? UW_FK_FOLD_TOL : UW_FK_RESIDUAL_TOL))) continue;
-            if (touching && !(err <= UW_FK_RESIDUAL_TOL)) { /* in the fold band only: two modes the pose tells apart? */
-                double pair[2][6];
-                if (uw_split_fold(&cf, z, e, cs, pair)) {
-                    uw_add_mode(&t, pair[0][0], pair[0][1], pair[0] + 2, 0u, r);
-                    uw_add_mode(&t, pair[1][0], pair[1][1], pair[1] + 2, 0u, r);
-                    continue;
-                }
+            fold_only = touching && !(err <= UW_FK_RESIDUAL_TOL);
+            if (fold_only && uw_split_fold(&cf, z, e, cs, pair)) { /* in the fold band only: two modes after all */
+                uw_add_mode(&t, pair[0][0], pair[0][1], pair[0] + 2, 0u, r);
+                uw_add_mode(&t, pair[1][0], pair[1][1], pair[1] + 2, 0u, r);
+                continue;
             }
             /* a merge is confirmed, not assumed: a regular residual is a regular mode (see Python) */
-            uw_add_mode(&t, z, e, cs, (touching && !(err <= UW_FK_RESIDUAL_TOL)) ?
-                        (WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_DIRECT) : 0u, r);
+            uw_add_mode(&t, z, e, cs, fold_only ? (WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_DIRECT) : 0u, r);
         }
     }
     nm = t.n;
