@@ -9,4 +9,6 @@ TOLERANCES = {"singular": "1e-6", "gimbal": "1e-10", "tangent": "1e-12", "fk_res
               "double_root": "1e-12",
               "double_root_polish": "1e-12",
               "root_gap": "5.684341886080802e-14",  # 256 eps
-              "wrist_exact": "1e-13", "design_scale_min": "1e-3", "length_min": "1e-5", "length_max": "1e6"}
+              "wrist_exact": "1e-13",
+              "wrist_family": "1.4210854715202004e-14",  # 64 eps
+              "design_scale_min": "1e-3", "length_min": "1e-5", "length_max": "1e6"}

@@ -681,6 +681,49 @@ def test_at_the_ur_wrist_singularity_the_family_is_returned():
         assert min(_gap(v, q) for v in m.ik(T, previous=q)) <= 1e-9
 
 
+
+# poses 1e-12 rad from a wrist singularity that the wrist's family band (WRIST_EXACT_TOL x the stages'
+# amplification) took for the singularity itself: the family's member came back, 0.4-2 rad from the generating joints
+WITHIN_ROUNDING = {
+    "ur5e": [2.103053388996922, -0.9007070975291098, -1.3007488082758683, 2.693415836883058, 1e-12,
+             -1.8976869632588627],
+    "kr6": [-2.302127233349231, -0.7959022711439285, 2.832312835673677, -2.4293565727027215, 1e-12,
+            1.8919540112327455],
+}
+
+
+@pytest.mark.parametrize("robot", sorted(WITHIN_ROUNDING))
+def test_a_wrist_within_rounding_of_its_singularity_is_read_from_the_pose(robot):
+    """|q5| = 1e-12 behind stages that amplify the pose's rounding 10-80 fold: above the rounding measured at exact
+    singularities (WRIST_FAMILY_TOL, 64 eps, times that amplification) the pose's own entries place the wrist (the
+    UR's half-gap stage, the KR 6's spherical wrist), both branches, flagged indeterminate and singular: the generating
+    joints within the conditioning's allowance 1e-6 + 1e-13 / delta, C and numpy with the same counts and flags, every
+    set on the pose; `previous` does not move them (it moves only a family's representative); at q5 = 0 exactly the
+    family, once."""
+    m, py, _ = derived(robot)
+    reference = ref.load(_file(robot, "urdf"))
+    q = np.array(WITHIN_ROUNDING[robot])
+    T = reference(q)
+    far = q + 1.0
+    for mod in (m, py):
+        sol = mod.ik(T)
+        k = min(range(sol.count), key=lambda i: _gap(sol.values[sol.valid][i], q))
+        near = sol.values[sol.valid][k]
+        assert _gap(near, q) <= 1e-6 + 1e-13 / 1e-12
+        assert sol.flags[sol.valid][k] & (m.FLAG_INDETERMINATE | m.FLAG_SINGULAR_INVERSE) == \
+            m.FLAG_INDETERMINATE | m.FLAG_SINGULAR_INVERSE and sol.status == m.STATUS_INDETERMINATE
+        assert not np.any(sol.flags & ~0xFF)  # the runtime's internal marks never escape
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+        moved = mod.ik(T, previous=far)
+        assert moved.count == sol.count and np.array_equal(moved.values[moved.valid], sol.values[sol.valid])
+    a, b = m.ik(T), py.ik(T)
+    assert a.count == b.count and np.array_equal(a.flags, b.flags)
+    q0 = q.copy()
+    q0[4] = 0.0
+    exact = m.ik(reference(q0))
+    assert exact.status == m.STATUS_INDETERMINATE and min(_gap(v, q0) for v in m.ik(reference(q0), previous=q0)) \
+        <= 1e-9 and exact.count < a.count
+
 def test_the_design_is_the_table_s_lengths_and_moves_the_robot():
     """The table's lengths are the module's design parameters (defaults: the robot's, named a<row> / d<row>): each
     one changed by 25 % gives the robot whose DH product, composed here from tests/reference/dh.py's link matrix

@@ -157,6 +157,30 @@ def test_a_wrist_gap_stage_separates_its_roots_down_to_the_wrists_rounding(py):
     assert flags == (True, FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE) and q == [0.0] and math.isfinite(amp[0])
 
 
+
+def test_a_wrist_gap_within_rounding_of_its_family_keeps_both_roots_flagged_indeterminate(py):
+    """The same UR-type wrist stage with the family's floor (WRIST_FAMILY_TOL, the rounding measured at exact
+    singularities with a margin): a half-gap |n x w| = sin delta above 2 WRIST_FAMILY_TOL amp_before but within
+    2 WRIST_EXACT_TOL amp_before is the pose's own reading, both roots +-delta, flagged indeterminate and singular (a
+    UR5e at q5 = 1e-12 read as one double root gave the family's member 2 rad from the generating joints); below the
+    floor one double root, as before."""
+    st = py.stages
+    amp_before = 10.0
+    delta = 1e-12  # 2 WRIST_FAMILY_TOL amp_before = 2.8e-13 < delta < 2 WRIST_EXACT_TOL amp_before = 2e-12
+    out = (1.0, 0.0, -math.cos(delta), 2.0 * math.sin(delta) ** 2, 2.0, 4.0 * math.sin(delta))
+    got = []
+    for sgn in (1.0, -1.0):
+        q, c, s, amp = [0.0], [1.0], [0.0], [1.0]
+        assert st._trig_linear(out, 0, sgn, q, c, s, None, amp, amp_before, st.WRIST_EXACT_TOL, 1.0,
+                               st.WRIST_FAMILY_TOL) == (True, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE)
+        got.append(q[0])
+    assert got == pytest.approx([delta, -delta], rel=1e-12)
+    noise = 4 * float(np.finfo(float).eps) * amp_before  # below the floor: one double root
+    out = (1.0, 0.0, -math.cos(noise), 2.0 * noise ** 2, 2.0, 4.0 * noise)
+    q, c, s = [0.0], [1.0], [0.0]
+    assert st._trig_linear(out, 0, 1.0, q, c, s, None, [1.0], amp_before, st.WRIST_EXACT_TOL, 1.0,
+                           st.WRIST_FAMILY_TOL) == (True, FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE) and q == [0.0]
+
 def test_rotation2d_is_the_angle_between_the_two_vectors(py):
     rng = case_rng(2241)
     for _ in range(30):

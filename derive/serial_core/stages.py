@@ -29,9 +29,9 @@ class Stage:
     signs: tuple[int, ...] = ()  # wrist: (e0, e1, e2, e3, k00@0, k10@0, k00@pi, k10@pi)
     wrist_rotation: sp.Matrix | None = None  # wrist: R(q4) R(q5) R(q6) of the three wrist rows
     wrist_joints: tuple = ()
-    # a factored stage's double-root band: "distance" (DOUBLE_ROOT_TOL: a distance's square carries the lengths'
-    # rounding) or "wrist" (WRIST_EXACT_TOL, as the DH wrist's family band: the half-gap is a wrist's |sin|, read
-    # from unit vectors to eps)
+    # a factored stage's double-root band: "distance" (ROOT_GAP_TOL: a distance's square carries the lengths'
+    # rounding) or "wrist" (the DH wrist's family bands, WRIST_FAMILY_TOL and WRIST_EXACT_TOL: the half-gap is a
+    # wrist's |sin|, read from unit vectors to eps)
     gap: str = "distance"
     # a rotation2d stage whose family moves what its next stage must reach (a UR's q6 at its wrist singularity):
     # the member is the one that stage reaches (serial_stages._family_by_reach), probed on its kernel
@@ -121,6 +121,8 @@ def stage_view(spec) -> list[dict]:
         view["probe"] = k + 1 if st.probe_next and nxt is not None and nxt.kind == "trig_linear" and any(
             spec.joints[st.joints[0]] in sp.sympify(e).free_symbols for e in nxt.exprs) else None
         view["gap_tol"] = {"distance": "ROOT_GAP_TOL", "wrist": "WRIST_EXACT_TOL"}[st.gap]
+        # a wrist's half-gap is one double root below the family's band only; up to gap_tol's the pose's own reading
+        view["floor_tol"] = {"distance": "0.0", "wrist": "WRIST_FAMILY_TOL"}[st.gap]
         if st.kind == "wrist":
             view["signs"] = list(st.signs)
             view["joint_kinds"] = [spec.kinds[j] for j in st.joints]

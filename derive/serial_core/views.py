@@ -56,7 +56,7 @@ def py_stage_body(st: dict) -> list[str]:
                     "                    size=_design_size(dp))"]
         return [f"a = {_amp_before(st)}  # the angle stages' amplification",
                 f"return _trig_linear({out}, {j}, _sign(k, {st['bit']}), q, c, s, prev, amp, a, {st['gap_tol']},",
-                "                    _design_size(dp))"]
+                f"                    _design_size(dp), {st['floor_tol']})"]
     if st["kind"] == "rotation2d":
         if st.get("probe"):  # a family's member is the one its next stage reaches (serial_stages._family_by_reach)
             return [f"return _rotation2d({out}, {j}, q, c, s, prev, amp, _k_stage{st['probe']}, pose, dp)"]
@@ -69,9 +69,9 @@ def py_stage_body(st: dict) -> list[str]:
     if st["kind"] == "wrist":
         joints, signs = "(" + ", ".join(map(str, st["joints"])) + ")", "(" + ", ".join(map(str, st["signs"])) + ")"
         mirror = ["if k & 1:  # the second branch mirrors the first (set k - 1's prefix)",
-                  f"    return _wrist_mirror({joints}, q, c, s)"] if st["bit"] == 0 else []
-        return mirror + [f"a = {_amp_before(st)}  # the angle stages' amplification",
-                         f"return _wrist({out}, _sign(k, {st['bit']}), {signs}, {joints}, q, c, s, dp, a)"]
+                  f"    return _wrist_mirror({joints}, q, c, s, a)"] if st["bit"] == 0 else []
+        return [f"a = {_amp_before(st)}  # the angle stages' amplification"] + mirror + [
+            f"return _wrist({out}, _sign(k, {st['bit']}), {signs}, {joints}, q, c, s, dp, a)"]
     raise ValueError(f"stage kind {st['kind']!r}")
 
 
@@ -86,8 +86,9 @@ def c_stage_body(st: dict) -> list[str]:
             "*f = 0u;"]
     if st["kind"] == "trig_linear":
         gap_tol = f"SR_{st['gap_tol']}" if st.get("factored") else "0.0"
-        return head + [call, f"return sr_trig_linear(out, {int(bool(st.get('factored')))}, {gap_tol}, {j}, "
-                             f"sr_sign(k, {st['bit']}), q, c, s, prev, amp, {_amp_before(st)}, "
+        floor_tol = f"SR_{st['floor_tol']}" if st.get("factored") and st["floor_tol"] != "0.0" else "0.0"
+        return head + [call, f"return sr_trig_linear(out, {int(bool(st.get('factored')))}, {gap_tol}, {floor_tol}, "
+                             f"{j}, sr_sign(k, {st['bit']}), q, c, s, prev, amp, {_amp_before(st)}, "
                              "sr_design_size(dp), f);"]
     if st["kind"] == "rotation2d":
         probe = f"sr_k_stage{st['probe']}" if st.get("probe") else "NULL"
@@ -103,7 +104,8 @@ def c_stage_body(st: dict) -> list[str]:
         body = [f"static const int joints[3] = {{ {joints} }};",
                 f"static const double signs[8] = {{ {signs} }};"] + head
         if st["bit"] == 0:
-            body += ["if ((k & 1) == 1) return sr_wrist_mirror(joints, q, c, s, f); /* set k - 1's prefix */"]
+            body += [f"if ((k & 1) == 1) return sr_wrist_mirror(joints, q, c, s, {_amp_before(st)}, f); "
+                     "/* set k - 1's prefix */"]
         return body + [call, f"return sr_wrist(out, sr_sign(k, {st['bit']}), signs, joints, q, c, s, dp, "
                              f"{_amp_before(st)}, f);"]
     raise ValueError(f"stage kind {st['kind']!r}")

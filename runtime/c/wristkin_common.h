@@ -31,6 +31,9 @@ extern "C" {
 /* internal, never in a returned set: a two-root stage's half-gap within its upstream noise of a double root (the
    pairs wk_merge_indistinct compares) */
 #define WK_FLAG_MERGE_CANDIDATE 0x10000u
+/* internal, never returned: a wrist within rounding of its family whose member the pose's own entries placed (a
+ * serial arm's wrist stage); `previous` moves only a family's representative, not such a set */
+#define WK_FLAG_READ_MEMBER 0x20000u
 
 /* Input rotations: max|R^T R - I| <= WK_ROTATION_PROJECT_TOL is projected onto SO(3) (polar factor),
  * farther is WK_ERR_RANGE; below WK_ROTATION_EXACT_TOL the matrix is used as given. */

@@ -31,6 +31,9 @@ FLAG_PROJECTED = 32  # the input rotation was projected onto SO(3) before solvin
 # internal, never in a returned set: a two-root stage's half-gap within its upstream noise of a double root (the
 # pairs merge_indistinct compares)
 FLAG_MERGE_CANDIDATE = 0x10000
+# internal, never returned: a wrist within rounding of its family whose member the pose's own entries placed (a
+# serial arm's wrist stage); `previous` moves only a family's representative, not such a set
+FLAG_READ_MEMBER = 0x20000
 FLAG_NAMES = {1: "singular_inverse", 2: "singular_direct", 4: "gimbal", 8: "double_root", 16: "indeterminate",
               32: "projected"}
 # An input rotation R with max|R^T R - I| <= ROTATION_PROJECT_TOL is replaced by its polar factor U V^T (the

@@ -137,14 +137,16 @@ def _ik_numpy(pose, d, previous):
                                       for x, kind in zip(qk, JOINT_KINDS, strict=True) if kind == "P"):
             beyond += 1  # a set fk would reject: IK returns only what FK accepts
             continue
-        if _WRIST_STAGE >= 0 and prev is not None and state[_WRIST_STAGE][1] & FLAG_INDETERMINATE:
-            # the wrist's own family (|sin theta5| <= WRIST_EXACT_TOL), not another stage's: above that threshold
-            # the sets are regular and `previous` must not move them (it moved theta4 by 3 rad at 1e-12)
+        if _WRIST_STAGE >= 0 and prev is not None and state[_WRIST_STAGE][1] & (
+                FLAG_INDETERMINATE | _runtime.FLAG_READ_MEMBER) == FLAG_INDETERMINATE:
+            # the wrist's own family (|sin theta5| <= WRIST_FAMILY_TOL), not another stage's: above that threshold
+            # the pose places the wrist and `previous` must not move it (it moved theta4 by 3 rad at 1e-12)
             moved = _nearest_member(qk, prev, d.params)
             err_moved = max(abs(x - y) for x, y in zip(_k_fk(moved, d.params), p, strict=True))
             if err_moved <= IK_VERIFY_TOL:  # exact in theory; confirmed
                 qk, err = moved, err_moved
-        values[k], aux[k], valid[k], flags[k] = qk, err, True, f | (FLAG_PROJECTED if dev else 0)
+        values[k], aux[k], valid[k], flags[k] = qk, err, True, (f & ~_runtime.FLAG_READ_MEMBER) | (
+            FLAG_PROJECTED if dev else 0)
     if _FOLD_BITS:
         # a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when)
         _runtime.merge_indistinct(values, valid, flags, aux, _FOLD_BITS, _REVOLUTE,

@@ -28,12 +28,16 @@ from serial_stand_in import (
     TANGENT_MAX,
     TANGENT_TOL,
     WRIST_EXACT_TOL,
+    WRIST_FAMILY_TOL,
     _k_fk,
     _wrap,
 )
 
 # wristkin: inlined from here
 _EPS = 2.220446049250313e-16
+# internal, never returned: a wrist within rounding of its family whose member the pose's own entries placed (between
+# WRIST_FAMILY_TOL and WRIST_EXACT_TOL); `previous` moves only a family's representative, never such a set
+FLAG_READ_MEMBER = _runtime.FLAG_READ_MEMBER
 
 
 def _sign(k, bit):
@@ -54,11 +58,14 @@ def _design_size(dp):
     return max(1.0, max(map(abs, dp[:N_LENGTHS]), default=0.0))
 
 
-def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=ROOT_GAP_TOL, size=1.0):
+def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=ROOT_GAP_TOL, size=1.0, floor_tol=0.0):
     """Joint j from A cos q + B sin q + C = 0 (out = (A, B, C), a factored stage's also (Dm, Dp, Em)): q = atan2(B, A)
     + sgn acos(-C / sqrt(A^2 + B^2)), its cos and sin from (A, B, u) without trigonometry; amp[j]: how much its roots
     amplify the input's rounding; amp_before: the angle stages' before it; gap_tol: a factored stage's band
-    (_root_gap); size: the design's (_design_size), the scale of (A, B)'s rounding. Returns (ok, flags)."""
+    (_root_gap); size: the design's (_design_size), the scale of (A, B)'s rounding; floor_tol: a wrist's half-gap
+    (a UR's q5) is one double root only below this band (WRIST_FAMILY_TOL, the rounding measured at exact
+    singularities with a margin); between it and gap_tol's the two roots are the pose's own reading, flagged
+    indeterminate (the pose is within rounding of its family). Returns (ok, flags)."""
     a, b, cc = out[0], out[1], out[2]
     r = math.hypot(a, b)
     # (A, B) at the rounding of the design's lengths: a family (a KR 6's wrist centre 1e-12 m off its shoulder axis,
@@ -77,7 +84,8 @@ def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=ROOT_G
     if not abs(u) <= 1.0 + max(TANGENT_TOL, min(TANGENT_MAX, STAGE_NOISE * amp_before)):
         return False, 0
     u = max(-1.0, min(1.0, u))
-    sg, band = _root_gap(out, r, u, amp_before, gap_tol)
+    sg, scale = _root_gap(out, r, u, amp_before)
+    band = math.sqrt((floor_tol or gap_tol) * scale) if len(out) > 3 else math.sqrt(ROOT_GAP_TOL)
     f = FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE if sg <= band else 0
     if f and sgn < 0.0:
         return False, 0  # a double root is one solution: reported once, by the + branch
@@ -85,6 +93,10 @@ def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=ROOT_G
         # at its centre phi: within the band sin w is rounding (Dm's noise reads as sqrt(noise), 6e-9 for a PUMA
         # elbow folded onto its shoulder), and a stage after it would take that for geometry
         sg = 0.0
+    elif floor_tol and len(out) > 3 and sg * sg <= gap_tol * scale:
+        # above the rounding measured at exact singularities, within WRIST_EXACT_TOL: q5 = +-1e-12 on a UR5e read
+        # as its double root gave the family's member 2 rad from the generating joints (12 of 400 poses)
+        f = FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE
     elif sg * sg <= (gap_tol if len(out) > 3 else ROOT_GAP_TOL) * amp_before:
         # within the stages' noise of a double root (sin^2 of the half-gap at most its band times the angle stages'
         # amplification: an exact double root split by that noise): merge_indistinct decides whether the pose tells
@@ -101,24 +113,25 @@ def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=ROOT_G
     return True, f
 
 
-def _root_gap(out, r, u, amp_before, gap_tol):
-    """(sin w, band): the half-gap w of the roots phi +- w, and the sin w below which they are one double root.
+def _root_gap(out, r, u, amp_before):
+    """(sin w, scale): the half-gap w of the roots phi +- w, and the scale of its rounding: sin w is one double root
+    below sqrt(tol x scale) (the caller's tol).
 
-    From u alone 1 - u^2 carries a few eps of rounding, so the band is sqrt(ROOT_GAP_TOL). A factored stage gives the
+    From u alone 1 - u^2 carries a few eps of rounding: scale 1, tol ROOT_GAP_TOL. A factored stage gives the
     factors (Dm, Dp) of 4 R^2 (1 - u^2), each to its own precision, and Em, the scale of Dm's rounding: when Dm is the
     small factor its rounding is Em / (2 R) of what 1 - u^2 carries (times the angle stages' amplification before
-    it), and the band narrows by its square root (a SCARA with a1 = a2 folded to 1e-8 keeps both elbows). Its
-    gap_tol: a distance stage's ROOT_GAP_TOL; a wrist's half-gap (Dm = 2 |n x w|^2, Em = 4 |n x w|: the band is
-    2 gap_tol amp_before on |n x w|) takes WRIST_EXACT_TOL, the DH wrist's family band on |sin theta5|."""
+    it), and the band narrows by its square root (a SCARA with a1 = a2 folded to 1e-8 keeps both elbows). Its tol: a
+    distance stage's ROOT_GAP_TOL; a wrist's half-gap (Dm = 2 |n x w|^2, Em = 4 |n x w|: the band is 2 tol amp_before
+    on |n x w|) takes the DH wrist's family bands on |sin theta5| (WRIST_FAMILY_TOL, WRIST_EXACT_TOL)."""
     if len(out) == 3:
-        return math.sqrt(1.0 - u * u), math.sqrt(ROOT_GAP_TOL)
+        return math.sqrt(1.0 - u * u), 1.0
     dm, dp, em = out[3], out[4], out[5]
     # the product and |Dm| <= |Dp|: a length derived as positive and given negative swaps the factors and their signs
     sg = math.sqrt(max(dm * dp, 0.0)) / (2.0 * r)
     # Dm's rounding is never below eps of the stage's size r: Em = 0 exactly (a UR wrist at q5 = 0, |n x w| = 0) gave
     # a band of 0 and an amplification 1 / 0 (numpy raised, C went on with inf)
     scale = min(1.0, max(em, _EPS * r) * amp_before / (2.0 * r)) if abs(dm) <= abs(dp) else 1.0
-    return sg, math.sqrt(gap_tol * scale)
+    return sg, scale
 
 
 def _rotation2d(out, j, q, c, s, prev, amp, probe=None, pose=None, dp=None):
@@ -220,16 +233,19 @@ def _wrist_sigma(up, dp, joints):
     return 1.0 if same <= 1e-9 * (1.0 + max((abs(v) for v in dp[:N_LENGTHS]), default=0.0)) else -1.0
 
 
-def _wrist_mirror(joints, q, c, s):
+def _wrist_mirror(joints, q, c, s, amp_before):
     """The second wrist branch mirrors the first, computed for the same prefix at set k - 1 (the wrist is the last
     branching stage): q5 -> -q5, q4 -> q4 + pi, q6 -> q6 + pi. At the singularity the first branch already holds
-    the whole family, so this one is a duplicate."""
+    the whole family (its sin theta5 exactly 0), so this one is a duplicate; within WRIST_EXACT_TOL amp_before of it
+    both are the pose's own reading of a near family (_wrist)."""
     j4, j5, j6 = joints
-    if abs(s[j5]) <= WRIST_EXACT_TOL:
+    if abs(s[j5]) <= WRIST_FAMILY_TOL:
         return False, 0
     q[j5], s[j5] = -q[j5], -s[j5]
     for j in (j4, j6):
         q[j], c[j], s[j] = q[j] - math.pi if q[j] > 0.0 else q[j] + math.pi, -c[j], -s[j]
+    if abs(s[j5]) <= WRIST_EXACT_TOL * amp_before:
+        return True, FLAG_SINGULAR_INVERSE | FLAG_INDETERMINATE | FLAG_READ_MEMBER
     return True, FLAG_SINGULAR_INVERSE if abs(s[j5]) <= SINGULAR_EPS else 0
 
 
@@ -237,14 +253,20 @@ def _wrist(out, sgn, signs, joints, q, c, s, dp, amp_before):
     """The spherical wrist (q4, q5, q6) from the entries of its rotation (out, 9), branch sgn; `signs`: the DH
     twists' signs of those entries (e0..e3) and of the singular family's (k00, k10 with theta5 = 0, then pi);
     `amp_before`: how much the angle stages before it amplified the input's rounding (the product of their amp: each
-    reads the joints the ones before it solved), by which its family band WRIST_EXACT_TOL grows."""
+    reads the joints the ones before it solved), by which its family bands grow: |sin theta5| within
+    WRIST_FAMILY_TOL amp_before is the family (one representative), within WRIST_EXACT_TOL amp_before the pose is
+    within rounding of it and both branches are its own reading, flagged indeterminate."""
     e0, e1, e2, e3, k00a, k10a, k00b, k10b = signs
     j4, j5, j6 = joints
     s5 = sgn * math.hypot(out[2], out[5])
     c5 = e0 * out[8]
     f = FLAG_SINGULAR_INVERSE if abs(s5) <= SINGULAR_EPS else 0
-    exact = WRIST_EXACT_TOL * amp_before
-    if abs(s5) <= exact:
+    if abs(s5) <= WRIST_EXACT_TOL * amp_before:
+        # the sine 1e-12 on a KR 6 read as the family gave q4 := 0, 2 rad from the generating joints (62 of 400
+        # poses): above the rounding measured at exact singularities (38 eps x amp_before at most, 5,000 poses of
+        # five arms) the entries place the member
+        f |= FLAG_INDETERMINATE | FLAG_READ_MEMBER
+    if abs(s5) <= WRIST_FAMILY_TOL * amp_before:
         # wrist singularity: only q4 +/- q6 is defined; q4 := 0 (documented representative, moved to the member
         # nearest `previous` by ik)
         if sgn < 0.0:
@@ -255,7 +277,7 @@ def _wrist(out, sgn, signs, joints, q, c, s, dp, amp_before):
         k00, k10 = (k00a, k10a) if up else (k00b, k10b)
         x, y = k00 * out[0], k10 * out[3]
         f = FLAG_SINGULAR_INVERSE | FLAG_INDETERMINATE
-    elif f:
+    elif abs(s5) <= SINGULAR_EPS:
         # near the singularity q4 (and q6 on its own) carry errors ~ eps / sin(theta5), but the angle
         # phi = q6 + sigma q4 read from the well-conditioned entries (as at the singularity) is exact up to
         # O(sin^2 theta5) <= SINGULAR_EPS^2: q6 = phi - sigma q4 keeps the pose to rounding.

@@ -187,9 +187,10 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
             continue;
         }
 #if SR_WRIST_STAGE >= 0
-        if (previous && (stage_flags[SR_WRIST_STAGE] & WK_FLAG_INDETERMINATE)) {
-            /* the wrist's own family (|sin theta5| <= the exact tolerance), not another stage's: above it the sets
-               are regular and `previous` must not move them */
+        if (previous && (stage_flags[SR_WRIST_STAGE] & (WK_FLAG_INDETERMINATE | WK_FLAG_READ_MEMBER)) ==
+                            WK_FLAG_INDETERMINATE) {
+            /* the wrist's own family (|sin theta5| <= the family tolerance), not another stage's: above it the pose
+               places the wrist and `previous` must not move it */
             double moved[SR_N], e6[6];
             for (j = 0; j < SR_N; ++j) moved[j] = out->values[k][j];
             sr_nearest_member(moved, previous, d->params);
@@ -204,7 +205,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
 #endif
         out->aux[k][0] = err;
         out->valid[k] = 1;
-        out->flags[k] = f | projected;
+        out->flags[k] = (f & ~WK_FLAG_READ_MEMBER) | projected;
         if (f & WK_FLAG_INDETERMINATE) indeterminate = 1;
         ++out->count;
     }

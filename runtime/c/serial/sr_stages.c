@@ -41,37 +41,37 @@ static inline double sr_design_size(const double *dp)
     return size;
 }
 
-/* (sin w, band) of the roots phi +- w: below the band they are one double root (Python's _root_gap). From u alone
- * 1 - u^2 carries a few eps of rounding (band sqrt(SR_ROOT_GAP_TOL)); a factored stage gives the factors Dm, Dp of
- * 4 R^2 (1 - u^2), each to its own precision, and Em, the scale of Dm's rounding, and its band's gap_tol (a distance:
- * SR_ROOT_GAP_TOL, a wrist's half-gap: SR_WRIST_EXACT_TOL) */
-static inline void sr_root_gap(const double *out, int factored, double gap_tol, double r, double u,
-                               double amp_before, double *sg, double *band)
+/* (sin w, scale) of the roots phi +- w: below sqrt(tol x scale) they are one double root (Python's _root_gap). From
+ * u alone 1 - u^2 carries a few eps of rounding (scale 1, tol SR_ROOT_GAP_TOL); a factored stage gives the factors
+ * Dm, Dp of 4 R^2 (1 - u^2), each to its own precision, and Em, the scale of Dm's rounding (its tol: a distance's
+ * SR_ROOT_GAP_TOL, a wrist's half-gap SR_WRIST_FAMILY_TOL, then SR_WRIST_EXACT_TOL) */
+static inline void sr_root_gap(const double *out, int factored, double r, double u, double amp_before, double *sg,
+                               double *scale)
 {
     if (!factored) {
         *sg = sqrt(1.0 - u * u);
-        *band = sqrt(SR_ROOT_GAP_TOL);
+        *scale = 1.0;
     } else {
         /* the product and |Dm| <= |Dp|: a length derived as positive and given negative swaps the factors and their
          * signs (Python's _root_gap) */
         const double prod = out[3] * out[4];
         /* Dm's rounding is never below eps of the stage's size r (Em = 0 exactly: a UR wrist at q5 = 0) */
-        const double scale = fabs(out[3]) <= fabs(out[4]) ? fmin(1.0, fmax(out[5], DBL_EPSILON * r) * amp_before /
-                                                                  (2.0 * r)) : 1.0;
+        *scale = fabs(out[3]) <= fabs(out[4]) ? fmin(1.0, fmax(out[5], DBL_EPSILON * r) * amp_before / (2.0 * r)) :
+                                                1.0;
         *sg = prod > 0.0 ? sqrt(prod) / (2.0 * r) : 0.0;
-        *band = sqrt(gap_tol * scale);
     }
 }
 
 /* Joint j from A cos q + B sin q + C = 0 (out = A, B, C, a factored stage's also Dm, Dp, Em): q = atan2(B, A) +
- * sgn acos(-C / sqrt(A^2 + B^2)). inline: each stage of this kind calls it with its own constant joint, bit and form,
- * as straight-line code would */
-static inline int sr_trig_linear(const double *out, int factored, double gap_tol, int j, double sgn, double *q,
-                                 double *c, double *s, const double *prev, double *amp, double amp_before, double size,
-                                 unsigned *f)
+ * sgn acos(-C / sqrt(A^2 + B^2)). floor_tol > 0 (a wrist's half-gap): one double root below its band only, the two
+ * roots flagged indeterminate up to gap_tol's (Python's _trig_linear). inline: each stage of this kind calls it with
+ * its own constant joint, bit and form, as straight-line code would */
+static inline int sr_trig_linear(const double *out, int factored, double gap_tol, double floor_tol, int j,
+                                 double sgn, double *q, double *c, double *s, const double *prev, double *amp,
+                                 double amp_before, double size, unsigned *f)
 {
     const double r = sqrt(out[0] * out[0] + out[1] * out[1]);
-    double u, sg, band, ca, sa;
+    double u, sg, scale, band, ca, sa;
     if (r <= SR_ON_AXIS_TOL * size) { /* (A, B) at the rounding of the design's lengths (Python's _trig_linear) */
         /* |C| within sqrt(SR_DOUBLE_ROOT_TOL): an upstream double root's residue (see Python); the FK check decides */
         if (fabs(out[2]) > sqrt(SR_DOUBLE_ROOT_TOL) || sgn < 0.0) return 0;
@@ -84,11 +84,14 @@ static inline int sr_trig_linear(const double *out, int factored, double gap_tol
     /* the band grows with the rounding the stages before amplified into u (Python's TANGENT_MAX says why it may) */
     if (!(fabs(u) <= 1.0 + fmax(SR_TANGENT_TOL, fmin(SR_TANGENT_MAX, SR_STAGE_NOISE * amp_before)))) return 0;
     u = sr_clamp1(u);
-    sr_root_gap(out, factored, gap_tol, r, u, amp_before, &sg, &band);
+    sr_root_gap(out, factored, r, u, amp_before, &sg, &scale);
+    band = factored ? sqrt((floor_tol > 0.0 ? floor_tol : gap_tol) * scale) : sqrt(SR_ROOT_GAP_TOL);
     if (sg <= band) {
         if (sgn < 0.0) return 0; /* a double root is one solution: reported once, by the + branch */
         *f = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
         sg = 0.0; /* at its centre: within the band sin w is rounding (see Python) */
+    } else if (floor_tol > 0.0 && factored && sg * sg <= gap_tol * scale) {
+        *f = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE; /* within rounding of the wrist's family (see Python) */
     } else if (sg * sg <= (factored ? gap_tol : SR_ROOT_GAP_TOL) * amp_before) {
         *f = WK_FLAG_MERGE_CANDIDATE; /* within the stages' noise of a double root: the merge decides (see Python) */
     }
@@ -263,11 +266,14 @@ static double sr_wrist_sigma(int up, const double *dp, const int *w)
 #if SR_HAS_WRIST_MIRROR
 /* The second wrist branch mirrors the first, computed for the same prefix at set k - 1 (the wrist is the last
  * branching stage): q5 -> -q5, q4 -> q4 + pi, q6 -> q6 + pi. At the singularity the first branch already holds the
- * whole family, so this one is a duplicate. */
-static int sr_wrist_mirror(const int *w, double *q, double *c, double *s, unsigned *f)
+ * whole family (its sin theta5 exactly 0), so this one is a duplicate; within SR_WRIST_EXACT_TOL amp_before of it
+ * both are the pose's own reading of a near family (sr_wrist). */
+static int sr_wrist_mirror(const int *w, double *q, double *c, double *s, double amp_before, unsigned *f)
 {
-    if (fabs(s[w[1]]) <= SR_WRIST_EXACT_TOL) return 0;
+    if (fabs(s[w[1]]) <= SR_WRIST_FAMILY_TOL) return 0;
     if (fabs(s[w[1]]) <= SR_SINGULAR_EPS) *f = WK_FLAG_SINGULAR_INVERSE;
+    if (fabs(s[w[1]]) <= SR_WRIST_EXACT_TOL * amp_before)
+        *f = WK_FLAG_SINGULAR_INVERSE | WK_FLAG_INDETERMINATE | WK_FLAG_READ_MEMBER;
     q[w[1]] = -q[w[1]];
     s[w[1]] = -s[w[1]];
     q[w[0]] = q[w[0]] > 0.0 ? q[w[0]] - SR_PI : q[w[0]] + SR_PI;
@@ -286,11 +292,13 @@ static int sr_wrist(const double *out, double sgn, const double *e, const int *w
                     const double *dp, double amp_before, unsigned *f)
 {
     const double s5 = sgn * sqrt(out[2] * out[2] + out[5] * out[5]), c5 = e[0] * out[8];
-    /* the family band: the stages before amplified the input's rounding into the wrist's rotation (Python's _wrist) */
-    const double exact = SR_WRIST_EXACT_TOL * amp_before;
+    /* the family bands: the stages before amplified the input's rounding into the wrist's rotation; within the
+     * exact band the entries place the member of a near family, flagged indeterminate (Python's _wrist) */
+    const double family = SR_WRIST_FAMILY_TOL * amp_before;
     double x, y, n;
     if (fabs(s5) <= SR_SINGULAR_EPS) *f = WK_FLAG_SINGULAR_INVERSE;
-    if (fabs(s5) > exact && fabs(s5) <= SR_SINGULAR_EPS) {
+    if (fabs(s5) <= SR_WRIST_EXACT_TOL * amp_before) *f |= WK_FLAG_INDETERMINATE | WK_FLAG_READ_MEMBER;
+    if (fabs(s5) > family && fabs(s5) <= SR_SINGULAR_EPS) {
         /* near the singularity q6 = phi - sigma q4, phi from the well-conditioned entries (see Python) */
         const int up = c5 >= 0.0;
         const double k00 = up ? e[4] : e[6], k10 = up ? e[5] : e[7];
@@ -309,7 +317,7 @@ static int sr_wrist(const double *out, double sgn, const double *e, const int *w
         s[w[2]] = sin(q[w[2]]);
         return 1;
     }
-    if (fabs(s5) <= exact) {
+    if (fabs(s5) <= family) {
         /* wrist singularity: q4 := 0 (moved to previous's q4 by ik_near), q6 carries q4 +/- q6 */
         const int up = c5 >= 0.0;
         const double k00 = up ? e[4] : e[6], k10 = up ? e[5] : e[7];
