@@ -446,16 +446,20 @@ def py():
 
 
 def test_the_python_square_step_is_the_c_one_to_the_bit(py, lib):
-    """chain_verify._solve_square is ck_solve_square step for step (the polish's square step in both languages):
-    equal bits on random 6 x 6 systems, and both refuse a pivot at or below 1e-8 of the largest entry."""
+    """_runtime.solve_square is the shared C runtime's wk_square_solve step for step (the polish's square step in
+    both languages, the chain's and the serial arms'): equal bits on random 6 x 6 systems, and both refuse a pivot at
+    or below the relative threshold (the chain's 1e-8 of the largest entry)."""
     rng = case_rng(2215)
     x = np.zeros(6)
+    solve = py.verify._runtime.solve_square
     for _ in range(100):
         a, b = rng.normal(size=(6, 6)) * rng.uniform(1e-3, 1e3), rng.normal(size=6)
         assert lib.wkt_solve_square(_p(a), 6, _p(b), _p(x)) == 1
-        assert py.verify._solve_square(a, b) == list(x)
+        assert solve(a, b, 1e-8) == list(x)
     a[:, 5] = a[:, 4] * (1.0 + 1e-12)
-    assert lib.wkt_solve_square(_p(a), 6, _p(b), _p(x)) == 0 and py.verify._solve_square(a, b) is None
+    assert lib.wkt_solve_square(_p(a), 6, _p(b), _p(x)) == 0 and solve(a, b, 1e-8) is None
+    a[:, 5] = 0.0  # a held joint's zeroed column
+    assert solve(a, b, 1e-6) is None
 
 
 def test_python_subproblems_return_the_generating_angles_and_c_s_roots(py, lib):

@@ -82,6 +82,12 @@ int wk_conditioning_bound(const double *jac, int n, double eps, double *man);
  * partial pivoting; returns 0 if singular. */
 int wk_normal_solve(const double *jac, int n, const double *e, double damping, double *x);
 
+/* x = a^-1 b for a square n x n a (row-major, n <= WK_MAX_DIM) by elimination with partial pivoting: a's
+ * conditioning enters once, where the normal equations square it, at a fraction of their work or an SVD's. Returns
+ * 1, or 0 with x untouched when a pivot is at or below rel_pivot of a's largest entry (near rank deficiency, a zeroed
+ * column: the caller's least squares decide). Python's _runtime.solve_square step for step. */
+int wk_square_solve(const double *a, int n, const double *b, double rel_pivot, double *x);
+
 /* Merge two valid sets that differ only in the branch of one two-root stage (k and k | 1 << bits[b]) when the pose
  * cannot tell them apart: their midpoint, refitted by one Gauss-Newton step no longer than an eighth of their span,
  * fits the pose within WK_MERGE_ULPS eps max(1, scale) of their residuals (scale: the pose's size, max |p|;

@@ -405,6 +405,43 @@ int wk_conditioning_bound(const double *jac, int n, double eps, double *man)
     return k == 1 ? (!man || wk_cholesky(g, m, 0.0, man) ? 1 : 0) : k;
 }
 
+int wk_square_solve(const double *a_in, int n, const double *b, double rel_pivot, double *x)
+{
+    double a[WK_MAX_DIM][WK_MAX_DIM + 1], *row[WK_MAX_DIM], big = 0.0;
+    int i, j, k;
+    if (n < 1 || n > WK_MAX_DIM) return 0;
+    for (i = 0; i < n; ++i) {
+        for (j = 0; j < n; ++j) {
+            a[i][j] = a_in[i * n + j];
+            if (fabs(a[i][j]) > big) big = fabs(a[i][j]);
+        }
+        a[i][n] = b[i];
+        row[i] = a[i];
+    }
+    for (k = 0; k < n; ++k) {
+        double *pk;
+        int p = k;
+        for (i = k + 1; i < n; ++i)
+            if (fabs(row[i][k]) > fabs(row[p][k])) p = i;
+        if (!(fabs(row[p][k]) > rel_pivot * big)) return 0; /* a NaN fails too */
+        pk = row[p]; /* rows swap as pointers */
+        row[p] = row[k];
+        row[k] = pk;
+        for (i = k + 1; i < n; ++i) {
+            double *r = row[i];
+            const double m = r[k] / pk[k];
+            for (j = k + 1; j <= n; ++j) r[j] -= m * pk[j];
+        }
+    }
+    for (i = n - 1; i >= 0; --i) {
+        const double *r = row[i];
+        double acc = r[n];
+        for (j = i + 1; j < n; ++j) acc -= r[j] * x[j];
+        x[i] = acc / r[i];
+    }
+    return 1;
+}
+
 int wk_normal_solve(const double *jac, int n, const double *e, double damping, double *x)
 {
     double g[WK_MAX_DIM][WK_MAX_DIM + 1];

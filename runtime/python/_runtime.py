@@ -478,3 +478,33 @@ def select(solutions: Solutions, previous=None, lower=None, upper=None, weights=
         return float(np.sum(wts * diff)), float(np.sum(diff)), k
 
     return min(cand, key=dist)
+
+
+def solve_square(a, b, rel_pivot):
+    """a^-1 b for a square a by elimination with partial pivoting, or None when a pivot is at or below rel_pivot of
+    the largest entry (near rank deficiency, a zeroed column: the caller's least squares decide). The C runtime's
+    wk_square_solve step for step, so that both languages polish to the same bits."""
+    n = len(b)
+    m = [[float(a[i][j]) for j in range(n)] + [float(b[i])] for i in range(n)]
+    big = max(abs(m[i][j]) for i in range(n) for j in range(n))
+    for k in range(n):
+        p = k
+        for i in range(k + 1, n):
+            if abs(m[i][k]) > abs(m[p][k]):
+                p = i
+        if not abs(m[p][k]) > rel_pivot * big:
+            return None
+        if p != k:
+            m[k], m[p] = m[p], m[k]
+        for i in range(k + 1, n):
+            f = m[i][k] / m[k][k]
+            row, pivot = m[i], m[k]
+            for j in range(k + 1, n + 1):
+                row[j] -= f * pivot[j]
+    x = [0.0] * n
+    for i in range(n - 1, -1, -1):
+        acc = m[i][n]
+        for j in range(i + 1, n):
+            acc -= m[i][j] * x[j]
+        x[i] = acc / m[i][i]
+    return x

@@ -7,6 +7,7 @@ other sources (chain_stand_in.py: a stand-in robot), so that it is linted and te
 
 from __future__ import annotations
 
+import _runtime
 import numpy as np
 from chain_poe import _fk_chain
 from chain_rigid import _ID, _apply, _compose, _cross, _mv, _screw, _sub
@@ -50,36 +51,6 @@ def _jacobian_chain(ch, q):
     return out
 
 
-def _solve_square(a, b):
-    """a^-1 b for a square a by elimination with partial pivoting, or None when a pivot is at or below 1e-8 of the
-    largest entry (near rank deficiency the SVD's cut decides). The C runtime's ck_solve_square step for step, so
-    that both languages polish to the same bits."""
-    n = len(b)
-    m = [[float(a[i][j]) for j in range(n)] + [float(b[i])] for i in range(n)]
-    big = max(abs(m[i][j]) for i in range(n) for j in range(n))
-    for k in range(n):
-        p = k
-        for i in range(k + 1, n):
-            if abs(m[i][k]) > abs(m[p][k]):
-                p = i
-        if not abs(m[p][k]) > 1e-8 * big:
-            return None
-        if p != k:
-            m[k], m[p] = m[p], m[k]
-        for i in range(k + 1, n):
-            f = m[i][k] / m[k][k]
-            row, pivot = m[i], m[k]
-            for j in range(k + 1, n + 1):
-                row[j] -= f * pivot[j]
-    x = [0.0] * n
-    for i in range(n - 1, -1, -1):
-        acc = m[i][n]
-        for j in range(i + 1, n):
-            acc -= m[i][j] * x[j]
-        x[i] = acc / m[i][i]
-    return x
-
-
 def _polish_read(fk, jacobian, n, q, target):
     """Gauss-Newton on a chain read through fk(q) -> frame and jacobian(q) -> 6 x n (the derived kernels, or a
     chain's table): a square step by elimination, else least squares (the C runtime's ck_polish_read)."""
@@ -90,7 +61,7 @@ def _polish_read(fk, jacobian, n, q, target):
         if err <= POLISH_TOL:
             break
         jac, e = jacobian(q), _twist_error(t, target)
-        step = _solve_square(jac, e) if n == 6 else None
+        step = _runtime.solve_square(jac, e, 1e-8) if n == 6 else None
         if step is None:
             step = np.linalg.lstsq(np.asarray(jac, dtype=float), e, rcond=None)[0]
         trial = [v + float(dq) for v, dq in zip(q, step, strict=True)]

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+import _runtime
 import numpy as np
 from serial_stand_in import (
     _HELD,
@@ -40,10 +41,14 @@ def _gn_step(q, e, err, pose, dp, max_step=math.inf):
     j = np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)
     if _HELD >= 0:  # the held joint keeps its value (the damping then leaves its step 0)
         j[:, _HELD] = 0.0
-    try:
-        step = np.linalg.solve(j.T @ j + 1e-12 * np.eye(N_JOINTS), j.T @ e)
-    except np.linalg.LinAlgError:
-        return q, e, err
+    # a regular square J: its LU (the normal equations square its conditioning); near singular (a pivot at or below
+    # 1e-6 of its largest entry, where the damping 1e-12 on J^T J starts to matter) or a zeroed column: damped
+    step = _runtime.solve_square(j, e, 1e-6) if N_JOINTS == 6 else None
+    if step is None:
+        try:
+            step = np.linalg.solve(j.T @ j + 1e-12 * np.eye(N_JOINTS), j.T @ e)
+        except np.linalg.LinAlgError:
+            return q, e, err
     if not np.all(np.abs(step) <= max_step):
         return q, e, err
     trial = [x + dx for x, dx in zip(q, step, strict=True)]

@@ -133,7 +133,7 @@ void wkt_lstsq(const double *a, int m, int n, const double *b, double *x)
 
 int wkt_solve_square(const double *a, int n, const double *b, double *x)
 {
-    return ck_solve_square(a, n, b, x);
+    return wk_square_solve(a, n, b, 1e-8, x);
 }
 
 double wkt_spectrum(const double *jac, int n, double *ratio)

@@ -51,44 +51,6 @@ static void ck_svd(double a[CK_DIM][CK_DIM], int m, int n, double *s, double v[C
 
 /* x = the least-squares solution of A x = b (A: m x n row-major, m >= n) of least norm: singular values at or
  * below eps max(m, n) s_max count as zero (numpy's lstsq with rcond=None). */
-/* x = a^-1 b for a square n x n a by elimination with partial pivoting: 1 when every pivot is above 1e-8 of the
- * largest entry (then x is the least-squares solution ck_lstsq's SVD gives, to rounding times a's conditioning, at
- * a twentieth of its cost), else 0 and x untouched: near rank deficiency the SVD's cut decides. */
-static int ck_solve_square(const double *a_in, int n, const double *b, double *x)
-{
-    double a[CK_DIM][CK_DIM + 1], big = 0.0;
-    int i, j, k;
-    for (i = 0; i < n; ++i) {
-        for (j = 0; j < n; ++j) {
-            a[i][j] = a_in[i * n + j];
-            if (fabs(a[i][j]) > big) big = fabs(a[i][j]);
-        }
-        a[i][n] = b[i];
-    }
-    for (k = 0; k < n; ++k) {
-        int p = k;
-        for (i = k + 1; i < n; ++i)
-            if (fabs(a[i][k]) > fabs(a[p][k])) p = i;
-        if (!(fabs(a[p][k]) > 1e-8 * big)) return 0;
-        if (p != k)
-            for (j = k; j <= n; ++j) {
-                const double t = a[k][j];
-                a[k][j] = a[p][j];
-                a[p][j] = t;
-            }
-        for (i = k + 1; i < n; ++i) {
-            const double m = a[i][k] / a[k][k];
-            for (j = k + 1; j <= n; ++j) a[i][j] -= m * a[k][j];
-        }
-    }
-    for (i = n - 1; i >= 0; --i) {
-        double acc = a[i][n];
-        for (j = i + 1; j < n; ++j) acc -= a[i][j] * x[j];
-        x[i] = acc / a[i][i];
-    }
-    return 1;
-}
-
 static void ck_lstsq(const double *a_in, int m, int n, const double *b, double *x)
 {
     double a[CK_DIM][CK_DIM], v[CK_DIM][CK_DIM], s[CK_DIM], smax = 0.0, cut;

@@ -62,7 +62,7 @@ static double ck_polish_read(const ck_reader *r, double *q, const ck_rt *target,
         if (err <= CK_POLISH_TOL) break;
         r->jacobian(r->self, q, jac);
         ck_twist_error(&t, target, e);
-        if (n != 6 || !ck_solve_square(jac, 6, e, step)) ck_lstsq(jac, 6, n, e, step);
+        if (n != 6 || !wk_square_solve(jac, 6, e, 1e-8, step)) ck_lstsq(jac, 6, n, e, step);
         for (j = 0; j < n; ++j) trial[j] = q[j] + step[j];
         r->fk(r->self, trial, &t2);
         err2 = ck_frame_error(&t2, target);

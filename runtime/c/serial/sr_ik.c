@@ -135,7 +135,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
     for (k = 0; k < SR_MAX_IK; ++k) {
         double t[12], err = 0.0;
         unsigned f = 0u;
-        int alive = 1;
+        int alive = 1, have_t = 1;
         /* the stages (sr_run_stages, printed per chain): each recomputed only when its branch prefix changes */
         alive = sr_run_stages(k, pose, q, c, s, d->params, prev, amp, key, stage_ok, stage_flags, &f);
 #if SR_REUSE_MIRROR_CHECK
@@ -148,6 +148,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
            generated, dh_serial.mirror_keeps_fk). So the even set's check is the odd one's, unless it was polished. */
         if ((k & 1) == 1 && base_err >= 0.0) {
             err = base_err;
+            have_t = 0;
         } else {
             sr_k_fk_cs(q, c, s, d->params, t);
             for (j = 0; j < 12; ++j) {
@@ -168,9 +169,16 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
             /* a tangent root leaves a sqrt(eps) error downstream, and a double root's centre its stage's noise (a
                UR's folded elbow behind a wrist 1e-5 from singular: the pose within 3e-12): polish a copy of the
                set, a double root's to rounding (Python's DOUBLE_ROOT_POLISH_TOL says when); a calibrated robot's
-               (the stages solve its ideal geometry) every set to DOUBLE_ROOT_POLISH_TOL */
-            err = sr_polish(out->values[k], pose, d->params, (f & WK_FLAG_DOUBLE_ROOT) ? rounding :
-                            (SR_CALIBRATED ? polish_double : SR_IK_VERIFY_TOL));
+               (the stages solve its ideal geometry) every set to DOUBLE_ROOT_POLISH_TOL. From the stages' (cos, sin)
+               and their check (the stages' c, s stay as they are: a later set shares their prefix) */
+            double cc[SR_N], sc[SR_N];
+            for (j = 0; j < SR_N; ++j) {
+                cc[j] = c[j];
+                sc[j] = s[j];
+            }
+            if (!have_t) sr_k_fk_cs(q, c, s, d->params, t); /* the check was the even set's: this set's own t */
+            err = sr_polish_cs(out->values[k], cc, sc, t, err, pose, d->params, (f & WK_FLAG_DOUBLE_ROOT) ? rounding :
+                               (SR_CALIBRATED ? polish_double : SR_IK_VERIFY_TOL));
             for (j = 0; j < SR_N; ++j)
                 if (sr_revolute[j]) out->values[k][j] = wk_wrap(out->values[k][j]);
         }

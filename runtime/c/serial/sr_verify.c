@@ -3,12 +3,11 @@
  * (a wristkin runtime source, inlined whole into every serial arm's generated C after its SR_* constants and
  * switches, the sr_design / sr_ik_solutions / sr_fk_solutions types, its derived kernels sr_k_* and stage
  * functions; derive/runtime_files.py, derive/families/serial/views.py, tests/test_serial_runtime.py) */
-/* max |FK(q) - pose| and the twist error (position, then 1/2 sum of column cross products) */
-static double sr_pose_error(const double *q, const double *pose, const double *dp, double *e)
+/* max |t - pose| and the twist error of the pose t (position, then 1/2 sum of column cross products) */
+static double sr_twist_error(const double *t, const double *pose, double *e)
 {
-    double t[12], err = 0.0;
+    double err = 0.0;
     int i;
-    sr_k_fk(q, dp, t);
     for (i = 0; i < 12; ++i) {
         const double e = fabs(t[i] - pose[i]);
         if (!(e <= err)) err = e;
@@ -26,6 +25,30 @@ static double sr_pose_error(const double *q, const double *pose, const double *d
     return err;
 }
 
+/* max |FK(q) - pose| and the twist error */
+static double sr_pose_error(const double *q, const double *pose, const double *dp, double *e)
+{
+    double t[12];
+    sr_k_fk(q, dp, t);
+    return sr_twist_error(t, pose, e);
+}
+
+/* The Gauss-Newton step dq from J and the twist error e: J's LU where it is square and regular (the normal
+ * equations square its conditioning and cost several times as much); near singular (a pivot at or below 1e-6 of J's
+ * largest entry, where the damping 1e-12 on J^T J starts to matter) or a held joint's zeroed column: the damped normal
+ * equations. 0 when both refuse. */
+static int sr_gn_solve(double *jac, const double *e, double *dq)
+{
+#if SR_HELD >= 0
+    int j;
+    for (j = 0; j < 6; ++j) jac[j * SR_N + SR_HELD] = 0.0; /* the held joint keeps its value (its step: 0) */
+#endif
+#if SR_N == 6
+    if (wk_square_solve(jac, 6, e, 1e-6, dq)) return 1;
+#endif
+    return wk_normal_solve(jac, SR_N, e, 1e-12, dq);
+}
+
 /* Damped Gauss-Newton on the pose error: removes the sqrt(eps) error a tangent root passes downstream. */
 /* One damped Gauss-Newton step from q (pose error e, residual err), no longer than max_step in any joint: the new
  * residual with q and e moved, or err with both unchanged when the step is refused (singular, too long) or does not
@@ -35,10 +58,7 @@ static double sr_gn_step(double *q, const double *pose, const double *dp, double
     double jac[6 * SR_N], dq[SR_N], trial[SR_N], e2[6], err2;
     int j;
     sr_k_jacobian(q, dp, jac);
-#if SR_HELD >= 0
-    for (j = 0; j < 6; ++j) jac[j * SR_N + SR_HELD] = 0.0; /* the held joint keeps its value (its step: 0) */
-#endif
-    if (!wk_normal_solve(jac, SR_N, e, 1e-12, dq)) return err;
+    if (!sr_gn_solve(jac, e, dq)) return err;
     for (j = 0; j < SR_N; ++j) {
         if (!(fabs(dq[j]) <= max_step)) return err;
         trial[j] = q[j] + dq[j];
@@ -62,6 +82,56 @@ static double sr_polish(double *q, const double *pose, const double *dp, double 
         err = err2;
     }
     return err;
+}
+
+/* (cos, sin) of a Gauss-Newton step's angle: their series where it is small (the polish's steps: 1e-7 on a
+ * calibrated arm; the terms left are below 1e-22 at 1e-2), else libm's */
+static void sr_step_cs(double x, double *cx, double *sx)
+{
+    if (fabs(x) <= 1e-2) {
+        const double x2 = x * x;
+        *cx = 1.0 - x2 * (0.5 - x2 * (1.0 / 24.0 - x2 * (1.0 / 720.0)));
+        *sx = x * (1.0 - x2 * (1.0 / 6.0 - x2 * (1.0 / 120.0 - x2 * (1.0 / 5040.0))));
+    } else {
+        *cx = cos(x);
+        *sx = sin(x);
+    }
+}
+
+/* sr_polish from a set the stages solved, whose (cos, sin) c, s and check t = fk_cs(q, c, s) with residual err the
+ * caller has: the first step's twist error is read from t, and its trial's (cos, sin) follow from the angle-sum rule,
+ * checked by fk_cs (no FK with trigonometry: a calibrated arm polishes every set, and this halved the cost); the
+ * steps after it, rare, are sr_polish's. c and s are the caller's copies, moved with q. */
+static double sr_polish_cs(double *q, double *c, double *s, const double *t, double err, const double *pose,
+                           const double *dp, double target)
+{
+    double e[6], jac[6 * SR_N], dq[SR_N], trial[SR_N], tc[SR_N], ts[SR_N], t2[12], e2[6], err2;
+    int j;
+    if (err <= target) return err;
+    (void)sr_twist_error(t, pose, e);
+    sr_k_jacobian(q, dp, jac);
+    if (!sr_gn_solve(jac, e, dq)) return sr_polish(q, pose, dp, target);
+    for (j = 0; j < SR_N; ++j) {
+        if (!(fabs(dq[j]) <= HUGE_VAL)) return sr_polish(q, pose, dp, target);
+        trial[j] = q[j] + dq[j];
+        tc[j] = c[j];
+        ts[j] = s[j];
+        if (sr_revolute[j]) {
+            double cd, sd;
+            sr_step_cs(dq[j], &cd, &sd);
+            tc[j] = c[j] * cd - s[j] * sd;
+            ts[j] = s[j] * cd + c[j] * sd;
+        }
+    }
+    sr_k_fk_cs(trial, tc, ts, dp, t2);
+    err2 = sr_twist_error(t2, pose, e2);
+    if (!(err2 < err)) return sr_polish(q, pose, dp, target);
+    for (j = 0; j < SR_N; ++j) {
+        q[j] = trial[j];
+        c[j] = tc[j];
+        s[j] = ts[j];
+    }
+    return err2 <= target ? err2 : sr_polish(q, pose, dp, target);
 }
 
 #if SR_N_FOLD_BITS > 0
