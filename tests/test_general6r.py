@@ -122,13 +122,27 @@ def test_the_run_time_equations_are_the_symbolic_ones():
         assert g6.symbolic_mismatch(chain, rng) <= 1e-12
 
 
+def _eigenvalues_and_rounding(m):
+    """(eigenvalues of m, eps |m|_2 kappa of each): kappa = |left| |right| / |left^H right| from the eigenvector
+    matrix and its inverse, Wilkinson's first-order bound on an eigenvalue's move under rounding of m."""
+    w, v = np.linalg.eig(m)
+    left = np.linalg.inv(v)
+    kappa = np.linalg.norm(left, axis=1) * np.linalg.norm(v, axis=0)
+    return w, float(np.finfo(float).eps) * np.linalg.norm(m, 2) * kappa
+
+
 @pytest.mark.parametrize("case", ["random", "ur5e_tilted"])
 def test_the_hidden_t3_determinant_has_the_factor_one_plus_x_squared_to_the_fourth(case):
     """The deflation's premise (runtime/python/general6r.py's docstring), for random arms (no real combination free
     of t3, d0 = 0) and the tilted UR5e (d0 = 1) at random poses and labellings: the combinations mu = a + i b (and
     the real r0) of the six equations have no 1/z part (z = e^(i t3)) to rounding, M(+-i) has a 4-dimensional null
-    space, and the 16 eigenvalues of the deflated matrix are the 24 x 24 companion's other than the eight at +-i
-    (compared to 1e-8 relative: both well separated at these poses)."""
+    space, and the 16 eigenvalues of the deflated matrix are the 24 x 24 companion's other than the eight at +-i,
+    each to what both computations' rounding allows: eps |A| kappa(lambda) of each matrix (Wilkinson's first-order
+    bound, kappa from the eigenvectors), 8 of it, plus 1e-8 relative (a flat 1e-8 failed on 2 % of Haswell seeds,
+    kappa ~ 1e4 on companions of norm 1e5). The companion keeps (1 + x^2)^4's eigenvalues, two 4-fold ones at +-i
+    that its rounding spreads by (eps |comp|)^(1/4) ~ 1e-3, and an eigenvalue r from them moves by about that to the
+    fourth over r^3 (2.7e-8 at r = 0.006, Haswell seed 231773): within |x^2 + 1| <= 0.1 of them a deflated eigenvalue
+    is checked on the polynomial itself instead, M(x) = a x^2 + b x + c singular to its rounding."""
     rng = case_rng(605)
     chains = [random_arm(rng) for _ in range(4)] if case == "random" else [tilted_ur5e()] * 4
     seen_d0 = set()
@@ -155,14 +169,19 @@ def test_the_hidden_t3_determinant_has_the_factor_one_plus_x_squared_to_the_four
         comp[:12, 12:] = np.eye(12)
         comp[12:, :12] = -np.linalg.solve(a, c)
         comp[12:, 12:] = -np.linalg.solve(a, b)
-        full = np.linalg.eigvals(comp)
-        full = full[np.abs(full * full + 1.0) > 1e-4]
-        deflated = np.linalg.eigvals(G6._g6_deflated_matrix(t6, basis, phi)[0])
+        full, kfull = _eigenvalues_and_rounding(comp)
+        keep = np.abs(full * full + 1.0) > 1e-4
+        full, kfull = full[keep], kfull[keep]
+        deflated, kdef = _eigenvalues_and_rounding(G6._g6_deflated_matrix(t6, basis, phi)[0])
         assert len(full) == len(deflated) == 16
-        for x in deflated:  # each matched to its own (a distinct nearest) companion eigenvalue
+        for x, rx in zip(deflated, kdef, strict=True):  # each matched to its own (distinct nearest) companion's
             k = int(np.argmin(np.abs(full - x)))
-            assert abs(full[k] - x) <= 1e-8 * (1.0 + abs(x))
-            full = np.delete(full, k)
+            if abs(x * x + 1.0) > 0.1:
+                assert abs(full[k] - x) <= 1e-8 * (1.0 + abs(x)) + 8.0 * (rx + kfull[k]), (x, full[k])
+            else:
+                sv = np.linalg.svd(a * x * x + b * x + c, compute_uv=False)
+                assert sv[-1] <= 1e-12 * sv[0], (x, sv[-1] / sv[0])
+            full, kfull = np.delete(full, k), np.delete(kfull, k)
     assert seen_d0 == ({0} if case == "random" else {1})
 
 
