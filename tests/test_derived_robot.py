@@ -724,6 +724,23 @@ def test_a_wrist_within_rounding_of_its_singularity_is_read_from_the_pose(robot)
     assert exact.status == m.STATUS_INDETERMINATE and min(_gap(v, q0) for v in m.ik(reference(q0), previous=q0)) \
         <= 1e-9 and exact.count < a.count
 
+
+def test_two_members_of_the_ur_wrist_family_are_never_merged_as_a_double_root():
+    """q5 = pi exactly and the elbow 2.7e-5 rad from straight (make test-seeds drew it, seed 413261): the elbow's two
+    roots, each a member of the wrist's family, were merged as indistinct, because the merge's Gauss-Newton step moved
+    the midpoint along the family onto the pose; `previous` = the generating joints then came back 2.7e-5 off. Two
+    members of a family are each a solution: kept, C and numpy, `previous`'s within 1e-7."""
+    m, py, _ = derived("ur5e")
+    reference = ref.load(_file("ur5e", "urdf"))
+    q = np.array([3.0339915585832946, 2.208053527106813, 2.692257048497737e-05, 1.8952818317336408, math.pi,
+                  3.1112222581186177])
+    T = reference(q)
+    for mod in (m, py):
+        sol = mod.ik(T, previous=q)
+        assert sol.status == mod.STATUS_INDETERMINATE
+        assert min(_gap(v, q) for v in sol) < 1e-7
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+
 def test_the_design_is_the_table_s_lengths_and_moves_the_robot():
     """The table's lengths are the module's design parameters (defaults: the robot's, named a<row> / d<row>): each
     one changed by 25 % gives the robot whose DH product, composed here from tests/reference/dh.py's link matrix

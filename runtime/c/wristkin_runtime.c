@@ -555,6 +555,9 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bit
             double *x, *y, rx, ry, rm, accept, span = 0.0;
             if ((k & m) || k2 >= max_sets || !valid[k] || !valid[k2]) continue;
             if (candidates_only && !(candidate[k] && candidate[k2])) continue; /* beyond their stage's noise */
+            /* two members of a one-parameter family: the refit's step moves along it, so the midpoint's fit proves
+               nothing, and each is a solution (merge_indistinct says more) */
+            if ((flags[k] & WK_FLAG_INDETERMINATE) && (flags[k2] & WK_FLAG_INDETERMINATE)) continue;
             x = values + (size_t)k * (size_t)n;
             y = values + (size_t)k2 * (size_t)n;
             for (j = 0; j < n && span <= WK_MERGE_SPAN; ++j) { /* most pairs are apart: stop at the first joint */

@@ -426,6 +426,11 @@ def merge_indistinct(values, valid, flags, aux, bits, revolute, refit, scale, ca
                 continue
             if candidates_only and not (candidate[k] and candidate[k2]):
                 continue  # apart beyond their stage's noise: distinct
+            if int(flags[k]) & int(flags[k2]) & FLAG_INDETERMINATE:
+                # two members of a one-parameter family (a UR's wrist at q5 = pi, its elbow 2.7e-5 from straight):
+                # the refit's step moves along the family, so the midpoint's fit proves nothing, and each is a
+                # solution (merged, `previous`'s member came back 2.7e-5 off: seed 413261)
+                continue
             x, y = values[k], values[k2]
             d = [_wrap(float(v - u)) if r else float(v - u) for u, v, r in zip(x, y, revolute, strict=True)]
             span = max(abs(e) for e in d)
