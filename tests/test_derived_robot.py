@@ -684,6 +684,8 @@ def test_at_the_ur_wrist_singularity_the_family_is_returned():
 
 # poses 1e-12 rad from a wrist singularity that the wrist's family band (WRIST_EXACT_TOL x the stages'
 # amplification) took for the singularity itself: the family's member came back, 0.4-2 rad from the generating joints
+# (drawn by a sweep of random arms, numpy default_rng(5), regular elsewhere as _regular_elsewhere requires, q5 = 1e-12;
+# the generating joints are the poses' own, the reference FK the URDF's transforms)
 WITHIN_ROUNDING = {
     "ur5e": [2.103053388996922, -0.9007070975291098, -1.3007488082758683, 2.693415836883058, 1e-12,
              -1.8976869632588627],

@@ -682,53 +682,48 @@ def ik_all(fk: Callable, n: int, T: np.ndarray, limits: Sequence[tuple[float, fl
 
     found: list[np.ndarray] = []     # returned solutions (within the limits, if any)
     seen: list[np.ndarray] = []      # every distinct solution reached, wrapped (flip seeds start from these)
+
+    def search(budget):
+        """LM from q = 0, the random starts and the flip seeds of every new solution, `budget` evaluations each."""
+        rng = np.random.default_rng(seed)
+        flip_seeds: deque[np.ndarray] = deque()
+        k = 0
+        while flip_seeds or k < starts:
+            if flip_seeds:
+                x0 = flip_seeds.popleft()
+            else:
+                x0 = (np.clip(np.zeros(n), lo, hi) if k == 0 else lo + (hi - lo) * rng.random(n))[free]
+                k += 1
+            try:
+                res = least_squares(fun, x0, jac=jac if has_jacobian else "2-point", method="lm",
+                                    xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=budget)
+            except (ValueError, np.linalg.LinAlgError):
+                continue
+            q = full(res.x)
+            q = np.where(revolute, wrap_angle(q), q)
+            if pose_error(np.asarray(fk(q), dtype=float), T) >= tol:
+                continue
+            if any(_same(q, s, revolute, dedup) for s in seen):
+                continue
+            seen.append(q)
+            if flips:
+                for seed_q in _flip_seeds(q, free, revolute):
+                    flip_seeds.append(seed_q[free])
+            if limits is not None:
+                q = _in_limits(q, types, limits)
+                if q is None:
+                    continue
+            found.append(q)
+            if max_solutions is not None and len(found) >= max_solutions:
+                return
+
     # a pose where no start converges within max_nfev is searched again with four times the budget: near a
     # singularity LM converges linearly (a KR 6 with its wrist centre 0.17 mm from axis 1, sigma_min 1e-4, seed
     # 88213: 0 of 8 found from 20 starts at 60 evaluations, 8 of 8 at 200)
-    for budget in (max_nfev, 4 * max_nfev):
-        _search(fun, jac if has_jacobian else "2-point", fk, T, full, free, revolute, types, lo, hi, limits,
-                starts, seed, budget, tol, dedup, flips, max_solutions, found, seen)
-        if seen:
-            break
+    search(max_nfev)
+    if not seen:
+        search(4 * max_nfev)
     return sorted(found, key=lambda s: tuple(s.tolist()))
-
-
-def _search(fun, jac, fk, T, full, free, revolute, types, lo, hi, limits, starts, seed, max_nfev, tol, dedup,
-            flips, max_solutions, found, seen):
-    """ik_all's multistart: LM from q = 0, the random starts and the flip seeds of every new solution; appends
-    to found and seen."""
-    rng = np.random.default_rng(seed)
-    flip_seeds: deque[np.ndarray] = deque()
-    n = len(lo)
-    k = 0
-    while flip_seeds or k < starts:
-        if flip_seeds:
-            x0 = flip_seeds.popleft()
-        else:
-            x0 = (np.clip(np.zeros(n), lo, hi) if k == 0 else lo + (hi - lo) * rng.random(n))[free]
-            k += 1
-        try:
-            res = least_squares(fun, x0, jac=jac, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15,
-                                max_nfev=max_nfev)
-        except (ValueError, np.linalg.LinAlgError):
-            continue
-        q = full(res.x)
-        q = np.where(revolute, wrap_angle(q), q)
-        if pose_error(np.asarray(fk(q), dtype=float), T) >= tol:
-            continue
-        if any(_same(q, s, revolute, dedup) for s in seen):
-            continue
-        seen.append(q)
-        if flips:
-            for seed_q in _flip_seeds(q, free, revolute):
-                flip_seeds.append(seed_q[free])
-        if limits is not None:
-            q = _in_limits(q, types, limits)
-            if q is None:
-                continue
-        found.append(q)
-        if max_solutions is not None and len(found) >= max_solutions:
-            break
 
 
 # ----------------------------------------------------------------------------------------------------------

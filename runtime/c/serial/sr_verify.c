@@ -112,7 +112,7 @@ static double sr_polish_cs(double *q, double *c, double *s, const double *t, dou
     sr_k_jacobian(q, dp, jac);
     if (!sr_gn_solve(jac, e, dq)) return sr_polish(q, pose, dp, target);
     for (j = 0; j < SR_N; ++j) {
-        if (!(fabs(dq[j]) <= HUGE_VAL)) return sr_polish(q, pose, dp, target);
+        if (dq[j] != dq[j]) return sr_polish(q, pose, dp, target); /* a NaN step: the plain polish decides */
         trial[j] = q[j] + dq[j];
         tc[j] = c[j];
         ts[j] = s[j];
