@@ -263,7 +263,11 @@ def test_underactuated_local_index_equals_the_module_jacobians():
     d = m.make_design()
     rng = case_rng(2402)
     checked = 0
-    for _ in range(100):
+    # poses are drawn until more than 50 IK sets are checked (about half the poses are reachable: a fixed 100
+    # poses gave 48 sets at Haswell seed 866292)
+    for _ in range(1000):
+        if checked > 50:
+            break
         pose = (rng.uniform(-math.pi, math.pi), rng.uniform(0, 0.6), rng.uniform(-math.pi, math.pi))
         sol = m.ik(pose, d)
         for q in sol:
