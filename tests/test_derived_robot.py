@@ -768,14 +768,93 @@ def test_the_design_is_the_table_s_lengths_and_moves_the_robot():
         assert min(_gap(v, q) for v in m.ik(T, d)) <= 1e-9
 
 
+# ------------------------------------------------------------------------------------------------ general 6R
+# arms no decomposition fits: (description, free joint)
+GENERAL = {"ur5e_tilted": (ROBOTS / "ur5e_tilted" / "ur5e_tilted_poe.toml", None),  # wrist_1 tilted 10 degrees
+           "panda_free1": (ROBOTS / "panda" / "panda_dh.toml", "joint1")}
+
+
+def _general(case: str):
+    """(C-backed solver, numpy solver, folder) of a GENERAL arm derived with --stages derived."""
+    key = ("general", case)
+    if key not in _CACHE:
+        path, free = GENERAL[case]
+        out = Path(tempfile.mkdtemp(prefix=f"wk_derived_{case}_"))
+        own_robot.derive(path, out, name=case, stages="derived", free=free, progress=lambda _: None)
+        _CACHE[key] = (own_robot.import_solver(out, case), own_robot.import_solver(out, case, backend="numpy"), out)
+    return _CACHE[key]
+
+
+@pytest.mark.parametrize("case", sorted(GENERAL))
+def test_a_general_6r_is_derived_with_every_set_and_only_true_ones(case):
+    """No decomposition fits (the UR5e with wrist_1 tilted; the Panda with joint1 held): the derived module's one
+    stage runs the elimination on its kernel's axes, points and target. 30 random poses of the reference's FK (a held
+    joint at a random value, the design's): the generating joints among the sets (to 1e-9 + 1e-13 / sigma_min of J,
+    the pose's conditioning), every set on the pose (none spurious), the C extension's sets, flags and order the
+    numpy path's (both refined to the pose's rounding: 1e-12 + 1e-14 / sigma_min apart), and on 3 poses every
+    solution of the independent multistart among them."""
+    m, py, _ = _general(case)
+    path, free = GENERAL[case]
+    reference = ref.load(path)
+    assert m.MAX_IK == 16 and not hasattr(m, "FAMILY_TOL")  # the serial family's module, no plan
+    if os.environ.get("WRISTKIN_BACKEND") != "numpy":
+        assert m.BACKEND == "c"
+    rng = case_rng(2310)
+    n, fj = m.N_JOINTS, getattr(m, "_FREE", -1)
+    for k in range(30):
+        q = rng.uniform(-math.pi, math.pi, n)
+        design = [float(q[fj])] if fj >= 0 else None
+        T = reference(q)
+        a, b = m.ik(T, design), py.ik(T, design)
+        jac = reference.jacobian(q)
+        smin = np.linalg.svd(np.delete(jac, [fj], axis=1) if fj >= 0 else jac, compute_uv=False)[-1]
+        assert a.status == m.STATUS_OK and 1 <= a.count <= 16
+        assert min(_gap(v, q) for v in a) <= 1e-9 + 1e-13 / smin
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in a)
+        assert a.count == b.count and list(a.valid) == list(b.valid) and list(a.flags) == list(b.flags)
+        assert np.max(np.abs(a.values[a.valid] - b.values[b.valid])) <= 1e-12 + 1e-14 / smin
+        if k < 3:
+            found = ref.ik_all(reference, n, T, seed=k, starts=120, fixed={fj: q[fj]} if fj >= 0 else None)
+            assert all(min(_gap(v, f) for v in a) <= 1e-6 for f in found)
+
+
+def test_a_general_6r_s_emitted_c_is_strict_c99_and_clean_under_the_sanitizers():
+    """The derived tilted UR5e's C with the elimination beside it (wk_general6r.c, wk_eigen.c) under -std=c99 -Wall
+    -Wextra -Werror -pedantic and ASan/UBSan, on random, singular, unreachable and non-finite poses: the counts the
+    Python module returns, nothing reported."""
+    m, _, out = _general("ur5e_tilted")
+    name = m.NAME
+    src = out / "c" / "driver.c"
+    src.write_text(DRIVER.replace("NAME", name))
+    exe = out / "c" / "driver"
+    sources = sorted(str(f) for f in (out / "c").glob("*.c") if f.name != src.name)
+    cmd = [compiler(), *STRICT_FLAGS, *SANITIZE_FLAGS, "-o", str(exe), str(src), *sources, f"-I{out / 'c'}", "-lm"]
+    subprocess.run(cmd, check=True, capture_output=True, text=True)
+    rng = case_rng(2311)
+    poses = [m.fk_matrix(rng.uniform(-math.pi, math.pi, 6))[:3].ravel() for _ in range(10)]
+    poses.append(m.fk_matrix([0.3, 0.2, -0.1, 0.5, 0.0, 0.4])[:3].ravel())
+    far = m.fk_matrix(np.zeros(6))[:3].ravel().copy()
+    far[3] += 5.0
+    poses.append(far)  # out of reach
+    nan = far.copy()
+    nan[0] = float("nan")
+    poses.append(nan)
+    text = "\n".join(" ".join(repr(float(v)) for v in p) for p in poses)
+    r = subprocess.run([str(exe)], input=text, capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0 and not r.stderr, r.stderr
+    counts = [tuple(map(int, line.split())) for line in r.stdout.split("\n") if line]
+    for p, (count, _status, _chosen) in zip(poses[:-1], counts[:-1], strict=True):
+        assert count == m.ik(np.vstack([p.reshape(3, 4), [0, 0, 0, 1]])).count
+    assert counts[-2][0] == 0 and counts[-1][0] == 0
+
+
 # ------------------------------------------------------------------------------------------------ refusals
 @pytest.mark.parametrize("path,why", [
     (ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml", "offset wrist.* needs the ops sp6, which the derived stages"),
-    (ROBOTS / "panda" / "panda_dh.toml", "general6r"),  # with joint1 held: the general 6R by elimination
     (ROBOTS / "iiwa14" / "iiwa14_dh.toml", "arm angle"),
 ], ids=lambda v: v.name if isinstance(v, Path) else v)
 def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, why):
-    options = {"free": "joint1"} if why == "general6r" else {"redundancy": "arm-angle"} if why == "arm angle" else {}
+    options = {"redundancy": "arm-angle"} if why == "arm angle" else {}
     with pytest.raises(NotDerivable, match=why) as exc:
         own_robot.load(path, stages="derived", **options)
     assert "--stages interpreted (the plan interpreter) solves it" in str(exc.value)
@@ -784,7 +863,7 @@ def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, w
 @pytest.mark.parametrize("robot,fmt,derived", [("kr6", "urdf", True), ("ur5e", "urdf", True), ("youbot", "urdf", True),
                                                ("scara", "urdf", True),
                                                ("iiwa14", "urdf", True), ("kr6_calibrated", "urdf", False),
-                                               ("ur5e_offset", "dh", False)])
+                                               ("ur5e_offset", "dh", False), ("ur5e_tilted", "poe", True)])
 def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_told_which(robot, fmt, derived,
                                                                                           tmp_path):
     """`--stages auto` (the default): the derived stages' module (the serial family's: ROOT_GAP_TOL, no plan) where

@@ -5,6 +5,7 @@ CasADi functions every serial arm has. Each family subclasses it with its own de
 from __future__ import annotations
 
 from ..mechanism import SERIAL_C_API, MechanismDefaults
+from .views import C_GENERAL6R_SHARED
 
 
 class SerialArm(MechanismDefaults):
@@ -27,6 +28,10 @@ class SerialArm(MechanismDefaults):
         if self._spec is None:
             self._spec = self._build()
         return self._spec
+
+    def c_shared_files(self) -> list[str]:
+        """The general 6R's elimination and eigen solver, written beside a chain's C that has a general6r stage."""
+        return list(C_GENERAL6R_SHARED) if any(st.kind == "general6r" for st in self.spec.stages) else []
 
     def casadi_functions(self, dv, kernels) -> dict:
         from .casadi_functions import serial_functions

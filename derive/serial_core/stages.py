@@ -5,7 +5,7 @@ the proof that the wrist mirror keeps the FK check. Not a family: families impor
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import sympy as sp
 
@@ -19,10 +19,11 @@ P_POSE = POSE[:, 3]
 
 @dataclass(frozen=True)
 class Stage:
-    kind: str  # trig_linear | rotation2d | value | wrist | quadratic
+    kind: str  # trig_linear | rotation2d | value | wrist | quadratic | general6r
     joints: tuple[int, ...]
     # trig_linear (A, B, C); rotation2d (u, v, u0, v0); value (q,); wrist (3x3 M as 9 entries); quadratic (a slide
-    # from a distance: (q + B)^2 = D, E the scale of D's rounding)
+    # from a distance: (q + B)^2 = D, E the scale of D's rounding); general6r (the six axes' directions and points,
+    # 18 + 18, then the product of exponentials [R | p] they must reach, 12: every joint by elimination)
     exprs: tuple
     title: str
     rule: str
@@ -36,10 +37,24 @@ class Stage:
     # a rotation2d stage whose family moves what its next stage must reach (a UR's q6 at its wrist singularity):
     # the member is the one that stage reaches (serial_stages._family_by_reach), probed on its kernel
     probe_next: bool = False
+    # general6r: the elimination's labelling (shift, reverse, hidden: runtime/python/general6r.py), chosen where it
+    # stays regular (derive/kinematics/general6r.choose_labelling)
+    labelling: tuple[int, int, int] = (0, 0, 0)
+    # general6r: (the solved chain at the design's defaults, a kinematics.poe.Chain; its general6r.Labelling) for
+    # the derivation's records of the elimination (kinematics/general6r.steps)
+    elimination: tuple | None = field(default=None, compare=False, repr=False)
 
     @property
     def branches(self) -> int:
+        """Sets this stage can give per prefix: two roots, one, or the general 6R's at most 16 (Lee and Liang)."""
+        if self.kind == "general6r":
+            return 16
         return 2 if self.kind in ("trig_linear", "wrist", "quadratic") else 1
+
+    @property
+    def width(self) -> int:
+        """Bits of the set index the stage takes (its branches rounded up to a power of two)."""
+        return (self.branches - 1).bit_length()
 
     @property
     def factored(self) -> bool:
@@ -52,7 +67,9 @@ def stage_output_names(st: Stage) -> list[str]:
         return ["A", "B", "C", "Dm", "Dp", "Em"]
     return {"trig_linear": ["A", "B", "C"], "rotation2d": ["u", "v", "u0", "v0"], "value": ["q"],
             "quadratic": ["B", "D", "E"],
-            "wrist": [f"m{i}{j}" for i in range(3) for j in range(3)]}[st.kind]
+            "wrist": [f"m{i}{j}" for i in range(3) for j in range(3)],
+            "general6r": [f"{w}{i}{x}" for w in "hr" for i in range(1, 7) for x in "xyz"] +
+            [f"g{i}{j}" for i in range(3) for j in range(4)]}[st.kind]
 
 
 def cs_symbols(spec):
@@ -102,16 +119,19 @@ def serial_kernels(spec, dv: Derivation):
 def stage_view(spec) -> list[dict]:
     """What the templates need to emit the solution tree.
 
-    The first branching stage takes the highest bit of the set index, so consecutive sets share their
-    prefix and a stage is recomputed only when its prefix (key = k >> shift) changes.
+    The first branching stage takes the highest bits of the set index, so consecutive sets share their
+    prefix and a stage is recomputed only when its prefix (key = k >> shift) changes. A stage of more than two
+    branches (the general 6R's) takes `width` bits: its candidates are computed once per prefix above them
+    (k >> (shift + width)) and set k takes candidate (k >> shift) & mask.
     """
-    total = sum(st.branches - 1 for st in spec.stages)
+    total = sum(st.width for st in spec.stages)
     out, used = [], 0
     for k, st in enumerate(spec.stages, start=1):
-        used += st.branches - 1
+        used += st.width
         shift = total - used
         view = {"index": k, "kind": st.kind, "joints": list(st.joints), "branches": st.branches,
-                "bit": shift if st.branches == 2 else None, "shift": shift}
+                "bit": shift if st.branches == 2 else None, "shift": shift, "width": st.width,
+                "labelling": list(st.labelling)}
         # the angle stages before it: their amplification of the input's rounding widens a wrist's family band and
         # a factored distance stage's double-root band (serial_stages._wrist, _trig_linear)
         view["amp_joints"] = [j for prior in spec.stages[:k - 1] if prior.kind in ("trig_linear", "rotation2d")

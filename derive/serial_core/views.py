@@ -16,6 +16,11 @@ OWN_PARTIALS = ("python/partials/own_constants.py.jinja", "python/partials/own_s
 # the C sources before the stage functions (which call sr_stages.c) and the one after them (which runs them)
 C_RUNTIME_FILES = tuple(f"c/serial/sr_{part}.c" for part in ("frames", "input", "fk", "stages", "verify"))
 C_RUNTIME_AFTER_STAGES = ("c/serial/sr_ik.c",)
+# a chain with a general6r stage: its stage solver after sr_verify.c (C) and the elimination it runs (Python: inlined;
+# C: the shared sources written beside the robot's C, C_GENERAL6R_SHARED)
+C_GENERAL6R_FILE = "c/serial/sr_general6r.c"
+PY_GENERAL6R_FILES = ("python/general6r.py", "python/serial_general6r.py")
+C_GENERAL6R_SHARED = ("c/wk_eigen.h", "c/wk_eigen.c", "c/wk_general6r.h", "c/wk_general6r.c")
 
 
 IDENTITY_3X4 = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0)
@@ -66,6 +71,11 @@ def py_stage_body(st: dict) -> list[str]:
                 f"return _prismatic_value({out}, {j}, q)"]
     if st["kind"] == "quadratic":
         return [f"return _slide_quadratic({out}, {j}, _sign(k, {st['bit']}), q)"]
+    if st["kind"] == "general6r":  # its candidates once per prefix above its bits (ws), set k's by its bits
+        shift, width = st["shift"], st["width"]
+        return [f"return _general6r(_k_stage{st['index']}, k >> {shift + width}, (k >> {shift}) & {2 ** width - 1}, "
+                f"{_tuple(st['labelling'])},",
+                f"                  {_tuple(st['joints'])}, q, c, s, pose, dp, ws)"]
     if st["kind"] == "wrist":
         joints, signs = "(" + ", ".join(map(str, st["joints"])) + ")", "(" + ", ".join(map(str, st["signs"])) + ")"
         mirror = ["if k & 1:  # the second branch mirrors the first (set k - 1's prefix)",
@@ -77,13 +87,19 @@ def py_stage_body(st: dict) -> list[str]:
 
 def c_stage_body(st: dict) -> list[str]:
     """The body of the generated `sr_solve_stage<k>`: as py_stage_body, on the C runtime's solvers."""
+    if st["kind"] == "general6r":  # its candidates once per prefix above its bits (ws), set k's by its bits
+        shift, width = st["shift"], st["width"]
+        joints = ", ".join(map(str, st["joints"]))
+        return [f"static const int joints[6] = {{ {joints} }};", "(void)prev;", "(void)amp;", "*f = 0u;",
+                f"return sr_general6r(sr_k_stage{st['index']}, (long)(k >> {shift + width}), (k >> {shift}) & "
+                f"{2 ** width - 1}, {', '.join(map(str, st['labelling']))}, joints, q, c, s, pose, dp, ws, f);"]
     size = {"trig_linear": 6 if st.get("factored") else 3, "rotation2d": 4, "value": 1, "wrist": 9,
             "quadratic": 3}[st["kind"]]
     call = f"sr_k_stage{st['index']}(pose, q, c, s, dp, out);"
     j = st["joints"][0]
     head = [f"double out[{size}];", "(void)k;", "(void)prev; /* a family's representative (trig_linear, "
             "rotation2d stages) */", "(void)amp; /* the angle stages' amplification */",
-            "*f = 0u;"]
+            "(void)ws; /* the multi-candidate stages' scratch */", "*f = 0u;"]
     if st["kind"] == "trig_linear":
         gap_tol = f"SR_{st['gap_tol']}" if st.get("factored") else "0.0"
         floor_tol = f"SR_{st['floor_tol']}" if st.get("factored") and st["floor_tol"] != "0.0" else "0.0"
@@ -131,6 +147,7 @@ def serial_views(ctx: dict) -> dict:
     # an odd set's FK check is its even neighbour's when the wrist mirror keeps fk_cs bit for bit (proven on the
     # kernel: stages.mirror_keeps_fk) and the wrist takes the lowest bit
     reuse = bool(ctx.get("mirror_keeps_fk")) and bool(wrist) and wrist[0]["bit"] == 0
+    general = any(st["kind"] == "general6r" for st in stages)
     c_flags = {
         "SR_N_STAGES": len(stages),
         "SR_WRIST_STAGE": wrist[0]["index"] - 1 if wrist else -1,
@@ -145,6 +162,7 @@ def serial_views(ctx: dict) -> dict:
         "SR_HAS_REVOLUTE_VALUE": int(any(st["kind"] == "value" and st["joint_kind"] == "R" for st in stages)),
         "SR_HAS_PRISMATIC_VALUE": int(any(st["kind"] == "value" and st["joint_kind"] != "R" for st in stages)),
         "SR_HAS_SLIDE_QUADRATIC": int(any(st["kind"] == "quadratic" for st in stages)),
+        "SR_HAS_GENERAL6R": int(general),
         "SR_HAS_WRIST_MIRROR": int(bool(wrist) and wrist[0]["bit"] == 0),
         "SR_REUSE_MIRROR_CHECK": int(reuse),
         "SR_N_FOLD_BITS": len(ctx["fold_bits"]),
@@ -206,9 +224,12 @@ def serial_views(ctx: dict) -> dict:
             # unused slot (WK_NAME_N_PARAMS stays 0)
             "c_params_slots": max(1, len(ctx["design_values"])), "c_design_values": ctx["design_values"] or ["0.0"],
             "py_base0": _frame_literal(base0), "py_tool0": _frame_literal(tool0), "design_fields": DESIGN_FIELDS,
-            "py_runtime_files": PY_RUNTIME_FILES + (PY_OWN_RUNTIME_FILES if own else (PY_SELECT_FILE,)),
+            "py_runtime_files": (PY_RUNTIME_FILES[:-1] + (PY_GENERAL6R_FILES if general else ()) + PY_RUNTIME_FILES[-1:]
+                                 + (PY_OWN_RUNTIME_FILES if own else (PY_SELECT_FILE,))),
             "select_doc": ("Joint limits (NULL = the description's limits, as the Python select); nearest valid set "
                            "to previous, or the\n * first regular one (NULL): index or -1." if own else
                            "Joint limits (NULL = none); nearest valid set to previous, or the first regular one "
                            "(NULL): index or -1."),
-            "c_runtime_files": C_RUNTIME_FILES, "c_runtime_after_stages": C_RUNTIME_AFTER_STAGES}
+            "c_runtime_files": C_RUNTIME_FILES + ((C_GENERAL6R_FILE,) if general else ()),
+            "c_runtime_after_stages": C_RUNTIME_AFTER_STAGES,
+            "c_includes": [f.split("/")[-1] for f in C_GENERAL6R_SHARED if f.endswith(".h")] if general else []}

@@ -101,6 +101,7 @@ def _ik_numpy(pose, d, previous):
     amp = [1.0] * N_JOINTS  # each angle stage's amplification of the input's rounding (serial_stages)
     key = [-1] * len(_STAGES)
     state = [(False, 0)] * len(_STAGES)
+    ws = {}  # the multi-candidate stages' scratch (the general 6R's candidates per prefix)
     unreachable = beyond = 0
     size = max(abs(p[3]), abs(p[7]), abs(p[11]))
     rounding = _runtime.fk_rounding(size)  # the FK's own rounding of this pose (the merge's floor)
@@ -110,7 +111,7 @@ def _ik_numpy(pose, d, previous):
         for i, (solve, shift) in enumerate(_STAGES):
             if k >> shift != key[i]:  # a stage is recomputed only when its branch prefix changes
                 key[i] = k >> shift
-                state[i] = solve(k, p, q, c, s, d.params, prev, amp)
+                state[i] = solve(k, p, q, c, s, d.params, prev, amp, ws)
             alive, fl = state[i]
             f |= fl
             if not alive:
@@ -174,12 +175,12 @@ def _compensated(k, p, qk, dp, prev, target):
     true = _as4(_k_fk_cs(qk, c, s, dp))
     tc = tuple(float(x) for x in (_as4(p) @ _rigid_inverse(true) @ ideal)[:3].ravel())
     q, c, s, amp = [0.0] * N_JOINTS, [1.0] * N_JOINTS, [0.0] * N_JOINTS, [1.0] * N_JOINTS
-    key = [-1] * len(_STAGES)
+    key, ws = [-1] * len(_STAGES), {}
     for word in (k - 1, k) if k & 1 else (k,):  # an odd set's wrist mirrors the even one's (its prefix first)
         for i, (solve, shift) in enumerate(_STAGES):
             if word >> shift != key[i]:
                 key[i] = word >> shift
-                if not solve(word, tc, q, c, s, dp, prev, amp)[0]:
+                if not solve(word, tc, q, c, s, dp, prev, amp, ws)[0]:
                     return qk, math.inf
     return _polish(q, p, dp, target=target)
 

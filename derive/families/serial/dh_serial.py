@@ -15,13 +15,14 @@ verifies every candidate by FK, so poses a < 6-DOF chain cannot reach give an em
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import sympy as sp
 
 from ...checks import jacobian_fd_error, numeric_predicate, sampler, symbolic_identity
 from ...identities.dh import DHRow, chain, explicit
+from ...kinematics.general6r import steps as elimination_steps
 from ...model import Check, Derivation, Finding, Step
 from ...serial_core.stages import POSE_SYMBOLS, Stage, stage_output_names
 
@@ -173,13 +174,19 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
                 if spec.kinds[st.joints[0]] == "R":
                     return abs(math.remainder(val - qs[0], 2 * math.pi))
                 return abs(val - qs[0])
+            if st.kind == "general6r":  # the product of exponentials of the axes and points is the target
+                axes, points, g = _general6r_parts(vals)
+                return float(np.max(np.abs(_poe_product(axes, points, qs) - g)))
             m = np.array(vals).reshape(3, 3)
             w = np.array(wrist(*qs), dtype=float)
             return float(np.max(np.abs(m - w)))
         claim = {"trig_linear": "A cos q + B sin q + C = 0 on the FK",
                  "rotation2d": "(u, v) = Rot(q)(u0, v0) on the FK", "value": "q = expression on the FK",
-                 "wrist": "M = wrist rotation on the FK", "quadratic": "(q + B)^2 = D on the FK"}[st.kind]
+                 "wrist": "M = wrist rotation on the FK", "quadratic": "(q + B)^2 = D on the FK",
+                 "general6r": "exp(S_1 q_1) ... exp(S_6 q_6) = T M^-1 from the axes and points on the FK"}[st.kind]
         checks: list[Check] = [numeric_predicate(err, claim, samples=200, tol=1e-9)]
+        if st.kind == "general6r":
+            checks.append(_elimination_finds(spec, st, at_fk))
         if st.factored:
             def factors(rng, at_fk=at_fk):
                 q = _sample_joints(spec, rng)
@@ -196,9 +203,54 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
             result["signs (e0, e1, e2, e3, k00@0, k10@0, k00@pi, k10@pi)"] = sp.Matrix(st.signs)
         dv.add(Step(f"ik_stage{k}", f"IK stage {k}: {st.title}", st.rule, ("T",) + tuple(
             f"ik_stage{j}" for j in range(1, k)), result, tuple(checks)))
+        if st.elimination is not None:  # the elimination's own records: its structure, equations, solutions
+            for rec in elimination_steps(*st.elimination, np.random.default_rng(12)):
+                dv.add(replace(rec, depends_on=rec.depends_on or (f"ik_stage{k}",)))
         solved.extend(st.joints)
     if sorted(solved) != list(range(len(spec.joints))):
         raise ValueError(f"{spec.name}: the IK plan must solve every joint exactly once")
+
+
+def _general6r_parts(vals):
+    """(axes 6 x 3, points 6 x 3, target 3 x 4) of a general6r stage's outputs."""
+    v = np.array(vals, dtype=float)
+    return v[:18].reshape(6, 3), v[18:36].reshape(6, 3), v[36:48].reshape(3, 4)
+
+
+def _poe_product(axes, points, qs) -> np.ndarray:
+    """exp(S_1 q_1) ... exp(S_6 q_6) (top 3 x 4) of revolute axes (direction h, point r): rot(h, q), r - rot r."""
+    m = np.eye(4)
+    for h, r, q in zip(axes, points, qs, strict=True):
+        k = np.array([[0.0, -h[2], h[1]], [h[2], 0.0, -h[0]], [-h[1], h[0], 0.0]])
+        rot = np.eye(3) + math.sin(q) * k + (1.0 - math.cos(q)) * (k @ k)
+        e = np.eye(4)
+        e[:3, :3], e[:3, 3] = rot, r - rot @ r
+        m = m @ e
+    return m[:3]
+
+
+def _elimination_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:
+    """The runtime's elimination (runtime/python/general6r.py, as the generated solvers carry it) on the stage's
+    outputs at the FK of random joints returns those joints among its candidates (to 1e-6 rad: its Newton refine
+    leaves them at rounding unless the pose is near a double root, which random joints are not)."""
+    from ...kinematics.general6r import numerics
+
+    g6 = numerics()
+
+    def missed(rng):
+        q = _sample_joints(spec, rng)
+        dsn = _sample_design(spec, rng)
+        if spec.held:
+            dsn[spec.held[1]] = q[spec.joints[spec.held[0]]]
+        axes, points, g = _general6r_parts(at_fk(q, dsn))
+        qs = np.array([q[spec.joints[j]] for j in st.joints])
+        shift, reverse, hidden = st.labelling
+        cands = g6.g6_solve(g6.g6_z_frames(axes, points), np.eye(4), np.vstack([g, [0, 0, 0, 1]]), shift,
+                            bool(reverse), hidden)
+        return min((float(np.max(np.abs(np.remainder(np.array(c) - qs + math.pi, 2 * math.pi) - math.pi)))
+                    for c in cands), default=math.inf)
+    return numeric_predicate(missed, "the elimination on the stage's outputs returns the generating joints",
+                             samples=40, tol=1e-6)
 
 
 def wrist_stage(spec_rows_wrist, joints3, m_expr, title: str, rule: str, joint_idx) -> Stage:

@@ -111,12 +111,15 @@ def from_table(robot: RobotTable, auto: bool = False) -> SerialMechanism:
     snap = max(ANGLE_SNAP, robot.api.geometry_tol) if calibrated else ANGLE_SNAP
     n = len(robot.joint_names)
     kinds = table.kinds or ("R",) * n
+    general = "general6r" in robot.ops  # the interpreter's plan: the general 6R by elimination
     taken: set[str] = set()
     joints = [sp.Symbol(_identifier(j, taken), real=True) for j in robot.joint_names]
     design, defaults, rows = [], [], []
     snapped = 0.0  # the angles' changes when made exact, summed
     for k, ((a, alpha, d, theta), q) in enumerate(zip(table.rows, joints, strict=True), start=1):
         angles = [_angle(alpha, snap), _angle(theta, snap)]
+        if angles[0] is None and general:  # no structure rests on a general 6R's twists: they stay numbers
+            angles[0] = sp.Float(alpha)
         if angles[0] is None:
             raise NotDerivable.because(name, f"joint {robot.joint_names[k - 1]}'s DH twist ({alpha:.9g} rad) is "
                                              f"no multiple of pi/{ANGLE_GRID}")
@@ -128,8 +131,11 @@ def from_table(robot: RobotTable, auto: bool = False) -> SerialMechanism:
             if abs(v) <= LENGTH_ZERO * robot.size:
                 lengths.append(sp.Integer(0))
                 continue
-            if robot.held >= 0 or calibrated:  # the design: a held joint's value alone (the interpreted module's);
-                lengths.append(sp.Float(v))  # a calibrated robot's FK is its true chain, which no length moves
+            # the design: a held joint's value alone (the interpreted module's); a calibrated robot's FK is its true
+            # chain, which no length moves; a general 6R's lengths carry no structure (a shipped xArm6's 1e-6 m
+            # offsets, below LENGTH_MIN as a design's lengths)
+            if robot.held >= 0 or calibrated or general:
+                lengths.append(sp.Float(v))
                 continue
             sym = sp.Symbol(_identifier(f"{label}{k}", taken), real=True)
             design.append(sym)
@@ -150,9 +156,9 @@ def from_table(robot: RobotTable, auto: bool = False) -> SerialMechanism:
                       tool=tool, base=base, held=held)
     try:
         stage_list, _ = planned_stages(rows, tuple(joints), spec.kinds, tuple(design), tuple(defaults), "standard",
-                                       [str(q) for q in joints], base, tool, held)
+                                       [str(q) for q in joints], base, tool, held, general)
     except (PlanError, ValueError) as exc:
-        missing = sorted(robot.ops - SUPPORTED)
+        missing = sorted(robot.ops - SUPPORTED - {"general6r"})
         if missing:  # say what the interpreter's decomposition needs, not the search's refusal
             why = (f"its decomposition, {robot.api.strategy.split(':')[0]}, needs the ops {', '.join(missing)}, which "
                    "the derived stages do not have yet")

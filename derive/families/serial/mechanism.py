@@ -22,7 +22,7 @@ class SerialMechanism(SerialArm):
     def extra_context(self, ks) -> dict:
         sp_ = self.spec
         n = len(sp_.joints)
-        n_combos = 2 ** sum(st.branches - 1 for st in sp_.stages)
+        n_combos = 2 ** sum(st.width for st in sp_.stages)
         return views.serial_views({"name": self.NAME, "title": sp_.title, "joint_names": [str(q) for q in sp_.joints],
                 "joint_kinds": list(sp_.kinds), "design_names": [str(d) for d in sp_.design],
                 "design_values": [repr(float(v)) for v in sp_.design_default], "n_joints": n,

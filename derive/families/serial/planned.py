@@ -14,6 +14,8 @@ relation that held only at the defaults fails there, with the stage named.
   orient (two axes at the end, a 5-joint arm)   -> 2 rotation2d  (_two_axes)
   group_rest (the group's last joint)           -> rotation2d   (from the group's rotation)
   a held joint (a 7-joint arm's)                -> value        (the design's value; the rest planned with it held)
+  no decomposition (six revolute joints)        -> general6r    (every joint by elimination: the axes, points and
+                                                                 the product of exponentials as kernel outputs)
 
 A plan read from the tool solves the reversed chain (its axes and home from the same DH frames, turned by M^-1) for
 the pose T^-1; its three-axis orientation is read from its axes (_GroupThenTwo), the DH wrist's form being the
@@ -29,13 +31,18 @@ import sympy as sp
 
 from ...identities.dh import chain as dh_chain
 from ...identities.frames import rodrigues
+from ...kinematics import general6r
 from ...kinematics.planner import NoClosedForm, find_plan
 from ...kinematics.poe import Chain, reverse
+from ...model import NoDecomposition
 from ...serial_core.stages import P_POSE, POSE_SYMBOLS, R_POSE, Stage
 from .dh_serial import wrist_stage
 
 # the held joint's value the decomposition is planned at (any value where no two axes line up by accident)
 HELD_PLAN_VALUE = 0.7
+# the held values the general 6R's labelling must stay regular at (the elimination reads the chain the held joint
+# turns; the interpreted module samples its own)
+HELD_LABELLING_VALUES = (0.7, -1.9, 2.6, -0.4)
 SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient",
              "group_rest"}
 
@@ -153,11 +160,14 @@ class _GroupThenTwo:
 
 
 def stages(rows, joints, kinds, design, defaults, convention="standard", names=None, base=None, tool=None,
-           held=None):
+           held=None, general=False):
     """(stages, strategy) for the DH rows (after the constant `base`, before the constant `tool`, 4x4 each): the
     planner's decomposition as symbolic stages. `held`: (joint index, design symbol) of a joint held at a run-time
     value (a 7-joint arm's free joint): its stage reads the value, and the others are planned on the chain with it
-    held, its rotation kept as its symbol (so every stage holds at every held value, which the derivation checks)."""
+    held, its rotation kept as its symbol (so every stage holds at every held value, which the derivation checks).
+    `general`: where no decomposition fits, six revolute joints are solved by elimination (a robot whose own plan
+    is the general 6R's; one that a decomposition outside these stage kinds fits is refused instead: its
+    decomposition is exact and cheaper)."""
     if convention != "standard":
         raise PlanError("the serial family's stages are built for standard DH tables")
     ts = dh_chain(rows, convention, None, base)
@@ -177,19 +187,39 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
     # has them; the stages are then checked at random held values
     at = dict(zip(design, defaults, strict=True)) | ({} if hj is None else {all_joints[hj]: HELD_PLAN_VALUE})
 
+    labels = tuple(names or (str(q) for q in all_joints))
+
+    def numeric_chain(values):
+        def num(v):
+            return np.array([float(sp.sympify(x).subs(values)) for x in v])
+        return Chain("dh", tuple(labels[i] for i in idx), tuple(kinds), np.array([num(a) for a in axes]),
+                     np.array([num(p) for p in points]),
+                     np.vstack([np.hstack([np.array(end[:3, :3].subs(values), dtype=float),
+                                           num(end[:3, 3])[:, None]]), [0, 0, 0, 1]]))
+
     def num(v):
         return np.array([float(sp.sympify(x).subs(at)) for x in v])
-    labels = tuple(names or (str(q) for q in all_joints))
-    numeric = Chain("dh", tuple(labels[i] for i in idx), tuple(kinds),
-                    np.array([num(a) for a in axes]), np.array([num(p) for p in points]),
-                    np.vstack([np.hstack([np.array(end[:3, :3].subs(at), dtype=float),
-                                          num(end[:3, 3])[:, None]]), [0, 0, 0, 1]]))
+    numeric = numeric_chain(at)
     try:
         plan = find_plan(numeric, 1e-9, lambda _c, p: all(o["op"] in SUPPORTED for o in p.ops)
                          and all(o["op"] != "orient" or len(o["units"]) in (1, 3) or (
                              len(o["units"]) == 2 and all(len(u) == 1 for u in o["units"])) for o in p.ops))
     except NoClosedForm as exc:
-        raise PlanError(str(exc)) from None
+        if not general or len(idx) != 6 or any(k != "R" for k in kinds):
+            raise PlanError(str(exc)) from None
+        chains = [numeric] if hj is None else [numeric_chain(at | {all_joints[hj]: v}) for v in HELD_LABELLING_VALUES]
+        try:
+            labelling = general6r.choose_labelling(chains, np.random.default_rng(11))
+        except NoDecomposition as exc6:
+            raise PlanError(f"{exc}; {exc6}") from None
+        stage = replace(_general6r_stage(axes, points, joints, _Motion(R_POSE, P_POSE) * home.inv(), labelling),
+                        elimination=(numeric, labelling))
+        out = [replace(stage, joints=tuple(idx))]
+        if hj is not None:
+            out.insert(0, _held_stage(all_joints[hj], hj, held[1]))
+        return out, ("no closed-form decomposition (no three axes meet or are parallel where one is needed): the "
+                     "general 6R by elimination (Raghavan-Roth's 14 equations, Manocha-Canny's eigenproblem), "
+                     f"{labelling.text([labels[i] for i in idx])}")
     n = len(idx)
     pose = _Motion(R_POSE, P_POSE)
     origins = [f[:3, 3] for f in frames]  # where axes meet: a DH frame's origin
@@ -362,11 +392,29 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             x = _reduced_motion(e).apply(x).applyfunc(_tidy)
     out = [replace(st, joints=tuple(idx[j] for j in st.joints)) for st in out]  # the solved chain's -> the rows'
     if hj is not None:
-        q = all_joints[hj]
-        out.insert(0, Stage("value", (hj,), (held[1],), f"the held joint {q}", f"{q} is held at the design's value "
-                            f"{held[1]} (a run-time parameter); the other stages are planned on the chain with it "
-                            "held, its rotation kept as its symbol"))
+        out.insert(0, _held_stage(all_joints[hj], hj, held[1]))
     return out, plan.strategy
+
+
+def _held_stage(q, hj, value) -> Stage:
+    return Stage("value", (hj,), (value,), f"the held joint {q}", f"{q} is held at the design's value {value} (a "
+                 "run-time parameter); the other stages are planned on the chain with it held, its rotation kept as "
+                 "its symbol")
+
+
+def _general6r_stage(axes, points, joints, target: _Motion, labelling) -> Stage:
+    """Every joint by elimination (derive/kinematics/general6r.py, run by the runtime's general6r.py /
+    wk_general6r.c): the kernel gives the six axes' directions and points (the design's lengths and a held joint's
+    value in them, the rest folded) and the product of exponentials exp(S_1 q_1) ... exp(S_6 q_6) = T M^-1 they must
+    reach; the runtime's elimination returns the candidates."""
+    exprs = tuple(sp.simplify(x) for a in axes for x in a) + tuple(_trig_reduced(x) for p in points for x in p) + tuple(
+        target.r[i, j] if j < 3 else target.t[i] for i in range(3) for j in range(4))
+    names = ", ".join(str(q) for q in joints)
+    return Stage("general6r", tuple(range(6)), exprs, f"every joint ({names}) by elimination (up to 16 sets)",
+                 "Raghavan-Roth's 14 equations of the loop exp(S_1 q_1) ... exp(S_6 q_6) (T M^-1)^-1 = I, two angles "
+                 "eliminated, Manocha-Canny's eigenproblem in the hidden angle's half-angle tangent; labelling "
+                 f"shift {labelling.shift}, reverse {int(labelling.reverse)}, hidden {labelling.hidden}",
+                 labelling=(labelling.shift, int(labelling.reverse), labelling.hidden))
 
 
 def _slide_distance(j, g, s, m, f, q, op) -> Stage:

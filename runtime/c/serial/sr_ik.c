@@ -16,6 +16,8 @@ static double sr_compensated(int k, const double *pose, double *qk, const double
     long key[SR_N_STAGES];
     int stage_ok[SR_N_STAGES], j;
     unsigned stage_flags[SR_N_STAGES], f = 0u;
+    sr_ws ws;
+    sr_ws_init(&ws);
     for (j = 0; j < SR_N; ++j) {
         c[j] = sr_revolute[j] ? cos(qk[j]) : 1.0;
         s[j] = sr_revolute[j] ? sin(qk[j]) : 0.0;
@@ -33,8 +35,9 @@ static double sr_compensated(int k, const double *pose, double *qk, const double
         amp[j] = 1.0;
     }
     /* an odd set's wrist mirrors the even one's: its prefix first */
-    if ((k & 1) && !sr_run_stages(k - 1, tc, q, c, s, dp, prev, amp, key, stage_ok, stage_flags, &f)) return err;
-    if (!sr_run_stages(k, tc, q, c, s, dp, prev, amp, key, stage_ok, stage_flags, &f)) return err;
+    if ((k & 1) && !sr_run_stages(k - 1, tc, q, c, s, dp, prev, amp, &ws, key, stage_ok, stage_flags, &f))
+        return err;
+    if (!sr_run_stages(k, tc, q, c, s, dp, prev, amp, &ws, key, stage_ok, stage_flags, &f)) return err;
     err2 = sr_polish(q, pose, dp, target);
     if (!(err2 < err)) return err;
     for (j = 0; j < SR_N; ++j) qk[j] = sr_revolute[j] ? wk_wrap(q[j]) : q[j];
@@ -52,6 +55,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
     unsigned stage_flags[SR_N_STAGES], projected;
     double prev_w[SR_N];
     const double *prev = NULL;
+    sr_ws ws; /* the multi-candidate stages' scratch (sr_stages.c) */
     int k, j, indeterminate = 0;
 #if SR_REUSE_MIRROR_CHECK
     double base_err = -1.0; /* the FK check of the last even set, when it passed unpolished */
@@ -122,6 +126,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         stage_ok[j] = 0;
         stage_flags[j] = 0u;
     }
+    sr_ws_init(&ws);
     for (j = 0; j < SR_N; ++j) {
         q[j] = 0.0;
         c[j] = 1.0;
@@ -137,7 +142,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         unsigned f = 0u;
         int alive = 1, have_t = 1;
         /* the stages (sr_run_stages, printed per chain): each recomputed only when its branch prefix changes */
-        alive = sr_run_stages(k, pose, q, c, s, d->params, prev, amp, key, stage_ok, stage_flags, &f);
+        alive = sr_run_stages(k, pose, q, c, s, d->params, prev, amp, &ws, key, stage_ok, stage_flags, &f);
 #if SR_REUSE_MIRROR_CHECK
         if ((k & 1) == 0) base_err = -1.0;
 #endif

@@ -5,6 +5,34 @@
  * (a wristkin runtime source, inlined whole into every serial arm's generated C after its SR_* constants and
  * switches, the sr_design / sr_ik_solutions / sr_fk_solutions types, its derived kernels sr_k_* and stage
  * functions; derive/runtime_files.py, derive/families/serial/views.py, tests/test_serial_runtime.py) */
+/* a stage kernel: what a family probes its next stage with, what the general 6R's stage reads once per prefix */
+typedef void (*sr_stage_kernel)(const double *pose, const double *q, const double *c, const double *s,
+                                const double *dp, double *out);
+
+/* One IK call's scratch for the stages that compute several candidates at once (the general 6R's), kept across the
+ * set words that share the prefix above their bits */
+typedef struct {
+#if SR_HAS_GENERAL6R
+    long g6_key; /* the prefix the candidates were computed for (-1: none yet) */
+    int g6_n;
+    double g6_q[SR_MAX_IK][6];
+    unsigned g6_f[SR_MAX_IK];
+#else
+    int unused; /* C99 has no empty structs */
+#endif
+} sr_ws;
+
+/* a fresh scratch for one IK call */
+static void sr_ws_init(sr_ws *ws)
+{
+#if SR_HAS_GENERAL6R
+    ws->g6_key = -1;
+    ws->g6_n = 0;
+#else
+    ws->unused = 0;
+#endif
+}
+
 #if SR_HAS_TRIG_LINEAR || SR_WRIST_STAGE >= 0
 /* the root a two-root stage takes in set k: +1 when bit `bit` of k is 0 (the +acos root, the first wrist branch) */
 static double sr_sign(int k, int bit)
@@ -108,9 +136,6 @@ static inline int sr_trig_linear(const double *out, int factored, double gap_tol
 #endif
 
 #if SR_HAS_ROTATION2D
-/* a stage kernel: what a family probes its next stage with */
-typedef void (*sr_stage_kernel)(const double *pose, const double *q, const double *c, const double *s,
-                                const double *dp, double *out);
 
 #if SR_HAS_FAMILY_PROBE
 /* The member of a family in joint j whose next stage (A cos q' + B sin q' + C = 0, its kernel `probe`) reaches:

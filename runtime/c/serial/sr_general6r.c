@@ -1,0 +1,134 @@
+/* A general 6R's stage: every solved joint by elimination (runtime/c/wk_general6r.c, written beside the robot's C),
+ * on the axes, points and product of exponentials its derived kernel gives. The candidates are computed once per
+ * prefix of the set index above the stage's bits and kept in the call's scratch (sr_ws); set k takes candidate
+ * (k >> shift) & mask. Each candidate is checked on the chain's FK, polished to rounding where the elimination left
+ * it off (a near-double root: its two eigenvalues resolved to sqrt(eps)), kept when it verifies, and dropped as a
+ * duplicate within SR_G6_SAME rad of a kept one (a double root's two eigenvalues polish onto one solution).
+ * (a wristkin runtime source, inlined whole into a serial arm's generated C that has a general6r stage, after
+ * sr_verify.c; Python's serial_general6r.py; derive/families/serial/views.py, tests/test_derived_robot.py) */
+#if SR_HAS_GENERAL6R
+/* two verified candidates within this in every joint are one solution (the interpreted module's _same) */
+#define SR_G6_SAME 1e-9
+/* the sets are ordered by their first joint that differs by more than this (Python's G6_ORDER_TOL: the C and numpy
+ * eigensolvers find the roots in different orders; a set's joints agree across them to far less) */
+#define SR_G6_ORDER_TOL 1e-6
+
+/* -1, 0 or 1 as set a comes before, with or after set b (Python's _g6_order) */
+static int sr_g6_order(const double *a, const double *b)
+{
+    int j;
+    for (j = 0; j < 6; ++j)
+        if (fabs(a[j] - b[j]) > SR_G6_ORDER_TOL) return a[j] < b[j] ? -1 : 1;
+    return 0;
+}
+
+/* the n sets in ws in sr_g6_order (insertion sort, stable as Python's sorted) */
+static void sr_g6_sort(sr_ws *ws, int n)
+{
+    int i, j, m;
+    for (i = 1; i < n; ++i) {
+        double v[6];
+        const unsigned fl = ws->g6_f[i];
+        for (m = 0; m < 6; ++m) v[m] = ws->g6_q[i][m];
+        for (j = i; j > 0 && sr_g6_order(ws->g6_q[j - 1], v) > 0; --j) {
+            for (m = 0; m < 6; ++m) ws->g6_q[j][m] = ws->g6_q[j - 1][m];
+            ws->g6_f[j] = ws->g6_f[j - 1];
+        }
+        for (m = 0; m < 6; ++m) ws->g6_q[j][m] = v[m];
+        ws->g6_f[j] = fl;
+    }
+}
+
+/* sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out) at or below SR_SINGULAR_EPS:
+ * a Cholesky bound proves most sets regular, the Jacobi eigenvalues of J^T J decide the rest */
+static int sr_g6_singular(const double *q, const double *dp, const int *joints)
+{
+    double full[6 * SR_N], jac[36], g[36], man, ratio;
+    int i, j, k;
+    sr_k_jacobian(q, dp, full);
+    for (i = 0; i < 6; ++i)
+        for (j = 0; j < 6; ++j) jac[6 * i + j] = full[SR_N * i + joints[j]];
+    if (wk_conditioning_bound(jac, 6, SR_SINGULAR_EPS, &man) == 1) return 0;
+    for (i = 0; i < 6; ++i)
+        for (j = 0; j < 6; ++j) {
+            g[6 * i + j] = 0.0;
+            for (k = 0; k < 6; ++k) g[6 * i + j] += jac[6 * k + i] * jac[6 * k + j];
+        }
+    (void)wk_jacobi_spectrum(g, 6, &ratio);
+    return ratio <= SR_SINGULAR_EPS;
+}
+
+/* The verified, distinct candidates of the elimination into ws (at most SR_MAX_IK): out = the stage kernel's axes
+ * (18), points (18) and target [R | p] (12); q carries the joints solved before the stage (a held joint's value) */
+static int sr_g6_candidates(const double *out, int shift, int reverse, int hidden, const int *joints,
+                            const double *q, const double *pose, const double *dp, sr_ws *ws)
+{
+    static const double id4[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    double frames[96], g4[16], cand[WK_G6_MAX_CANDIDATES * 6], errs[SR_MAX_IK];
+    const double size = fmax(fabs(pose[3]), fmax(fabs(pose[7]), fabs(pose[11])));
+    const double target = SR_DOUBLE_ROOT_POLISH_TOL * fmax(1.0, size);
+    int i, j, m, nr, n = 0;
+    wk_g6_z_frames(out, out + 18, frames);
+    for (i = 0; i < 12; ++i) g4[i] = out[36 + i];
+    g4[12] = g4[13] = g4[14] = 0.0;
+    g4[15] = 1.0;
+    nr = wk_g6_solve(frames, id4, g4, shift, reverse, hidden, cand, WK_G6_MAX_CANDIDATES);
+    for (i = 0; i < nr; ++i) {
+        double x[SR_N], t[12], err;
+        int dup = -1;
+        for (j = 0; j < SR_N; ++j) x[j] = q[j];
+        for (j = 0; j < 6; ++j) x[joints[j]] = cand[6 * i + j];
+        sr_k_fk(x, dp, t);
+        err = 0.0;
+        for (j = 0; j < 12; ++j) {
+            const double d = fabs(t[j] - pose[j]);
+            if (!(d <= err)) err = d; /* a NaN fails the check */
+        }
+        if (!(err <= target)) err = sr_polish(x, pose, dp, target);
+        if (!(err <= SR_IK_VERIFY_TOL)) continue;
+        for (j = 0; j < 6; ++j) x[joints[j]] = wk_wrap(x[joints[j]]);
+        for (m = 0; m < n && dup < 0; ++m) {
+            int same = 1;
+            for (j = 0; j < 6 && same; ++j) same = fabs(wk_wrap(x[joints[j]] - ws->g6_q[m][j])) <= SR_G6_SAME;
+            if (same) dup = m;
+        }
+        if (dup >= 0) { /* one solution found twice: the better fit stands for it */
+            if (err < errs[dup])
+                for (j = 0; j < 6; ++j) ws->g6_q[dup][j] = x[joints[j]];
+            if (err < errs[dup]) errs[dup] = err;
+            continue;
+        }
+        if (n == SR_MAX_IK) continue; /* more than 16: a degenerate pose's family, the first 16 kept */
+        for (j = 0; j < 6; ++j) ws->g6_q[n][j] = x[joints[j]];
+        errs[n] = err;
+        ws->g6_f[n] = sr_g6_singular(x, dp, joints) ? WK_FLAG_SINGULAR_INVERSE : 0u;
+        ++n;
+    }
+    sr_g6_sort(ws, n);
+    return n;
+}
+
+/* Set k's candidate: `kernel` the stage's (axes, points, target), `parent` the set index's prefix above the stage's bits (the candidates are recomputed when it
+ * changes), `idx` the candidate; 0 when there is no such candidate */
+static int sr_general6r(sr_stage_kernel kernel, long parent, int idx, int shift, int reverse, int hidden,
+                        const int *joints, double *q, double *c, double *s, const double *pose, const double *dp,
+                        sr_ws *ws, unsigned *f)
+{
+    int j;
+    if (ws->g6_key != parent) {
+        double out[48];
+        kernel(pose, q, c, s, dp, out);
+        ws->g6_key = parent;
+        ws->g6_n = sr_g6_candidates(out, shift, reverse, hidden, joints, q, pose, dp, ws);
+    }
+    if (idx >= ws->g6_n) return 0;
+    for (j = 0; j < 6; ++j) {
+        const double v = ws->g6_q[idx][j];
+        q[joints[j]] = v;
+        c[joints[j]] = cos(v);
+        s[joints[j]] = sin(v);
+    }
+    *f = ws->g6_f[idx];
+    return 1;
+}
+#endif

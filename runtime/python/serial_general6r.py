@@ -1,0 +1,115 @@
+"""A general 6R's stage: every solved joint by elimination (general6r.py, inlined before it), on the axes, points
+and product of exponentials its derived kernel gives. The candidates are computed once per prefix of the set index
+above the stage's bits and kept in the call's scratch `ws`; set k takes candidate (k >> shift) & mask. Each is
+checked on the chain's FK, polished to rounding where the elimination left it off (a near-double root: its two
+eigenvalues resolved to sqrt(eps)), kept when it verifies, and dropped as a duplicate within G6_SAME rad of a kept
+one (a double root's two eigenvalues polish onto one solution). The C twin: runtime/c/serial/sr_general6r.c.
+
+A wristkin runtime source: a serial arm's generated module with a general6r stage inlines it from the marker line on
+(derive/runtime_files.py), after its constants, derived kernels, stage functions and the sources before it; above the
+marker, what it reads from them (serial_stand_in.py: the PUMA-560 stands in for the names), so that it is linted and
+tested as it is (tests/test_derived_robot.py)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from general6r import g6_solve, g6_z_frames
+from serial_stand_in import (
+    DOUBLE_ROOT_POLISH_TOL,
+    FLAG_SINGULAR_INVERSE,
+    IK_VERIFY_TOL,
+    MAX_IK,
+    N_JOINTS,
+    SINGULAR_EPS,
+    _k_fk,
+    _k_jacobian,
+    _wrap,
+)
+from serial_verify import _polish
+
+# wristkin: inlined from here
+# two verified candidates within this in every joint are one solution (the interpreted module's _same)
+G6_SAME = 1e-9
+# the sets are ordered by their first joint that differs by more than this (_g6_order)
+G6_ORDER_TOL = 1e-6
+
+
+def _g6_singular(q, dp, joints):
+    """Whether sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out) is at most
+    SINGULAR_EPS."""
+    j = np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)[:, list(joints)]
+    lam = np.maximum(np.linalg.eigvalsh(j.T @ j), 0.0)
+    return not (lam[-1] > 0.0 and math.sqrt(lam[0] / lam[-1]) > SINGULAR_EPS)
+
+
+def _g6_candidates(out, labelling, joints, q, pose, dp):
+    """The verified, distinct candidates of the elimination ((joint values of `joints`, flags), at most MAX_IK): out =
+    the stage kernel's axes (18), points (18) and target [R | p] (12); q carries the joints solved before the stage
+    (a held joint's value)."""
+    global _G6_FRAMES
+    key, cached = tuple(out[:36]), _G6_FRAMES  # read once: another thread may replace it meanwhile
+    if cached[0] != key:  # the joints' frames once per design (a held joint's value moves them), not per call
+        axes = np.array(out[:18], dtype=float).reshape(6, 3)
+        points = np.array(out[18:36], dtype=float).reshape(6, 3)
+        cached = _G6_FRAMES = (key, g6_z_frames(axes, points))
+    g4 = np.vstack([np.array(out[36:48], dtype=float).reshape(3, 4), [0.0, 0.0, 0.0, 1.0]])
+    shift, reverse, hidden = labelling
+    size = max(abs(pose[3]), abs(pose[7]), abs(pose[11]))
+    target = DOUBLE_ROOT_POLISH_TOL * max(1.0, size)
+    kept, errs = [], []
+    for cand in g6_solve(cached[1], np.eye(4), g4, shift, bool(reverse), hidden):
+        x = list(q)
+        for j, v in zip(joints, cand, strict=True):
+            x[j] = v
+        err = max(abs(a - b) for a, b in zip(_k_fk(x, dp), pose, strict=True))
+        if not err <= target:
+            x, err = _polish(x, pose, dp, target=target)
+        if not err <= IK_VERIFY_TOL:
+            continue
+        vals = [_wrap(x[j]) for j in joints]
+        dup = next((m for m, (other, _) in enumerate(kept)
+                    if all(abs(_wrap(a - b)) <= G6_SAME for a, b in zip(vals, other, strict=True))), -1)
+        if dup >= 0:  # one solution found twice: the better fit stands for it
+            if err < errs[dup]:
+                kept[dup], errs[dup] = (vals, kept[dup][1]), err
+            continue
+        if len(kept) == MAX_IK:  # more than 16: a degenerate pose's family, the first 16 kept
+            continue
+        kept.append((vals, FLAG_SINGULAR_INVERSE if _g6_singular(x, dp, joints) else 0))
+        errs.append(err)
+    for i in range(1, len(kept)):  # insertion sort by _g6_order, as the C runtime's (stable)
+        item, j = kept[i], i
+        while j > 0 and _g6_order(kept[j - 1], item) > 0:
+            kept[j] = kept[j - 1]
+            j -= 1
+        kept[j] = item
+    return kept
+
+
+def _g6_order(a, b):
+    """The sets in joint order: by the first joint that differs by more than G6_ORDER_TOL (the C and numpy
+    eigensolvers find the roots in different orders; a set's joints agree across them to far less)."""
+    for x, y in zip(a[0], b[0], strict=True):
+        if abs(x - y) > G6_ORDER_TOL:
+            return -1 if x < y else 1
+    return 0
+
+
+_G6_FRAMES = (None, None)  # (axes and points, their frames): one assignment, a thread reads the old pair or the new
+
+
+def _general6r(kernel, parent, idx, labelling, joints, q, c, s, pose, dp, ws):
+    """Set k's candidate (ok, flags): `kernel` the stage's (axes, points, target), `parent` the set index's prefix
+    above the stage's bits (the candidates are recomputed when it changes), `idx` the candidate."""
+    if ws.get("g6_key") != parent:
+        ws["g6_key"] = parent
+        ws["g6"] = _g6_candidates(kernel(pose, q, c, s, dp), labelling, joints, q, pose, dp)
+    cands = ws["g6"]
+    if idx >= len(cands):
+        return False, 0
+    vals, f = cands[idx]
+    for j, v in zip(joints, vals, strict=True):
+        q[j], c[j], s[j] = v, math.cos(v), math.sin(v)
+    return True, f
