@@ -44,8 +44,19 @@ class Lowered:
     ops: int  # operation count after CSE, for the audit
 
 
+def _has_irrational(e: sp.Expr) -> bool:
+    """Whether e holds an exact irrational constant: a named one (pi), a number's non-integer power (sqrt(2)) or a
+    function of a number (cos(pi / 36)). Floats and rationals are what the printers print as they are."""
+    return (bool(e.atoms(sp.NumberSymbol))
+            or any(p.base.is_number and not p.exp.is_Integer for p in e.atoms(sp.Pow))
+            or any(f.args and all(a.is_number for a in f.args) for f in e.atoms(sp.Function)))
+
+
 def _fold_constants(e: sp.Expr) -> sp.Expr:
-    """Irrational constants (sqrt(3)/2 ...) become 17-digit floats so no target recomputes them."""
+    """Irrational constants (sqrt(3)/2 ...) become 17-digit floats so no target recomputes them. An expression
+    without any is returned as it is (walking a general 6R's float-laden kernels for none took seconds)."""
+    if not _has_irrational(e):
+        return e
     return e.replace(lambda a: a.is_number and not a.is_Rational and a.free_symbols == set(),
                      lambda a: sp.Float(sp.N(a, 25), 17))
 

@@ -823,26 +823,7 @@ def test_a_general_6r_s_emitted_c_is_strict_c99_and_clean_under_the_sanitizers()
     -Wextra -Werror -pedantic and ASan/UBSan, on random, singular, unreachable and non-finite poses: the counts the
     Python module returns, nothing reported."""
     m, _, out = _general("ur5e_tilted")
-    name = m.NAME
-    src = out / "c" / "driver.c"
-    src.write_text(DRIVER.replace("NAME", name))
-    exe = out / "c" / "driver"
-    sources = sorted(str(f) for f in (out / "c").glob("*.c") if f.name != src.name)
-    cmd = [compiler(), *STRICT_FLAGS, *SANITIZE_FLAGS, "-o", str(exe), str(src), *sources, f"-I{out / 'c'}", "-lm"]
-    subprocess.run(cmd, check=True, capture_output=True, text=True)
-    rng = case_rng(2311)
-    poses = [m.fk_matrix(rng.uniform(-math.pi, math.pi, 6))[:3].ravel() for _ in range(10)]
-    poses.append(m.fk_matrix([0.3, 0.2, -0.1, 0.5, 0.0, 0.4])[:3].ravel())
-    far = m.fk_matrix(np.zeros(6))[:3].ravel().copy()
-    far[3] += 5.0
-    poses.append(far)  # out of reach
-    nan = far.copy()
-    nan[0] = float("nan")
-    poses.append(nan)
-    text = "\n".join(" ".join(repr(float(v)) for v in p) for p in poses)
-    r = subprocess.run([str(exe)], input=text, capture_output=True, text=True, timeout=300)
-    assert r.returncode == 0 and not r.stderr, r.stderr
-    counts = [tuple(map(int, line.split())) for line in r.stdout.split("\n") if line]
+    poses, counts = _sanitized_driver_run(m, out, case_rng(2311), 10)
     for p, (count, _status, _chosen) in zip(poses[:-1], counts[:-1], strict=True):
         assert count == m.ik(np.vstack([p.reshape(3, 4), [0, 0, 0, 1]])).count
     assert counts[-2][0] == 0 and counts[-1][0] == 0
@@ -911,21 +892,18 @@ int main(void) {
 """
 
 
-def test_the_emitted_c_is_strict_c99_and_clean_under_the_sanitizers():
-    """The derived irb120's C under -std=c99 -Wall -Wextra -Werror -pedantic, run under ASan/UBSan on random,
-    singular, unreachable and non-finite poses: the counts the Python module returns and the set its select takes
-    (the description's limits by default), nothing reported."""
-    m, _, out = derived("irb120")
-    name = m.NAME
+def _sanitized_driver_run(m, out: Path, rng, n_random: int):
+    """DRIVER compiled strictly under ASan/UBSan with the folder's C (the robot's, the runtime, the general 6R's
+    sources beside it) and run on n_random random poses, a wrist-singular one (the spherical wrists'), one out of
+    reach and one with a NaN: (poses, the driver's (count, status, selected) per pose), nothing reported."""
     src = out / "c" / "driver.c"
-    src.write_text(DRIVER.replace("NAME", name))
+    src.write_text(DRIVER.replace("NAME", m.NAME))
     exe = out / "c" / "driver"
-    cmd = [compiler(), *STRICT_FLAGS, *SANITIZE_FLAGS, "-o", str(exe), str(src), str(out / "c" / f"{name}.c"),
-           str(out / "c" / "wristkin_runtime.c"), f"-I{out / 'c'}", "-lm"]
+    sources = sorted(str(f) for f in (out / "c").glob("*.c") if f.name != src.name)
+    cmd = [compiler(), *STRICT_FLAGS, *SANITIZE_FLAGS, "-o", str(exe), str(src), *sources, f"-I{out / 'c'}", "-lm"]
     subprocess.run(cmd, check=True, capture_output=True, text=True)
-    rng = case_rng(2306)
-    poses = [m.fk_matrix(rng.uniform(-math.pi, math.pi, 6))[:3].ravel() for _ in range(20)]
-    poses.append(m.fk_matrix([0.3, 0.2, -0.1, 0.5, 0.0, 0.4])[:3].ravel())  # the wrist singularity
+    poses = [m.fk_matrix(rng.uniform(-math.pi, math.pi, 6))[:3].ravel() for _ in range(n_random)]
+    poses.append(m.fk_matrix([0.3, 0.2, -0.1, 0.5, 0.0, 0.4])[:3].ravel())
     far = m.fk_matrix(np.zeros(6))[:3].ravel().copy()
     far[3] += 5.0
     poses.append(far)  # out of reach
@@ -933,9 +911,17 @@ def test_the_emitted_c_is_strict_c99_and_clean_under_the_sanitizers():
     nan[0] = float("nan")
     poses.append(nan)
     text = "\n".join(" ".join(repr(float(v)) for v in p) for p in poses)
-    r = subprocess.run([str(exe)], input=text, capture_output=True, text=True, timeout=120)
+    r = subprocess.run([str(exe)], input=text, capture_output=True, text=True, timeout=300)
     assert r.returncode == 0 and not r.stderr, r.stderr
-    counts = [tuple(map(int, line.split())) for line in r.stdout.split("\n") if line]
+    return poses, [tuple(map(int, line.split())) for line in r.stdout.split("\n") if line]
+
+
+def test_the_emitted_c_is_strict_c99_and_clean_under_the_sanitizers():
+    """The derived irb120's C under -std=c99 -Wall -Wextra -Werror -pedantic, run under ASan/UBSan on random,
+    singular, unreachable and non-finite poses: the counts the Python module returns and the set its select takes
+    (the description's limits by default), nothing reported."""
+    m, _, out = derived("irb120")
+    poses, counts = _sanitized_driver_run(m, out, case_rng(2306), 20)
     for p, (count, _status, chosen) in zip(poses[:-1], counts[:-1], strict=True):
         sol = m.ik(np.vstack([p.reshape(3, 4), [0, 0, 0, 1]]))
         assert count == sol.count

@@ -75,7 +75,8 @@ def wrist_signs(m: sp.Matrix, q4, q5, q6) -> tuple[int, int, int, int]:
 def derive_spec(spec: SerialSpec) -> Derivation:
     syms = {s.name: s for s in (*spec.joints, *spec.design)}
     dv = Derivation(spec.name, spec.title, spec.seed, syms)
-    ts = chain(spec.rows, spec.convention, spec.tool, spec.base)
+    plain = chain(spec.rows, spec.convention, None, spec.base)  # the frames without the tool (the Jacobian's)
+    ts = plain if spec.tool is None else [*plain[:-1], plain[-1] * spec.tool]  # identities/dh.chain's own product
     rule = ("standard DH: A = Rz(theta) Tz(d) Tx(a) Rx(alpha)" if spec.convention == "standard" else
             "modified (Craig) DH: A = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta) Tz(d)")
     for i, row in enumerate(spec.rows, start=1):
@@ -99,7 +100,7 @@ def derive_spec(spec: SerialSpec) -> Derivation:
                                    "symbolic identity (simplify of the difference is zero)" if ok else
                                    _mismatch(ours, printed)))
     dv.findings.extend(spec.findings)
-    _jacobian_step(dv, spec, ts if spec.tool is None else chain(spec.rows, spec.convention, None, spec.base), ts[-1])
+    _jacobian_step(dv, spec, plain, ts[-1])
     _ik_steps(dv, spec, fT)
     dv.exports["T"] = T
     dv.exports["frames"] = ts
