@@ -94,8 +94,16 @@ int main(int argc, char **argv) {
 """
 
 
+# the general 6R fixture (no decomposition: the elimination, a derived general6r stage by default)
+GENERAL_SPEC = ROBOTS / "ur5e_tilted" / "ur5e_tilted_poe.toml"
+
+
 def specs() -> list[Path]:
-    return sorted([*ROBOTS.glob("*/*.urdf"), ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml"])
+    return sorted([*ROBOTS.glob("*/*.urdf"), ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml", GENERAL_SPEC])
+
+
+def _name(spec: Path) -> str:
+    return spec.stem.removesuffix("_dh").removesuffix("_poe")
 
 
 def _free(m) -> int:
@@ -193,11 +201,9 @@ def bench_robot(spec: Path, derived: bool = False) -> dict:
     from derive import own_robot
 
     out = Path(tempfile.mkdtemp(prefix="wk_near_"))
-    name = spec.stem.removesuffix("_dh")
-    if derived:
-        own_robot.derive(spec, out, free=FREE.get(name), stages="derived", progress=lambda _: None)
-    else:
-        own_robot.derive(spec, out, free=FREE.get(name), stages="interpreted", progress=lambda _: None)
+    name = _name(spec)
+    own_robot.derive(spec, out, name=spec.stem, free=FREE.get(name), stages="derived" if derived else "interpreted",
+                     progress=lambda _: None)
     m = own_robot.import_solver(out, spec.stem)
     name = m.NAME + (" (derived)" if derived else "")
     rng = np.random.default_rng(20261126)
@@ -241,8 +247,9 @@ def bench_robot(spec: Path, derived: bool = False) -> dict:
 def report(names=None, json_path: Path = ROOT / "build" / "bench" / "near_singular.json") -> str:
     from own_robots import DERIVED_ROBOTS  # bench/own_robots.py: the robots --stages derived covers
 
-    chosen = [p for p in specs() if names is None or p.stem.removesuffix("_dh") in names]
-    rows = [bench_robot(p) for p in chosen] + [bench_robot(p, derived=True) for p in chosen if p.stem in DERIVED_ROBOTS]
+    chosen = [p for p in specs() if names is None or _name(p) in names]
+    rows = [bench_robot(p) for p in chosen] + [bench_robot(p, derived=True) for p in chosen
+                                               if p.stem in DERIVED_ROBOTS or p == GENERAL_SPEC]
     lines = [f"Near-singular sweeps (the plain rows `--stages interpreted`, the \"(derived)\" rows the derived stages, "
              "the default where they cover the robot): each joint's singular configurations (det J = 0, found by "
              "bisection) moved off "
