@@ -818,6 +818,21 @@ def test_a_general_6r_is_derived_with_every_set_and_only_true_ones(case):
             assert all(min(_gap(v, f) for v in a) <= 1e-6 for f in found)
 
 
+def test_where_the_chosen_reading_degenerates_the_next_one_solves_the_pose():
+    """The Panda with joint1 held at joint4 = 0 exactly (joints 3 and 5 aligned: a family of solutions): the chosen
+    reading's eigenproblem fails in C there, and the pose came back unreachable (numpy: 8 members). The next most
+    regular reading gives the family's members: every set on the pose, in C and numpy."""
+    m, py, _ = _general("panda_free1")
+    reference = ref.load(GENERAL["panda_free1"][0])
+    q = np.linspace(-1.0, 1.0, 7)
+    q[m._FREE] = 0.3
+    T = reference(q)
+    for solver in (m, py):
+        sol = solver.ik(T, [0.3])
+        assert sol.status == solver.STATUS_OK and sol.count >= 1, solver.BACKEND
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+
+
 def test_a_general_6r_s_emitted_c_is_strict_c99_and_clean_under_the_sanitizers():
     """The derived tilted UR5e's C with the elimination beside it (wk_general6r.c, wk_eigen.c) under -std=c99 -Wall
     -Wextra -Werror -pedantic and ASan/UBSan, on random, singular, unreachable and non-finite poses: the counts the

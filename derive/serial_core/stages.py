@@ -37,9 +37,10 @@ class Stage:
     # a rotation2d stage whose family moves what its next stage must reach (a UR's q6 at its wrist singularity):
     # the member is the one that stage reaches (serial_stages._family_by_reach), probed on its kernel
     probe_next: bool = False
-    # general6r: the elimination's labelling (shift, reverse, hidden: runtime/python/general6r.py), chosen where it
-    # stays regular (derive/kinematics/general6r.choose_labelling)
-    labelling: tuple[int, int, int] = (0, 0, 0)
+    # general6r: the elimination's readings of the loop, (shift, reverse, hidden) each (runtime/python/general6r.py):
+    # the one chosen where it stays regular (derive/kinematics/general6r.choose_labelling), then the next most
+    # regular, tried in turn when no candidate of the one before verifies (a pose where its equations degenerate)
+    labelling: tuple[tuple[int, int, int], ...] = ((0, 0, 0),)
     # general6r: (the solved chain at the design's defaults, a kinematics.poe.Chain; its general6r.Labelling) for
     # the derivation's records of the elimination (kinematics/general6r.steps)
     elimination: tuple | None = field(default=None, compare=False, repr=False)
@@ -131,7 +132,7 @@ def stage_view(spec) -> list[dict]:
         shift = total - used
         view = {"index": k, "kind": st.kind, "joints": list(st.joints), "branches": st.branches,
                 "bit": shift if st.branches == 2 else None, "shift": shift, "width": st.width,
-                "labelling": list(st.labelling)}
+                "labelling": [list(r) for r in st.labelling]}
         # the angle stages before it: their amplification of the input's rounding widens a wrist's family band and
         # a factored distance stage's double-root band (serial_stages._wrist, _trig_linear)
         view["amp_joints"] = [j for prior in spec.stages[:k - 1] if prior.kind in ("trig_linear", "rotation2d")

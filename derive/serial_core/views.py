@@ -73,8 +73,9 @@ def py_stage_body(st: dict) -> list[str]:
         return [f"return _slide_quadratic({out}, {j}, _sign(k, {st['bit']}), q)"]
     if st["kind"] == "general6r":  # its candidates once per prefix above its bits (ws), set k's by its bits
         shift, width = st["shift"], st["width"]
-        return [f"return _general6r(_k_stage{st['index']}, k >> {shift + width}, (k >> {shift}) & {2 ** width - 1}, "
-                f"{_tuple(st['labelling'])},",
+        readings = "(" + "".join(f"{_tuple(r)}, " for r in st["labelling"]) + ")"
+        return [f"return _general6r(_k_stage{st['index']}, k >> {shift + width}, (k >> {shift}) & {2 ** width - 1},",
+                f"                  {readings},",
                 f"                  {_tuple(st['joints'])}, q, c, s, pose, dp, ws)"]
     if st["kind"] == "wrist":
         joints, signs = "(" + ", ".join(map(str, st["joints"])) + ")", "(" + ", ".join(map(str, st["signs"])) + ")"
@@ -90,9 +91,12 @@ def c_stage_body(st: dict) -> list[str]:
     if st["kind"] == "general6r":  # its candidates once per prefix above its bits (ws), set k's by its bits
         shift, width = st["shift"], st["width"]
         joints = ", ".join(map(str, st["joints"]))
-        return [f"static const int joints[6] = {{ {joints} }};", "(void)prev;", "(void)amp;", "*f = 0u;",
+        readings = ", ".join("{ " + ", ".join(map(str, r)) + " }" for r in st["labelling"])
+        return [f"static const int joints[6] = {{ {joints} }};",
+                f"static const int readings[{len(st['labelling'])}][3] = {{ {readings} }};", "(void)prev;",
+                "(void)amp;", "*f = 0u;",
                 f"return sr_general6r(sr_k_stage{st['index']}, (long)(k >> {shift + width}), (k >> {shift}) & "
-                f"{2 ** width - 1}, {', '.join(map(str, st['labelling']))}, joints, q, c, s, pose, dp, ws, f);"]
+                f"{2 ** width - 1}, readings, {len(st['labelling'])}, joints, q, c, s, pose, dp, ws, f);"]
     size = {"trig_linear": 6 if st.get("factored") else 3, "rotation2d": 4, "value": 1, "wrist": 9,
             "quadratic": 3}[st["kind"]]
     call = f"sr_k_stage{st['index']}(pose, q, c, s, dp, out);"

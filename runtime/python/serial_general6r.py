@@ -44,10 +44,20 @@ def _g6_singular(q, dp, joints):
     return not (lam[-1] > 0.0 and math.sqrt(lam[0] / lam[-1]) > SINGULAR_EPS)
 
 
-def _g6_candidates(out, labelling, joints, q, pose, dp):
-    """The verified, distinct candidates of the elimination ((joint values of `joints`, flags), at most MAX_IK): out =
-    the stage kernel's axes (18), points (18) and target [R | p] (12); q carries the joints solved before the stage
-    (a held joint's value)."""
+def _g6_candidates(out, readings, joints, q, pose, dp):
+    """The candidates of the first of the readings (shift, reverse, hidden) whose candidates verify: the next is tried
+    only where none of one's does (its equations degenerate at this pose)."""
+    for labelling in readings:
+        found = _g6_reading(out, labelling, joints, q, pose, dp)
+        if found:
+            return found
+    return []
+
+
+def _g6_reading(out, labelling, joints, q, pose, dp):
+    """The verified, distinct candidates of one reading of the loop ((joint values of `joints`, flags), at most
+    MAX_IK): out = the stage kernel's axes (18), points (18) and target [R | p] (12); q carries the joints solved
+    before the stage (a held joint's value)."""
     global _G6_FRAMES
     key, cached = tuple(out[:36]), _G6_FRAMES  # read once: another thread may replace it meanwhile
     if cached[0] != key:  # the joints' frames once per design (a held joint's value moves them), not per call
@@ -100,12 +110,13 @@ def _g6_order(a, b):
 _G6_FRAMES = (None, None)  # (axes and points, their frames): one assignment, a thread reads the old pair or the new
 
 
-def _general6r(kernel, parent, idx, labelling, joints, q, c, s, pose, dp, ws):
+def _general6r(kernel, parent, idx, readings, joints, q, c, s, pose, dp, ws):
     """Set k's candidate (ok, flags): `kernel` the stage's (axes, points, target), `parent` the set index's prefix
-    above the stage's bits (the candidates are recomputed when it changes), `idx` the candidate."""
+    above the stage's bits (the candidates are recomputed when it changes), `idx` the candidate, `readings` the
+    loop's readings in the order they are tried."""
     if ws.get("g6_key") != parent:
         ws["g6_key"] = parent
-        ws["g6"] = _g6_candidates(kernel(pose, q, c, s, dp), labelling, joints, q, pose, dp)
+        ws["g6"] = _g6_candidates(kernel(pose, q, c, s, dp), readings, joints, q, pose, dp)
     cands = ws["g6"]
     if idx >= len(cands):
         return False, 0

@@ -245,7 +245,7 @@ def _elimination_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:
             dsn[spec.held[1]] = q[spec.joints[spec.held[0]]]
         axes, points, g = _general6r_parts(at_fk(q, dsn))
         qs = np.array([q[spec.joints[j]] for j in st.joints])
-        shift, reverse, hidden = st.labelling
+        shift, reverse, hidden = st.labelling[0]
         cands = g6.g6_solve(g6.g6_z_frames(axes, points), np.eye(4), np.vstack([g, [0, 0, 0, 1]]), shift,
                             bool(reverse), hidden)
         return min((float(np.max(np.abs(np.remainder(np.array(c) - qs + math.pi, 2 * math.pi) - math.pi)))

@@ -32,6 +32,7 @@ import sympy as sp
 from ...identities.dh import chain as dh_chain
 from ...identities.frames import rodrigues
 from ...kinematics import general6r
+from ...kinematics.general6r import REGULARITY_MIN
 from ...kinematics.planner import NoClosedForm, find_plan
 from ...kinematics.poe import Chain, reverse
 from ...model import NoDecomposition
@@ -43,6 +44,10 @@ HELD_PLAN_VALUE = 0.7
 # the held values the general 6R's labelling must stay regular at (the elimination reads the chain the held joint
 # turns; the interpreted module samples its own)
 HELD_LABELLING_VALUES = (0.7, -1.9, 2.6, -0.4)
+# the general 6R's readings tried after the chosen one where none of its candidates verifies (the Panda with joint1
+# held at joint4 = 0, joints 3 and 5 aligned: the chosen reading's eigenproblem fails in C there, 12 of the 36 others
+# give the family's members)
+FALLBACK_READINGS = 2
 SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient",
              "group_rest"}
 
@@ -407,14 +412,19 @@ def _general6r_stage(axes, points, joints, target: _Motion, labelling) -> Stage:
     wk_general6r.c): the kernel gives the six axes' directions and points (the design's lengths and a held joint's
     value in them, the rest folded) and the product of exponentials exp(S_1 q_1) ... exp(S_6 q_6) = T M^-1 they must
     reach; the runtime's elimination returns the candidates."""
+    chosen = (labelling.shift, int(labelling.reverse), labelling.hidden)
+    others = sorted((sc for sc in labelling.scores if (sc[0], int(sc[1]), sc[2]) != chosen and sc[3] >= REGULARITY_MIN),
+                    key=lambda sc: -sc[3])
+    readings = (chosen, *((sc[0], int(sc[1]), sc[2]) for sc in others[:FALLBACK_READINGS]))
     exprs = tuple(sp.simplify(x) for a in axes for x in a) + tuple(_trig_reduced(x) for p in points for x in p) + tuple(
         target.r[i, j] if j < 3 else target.t[i] for i in range(3) for j in range(4))
     names = ", ".join(str(q) for q in joints)
     return Stage("general6r", tuple(range(6)), exprs, f"every joint ({names}) by elimination (up to 16 sets)",
                  "Raghavan-Roth's 14 equations of the loop exp(S_1 q_1) ... exp(S_6 q_6) (T M^-1)^-1 = I, two angles "
                  "eliminated, Manocha-Canny's eigenproblem in the hidden angle's half-angle tangent; labelling "
-                 f"shift {labelling.shift}, reverse {int(labelling.reverse)}, hidden {labelling.hidden}",
-                 labelling=(labelling.shift, int(labelling.reverse), labelling.hidden))
+                 f"shift {labelling.shift}, reverse {int(labelling.reverse)}, hidden {labelling.hidden}; where no "
+                 "candidate of it verifies (a pose where its equations degenerate), the next most regular readings "
+                 f"{', '.join(str(r) for r in readings[1:])} in turn", labelling=readings)
 
 
 def _slide_distance(j, g, s, m, f, q, op) -> Stage:

@@ -58,10 +58,11 @@ static int sr_g6_singular(const double *q, const double *dp, const int *joints)
     return ratio <= SR_SINGULAR_EPS;
 }
 
-/* The verified, distinct candidates of the elimination into ws (at most SR_MAX_IK): out = the stage kernel's axes
- * (18), points (18) and target [R | p] (12); q carries the joints solved before the stage (a held joint's value) */
-static int sr_g6_candidates(const double *out, int shift, int reverse, int hidden, const int *joints,
-                            const double *q, const double *pose, const double *dp, sr_ws *ws)
+/* The verified, distinct candidates of one reading of the loop into ws (at most SR_MAX_IK): out = the stage kernel's
+ * axes (18), points (18) and target [R | p] (12); q carries the joints solved before the stage (a held joint's
+ * value) */
+static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, const int *joints,
+                         const double *q, const double *pose, const double *dp, sr_ws *ws)
 {
     static const double id4[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     double frames[96], g4[16], cand[WK_G6_MAX_CANDIDATES * 6], errs[SR_MAX_IK];
@@ -108,9 +109,21 @@ static int sr_g6_candidates(const double *out, int shift, int reverse, int hidde
     return n;
 }
 
+/* The candidates of the first of the n readings (shift, reverse, hidden) whose candidates verify: the next is tried
+ * only where none of one's does (its equations degenerate at this pose) */
+static int sr_g6_candidates(const double *out, const int (*readings)[3], int n, const int *joints, const double *q,
+                            const double *pose, const double *dp, sr_ws *ws)
+{
+    int i, found = 0;
+    for (i = 0; i < n && found == 0; ++i)
+        found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], joints, q, pose, dp, ws);
+    return found;
+}
+
 /* Set k's candidate: `kernel` the stage's (axes, points, target), `parent` the set index's prefix above the stage's bits (the candidates are recomputed when it
- * changes), `idx` the candidate; 0 when there is no such candidate */
-static int sr_general6r(sr_stage_kernel kernel, long parent, int idx, int shift, int reverse, int hidden,
+ * changes), `idx` the candidate, `readings` the loop's readings in the order they are tried; 0 when there is no such
+ * candidate */
+static int sr_general6r(sr_stage_kernel kernel, long parent, int idx, const int (*readings)[3], int n_readings,
                         const int *joints, double *q, double *c, double *s, const double *pose, const double *dp,
                         sr_ws *ws, unsigned *f)
 {
@@ -119,7 +132,7 @@ static int sr_general6r(sr_stage_kernel kernel, long parent, int idx, int shift,
         double out[48];
         kernel(pose, q, c, s, dp, out);
         ws->g6_key = parent;
-        ws->g6_n = sr_g6_candidates(out, shift, reverse, hidden, joints, q, pose, dp, ws);
+        ws->g6_n = sr_g6_candidates(out, readings, n_readings, joints, q, pose, dp, ws);
     }
     if (idx >= ws->g6_n) return 0;
     for (j = 0; j < 6; ++j) {
