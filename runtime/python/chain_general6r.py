@@ -10,23 +10,17 @@ from __future__ import annotations
 import numpy as np
 from chain_rigid import _to_matrix
 from chain_stages import _OP_STAGES
-from general6r import g6_solve, g6_z_frames
+from general6r import g6_frames_of, g6_solve
 
 
 # wristkin: inlined from here
 def _general6r_stage(ch, g, prev, op, x, y, q, count, go_on, family, params=()):
     """Every candidate of the elimination for the product of exponentials g (the home frame removed): the loop read
     from joint op[1], backwards when op[2], op[3] the hidden angle. Each goes on to the verification."""
-    global _FRAMES
     _, shift, reverse, hidden = op
-    key, cached = (ch.axes, ch.points), _FRAMES  # read once: another thread may replace it meanwhile
-    if cached[0] != key:  # the joints' frames once per chain (a held joint's value moves them), not per call
-        cached = _FRAMES = (key, g6_z_frames(ch.axes, ch.points))
-    frames = cached[1]
-    for cand in g6_solve(frames, np.eye(4), _to_matrix(g), shift, reverse, hidden):
+    for cand in g6_solve(g6_frames_of(ch.axes, ch.points), np.eye(4), _to_matrix(g), shift, reverse, hidden):
         q[:6] = cand
         go_on(0)
 
 
-_FRAMES = (None, None)  # (axes and points, their frames): one assignment, a thread reads the old pair or the new
 _OP_STAGES["general6r"] = _general6r_stage

@@ -386,6 +386,19 @@ def g6_z_frames(axes, points) -> list[np.ndarray]:
     return out
 
 
+def g6_frames_of(axes, points) -> list[np.ndarray]:
+    """g6_z_frames of the last axes and points asked for, kept: a chain's frames move only with its design (a held
+    joint's value), so the interpreted and the derived stage compute them once per design, not per call."""
+    global _G6_FRAMES
+    key, cached = (tuple(np.ravel(axes).tolist()), tuple(np.ravel(points).tolist())), _G6_FRAMES
+    if cached[0] != key:  # read once above: another thread may replace the pair meanwhile, never half of it
+        cached = _G6_FRAMES = (key, g6_z_frames(axes, points))
+    return cached[1]
+
+
+_G6_FRAMES = (None, None)  # (axes and points, their frames): one assignment, a thread reads the old pair or the new
+
+
 def g6_loop_links(frames, home, pose):
     """K1..K6 of the loop Rz(q1) K1 ... Rz(q6) K6 = I for the chain pose(q) = prod Z_i Rz(q_i) Z_i^-1 home."""
     links = [g6_inverse(frames[i]) @ frames[i + 1] for i in range(5)]

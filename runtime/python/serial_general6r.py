@@ -15,7 +15,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from general6r import g6_solve, g6_z_frames
+from general6r import g6_frames_of, g6_solve
+from serial_fk import _spectrum
 from serial_stand_in import (
     DOUBLE_ROOT_POLISH_TOL,
     FLAG_SINGULAR_INVERSE,
@@ -38,10 +39,8 @@ G6_ORDER_TOL = 1e-6
 
 def _g6_singular(q, dp, joints):
     """Whether sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out) is at most
-    SINGULAR_EPS."""
-    j = np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)[:, list(joints)]
-    lam = np.maximum(np.linalg.eigvalsh(j.T @ j), 0.0)
-    return not (lam[-1] > 0.0 and math.sqrt(lam[0] / lam[-1]) > SINGULAR_EPS)
+    SINGULAR_EPS (serial_fk's _spectrum)."""
+    return _spectrum(np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)[:, list(joints)])[1] <= SINGULAR_EPS
 
 
 def _g6_candidates(out, readings, joints, q, pose, dp):
@@ -58,18 +57,14 @@ def _g6_reading(out, labelling, joints, q, pose, dp):
     """The verified, distinct candidates of one reading of the loop ((joint values of `joints`, flags), at most
     MAX_IK): out = the stage kernel's axes (18), points (18) and target [R | p] (12); q carries the joints solved
     before the stage (a held joint's value)."""
-    global _G6_FRAMES
-    key, cached = tuple(out[:36]), _G6_FRAMES  # read once: another thread may replace it meanwhile
-    if cached[0] != key:  # the joints' frames once per design (a held joint's value moves them), not per call
-        axes = np.array(out[:18], dtype=float).reshape(6, 3)
-        points = np.array(out[18:36], dtype=float).reshape(6, 3)
-        cached = _G6_FRAMES = (key, g6_z_frames(axes, points))
+    axes = np.array(out[:18], dtype=float).reshape(6, 3)
+    frames = g6_frames_of(axes, np.array(out[18:36], dtype=float).reshape(6, 3))
     g4 = np.vstack([np.array(out[36:48], dtype=float).reshape(3, 4), [0.0, 0.0, 0.0, 1.0]])
     shift, reverse, hidden = labelling
     size = max(abs(pose[3]), abs(pose[7]), abs(pose[11]))
     target = DOUBLE_ROOT_POLISH_TOL * max(1.0, size)
     kept, errs = [], []
-    for cand in g6_solve(cached[1], np.eye(4), g4, shift, bool(reverse), hidden):
+    for cand in g6_solve(frames, np.eye(4), g4, shift, bool(reverse), hidden):
         x = list(q)
         for j, v in zip(joints, cand, strict=True):
             x[j] = v
@@ -105,9 +100,6 @@ def _g6_order(a, b):
         if abs(x - y) > G6_ORDER_TOL:
             return -1 if x < y else 1
     return 0
-
-
-_G6_FRAMES = (None, None)  # (axes and points, their frames): one assignment, a thread reads the old pair or the new
 
 
 def _general6r(kernel, parent, idx, readings, joints, q, c, s, pose, dp, ws):

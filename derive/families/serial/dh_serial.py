@@ -22,7 +22,9 @@ import sympy as sp
 
 from ...checks import jacobian_fd_error, numeric_predicate, sampler, symbolic_identity
 from ...identities.dh import DHRow, chain, explicit
+from ...kinematics.general6r import numerics
 from ...kinematics.general6r import steps as elimination_steps
+from ...kinematics.poe import Chain
 from ...model import Check, Derivation, Finding, Step
 from ...serial_core.stages import POSE_SYMBOLS, Stage, stage_output_names
 
@@ -219,23 +221,15 @@ def _general6r_parts(vals):
 
 
 def _poe_product(axes, points, qs) -> np.ndarray:
-    """exp(S_1 q_1) ... exp(S_6 q_6) (top 3 x 4) of revolute axes (direction h, point r): rot(h, q), r - rot r."""
-    m = np.eye(4)
-    for h, r, q in zip(axes, points, qs, strict=True):
-        k = np.array([[0.0, -h[2], h[1]], [h[2], 0.0, -h[0]], [-h[1], h[0], 0.0]])
-        rot = np.eye(3) + math.sin(q) * k + (1.0 - math.cos(q)) * (k @ k)
-        e = np.eye(4)
-        e[:3, :3], e[:3, 3] = rot, r - rot @ r
-        m = m @ e
-    return m[:3]
+    """exp(S_1 q_1) ... exp(S_6 q_6) (top 3 x 4) of revolute axes (direction h, point r): the numeric product of
+    exponentials of kinematics/poe.py (its own Rodrigues), home the identity."""
+    return Chain("stage", tuple(f"j{i}" for i in range(6)), ("R",) * 6, axes, points, np.eye(4)).fk(qs)[:3]
 
 
 def _elimination_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:
     """The runtime's elimination (runtime/python/general6r.py, as the generated solvers carry it) on the stage's
     outputs at the FK of random joints returns those joints among its candidates (to 1e-6 rad: its Newton refine
     leaves them at rounding unless the pose is near a double root, which random joints are not)."""
-    from ...kinematics.general6r import numerics
-
     g6 = numerics()
 
     def missed(rng):

@@ -194,16 +194,14 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
 
     labels = tuple(names or (str(q) for q in all_joints))
 
-    def numeric_chain(values):
-        def num(v):
-            return np.array([float(sp.sympify(x).subs(values)) for x in v])
-        return Chain("dh", tuple(labels[i] for i in idx), tuple(kinds), np.array([num(a) for a in axes]),
-                     np.array([num(p) for p in points]),
-                     np.vstack([np.hstack([np.array(end[:3, :3].subs(values), dtype=float),
-                                           num(end[:3, 3])[:, None]]), [0, 0, 0, 1]]))
+    def num(v, values=at):
+        return np.array([float(sp.sympify(x).subs(values)) for x in v])
 
-    def num(v):
-        return np.array([float(sp.sympify(x).subs(at)) for x in v])
+    def numeric_chain(values):
+        return Chain("dh", tuple(labels[i] for i in idx), tuple(kinds), np.array([num(a, values) for a in axes]),
+                     np.array([num(p, values) for p in points]),
+                     np.vstack([np.hstack([np.array(end[:3, :3].subs(values), dtype=float),
+                                           num(end[:3, 3], values)[:, None]]), [0, 0, 0, 1]]))
     numeric = numeric_chain(at)
     try:
         plan = find_plan(numeric, 1e-9, lambda _c, p: all(o["op"] in SUPPORTED for o in p.ops)

@@ -21,33 +21,42 @@ static void sr_jacobian_in_frames(const double *q, const sr_design *d, const dou
     }
 }
 
-static double sr_conditioning(const double *q, const sr_design *d, const double *pose0, int *singular)
+/* The manipulability and whether sigma_min / sigma_max <= SR_SINGULAR_EPS of a 6 x cols Jacobian (row-major): a
+ * Cholesky bound proves most regular, the Jacobi eigenvalues of J^T J (J J^T past 6 columns) decide the rest; the
+ * FK's conditioning and the general 6R stage's singular flag */
+static double sr_spectrum(const double *jac, int cols, int *singular)
 {
-    double jac[6 * SR_N], g[SR_N * SR_N], man, ratio;
+    double g[36], man, ratio;
     int i, j, k;
-    sr_jacobian_in_frames(q, d, pose0, jac);
-    if (wk_conditioning_bound(jac, SR_N, SR_SINGULAR_EPS, &man) == 1) {
+    if (wk_conditioning_bound(jac, cols, SR_SINGULAR_EPS, &man) == 1) {
         *singular = 0;
         return man;
     }
-#if SR_N <= 6
-    for (i = 0; i < SR_N; ++i)
-        for (j = 0; j < SR_N; ++j) {
-            g[i * SR_N + j] = 0.0;
-            for (k = 0; k < 6; ++k) g[i * SR_N + j] += jac[k * SR_N + i] * jac[k * SR_N + j];
-        }
-    man = wk_jacobi_spectrum(g, SR_N, &ratio);
-#else
-    /* a redundant arm (a held joint's 7): J J^T, the 6 x 6 whose eigenvalues are J's nonzero sigma^2 */
-    for (i = 0; i < 6; ++i)
-        for (j = 0; j < 6; ++j) {
-            g[i * 6 + j] = 0.0;
-            for (k = 0; k < SR_N; ++k) g[i * 6 + j] += jac[i * SR_N + k] * jac[j * SR_N + k];
-        }
-    man = wk_jacobi_spectrum(g, 6, &ratio);
-#endif
+    if (cols <= 6) {
+        for (i = 0; i < cols; ++i)
+            for (j = 0; j < cols; ++j) {
+                g[i * cols + j] = 0.0;
+                for (k = 0; k < 6; ++k) g[i * cols + j] += jac[k * cols + i] * jac[k * cols + j];
+            }
+        man = wk_jacobi_spectrum(g, cols, &ratio);
+    } else {
+        /* a redundant arm (a held joint's 7): J J^T, the 6 x 6 whose eigenvalues are J's nonzero sigma^2 */
+        for (i = 0; i < 6; ++i)
+            for (j = 0; j < 6; ++j) {
+                g[i * 6 + j] = 0.0;
+                for (k = 0; k < cols; ++k) g[i * 6 + j] += jac[i * cols + k] * jac[j * cols + k];
+            }
+        man = wk_jacobi_spectrum(g, 6, &ratio);
+    }
     *singular = ratio <= SR_SINGULAR_EPS;
     return man;
+}
+
+static double sr_conditioning(const double *q, const sr_design *d, const double *pose0, int *singular)
+{
+    double jac[6 * SR_N];
+    sr_jacobian_in_frames(q, d, pose0, jac);
+    return sr_spectrum(jac, SR_N, singular);
 }
 
 

@@ -39,23 +39,17 @@ static void sr_g6_sort(sr_ws *ws, int n)
     }
 }
 
-/* sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out) at or below SR_SINGULAR_EPS:
- * a Cholesky bound proves most sets regular, the Jacobi eigenvalues of J^T J decide the rest */
+/* sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out) at or below SR_SINGULAR_EPS
+ * (sr_fk.c's sr_spectrum) */
 static int sr_g6_singular(const double *q, const double *dp, const int *joints)
 {
-    double full[6 * SR_N], jac[36], g[36], man, ratio;
-    int i, j, k;
+    double full[6 * SR_N], jac[36];
+    int i, j, singular;
     sr_k_jacobian(q, dp, full);
     for (i = 0; i < 6; ++i)
         for (j = 0; j < 6; ++j) jac[6 * i + j] = full[SR_N * i + joints[j]];
-    if (wk_conditioning_bound(jac, 6, SR_SINGULAR_EPS, &man) == 1) return 0;
-    for (i = 0; i < 6; ++i)
-        for (j = 0; j < 6; ++j) {
-            g[6 * i + j] = 0.0;
-            for (k = 0; k < 6; ++k) g[6 * i + j] += jac[6 * k + i] * jac[6 * k + j];
-        }
-    (void)wk_jacobi_spectrum(g, 6, &ratio);
-    return ratio <= SR_SINGULAR_EPS;
+    (void)sr_spectrum(jac, 6, &singular);
+    return singular;
 }
 
 /* The verified, distinct candidates of one reading of the loop into ws (at most SR_MAX_IK): out = the stage kernel's
@@ -94,9 +88,10 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
             if (same) dup = m;
         }
         if (dup >= 0) { /* one solution found twice: the better fit stands for it */
-            if (err < errs[dup])
+            if (err < errs[dup]) {
                 for (j = 0; j < 6; ++j) ws->g6_q[dup][j] = x[joints[j]];
-            if (err < errs[dup]) errs[dup] = err;
+                errs[dup] = err;
+            }
             continue;
         }
         if (n == SR_MAX_IK) continue; /* more than 16: a degenerate pose's family, the first 16 kept */
