@@ -545,7 +545,8 @@ def test_a_wrist_at_the_base_is_solved_from_the_tool(tmp_path):
         sol = m.ik(T)
         assert min(_gap(v, q, m.JOINT_KINDS) for v in sol) < 1e-7
         if k < 2:
-            assert len(ref.ik_all(ref_chain, 6, T, seed=k)) == sol.count
+            # 200 starts: the default 20 found 6 of the 8 at Haswell seed 242070 (a multistart may miss one)
+            assert len(ref.ik_all(ref_chain, 6, T, seed=k, starts=200)) == sol.count
 
 
 def test_a_general_3r_arm_is_solved_by_its_polynomial(tmp_path):
