@@ -3,8 +3,9 @@ does any call take much longer than the median?
 
 Run from the repository root:  .venv/bin/python bench/near_singular.py [--robots ur5e,kr6] [--json PATH]
 
-For every test robot (tests/robots: the URDFs and the offset-wrist UR5e's DH file; the 7-joint arm's free joint
-held at 0 as in bench/own_robots.py), `wristkin derive` writes its solvers, then:
+For every test robot (tests/robots: the URDFs, the offset-wrist UR5e's DH file, the tilted UR5e's POE file (a general
+6R) and the Panda's DH file with joint5 held (a spatial 3R); a 7-joint arm's free joint held at 0 as in
+bench/own_robots.py), `wristkin derive` writes its solvers, then:
 
 * singular configurations are found from the Jacobian alone (tests/reference/singular.py): for each joint j and
   two random joint sets, det J (the 6 x 6 Jacobian of the held chain; for fewer joints, J projected on the image
@@ -41,7 +42,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 from reference.singular import singular_configurations as reference_singular  # noqa: E402
 
 ROBOTS = ROOT / "tests" / "robots"
-FREE = {"iiwa14": "a3"}
+FREE = {"iiwa14": "a3", "panda": "joint5"}
 DELTAS = (1e-12, 1e-10, 1e-8, 1e-6, 1e-5, 1e-4, 1e-3)
 SINGULAR_REL = 1e-10  # a projected det's zero is the chain's singularity when J's sigma_min / sigma_max is this small
 VERBOSE = bool(os.environ.get("NEAR_SINGULAR_VERBOSE"))
@@ -96,10 +97,14 @@ int main(int argc, char **argv) {
 
 # the general 6R fixture (no decomposition: the elimination, a derived general6r stage by default)
 GENERAL_SPEC = ROBOTS / "ur5e_tilted" / "ur5e_tilted_poe.toml"
+# the spatial 3R fixture: the Panda with joint5 held (from the tool, joints 7, 6 and 4 place the wrist point by the
+# degree-8 polynomial: a derived spatial3 stage by default)
+SPATIAL3_SPEC = ROBOTS / "panda" / "panda_dh.toml"
 
 
 def specs() -> list[Path]:
-    return sorted([*ROBOTS.glob("*/*.urdf"), ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml", GENERAL_SPEC])
+    return sorted([*ROBOTS.glob("*/*.urdf"), ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml", GENERAL_SPEC,
+                   SPATIAL3_SPEC])
 
 
 def _name(spec: Path) -> str:
@@ -249,7 +254,7 @@ def report(names=None, json_path: Path = ROOT / "build" / "bench" / "near_singul
 
     chosen = [p for p in specs() if names is None or _name(p) in names]
     rows = [bench_robot(p) for p in chosen] + [bench_robot(p, derived=True) for p in chosen
-                                               if p.stem in DERIVED_ROBOTS or p == GENERAL_SPEC]
+                                               if p.stem in DERIVED_ROBOTS or p in (GENERAL_SPEC, SPATIAL3_SPEC)]
     lines = [f"Near-singular sweeps (the plain rows `--stages interpreted`, the \"(derived)\" rows the derived stages, "
              "the default where they cover the robot): each joint's singular configurations (det J = 0, found by "
              "bisection) moved off "

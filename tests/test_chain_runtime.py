@@ -51,7 +51,8 @@ def _angle_gap(a, b):
 def lib():
     harness = ROOT / "tests" / "c" / "chain_runtime_harness.c"
     # the harness includes the sources: their bytes name the build (compile_shared hashes only what it is given)
-    h = hashlib.sha256(b"".join(p.read_bytes() for p in sorted(CHAIN_C.iterdir()))).hexdigest()[:16]
+    shared = [ROOT / "runtime" / "c" / n for n in ("poly_real_roots.c", "wk_poly_ops.c", "wk_spatial3.c")]
+    h = hashlib.sha256(b"".join(p.read_bytes() for p in [*sorted(CHAIN_C.iterdir()), *shared])).hexdigest()[:16]
     so = compile_shared([harness, RUNTIME_C], [ROOT / "runtime" / "c"], "chain_runtime",
                         extra_flags=[f"-DWKT_SOURCES={h}"])
     L = load(so)
@@ -379,14 +380,14 @@ def test_fk_jacobian_polish_and_chain_variants_against_a_numpy_product_of_expone
 
 def test_spatial3_returns_the_generating_joints_among_its_roots(lib):
     rng = case_rng(2209)
-    qa, qb, qc, f = np.zeros(9), np.zeros(9), np.zeros(9), (ctypes.c_uint * 9)()
+    qa, qb, qc, f = np.zeros(12), np.zeros(12), np.zeros(12), (ctypes.c_uint * 12)()  # WK_S3_MAX
     for _ in range(40):
         axes, points = np.array([_unit(rng) for _ in range(3)]), rng.normal(size=(3, 3))
         q = rng.uniform(-math.pi, math.pi, 3)
         x = rng.normal(size=3)
         y = _poe(np.zeros(3, np.int32), axes, points, np.eye(4), q)[:3] @ np.append(x, 1.0)
         nr = lib.wkt_spatial3(_p(axes), _p(points), _p(x), _p(y), _p(qa), _p(qb), _p(qc), f)
-        assert 1 <= nr <= 9
+        assert 1 <= nr <= 12
         for i in range(nr):
             t = _poe(np.zeros(3, np.int32), axes, points, np.eye(4), [qa[i], qb[i], qc[i]])
             assert np.allclose(t[:3] @ np.append(x, 1.0), y, atol=1e-7)
@@ -416,15 +417,18 @@ def test_every_source_compiles_strictly_where_a_robot_includes_it(tmp_path, monk
                             str(tmp_path / f"{name}.c"), f"-I{tmp_path}", "-o", str(tmp_path / f"{name}.o")],
                            capture_output=True, text=True)
         assert r.returncode == 0, r.stderr
-    # an arm whose run-time parameter is its arm angle (ck_arm_angle.c)
-    mech = own_robot.load(ROOT / "tests" / "robots" / "iiwa14" / "iiwa14.urdf", name="iiwa_psi",
-                          redundancy="arm-angle")
-    pipeline.emit_solvers("iiwa_psi", mech, mech.kernels(mech.derive()), tmp_path, tmp_path)
+    # an arm whose run-time parameter is its arm angle (ck_arm_angle.c); a held joint on a chain read from the tool
+    # (the Panda's joint5: CK_REVERSED with CK_FREE, its spatial3 op)
+    for name, path, options in (("iiwa_psi", "iiwa14/iiwa14.urdf", {"redundancy": "arm-angle"}),
+                                ("panda_free5", "panda/panda_dh.toml", {"free": "joint5"})):
+        mech = own_robot.load(ROOT / "tests" / "robots" / path, name=name, stages="interpreted", **options)
+        pipeline.emit_solvers(name, mech, mech.kernels(mech.derive()), tmp_path, tmp_path)
+        assert f'#include "{CHAIN_C / "ck_interpreter.c"}"' in (tmp_path / f"{name}.c").read_text()
+        r = subprocess.run([compiler(), "-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-c",
+                            str(tmp_path / f"{name}.c"), f"-I{tmp_path}", "-o", str(tmp_path / f"{name}.o")],
+                           capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
     assert f'#include "{CHAIN_C / "ck_arm_angle.c"}"' in (tmp_path / "iiwa_psi.c").read_text()
-    r = subprocess.run([compiler(), "-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror", "-c",
-                        str(tmp_path / "iiwa_psi.c"), f"-I{tmp_path}", "-o", str(tmp_path / "iiwa_psi.o")],
-                       capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
 
 
 # ------------------------------------------------------------------------------------------------ Python sources

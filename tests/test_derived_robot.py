@@ -774,11 +774,15 @@ GENERAL = {"ur5e_tilted": (ROBOTS / "ur5e_tilted" / "ur5e_tilted_poe.toml", None
            "panda_free1": (ROBOTS / "panda" / "panda_dh.toml", "joint1")}
 
 
+# arms whose decomposition places a point by three axes in general position (a spatial 3R): (description, free joint)
+SPATIAL3 = {"panda_free5": (ROBOTS / "panda" / "panda_dh.toml", "joint5")}
+
+
 def _general(case: str):
-    """(C-backed solver, numpy solver, folder) of a GENERAL arm derived with --stages derived."""
+    """(C-backed solver, numpy solver, folder) of a GENERAL or SPATIAL3 arm derived with --stages derived."""
     key = ("general", case)
     if key not in _CACHE:
-        path, free = GENERAL[case]
+        path, free = {**GENERAL, **SPATIAL3}[case]
         out = Path(tempfile.mkdtemp(prefix=f"wk_derived_{case}_"))
         own_robot.derive(path, out, name=case, stages="derived", free=free, progress=lambda _: None)
         _CACHE[key] = (own_robot.import_solver(out, case), own_robot.import_solver(out, case, backend="numpy"), out)
@@ -839,6 +843,50 @@ def test_a_general_6r_s_emitted_c_is_strict_c99_and_clean_under_the_sanitizers()
     Python module returns, nothing reported."""
     m, _, out = _general("ur5e_tilted")
     poses, counts = _sanitized_driver_run(m, out, case_rng(2311), 10)
+    for p, (count, _status, _chosen) in zip(poses[:-1], counts[:-1], strict=True):
+        assert count == m.ik(np.vstack([p.reshape(3, 4), [0, 0, 0, 1]])).count
+    assert counts[-2][0] == 0 and counts[-1][0] == 0
+
+
+# ------------------------------------------------------------------------------------------------ spatial 3R
+def test_a_spatial_3r_is_derived_with_every_set_and_only_true_ones():
+    """The Panda with joint5 held: from the tool, joints 7, 6 and 4 place the wrist point and no invariant point or
+    direction separates them, so the derived module's spatial3 stage takes every real root of their degree-8
+    polynomial (four at most: two bits of the set index), the wrist the rest. 40 random poses of the reference's FK at
+    a random held value: the generating joints among the sets (1e-9 + 1e-13 / sigma_min), every set on the pose, the
+    C extension's sets and flags the numpy path's (1e-12 + 1e-14 / sigma_min apart), and on 3 poses every solution of
+    the independent multistart among them."""
+    m, py, out = _general("panda_free5")
+    path, _free = SPATIAL3["panda_free5"]
+    reference = ref.load(path)
+    assert m.MAX_IK == 8 and not hasattr(m, "FAMILY_TOL")  # the serial family's module, no plan
+    assert "return _spatial3_stage(_k_stage2," in (out / "python" / "panda_free5.py").read_text()
+    if os.environ.get("WRISTKIN_BACKEND") != "numpy":
+        assert m.BACKEND == "c"
+    rng = case_rng(2312)
+    n, fj = m.N_JOINTS, m._FREE
+    for k in range(40):
+        q = rng.uniform(-math.pi, math.pi, n)
+        design = [float(q[fj])]
+        T = reference(q)
+        a, b = m.ik(T, design), py.ik(T, design)
+        smin = np.linalg.svd(np.delete(reference.jacobian(q), [fj], axis=1), compute_uv=False)[-1]
+        assert a.status == m.STATUS_OK and 1 <= a.count <= 8
+        assert min(_gap(v, q) for v in a) <= 1e-9 + 1e-13 / smin
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in a)
+        assert a.count == b.count and list(a.valid) == list(b.valid) and list(a.flags) == list(b.flags)
+        assert np.max(np.abs(a.values[a.valid] - b.values[b.valid])) <= 1e-12 + 1e-14 / smin
+        if k < 3:
+            found = ref.ik_all(reference, n, T, seed=k, starts=120, fixed={fj: q[fj]})
+            assert len(found) == a.count and all(min(_gap(v, f) for v in a) <= 1e-6 for f in found)
+
+
+def test_a_spatial_3r_s_emitted_c_is_strict_c99_and_clean_under_the_sanitizers():
+    """The derived Panda with joint5 held (its spatial3 stage: wk_spatial3.c, the root finder) under -std=c99 -Wall
+    -Wextra -Werror -pedantic and ASan/UBSan, on random, singular, unreachable and non-finite poses: the counts the
+    Python module returns, nothing reported."""
+    m, _, out = _general("panda_free5")
+    poses, counts = _sanitized_driver_run(m, out, case_rng(2313), 20)
     for p, (count, _status, _chosen) in zip(poses[:-1], counts[:-1], strict=True):
         assert count == m.ik(np.vstack([p.reshape(3, 4), [0, 0, 0, 1]])).count
     assert counts[-2][0] == 0 and counts[-1][0] == 0
@@ -917,9 +965,16 @@ def _sanitized_driver_run(m, out: Path, rng, n_random: int):
     sources = sorted(str(f) for f in (out / "c").glob("*.c") if f.name != src.name)
     cmd = [compiler(), *STRICT_FLAGS, *SANITIZE_FLAGS, "-o", str(exe), str(src), *sources, f"-I{out / 'c'}", "-lm"]
     subprocess.run(cmd, check=True, capture_output=True, text=True)
-    poses = [m.fk_matrix(rng.uniform(-math.pi, math.pi, 6))[:3].ravel() for _ in range(n_random)]
-    poses.append(m.fk_matrix([0.3, 0.2, -0.1, 0.5, 0.0, 0.4])[:3].ravel())
-    far = m.fk_matrix(np.zeros(6))[:3].ravel().copy()
+    n, fj = m.N_JOINTS, getattr(m, "_FREE", -1)
+
+    def at(q):  # a held joint at the design's default, which the driver's design_init(NULL) holds it at
+        q = np.array(q, dtype=float)
+        if fj >= 0:
+            q[fj] = 0.0
+        return m.fk_matrix(q)[:3].ravel()
+    poses = [at(rng.uniform(-math.pi, math.pi, n)) for _ in range(n_random)]
+    poses.append(at([0.3, 0.2, -0.1, 0.5, 0.0, 0.4, 0.1][:n]))
+    far = at(np.zeros(n)).copy()
     far[3] += 5.0
     poses.append(far)  # out of reach
     nan = far.copy()

@@ -24,6 +24,7 @@ CSTRICT = ["-std=c99", "-pedantic", "-Wall", "-Wextra", "-Werror"]
 # the root finder is static code inlined into the mechanisms that use it: compiled as its test harness includes it
 @pytest.mark.parametrize("source", ["runtime/c/wristkin_runtime.c", "tests/c/poly_roots_harness.c",
                                     "runtime/c/wk_eigen.c", "tests/c/eigen_sanitize.c", "runtime/c/wk_general6r.c",
+                                    "tests/c/spatial3_harness.c",
                                     "tests/c/general6r_sanitize.c"])
 def test_c_sources_compile_strictly_as_they_are(source, tmp_path):
     cc = shutil.which("gcc") or shutil.which("cc")

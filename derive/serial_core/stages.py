@@ -19,11 +19,12 @@ P_POSE = POSE[:, 3]
 
 @dataclass(frozen=True)
 class Stage:
-    kind: str  # trig_linear | rotation2d | value | wrist | quadratic | general6r
+    kind: str  # trig_linear | rotation2d | value | wrist | quadratic | general6r | spatial3
     joints: tuple[int, ...]
     # trig_linear (A, B, C); rotation2d (u, v, u0, v0); value (q,); wrist (3x3 M as 9 entries); quadratic (a slide
     # from a distance: (q + B)^2 = D, E the scale of D's rounding); general6r (the six axes' directions and points,
-    # 18 + 18, then the product of exponentials [R | p] they must reach, 12: every joint by elimination)
+    # 18 + 18, then the product of exponentials [R | p] they must reach, 12: every joint by elimination); spatial3
+    # (three axes' directions and points, 9 + 9, the point x at the joints' zero and its target y: rot rot rot x = y)
     exprs: tuple
     title: str
     rule: str
@@ -47,9 +48,12 @@ class Stage:
 
     @property
     def branches(self) -> int:
-        """Sets this stage can give per prefix: two roots, one, or the general 6R's at most 16 (Lee and Liang)."""
+        """Sets this stage can give per prefix: two roots, one, a spatial 3R's four or the general 6R's at most 16
+        (Lee and Liang)."""
         if self.kind == "general6r":
             return 16
+        if self.kind == "spatial3":
+            return 4  # a 3R's positions: at most four (Pieper)
         return 2 if self.kind in ("trig_linear", "wrist", "quadratic") else 1
 
     @property
@@ -70,7 +74,9 @@ def stage_output_names(st: Stage) -> list[str]:
             "quadratic": ["B", "D", "E"],
             "wrist": [f"m{i}{j}" for i in range(3) for j in range(3)],
             "general6r": [f"{w}{i}{x}" for w in "hr" for i in range(1, 7) for x in "xyz"] +
-            [f"g{i}{j}" for i in range(3) for j in range(4)]}[st.kind]
+            [f"g{i}{j}" for i in range(3) for j in range(4)],
+            "spatial3": [f"{w}{i}{x}" for w in "hr" for i in "abc" for x in "xyz"] +
+            [f"{p}{x}" for p in "xy" for x in "xyz"]}[st.kind]
 
 
 def cs_symbols(spec):

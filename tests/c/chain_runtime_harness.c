@@ -37,7 +37,8 @@
 #include "../../runtime/c/chain/ck_points.c"
 #include "../../runtime/c/chain/ck_verify.c"
 #include "../../runtime/c/poly_real_roots.c"
-#include "../../runtime/c/chain/ck_poly.c"
+#include "../../runtime/c/wk_poly_ops.c"
+#include "../../runtime/c/wk_spatial3.c"
 #include "../../runtime/c/chain/ck_spatial3.c"
 #include "../../runtime/c/chain/ck_sp6.c"
 

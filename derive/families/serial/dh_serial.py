@@ -180,13 +180,21 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
             if st.kind == "general6r":  # the product of exponentials of the axes and points is the target
                 axes, points, g = _general6r_parts(vals)
                 return float(np.max(np.abs(_poe_product(axes, points, qs) - g)))
+            if st.kind == "spatial3":  # the three turns carry x onto y
+                v = np.array(vals, dtype=float)
+                home = np.eye(4)
+                home[:3, 3] = v[18:21]
+                p = Chain("stage", ("a", "b", "c"), ("R",) * 3, v[:9].reshape(3, 3), v[9:18].reshape(3, 3),
+                          home).fk(qs)[:3, 3]
+                return float(np.max(np.abs(p - v[21:24])))
             m = np.array(vals).reshape(3, 3)
             w = np.array(wrist(*qs), dtype=float)
             return float(np.max(np.abs(m - w)))
         claim = {"trig_linear": "A cos q + B sin q + C = 0 on the FK",
                  "rotation2d": "(u, v) = Rot(q)(u0, v0) on the FK", "value": "q = expression on the FK",
                  "wrist": "M = wrist rotation on the FK", "quadratic": "(q + B)^2 = D on the FK",
-                 "general6r": "exp(S_1 q_1) ... exp(S_6 q_6) = T M^-1 from the axes and points on the FK"}[st.kind]
+                 "general6r": "exp(S_1 q_1) ... exp(S_6 q_6) = T M^-1 from the axes and points on the FK",
+                 "spatial3": "rot(h_a, q_a) rot(h_b, q_b) rot(h_c, q_c) x = y from the lines on the FK"}[st.kind]
         checks: list[Check] = [numeric_predicate(err, claim, samples=200, tol=1e-9)]
         if st.kind == "general6r":
             checks.append(_elimination_finds(spec, st, at_fk))

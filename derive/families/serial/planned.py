@@ -14,6 +14,8 @@ relation that held only at the defaults fails there, with the stage named.
   orient (two axes at the end, a 5-joint arm)   -> 2 rotation2d  (_two_axes)
   group_rest (the group's last joint)           -> rotation2d   (from the group's rotation)
   a held joint (a 7-joint arm's)                -> value        (the design's value; the rest planned with it held)
+  spatial3 (three axes placing a point)         -> spatial3     (every real root: the lines, the point and its
+                                                                 target as kernel outputs)
   no decomposition (six revolute joints)        -> general6r    (every joint by elimination: the axes, points and
                                                                  the product of exponentials as kernel outputs)
 
@@ -49,7 +51,7 @@ HELD_LABELLING_VALUES = (0.7, -1.9, 2.6, -0.4)
 # give the family's members)
 FALLBACK_READINGS = 2
 SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient",
-             "group_rest"}
+             "group_rest", "spatial3"}
 
 
 class PlanError(ValueError):
@@ -305,6 +307,9 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                     for m, i in enumerate(js)]
             slides.update({joints[i]: sol[m] for m, i in enumerate(js)})
             continue
+        if k == "spatial3":  # three axes in general position place x: every real solution, by the runtime
+            out.append(_spatial3_stage(op["js"], axes, points, joints, x, y))
+            continue
         if k == "orient":
             units = [u[0] for u in op["units"]]
             rd = (prefix(range(op["lo"])).inv() * target * prefix(range(op["hi"] + 1, n)).inv()).r
@@ -403,6 +408,21 @@ def _held_stage(q, hj, value) -> Stage:
     return Stage("value", (hj,), (value,), f"the held joint {q}", f"{q} is held at the design's value {value} (a "
                  "run-time parameter); the other stages are planned on the chain with it held, its rotation kept as "
                  "its symbol")
+
+
+def _spatial3_stage(js, axes, points, joints, x, y) -> Stage:
+    """Three revolute axes in general position placing the point x on y (no invariant point or direction of the
+    others for any of them): the kernel gives the three lines (the design's lengths and a held joint's value in
+    them) and x, y; the runtime (wk_spatial3.c, spatial3.py) returns every real solution."""
+    exprs = (tuple(sp.simplify(v) for i in js for v in axes[i]) + tuple(_trig_reduced(v) for i in js for v in points[i])
+             + tuple(x) + tuple(y))
+    names = ", ".join(str(joints[i]) for i in js)
+    return Stage("spatial3", tuple(js), exprs, f"joints {names} placing a point (up to four sets)",
+                 "three revolute axes in general position (subproblem 5 in effect): the distance to the first axis's "
+                 "point and the component along it, bilinear in (cos, sin) of the other two; cos^2 + sin^2 = 1 of the "
+                 "third's is a degree-8 polynomial in tan(q_b / 2) with the extraneous (1 + t^2)^2 of the substitution "
+                 "(at most four real roots, Pieper), every real root isolated at run time, the first joint by "
+                 "subproblem 1")
 
 
 def _general6r_stage(axes, points, joints, target: _Motion, labelling) -> Stage:

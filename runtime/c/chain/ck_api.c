@@ -95,6 +95,7 @@ static void ck_fk_full(const double *q, const ck_design *d, ck_rt *o)
     ck_fk_full_cs(q, c, s, d, o);
 }
 
+#if !CK_REVERSED /* a reversed chain reads its conditioning off its own table (ck_interpreter.c) */
 /* The chain's Jacobian (6 x n) in the solver's joints: the kernel's columns without the free joint's (held, the
  * solver's chain has the description's base and end frame, so its Jacobian is these columns). */
 static void ck_jacobian_held(const double *full, const double *c, const double *s, double *jac)
@@ -109,6 +110,7 @@ static void ck_jacobian_held(const double *full, const double *c, const double *
             ++m;
         }
 }
+#endif
 
 /* Jacobian of base . chain . tool: the chain's columns with the tool's offset in the linear rows, rotated into
  * the base frame */

@@ -195,7 +195,9 @@ static void ck_trig_memo_of(ck_trig_memo *m, const double *q, double *c, double 
     }
 }
 static void ck_fk_full_cs(const double *q, const double *c, const double *s, const ck_design *d, ck_rt *o);
+#if !CK_REVERSED
 static void ck_jacobian_held(const double *full, const double *c, const double *s, double *jac);
+#endif
 
 /* A candidate of the plan as it stands, when the module's own FK (the robot's derived kernel, base . chain . tool)
  * reproduces the pose with it (err <= CK_IK_VERIFY_TOL; full, its cos and sin and err set). */
@@ -706,8 +708,8 @@ static void ck_run(ck_ctx *c, int k, const double *x, const double *y, unsigned 
 #endif
 #if CK_HAS_SPATIAL3
     case CK_SPATIAL3: { /* three revolute axes in general position: every real root of the polynomial */
-        double qa[9], qb[9], qc[9];
-        unsigned f3[9];
+        double qa[WK_S3_MAX], qb[WK_S3_MAX], qc[WK_S3_MAX];
+        unsigned f3[WK_S3_MAX];
         int i, nr = ck_spatial3(ch, op->js[0], op->js[1], op->js[2], x, y, qa, qb, qc, f3);
         for (i = 0; i < nr; ++i) {
             c->q[op->js[0]] = qa[i];

@@ -269,11 +269,11 @@ static int ck_sp6(const double *n, const double *h0, const double *p0, const dou
         pb[i] = apoly[0][i] * be[0] + apoly[1][i] * be[1] + apoly[2][i] * be[2];
         pd[i] = apoly[0][i] * det;
     }
-    ck_poly_mul(pa, 3, pa, 3, poly);
-    ck_poly_mul(pb, 3, pb, 3, sq);
-    ck_poly_axpy(poly, sq, 5, 1.0);
-    ck_poly_mul(pd, 3, pd, 3, sq);
-    ck_poly_axpy(poly, sq, 5, -1.0);
+    wk_poly_mul(pa, 3, pa, 3, poly);
+    wk_poly_mul(pb, 3, pb, 3, sq);
+    wk_poly_axpy(poly, sq, 5, 1.0);
+    wk_poly_mul(pd, 3, pd, 3, sq);
+    wk_poly_axpy(poly, sq, 5, -1.0);
     nroot = wk_poly_real_roots(poly, 4, roots, rf, &status);
     for (i = 0; i < nroot && na < 4; ++i) {
         ang[na] = 2.0 * atan(roots[i]);

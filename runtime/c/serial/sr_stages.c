@@ -9,17 +9,23 @@
 typedef void (*sr_stage_kernel)(const double *pose, const double *q, const double *c, const double *s,
                                 const double *dp, double *out);
 
-/* One IK call's scratch for the stages that compute several candidates at once (the general 6R's), kept across the
- * set words that share the prefix above their bits */
+/* One IK call's scratch for the stages that compute several candidates at once (the general 6R's, the spatial 3R's),
+ * kept across the set words that share the prefix above their bits */
+#define SR_S3_KEEP 4 /* a spatial 3R's candidates kept (Pieper's bound on a 3R's positions) */
 typedef struct {
 #if SR_HAS_GENERAL6R
     long g6_key; /* the prefix the candidates were computed for (-1: none yet) */
     int g6_n;
     double g6_q[SR_MAX_IK][6];
     unsigned g6_f[SR_MAX_IK];
-#else
-    int unused; /* C99 has no empty structs */
 #endif
+#if SR_HAS_SPATIAL3
+    long s3_key; /* as g6_key */
+    int s3_n;
+    double s3_q[SR_S3_KEEP][3];
+    unsigned s3_f[SR_S3_KEEP];
+#endif
+    int unused; /* C99 has no empty structs */
 } sr_ws;
 
 /* a fresh scratch for one IK call */
@@ -28,9 +34,12 @@ static void sr_ws_init(sr_ws *ws)
 #if SR_HAS_GENERAL6R
     ws->g6_key = -1;
     ws->g6_n = 0;
-#else
-    ws->unused = 0;
 #endif
+#if SR_HAS_SPATIAL3
+    ws->s3_key = -1;
+    ws->s3_n = 0;
+#endif
+    ws->unused = 0;
 }
 
 #if SR_HAS_TRIG_LINEAR || SR_WRIST_STAGE >= 0

@@ -1,0 +1,261 @@
+"""Three revolute axes in general position placing a point: every real solution (runtime/c/wk_spatial3.c's twin,
+step for step; read its comment for the method).
+
+The position problem rot_a rot_b rot_c x = y of three lines (unit direction h_i through point r_i): joint a keeps
+the distance of the point to r_a and its component along h_a, two equations bilinear in (1, cos q_b, sin q_b) x
+(1, cos q_c, sin q_c); cos^2 + sin^2 = 1 of the (cos q_c, sin q_c) they give is a degree-8 polynomial in
+tan(q_b / 2) (the extraneous (1 + t^2)^2 of the substitution in it: at most four real roots, Pieper's bound). q_a
+then by subproblem 1, and two Newton steps bring a simple root to rounding. A double root of the polynomial with the
+target off axis a is split into the pair it merged (_s3_split): near that axis the pair differs by ~ the distance,
+below the polynomial's sqrt(eps).
+
+A wristkin runtime source: the interpreted chain's module (chain_spatial3.py) and a serial arm's with a spatial3
+stage (serial_spatial3.py) inline it from the marker line on (derive/runtime_files.py), after poly_real_roots.py and
+chain_poly.py; above the marker, what it reads from the runtime, so that it is linted and tested as it is
+(tests/test_spatial3_runtime.py)."""
+
+from __future__ import annotations
+
+import math
+
+from _runtime import FLAG_DOUBLE_ROOT, FLAG_INDETERMINATE, FLAG_SINGULAR_INVERSE
+from chain_poly import _poly_add, _poly_mul
+from poly_real_roots import _POLY_FLAG_DOUBLE, _poly_real_roots
+
+# wristkin: inlined from here
+S3_REFINE_STEPS = 2  # Newton steps on a simple root (quadratic: 1e-10 -> rounding)
+S3_CIRCLE_TOL = 1e-6  # |(cos, sin)| of q_c off 1 by more: the root at infinity, or a poorly resolved one
+S3_MAX = 12  # candidates: eight roots, q_b = pi, and the pairs split from merged ones (wk_spatial3.c's WK_S3_MAX)
+S3_SPLIT_STEPS = 8  # Newton steps from each of a merged pair's two starts (linear convergence near the pair)
+S3_SPLIT_TOL = 1e-10  # a split root's point residual (relative to the lengths' size) at most this: it stands
+S3_SPLIT_APART = 0.25  # the two split roots at least this part of their starts' gap apart: a pair, not one root twice
+S3_SPLIT_NEAR = 1e-3  # rad: a split root keeps the merged root's q_b, q_c to this (a merged pair is closer)
+S3_CURVATURE_STEP = 1e-3  # rad: the central difference of the point's second derivative (its error ~ step^2)
+
+
+def _s3_dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def _s3_cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _s3_axpy(a, s, b):
+    """a + s b"""
+    return (a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2])
+
+
+def _s3_turn(h, r, q, p):
+    """p turned by q about the line (h, r): r + R (p - r), R by Rodrigues."""
+    c, s = math.cos(q), math.sin(q)
+    d = (p[0] - r[0], p[1] - r[1], p[2] - r[2])
+    hd = _s3_dot(h, d) * (1.0 - c)
+    hx = _s3_cross(h, d)
+    return tuple(r[m] + c * d[m] + s * hx[m] + hd * h[m] for m in range(3))
+
+
+def _s3_bilinear(h2, u, vs):
+    """Rows of u . R(h2, q2) v_j over (1, cos q2, sin q2), for each v_j: (h.u)(h.v), u.v - (h.u)(h.v), u.(h x v)."""
+    hu = _s3_dot(h2, u)
+    return [[hu * _s3_dot(h2, v) for v in vs], [_s3_dot(u, v) - hu * _s3_dot(h2, v) for v in vs],
+            [_s3_dot(u, _s3_cross(h2, v)) for v in vs]]
+
+
+def _s3_point(h0, r0, q, x, y):
+    """(the point rot_a rot_b rot_c x at q, the lines of a, b, c moved by the joints before them, |p - y|)."""
+    p, h, r = tuple(x), [tuple(v) for v in h0], [tuple(v) for v in r0]
+    for i in (2, 1, 0):  # the last joint first: each turn moves the point and the lines after it
+        p = _s3_turn(h0[i], r0[i], q[i], p)
+        for k in range(i + 1, 3):
+            r[k] = _s3_turn(h0[i], r0[i], q[i], r[k])
+            h[k] = _s3_turn(h0[i], (0.0, 0.0, 0.0), q[i], h[k])  # a direction turns about the axis through 0
+    d = _s3_axpy(p, -1.0, y)
+    return p, h, r, math.sqrt(_s3_dot(d, d))
+
+
+def _s3_refine(h0, r0, x, y, eps3, q, steps=S3_REFINE_STEPS):
+    """Newton steps on rot_a rot_b rot_c x = y (Cramer's rule on the columns h_i x (p - r_i)): a step is kept only
+    while the residual shrinks. Returns (q, residual)."""
+    q = list(q)
+    p, h, r, err = _s3_point(h0, r0, q, x, y)
+    for _ in range(steps):
+        c = [_s3_cross(h[i], _s3_axpy(p, -1.0, r[i])) for i in range(3)]
+        b = _s3_axpy(y, -1.0, p)
+        x12 = _s3_cross(c[1], c[2])
+        det = _s3_dot(c[0], x12)
+        if not abs(det) > eps3:
+            break
+        trial = [q[0] + _s3_dot(b, x12) / det, q[1] + _s3_dot(c[0], _s3_cross(b, c[2])) / det,
+                 q[2] + _s3_dot(c[0], _s3_cross(c[1], b)) / det]
+        p2, h2, r2, err2 = _s3_point(h0, r0, trial, x, y)
+        if not err2 < err:
+            break
+        q, p, h, r, err = trial, p2, h2, r2, err2
+    return q, err
+
+
+def _s3_gap(a, b):
+    """The largest joint difference of two sets (wrapped)."""
+    return max(abs(math.remainder(u - v, 2.0 * math.pi)) for u, v in zip(a, b, strict=True))
+
+
+def _s3_pair_converges(h, r, x, y, scale, starts, qb, qc):
+    """Newton on the point from each of a split's two starts (any step that lowers the residual: J is near-singular
+    near a pair): the pair when both reach S3_SPLIT_TOL x scale, keep the merged root's q_b and q_c to S3_SPLIT_NEAR
+    (the pair it merged, not roots elsewhere) and stay S3_SPLIT_APART of their starts' gap apart (not one root
+    twice); else []."""
+    pair = []
+    for start in starts:
+        q, err = _s3_refine(h, r, x, y, 0.0, start, S3_SPLIT_STEPS)
+        if not err <= S3_SPLIT_TOL * scale or not max(abs(math.remainder(q[1] - qb, 2.0 * math.pi)),
+                                                       abs(math.remainder(q[2] - qc, 2.0 * math.pi))) <= S3_SPLIT_NEAR:
+            return []
+        pair.append(q)
+    return pair if _s3_gap(*pair) > S3_SPLIT_APART * _s3_gap(*starts) else []
+
+
+def _s3_split(h, r, x, y, yr, scale, qb, qc):
+    """The pair a merged double root of the polynomial stands for, where the target is near axis a (distance rho):
+    the point's image w = rot_b rot_c x must lie on the circle of radius rho about axis a, which the surface w(q_b,
+    q_c) crosses twice. Near the merged root the surface meets the circle's plane along the line through w in the
+    direction d = n x h_a (n its normal there): its two points on the circle (the line's centre-nearest point +-rho
+    along d where rounding hides the gap) give q_a by subproblem 1, then Newton on the point from each. The two roots
+    separate at eps / rho, not the polynomial's sqrt(eps). [] where they do not both converge to distinct roots (the
+    merged root stands)."""
+    w = _s3_turn(h[1], r[1], qb, _s3_turn(h[2], r[2], qc, x))
+    hc, rc = _s3_turn(h[1], (0.0, 0.0, 0.0), qb, h[2]), _s3_turn(h[1], r[1], qb, r[2])
+    normal = _s3_cross(_s3_cross(h[1], _s3_axpy(w, -1.0, r[1])), _s3_cross(hc, _s3_axpy(w, -1.0, rc)))
+    d = _s3_cross(normal, h[0])
+    size = math.sqrt(_s3_dot(d, d))
+    if not size > 0.0:
+        return []
+    d = tuple(v / size for v in d)
+    v0 = _s3_axpy(w, -1.0, r[0])
+    v0 = _s3_axpy(v0, -_s3_dot(h[0], v0), h[0])  # w's offset from axis a, normal to it
+    yr_perp = _s3_axpy(yr, -_s3_dot(h[0], yr), h[0])
+    rho2 = _s3_dot(yr_perp, yr_perp)  # the target's distance from axis a, squared (not |yr|^2 - (h.yr)^2: it cancels)
+    mid = -_s3_dot(v0, d)
+    disc = mid * mid - _s3_dot(v0, v0) + rho2
+    half = math.sqrt(disc) if disc > 0.0 else math.sqrt(rho2)
+    starts = []
+    for t in (mid + half, mid - half):
+        qa = _s3_sp1(h[0], _s3_axpy(v0, t, d), yr, 0.0)
+        if qa is None:
+            return []
+        starts.append([qa, qb, qc])
+    return _s3_pair_converges(h, r, x, y, scale, starts, qb, qc)
+
+
+def _s3_pair(h, r, x, y, scale, q0):
+    """The pair a merged double root q0 of the point equations stands for (the surface w(q_b, q_c) near-tangent to
+    the target's circle about axis a): at q0 the Jacobian J is singular, right and left null vectors v, u (the
+    largest cross products of its rows, of its columns); along v the residual's part on u is quadratic, u.(y - p) =
+    s^2 u.H / 2 with H the point's second derivative along v (central differences), so the pair starts at q0 +- s v and
+    Newton takes each to its root. [] where s^2 <= 0 (a complex pair) or they do not both converge to distinct roots."""
+    p0, hh, rr, _err = _s3_point(h, r, q0, x, y)
+    cols = [_s3_cross(hh[i], _s3_axpy(p0, -1.0, rr[i])) for i in range(3)]
+    rows = [tuple(cols[j][i] for j in range(3)) for i in range(3)]
+
+    def largest(vs):
+        best = max((_s3_cross(vs[i], vs[j]) for i, j in ((0, 1), (0, 2), (1, 2))), key=lambda c: _s3_dot(c, c))
+        size = math.sqrt(_s3_dot(best, best))
+        return tuple(c / size for c in best) if size > 0.0 else None
+    v, u = largest(rows), largest(cols)
+    if v is None or u is None:
+        return []
+    step = S3_CURVATURE_STEP
+    plus = _s3_point(h, r, [a + step * b for a, b in zip(q0, v, strict=True)], x, y)[0]
+    minus = _s3_point(h, r, [a - step * b for a, b in zip(q0, v, strict=True)], x, y)[0]
+    curv = _s3_dot(u, tuple((plus[m] - 2.0 * p0[m] + minus[m]) / (step * step) for m in range(3)))
+    if not abs(curv) > 0.0:
+        return []
+    s2 = 2.0 * _s3_dot(u, _s3_axpy(y, -1.0, p0)) / curv
+    if not s2 > 0.0:
+        return []
+    half = math.sqrt(s2)
+    starts = [[a + t * b for a, b in zip(q0, v, strict=True)] for t in (half, -half)]
+    return _s3_pair_converges(h, r, x, y, scale, starts, q0[1], q0[2])
+
+
+def _s3_sp1(k, p, q, eps_scale):
+    """t with rot(k, t) p = q seen normal to k (subproblem 1); None when either is within eps_scale of the axis."""
+    pp, qq = _s3_axpy(p, -_s3_dot(k, p), k), _s3_axpy(q, -_s3_dot(k, q), k)
+    if math.sqrt(_s3_dot(pp, pp)) <= eps_scale or math.sqrt(_s3_dot(qq, qq)) <= eps_scale:
+        return None
+    return math.atan2(_s3_dot(k, _s3_cross(pp, qq)), _s3_dot(pp, qq))
+
+
+def _spatial3_lines(h, r, x, y, scale, eps):
+    """The candidates [(q_a, q_b, q_c), flags] of rot_a rot_b rot_c x = y, h[i] / r[i] the lines of a, b, c at the
+    joints' zero (flags: a double root of the polynomial, FLAG_DOUBLE_ROOT; the point on axis a, FLAG_INDETERMINATE
+    with q_a = 0). `scale` the lengths' size, `eps` the relative size below which a coefficient is degenerate. The
+    caller verifies them."""
+    h1, r1, h2, r2, h3, r3 = h[0], r[0], h[1], r[1], h[2], r[2]
+    eps3 = eps * scale ** 3
+    v = _s3_axpy(x, -1.0, r3)
+    hv = _s3_dot(h3, v)
+    vb0 = _s3_axpy(_s3_axpy(r3, hv, h3), -1.0, r2)  # z - r2 over (1, cos q_c, sin q_c)
+    vb = [vb0, _s3_axpy(v, -hv, h3), _s3_cross(h3, v)]
+    u = _s3_axpy(r2, -1.0, r1)
+    f = [[2.0 * e for e in row] for row in _s3_bilinear(h2, u, vb)]
+    g = _s3_bilinear(h2, h1, vb)
+    f[0][0] += _s3_dot(vb[0], vb[0]) + _s3_dot(vb[1], vb[1]) + _s3_dot(u, u)
+    f[0][1] += 2.0 * _s3_dot(vb[0], vb[1])
+    f[0][2] += 2.0 * _s3_dot(vb[0], vb[2])
+    g[0][0] += _s3_dot(h1, u)
+    yr = _s3_axpy(y, -1.0, r1)
+    d_target, h_target = _s3_dot(yr, yr), _s3_dot(h1, yr)
+    # (1, cos q_b, sin q_b) times (1 + t^2): (1 + t^2, 1 - t^2, 2 t), polynomials in t = tan(q_b / 2)
+    apoly = ((1.0, 0.0, 1.0), (1.0, 0.0, -1.0), (0.0, 2.0, 0.0))
+    p = [[apoly[0][i] * f[0][j] + apoly[1][i] * f[1][j] + apoly[2][i] * f[2][j] for i in range(3)] for j in range(3)]
+    pq = [[apoly[0][i] * g[0][j] + apoly[1][i] * g[1][j] + apoly[2][i] * g[2][j] for i in range(3)] for j in range(3)]
+    dt = [apoly[0][i] * d_target - p[0][i] for i in range(3)]
+    ht = [apoly[0][i] * h_target - pq[0][i] for i in range(3)]
+    det = _poly_add(_poly_mul(p[1], pq[2]), _poly_mul(p[2], pq[1]), -1.0)
+    nc = _poly_add(_poly_mul(dt, pq[2]), _poly_mul(p[2], ht), -1.0)
+    ns = _poly_add(_poly_mul(p[1], ht), _poly_mul(pq[1], dt), -1.0)
+    poly = _poly_add(_poly_add(_poly_mul(nc, nc), _poly_mul(ns, ns), 1.0), _poly_mul(det, det), -1.0)
+    roots, rflags, _status = _poly_real_roots(poly)
+    angles = [(2.0 * math.atan(t), FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE if fl & _POLY_FLAG_DOUBLE else 0)
+              for t, fl in zip(roots, rflags, strict=True)]
+    angles.append((math.pi, 0))  # tan(q_b / 2) = infinity is no root of the polynomial: tried directly
+    yr_perp = _s3_axpy(yr, -h_target, h1)
+    rho = math.sqrt(_s3_dot(yr_perp, yr_perp))  # the target's distance from axis a
+    out = []
+    for qb, fl in angles:
+        if len(out) == S3_MAX:
+            break
+        cb, sb = math.cos(qb), math.sin(qb)
+        pv = [f[0][j] + cb * f[1][j] + sb * f[2][j] for j in range(3)]
+        qv = [g[0][j] + cb * g[1][j] + sb * g[2][j] for j in range(3)]
+        dd = pv[1] * qv[2] - pv[2] * qv[1]
+        if abs(dd) <= eps3:
+            continue
+        cc = ((d_target - pv[0]) * qv[2] - pv[2] * (h_target - qv[0])) / dd
+        ss = (pv[1] * (h_target - qv[0]) - qv[1] * (d_target - pv[0])) / dd
+        if abs(math.hypot(cc, ss) - 1.0) > S3_CIRCLE_TOL:
+            continue
+        qc = math.atan2(ss, cc)
+        if fl & FLAG_DOUBLE_ROOT and rho > eps * scale and len(out) + 2 <= S3_MAX:
+            # a merged pair: near axis a its two roots differ by ~rho, below the polynomial's resolution
+            pair = _s3_split(h, r, x, y, yr, scale, qb, qc)
+            if pair:
+                out += [(tuple(q), FLAG_SINGULAR_INVERSE) for q in pair]
+                continue
+        w = _s3_axpy(_s3_turn(h2, r2, qb, _s3_turn(h3, r3, qc, x)), -1.0, r1)
+        qa = _s3_sp1(h1, w, yr, eps * scale)
+        if qa is None:
+            out.append(((0.0, qb, qc), fl | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE))
+            continue
+        q = [qa, qb, qc]
+        if fl & FLAG_DOUBLE_ROOT and len(out) + 2 <= S3_MAX:
+            # a merged pair elsewhere: the surface near-tangent to the target's circle, split along J's null vector
+            pair = _s3_pair(h, r, x, y, scale, q)
+            if pair:
+                out += [(tuple(v), FLAG_SINGULAR_INVERSE) for v in pair]
+                continue
+        if not fl & FLAG_DOUBLE_ROOT:
+            q, _err = _s3_refine(h, r, x, y, eps3, q)
+        out.append((tuple(q), fl))
+    return out
