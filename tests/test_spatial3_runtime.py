@@ -118,14 +118,16 @@ def test_a_point_on_the_first_axis_leaves_that_joint_undetermined(lib, py):
         assert min(_gap(cand[1:], q[1:]) for cand, _ in cands) <= 1e-9
 
 
-def test_a_target_near_the_first_axis_splits_the_merged_pair(lib, py):
-    """The target 1e-5 from axis a: the image w = rot_b rot_c x lies on a circle of radius 1e-5 about that axis, which
+@pytest.mark.parametrize("rho", [1e-5, 1e-6])
+def test_a_target_near_the_first_axis_splits_the_merged_pair(lib, py, rho):
+    """The target rho from axis a: the image w = rot_b rot_c x lies on a circle of radius rho about that axis, which
     the surface w(q_b, q_c) crosses twice close together, so the polynomial's two roots merge below its resolution
-    (flagged double). Split along the point Jacobian's null vector (or, the merged root at the axis, along the
-    surface's line through the circle), the generating joints are among the candidates (1e-9 + 1e-13 / sigma_min), in
-    C and Python; the merged root alone missed 10 of 200 such poses by more than 1e-2 rad. Closer to the axis the
-    split misses about one pose in eight (23, 29 and 22 of 200 at 1e-7, 1e-9 and 1e-11; unsplit 134, 199 and 187):
-    README, "Known defects"."""
+    (flagged double). Split (along the surface's line through the circle where the merged root sits on the axis, else
+    along the point Jacobian's null vector; damped Newton from both starts), the generating joints are among the
+    candidates (1e-9 + 1e-13 / sigma_min), in C and Python. Unsplit, 10 of 200 such poses missed them at 1e-5 by more
+    than 1e-2 rad. Measured beyond the asserted range, random seeds: 0 of 2,000 missed at 1e-5 and 1e-6, 2 of 2,000 at
+    1e-7, 17 of 400 at 1e-9, 31 of 400 at 1e-11 (unsplit: 134, 199 and 187 of 200 at 1e-7, 1e-9, 1e-11): README,
+    "Known defects"."""
     rng = case_rng(2322)
     for _ in range(100):
         h = np.array([v / np.linalg.norm(v) for v in rng.normal(size=(3, 3))])
@@ -133,10 +135,10 @@ def test_a_target_near_the_first_axis_splits_the_merged_pair(lib, py):
         q = rng.uniform(-math.pi, math.pi, 3)
         w = r[1] + _rot(h[1], q[1]) @ (r[2] + _rot(h[2], q[2]) @ (x - r[2]) - r[1])
         e = np.cross(h[0], rng.normal(size=3))
-        r[0] = w - 1e-5 * e / np.linalg.norm(e) + rng.normal() * h[0]  # axis a 1e-5 from w
+        r[0] = w - rho * e / np.linalg.norm(e) + rng.normal() * h[0]  # axis a rho from w
         y = _place(h, r, q, x)
         allowance = 1e-9 + 1e-13 / _smin(h, r, q, x)
         for cands in (_c(lib, h, r, x, y), py._spatial3_lines([tuple(v) for v in h], [tuple(v) for v in r],
                                                                tuple(x), tuple(y), 1.0, 1e-12)):
-            assert min(_gap(cand, q) for cand, _ in cands) <= allowance
+            assert len(cands) <= 4 and min(_gap(cand, q) for cand, _ in cands) <= allowance
             assert all(np.max(np.abs(_place(h, r, cand, x) - y)) <= 1e-9 for cand, _ in cands)

@@ -6,18 +6,20 @@
  * axis point r_a and its component along h_a: two equations bilinear in (1, cos q_b, sin q_b) x (1, cos q_c,
  * sin q_c). For each q_b they are linear in (cos q_c, sin q_c), and cos^2 + sin^2 = 1 of their solution is a degree-8
  * polynomial in tan(q_b / 2) (with the extraneous (1 + t^2)^2 of the half-angle substitution: at most four real
- * roots, Pieper's bound), whose real roots wk_poly_real_roots isolates; q_a then by subproblem 1, and two Newton
- * steps on the point bring a simple root to rounding. A double root of the polynomial with the target off axis a is
+ * roots, Pieper's bound), whose real roots wk_poly_real_roots isolates; q_a then by subproblem 1, and Newton steps
+ * on the point bring a simple root to rounding. A double root of the polynomial with the target off axis a is
  * split into the pair it merged (wk_s3_split): near that axis the pair differs by ~ the distance, below the
  * polynomial's sqrt(eps). Python's twin: runtime/python/spatial3.py, step for step.
  * Needs poly_real_roots.c, wk_poly_ops.c and wristkin_runtime's flags before it. The interpreted chain's ck_spatial3 and the
  * serial arm's spatial3 stage (sr_spatial3.c) call it; tests/test_spatial3_runtime.py tests it as it is
  * (tests/c/spatial3_harness.c). */
 #define WK_S3_MAX 12            /* candidates: eight roots, q_b = pi, and the pairs split from merged ones */
-#define WK_S3_REFINE_STEPS 2    /* Newton steps on a simple root (quadratic: 1e-10 -> rounding) */
+#define WK_S3_REFINE_STEPS 8    /* Newton steps at most (spatial3.py's S3_REFINE_STEPS says why) */
 #define WK_S3_SPLIT_STEPS 8     /* Newton steps from each of a merged pair's two starts */
 #define WK_S3_SPLIT_TOL 1e-10   /* a split root's point residual (relative to the lengths' size) at most this */
 #define WK_S3_SPLIT_APART 0.25  /* the two split roots at least this part of their starts' gap apart: a pair */
+#define WK_S3_SPLIT_HALVINGS 10 /* a split's Newton step halved up to this many times until the residual shrinks */
+#define WK_S3_SPLIT_STEP_MAX 0.5 /* rad: a split's Newton step at most this in any joint before it is halved */
 #define WK_S3_SPLIT_NEAR 1e-3   /* rad: a split root keeps the merged root's q_b, q_c to this */
 #define WK_S3_CURVATURE_STEP 1e-3 /* rad: the central difference of the point's second derivative */
 #define WK_S3_CIRCLE_TOL 1e-6   /* |(cos, sin)| of q_c off 1 by more: the root at infinity, or a poorly resolved one */
@@ -101,16 +103,17 @@ static double wk_s3_point(const double (*h0)[3], const double (*r0)[3], const do
 }
 
 /* Newton steps on rot_a rot_b rot_c x = y (Cramer's rule on the columns h_i x (p - r_i)): a step is kept only while
- * the residual shrinks. Returns the residual. */
+ * the residual shrinks, halved up to `halvings` times until it does (a split's starts, where J is near-singular and
+ * the full step overshoots). Returns the residual. */
 static double wk_s3_refine(const double (*h0)[3], const double (*r0)[3], const double *x, const double *y,
-                           double eps3, double *q, int steps)
+                           double eps3, double *q, int steps, int halvings)
 {
     double p[3], h[3][3], r[3][3], err;
     int it, i;
     err = wk_s3_point(h0, r0, q, x, y, p, h, r);
     for (it = 0; it < steps; ++it) {
-        double c[3][3], b[3], x12[3], bx2[3], c1b[3], det, trial[3], p2[3], h2[3][3], r2[3][3], err2;
-        int m;
+        double c[3][3], b[3], x12[3], bx2[3], c1b[3], det, dq[3], trial[3], p2[3], h2[3][3], r2[3][3], err2 = err;
+        int m, half;
         for (i = 0; i < 3; ++i) {
             double d[3];
             wk_s3_axpy(p, -1.0, r[i], d);
@@ -122,10 +125,20 @@ static double wk_s3_refine(const double (*h0)[3], const double (*r0)[3], const d
         if (!(fabs(det) > eps3)) break;
         wk_s3_cross(b, c[2], bx2);
         wk_s3_cross(c[1], b, c1b);
-        trial[0] = q[0] + wk_s3_dot(b, x12) / det;
-        trial[1] = q[1] + wk_s3_dot(c[0], bx2) / det;
-        trial[2] = q[2] + wk_s3_dot(c[0], c1b) / det;
-        err2 = wk_s3_point(h0, r0, trial, x, y, p2, h2, r2);
+        dq[0] = wk_s3_dot(b, x12) / det;
+        dq[1] = wk_s3_dot(c[0], bx2) / det;
+        dq[2] = wk_s3_dot(c[0], c1b) / det;
+        if (halvings > 0) { /* damped: at most WK_S3_SPLIT_STEP_MAX in any joint (a near-singular J's step is huge) */
+            const double big = fmax(fabs(dq[0]), fmax(fabs(dq[1]), fabs(dq[2])));
+            if (big > WK_S3_SPLIT_STEP_MAX)
+                for (i = 0; i < 3; ++i) dq[i] *= WK_S3_SPLIT_STEP_MAX / big;
+        }
+        for (half = 0; half <= halvings; ++half) {
+            for (i = 0; i < 3; ++i) trial[i] = q[i] + dq[i];
+            err2 = wk_s3_point(h0, r0, trial, x, y, p2, h2, r2);
+            if (err2 < err) break;
+            for (i = 0; i < 3; ++i) dq[i] *= 0.5;
+        }
         if (!(err2 < err)) break;
         for (i = 0; i < 3; ++i) {
             q[i] = trial[i];
@@ -164,7 +177,7 @@ static double wk_s3_gap(const double *a, const double *b)
     return far;
 }
 
-/* Newton on the point from each of a split's two starts (the rows of q; any step that lowers the residual: J is
+/* Damped Newton on the point from each of a split's two starts (the rows of q; any step that lowers the residual: J is
  * near-singular near a pair): 1, the pair in q, when both reach WK_S3_SPLIT_TOL x scale, keep the merged root's q_b
  * and q_c to WK_S3_SPLIT_NEAR (the pair it merged, not roots elsewhere) and stay WK_S3_SPLIT_APART of their starts'
  * gap apart (not one root twice); else 0 */
@@ -174,7 +187,8 @@ static int wk_s3_pair_converges(const double (*h)[3], const double (*r)[3], cons
     const double start_gap = wk_s3_gap(q[0], q[1]);
     int k;
     for (k = 0; k < 2; ++k) {
-        if (!(wk_s3_refine(h, r, x, y, 0.0, q[k], WK_S3_SPLIT_STEPS) <= WK_S3_SPLIT_TOL * scale)) return 0;
+        if (!(wk_s3_refine(h, r, x, y, 0.0, q[k], WK_S3_SPLIT_STEPS, WK_S3_SPLIT_HALVINGS) <= WK_S3_SPLIT_TOL * scale))
+            return 0;
         if (!(fmax(fabs(wk_wrap(q[k][1] - qb)), fabs(wk_wrap(q[k][2] - qc))) <= WK_S3_SPLIT_NEAR)) return 0;
     }
     return wk_s3_gap(q[0], q[1]) > WK_S3_SPLIT_APART * start_gap;
@@ -394,7 +408,7 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
                     continue;
                 }
             }
-            if (!(fl[out] & WK_FLAG_DOUBLE_ROOT)) (void)wk_s3_refine(h, r, x, y, eps3, q[out], WK_S3_REFINE_STEPS);
+            if (!(fl[out] & WK_FLAG_DOUBLE_ROOT)) (void)wk_s3_refine(h, r, x, y, eps3, q[out], WK_S3_REFINE_STEPS, 0);
         } else {
             q[out][0] = 0.0;
             fl[out] |= WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;

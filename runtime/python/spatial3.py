@@ -5,9 +5,9 @@ The position problem rot_a rot_b rot_c x = y of three lines (unit direction h_i 
 the distance of the point to r_a and its component along h_a, two equations bilinear in (1, cos q_b, sin q_b) x
 (1, cos q_c, sin q_c); cos^2 + sin^2 = 1 of the (cos q_c, sin q_c) they give is a degree-8 polynomial in
 tan(q_b / 2) (the extraneous (1 + t^2)^2 of the substitution in it: at most four real roots, Pieper's bound). q_a
-then by subproblem 1, and two Newton steps bring a simple root to rounding. A double root of the polynomial with the
-target off axis a is split into the pair it merged (_s3_split): near that axis the pair differs by ~ the distance,
-below the polynomial's sqrt(eps).
+then by subproblem 1, and Newton steps on the point bring a simple root to rounding. A double root of the polynomial
+(a pair it merged below its sqrt(eps)) is split into that pair: along the surface's line through the target's small
+circle about axis a (_s3_split), else along the point Jacobian's null vector (_s3_pair), then damped Newton steps.
 
 A wristkin runtime source: the interpreted chain's module (chain_spatial3.py) and a serial arm's with a spatial3
 stage (serial_spatial3.py) inline it from the marker line on (derive/runtime_files.py), after poly_real_roots.py and
@@ -23,12 +23,15 @@ from chain_poly import _poly_add, _poly_mul
 from poly_real_roots import _POLY_FLAG_DOUBLE, _poly_real_roots
 
 # wristkin: inlined from here
-S3_REFINE_STEPS = 2  # Newton steps on a simple root (quadratic: 1e-10 -> rounding)
+S3_REFINE_STEPS = 8  # Newton steps at most (a simple root: 1-2 to rounding, then a step stops lowering it; near a
+# pair the polynomial's root starts further off and converges slower: 2 steps left 10 of 200 near-axis poses off)
 S3_CIRCLE_TOL = 1e-6  # |(cos, sin)| of q_c off 1 by more: the root at infinity, or a poorly resolved one
 S3_MAX = 12  # candidates: eight roots, q_b = pi, and the pairs split from merged ones (wk_spatial3.c's WK_S3_MAX)
 S3_SPLIT_STEPS = 8  # Newton steps from each of a merged pair's two starts (linear convergence near the pair)
 S3_SPLIT_TOL = 1e-10  # a split root's point residual (relative to the lengths' size) at most this: it stands
 S3_SPLIT_APART = 0.25  # the two split roots at least this part of their starts' gap apart: a pair, not one root twice
+S3_SPLIT_HALVINGS = 10  # a split's Newton step halved up to this many times until the residual shrinks
+S3_SPLIT_STEP_MAX = 0.5  # rad: a split's Newton step at most this in any joint before it is halved
 S3_SPLIT_NEAR = 1e-3  # rad: a split root keeps the merged root's q_b, q_c to this (a merged pair is closer)
 S3_CURVATURE_STEP = 1e-3  # rad: the central difference of the point's second derivative (its error ~ step^2)
 
@@ -74,9 +77,10 @@ def _s3_point(h0, r0, q, x, y):
     return p, h, r, math.sqrt(_s3_dot(d, d))
 
 
-def _s3_refine(h0, r0, x, y, eps3, q, steps=S3_REFINE_STEPS):
+def _s3_refine(h0, r0, x, y, eps3, q, steps=S3_REFINE_STEPS, halvings=0):
     """Newton steps on rot_a rot_b rot_c x = y (Cramer's rule on the columns h_i x (p - r_i)): a step is kept only
-    while the residual shrinks. Returns (q, residual)."""
+    while the residual shrinks, halved up to `halvings` times until it does (a split's starts, where J is
+    near-singular and the full step overshoots). Returns (q, residual)."""
     q = list(q)
     p, h, r, err = _s3_point(h0, r0, q, x, y)
     for _ in range(steps):
@@ -86,9 +90,17 @@ def _s3_refine(h0, r0, x, y, eps3, q, steps=S3_REFINE_STEPS):
         det = _s3_dot(c[0], x12)
         if not abs(det) > eps3:
             break
-        trial = [q[0] + _s3_dot(b, x12) / det, q[1] + _s3_dot(c[0], _s3_cross(b, c[2])) / det,
-                 q[2] + _s3_dot(c[0], _s3_cross(c[1], b)) / det]
-        p2, h2, r2, err2 = _s3_point(h0, r0, trial, x, y)
+        dq = (_s3_dot(b, x12) / det, _s3_dot(c[0], _s3_cross(b, c[2])) / det, _s3_dot(c[0], _s3_cross(c[1], b)) / det)
+        if halvings:  # damped: at most S3_SPLIT_STEP_MAX in any joint (a near-singular J's full step is huge)
+            big = max(abs(d) for d in dq)
+            if big > S3_SPLIT_STEP_MAX:
+                dq = tuple(d * (S3_SPLIT_STEP_MAX / big) for d in dq)
+        for _halving in range(halvings + 1):
+            trial = [v + d for v, d in zip(q, dq, strict=True)]
+            p2, h2, r2, err2 = _s3_point(h0, r0, trial, x, y)
+            if err2 < err:
+                break
+            dq = tuple(0.5 * d for d in dq)
         if not err2 < err:
             break
         q, p, h, r, err = trial, p2, h2, r2, err2
@@ -101,13 +113,13 @@ def _s3_gap(a, b):
 
 
 def _s3_pair_converges(h, r, x, y, scale, starts, qb, qc):
-    """Newton on the point from each of a split's two starts (any step that lowers the residual: J is near-singular
-    near a pair): the pair when both reach S3_SPLIT_TOL x scale, keep the merged root's q_b and q_c to S3_SPLIT_NEAR
-    (the pair it merged, not roots elsewhere) and stay S3_SPLIT_APART of their starts' gap apart (not one root
-    twice); else []."""
+    """Damped Newton on the point from each of a split's two starts (any step that lowers the residual: J is
+    near-singular near a pair): the pair when both reach S3_SPLIT_TOL x scale, keep the merged root's q_b and q_c to
+    S3_SPLIT_NEAR (the pair it merged, not roots elsewhere) and stay S3_SPLIT_APART of their starts' gap apart (not
+    one root twice); else []."""
     pair = []
     for start in starts:
-        q, err = _s3_refine(h, r, x, y, 0.0, start, S3_SPLIT_STEPS)
+        q, err = _s3_refine(h, r, x, y, 0.0, start, S3_SPLIT_STEPS, S3_SPLIT_HALVINGS)
         if not err <= S3_SPLIT_TOL * scale or not max(abs(math.remainder(q[1] - qb, 2.0 * math.pi)),
                                                        abs(math.remainder(q[2] - qc, 2.0 * math.pi))) <= S3_SPLIT_NEAR:
             return []
