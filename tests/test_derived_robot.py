@@ -770,7 +770,7 @@ def test_the_design_is_the_table_s_lengths_and_moves_the_robot():
         assert min(_gap(v, q) for v in m.ik(T, d)) <= 1e-9
 
 
-# ------------------------------------------------------------------------------------------------ general 6R
+# ------------------------------------------------------------------------------------------------ multi-candidate stages
 # arms no decomposition fits: (description, free joint)
 GENERAL = {"ur5e_tilted": (ROBOTS / "ur5e_tilted" / "ur5e_tilted_poe.toml", None),  # wrist_1 tilted 10 degrees
            "panda_free1": (ROBOTS / "panda" / "panda_dh.toml", "joint1")}
@@ -791,18 +791,25 @@ def _general(case: str):
     return _CACHE[key]
 
 
-@pytest.mark.parametrize("case", sorted(GENERAL))
-def test_a_general_6r_is_derived_with_every_set_and_only_true_ones(case):
-    """No decomposition fits (the UR5e with wrist_1 tilted; the Panda with joint1 held): the derived module's one
-    stage runs the elimination on its kernel's axes, points and target. 30 random poses of the reference's FK (a held
-    joint at a random value, the design's): the generating joints among the sets (to 1e-9 + 1e-13 / sigma_min of J,
-    the pose's conditioning), every set on the pose (none spurious), the C extension's sets, flags and order the
-    numpy path's (both refined to the pose's rounding: 1e-12 + 1e-14 / sigma_min apart), and on 3 poses every
-    solution of the independent multistart among them."""
-    m, py, _ = _general(case)
-    path, free = GENERAL[case]
+@pytest.mark.parametrize("case", sorted({**GENERAL, **SPATIAL3}))
+def test_a_multi_candidate_stage_is_derived_with_every_set_and_only_true_ones(case):
+    """No decomposition fits (GENERAL: the UR5e with wrist_1 tilted; the Panda with joint1 held): the derived module's
+    one stage runs the elimination on its kernel's axes, points and target. Or three axes in general position place a
+    point (SPATIAL3: the Panda with joint5 held, from the tool joints 7, 6 and 4 place the shoulder point): its
+    spatial3 stage takes every real root of their degree-8 polynomial (four at most: two bits of the set index), the
+    wrist the rest. 30 random poses of the reference's FK (a held joint at a random value, the design's): the
+    generating joints among the sets (to 1e-9 + 1e-13 / sigma_min of J, the pose's conditioning), every set on the pose
+    (none spurious), the C extension's sets, flags and order the numpy path's (both refined to the pose's rounding:
+    1e-12 + 1e-14 / sigma_min apart), and on 3 poses every solution of the independent multistart among them (as many
+    as it finds for the spatial 3R; the general 6R's multistart may miss some)."""
+    m, py, out = _general(case)
+    path, _free = {**GENERAL, **SPATIAL3}[case]
     reference = ref.load(path)
-    assert m.MAX_IK == 16 and not hasattr(m, "FAMILY_TOL")  # the serial family's module, no plan
+    assert not hasattr(m, "FAMILY_TOL")  # the serial family's module, no plan
+    if case in SPATIAL3:
+        assert m.MAX_IK == 8 and "return _spatial3_stage(_k_stage2," in (out / "python" / f"{case}.py").read_text()
+    else:
+        assert m.MAX_IK == 16
     if os.environ.get("WRISTKIN_BACKEND") != "numpy":
         assert m.BACKEND == "c"
     rng = case_rng(2310)
@@ -814,7 +821,7 @@ def test_a_general_6r_is_derived_with_every_set_and_only_true_ones(case):
         a, b = m.ik(T, design), py.ik(T, design)
         jac = reference.jacobian(q)
         smin = np.linalg.svd(np.delete(jac, [fj], axis=1) if fj >= 0 else jac, compute_uv=False)[-1]
-        assert a.status == m.STATUS_OK and 1 <= a.count <= 16
+        assert a.status == m.STATUS_OK and 1 <= a.count <= m.MAX_IK
         assert min(_gap(v, q) for v in a) <= 1e-9 + 1e-13 / smin
         assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in a)
         assert a.count == b.count and list(a.valid) == list(b.valid) and list(a.flags) == list(b.flags)
@@ -822,6 +829,7 @@ def test_a_general_6r_is_derived_with_every_set_and_only_true_ones(case):
         if k < 3:
             found = ref.ik_all(reference, n, T, seed=k, starts=120, fixed={fj: q[fj]} if fj >= 0 else None)
             assert all(min(_gap(v, f) for v in a) <= 1e-6 for f in found)
+            assert case not in SPATIAL3 or len(found) == a.count
 
 
 def test_where_the_chosen_reading_degenerates_the_next_one_solves_the_pose():
@@ -850,39 +858,6 @@ def test_a_multi_candidate_stage_s_emitted_c_is_strict_c99_and_clean_under_the_s
     for p, (count, _status, _chosen) in zip(poses[:-1], counts[:-1], strict=True):
         assert count == m.ik(np.vstack([p.reshape(3, 4), [0, 0, 0, 1]])).count
     assert counts[-2][0] == 0 and counts[-1][0] == 0
-
-
-# ------------------------------------------------------------------------------------------------ spatial 3R
-def test_a_spatial_3r_is_derived_with_every_set_and_only_true_ones():
-    """The Panda with joint5 held: from the tool, joints 7, 6 and 4 place the wrist point and no invariant point or
-    direction separates them, so the derived module's spatial3 stage takes every real root of their degree-8
-    polynomial (four at most: two bits of the set index), the wrist the rest. 40 random poses of the reference's FK at
-    a random held value: the generating joints among the sets (1e-9 + 1e-13 / sigma_min), every set on the pose, the
-    C extension's sets and flags the numpy path's (1e-12 + 1e-14 / sigma_min apart), and on 3 poses every solution of
-    the independent multistart among them."""
-    m, py, out = _general("panda_free5")
-    path, _free = SPATIAL3["panda_free5"]
-    reference = ref.load(path)
-    assert m.MAX_IK == 8 and not hasattr(m, "FAMILY_TOL")  # the serial family's module, no plan
-    assert "return _spatial3_stage(_k_stage2," in (out / "python" / "panda_free5.py").read_text()
-    if os.environ.get("WRISTKIN_BACKEND") != "numpy":
-        assert m.BACKEND == "c"
-    rng = case_rng(2312)
-    n, fj = m.N_JOINTS, m._FREE
-    for k in range(40):
-        q = rng.uniform(-math.pi, math.pi, n)
-        design = [float(q[fj])]
-        T = reference(q)
-        a, b = m.ik(T, design), py.ik(T, design)
-        smin = np.linalg.svd(np.delete(reference.jacobian(q), [fj], axis=1), compute_uv=False)[-1]
-        assert a.status == m.STATUS_OK and 1 <= a.count <= 8
-        assert min(_gap(v, q) for v in a) <= 1e-9 + 1e-13 / smin
-        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in a)
-        assert a.count == b.count and list(a.valid) == list(b.valid) and list(a.flags) == list(b.flags)
-        assert np.max(np.abs(a.values[a.valid] - b.values[b.valid])) <= 1e-12 + 1e-14 / smin
-        if k < 3:
-            found = ref.ik_all(reference, n, T, seed=k, starts=120, fixed={fj: q[fj]})
-            assert len(found) == a.count and all(min(_gap(v, f) for v in a) <= 1e-6 for f in found)
 
 
 # ------------------------------------------------------------------------------------------------ refusals
