@@ -770,7 +770,7 @@ def test_the_design_is_the_table_s_lengths_and_moves_the_robot():
         assert min(_gap(v, q) for v in m.ik(T, d)) <= 1e-9
 
 
-# ------------------------------------------------------------------------------------------------ multi-candidate stages
+# ---------------------------------------------------------------------------------------- multi-candidate stages
 # arms no decomposition fits: (description, free joint)
 GENERAL = {"ur5e_tilted": (ROBOTS / "ur5e_tilted" / "ur5e_tilted_poe.toml", None),  # wrist_1 tilted 10 degrees
            "panda_free1": (ROBOTS / "panda" / "panda_dh.toml", "joint1")}
