@@ -201,10 +201,10 @@ static int wk_s3_pair_converges(const double (*h)[3], const double (*r)[3], cons
  * rounding hides the gap) give q_a by subproblem 1, then Newton on the point from each. The two roots separate at
  * eps / rho, not the polynomial's sqrt(eps). Returns 1 with the pair in q, or 0 (the merged root stands). */
 static int wk_s3_split(const double (*h)[3], const double (*r)[3], const double *x, const double *y,
-                       const double *yr, double scale, double qb, double qc, double q[2][3])
+                       const double *yr, double rho, double scale, double qb, double qc, double q[2][3])
 {
     static const double origin[3] = {0.0, 0.0, 0.0};
-    double w[3], hc[3], rc[3], jb[3], jc[3], normal[3], d[3], v0[3], yr_perp[3], size, rho2, mid, disc, half;
+    double w[3], hc[3], rc[3], jb[3], jc[3], normal[3], d[3], v0[3], size, mid, disc, half;
     int k, m;
     wk_s3_turn(h[2], r[2], qc, x, w);
     wk_s3_turn(h[1], r[1], qb, w, w);
@@ -221,11 +221,9 @@ static int wk_s3_split(const double (*h)[3], const double (*r)[3], const double 
     for (m = 0; m < 3; ++m) d[m] /= size;
     wk_s3_axpy(w, -1.0, r[0], v0);
     wk_s3_axpy(v0, -wk_s3_dot(h[0], v0), h[0], v0); /* w's offset from axis a, normal to it */
-    wk_s3_axpy(yr, -wk_s3_dot(h[0], yr), h[0], yr_perp);
-    rho2 = wk_s3_dot(yr_perp, yr_perp); /* the target's distance from axis a, squared (|yr|^2 - (h.yr)^2 cancels) */
     mid = -wk_s3_dot(v0, d);
-    disc = mid * mid - wk_s3_dot(v0, v0) + rho2;
-    half = disc > 0.0 ? sqrt(disc) : sqrt(rho2);
+    disc = mid * mid - wk_s3_dot(v0, v0) + rho * rho;
+    half = disc > 0.0 ? sqrt(disc) : rho;
     for (k = 0; k < 2; ++k) {
         double p[3];
         wk_s3_axpy(v0, k == 0 ? mid + half : mid - half, d, p);
@@ -362,7 +360,7 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
     ang[na] = 3.14159265358979323846; /* tan(q_b / 2) = infinity is no root of the polynomial: tried directly */
     af[na++] = 0u;
     wk_s3_axpy(yr, -htarget, h1, yr_perp);
-    rho = sqrt(wk_s3_dot(yr_perp, yr_perp)); /* the target's distance from axis a */
+    rho = sqrt(wk_s3_dot(yr_perp, yr_perp)); /* the target's distance from axis a (|yr|^2 - (h.yr)^2 cancels) */
     for (i = 0; i < na && out < WK_S3_MAX; ++i) {
         const double cb = cos(ang[i]), sb = sin(ang[i]);
         double pv[3], qv[3], dd, cc, ss, w[3], t1 = 0.0;
@@ -380,7 +378,7 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
         if ((af[i] & WK_FLAG_DOUBLE_ROOT) && rho > eps * scale && out + 2 <= WK_S3_MAX) {
             /* a merged pair: near axis a its two roots differ by ~rho, below the polynomial's resolution */
             double pair[2][3];
-            if (wk_s3_split(h, r, x, y, yr, scale, q[out][1], q[out][2], pair)) {
+            if (wk_s3_split(h, r, x, y, yr, rho, scale, q[out][1], q[out][2], pair)) {
                 int k, m;
                 for (k = 0; k < 2; ++k) {
                     for (m = 0; m < 3; ++m) q[out][m] = pair[k][m];

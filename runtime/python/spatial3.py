@@ -127,7 +127,7 @@ def _s3_pair_converges(h, r, x, y, scale, starts, qb, qc):
     return pair if _s3_gap(*pair) > S3_SPLIT_APART * _s3_gap(*starts) else []
 
 
-def _s3_split(h, r, x, y, yr, scale, qb, qc):
+def _s3_split(h, r, x, y, yr, rho, scale, qb, qc):
     """The pair a merged double root of the polynomial stands for, where the target is near axis a (distance rho):
     the point's image w = rot_b rot_c x must lie on the circle of radius rho about axis a, which the surface w(q_b,
     q_c) crosses twice. Near the merged root the surface meets the circle's plane along the line through w in the
@@ -145,11 +145,9 @@ def _s3_split(h, r, x, y, yr, scale, qb, qc):
     d = tuple(v / size for v in d)
     v0 = _s3_axpy(w, -1.0, r[0])
     v0 = _s3_axpy(v0, -_s3_dot(h[0], v0), h[0])  # w's offset from axis a, normal to it
-    yr_perp = _s3_axpy(yr, -_s3_dot(h[0], yr), h[0])
-    rho2 = _s3_dot(yr_perp, yr_perp)  # the target's distance from axis a, squared (not |yr|^2 - (h.yr)^2: it cancels)
     mid = -_s3_dot(v0, d)
-    disc = mid * mid - _s3_dot(v0, v0) + rho2
-    half = math.sqrt(disc) if disc > 0.0 else math.sqrt(rho2)
+    disc = mid * mid - _s3_dot(v0, v0) + rho * rho
+    half = math.sqrt(disc) if disc > 0.0 else rho
     starts = []
     for t in (mid + half, mid - half):
         qa = _s3_sp1(h[0], _s3_axpy(v0, t, d), yr, 0.0)
@@ -233,7 +231,7 @@ def _spatial3_lines(h, r, x, y, scale, eps):
               for t, fl in zip(roots, rflags, strict=True)]
     angles.append((math.pi, 0))  # tan(q_b / 2) = infinity is no root of the polynomial: tried directly
     yr_perp = _s3_axpy(yr, -h_target, h1)
-    rho = math.sqrt(_s3_dot(yr_perp, yr_perp))  # the target's distance from axis a
+    rho = math.sqrt(_s3_dot(yr_perp, yr_perp))  # the target's distance from axis a (|yr|^2 - (h.yr)^2 cancels)
     out = []
     for qb, fl in angles:
         if len(out) == S3_MAX:
@@ -251,7 +249,7 @@ def _spatial3_lines(h, r, x, y, scale, eps):
         qc = math.atan2(ss, cc)
         if fl & FLAG_DOUBLE_ROOT and rho > eps * scale and len(out) + 2 <= S3_MAX:
             # a merged pair: near axis a its two roots differ by ~rho, below the polynomial's resolution
-            pair = _s3_split(h, r, x, y, yr, scale, qb, qc)
+            pair = _s3_split(h, r, x, y, yr, rho, scale, qb, qc)
             if pair:
                 out += [(tuple(q), FLAG_SINGULAR_INVERSE) for q in pair]
                 continue

@@ -25,7 +25,9 @@ typedef struct {
     double s3_q[SR_S3_KEEP][3];
     unsigned s3_f[SR_S3_KEEP];
 #endif
+#if !SR_HAS_GENERAL6R && !SR_HAS_SPATIAL3
     int unused; /* C99 has no empty structs */
+#endif
 } sr_ws;
 
 /* a fresh scratch for one IK call */
@@ -39,7 +41,9 @@ static void sr_ws_init(sr_ws *ws)
     ws->s3_key = -1;
     ws->s3_n = 0;
 #endif
+#if !SR_HAS_GENERAL6R && !SR_HAS_SPATIAL3
     ws->unused = 0;
+#endif
 }
 
 #if SR_HAS_TRIG_LINEAR || SR_WRIST_STAGE >= 0
