@@ -100,11 +100,12 @@ GENERAL_SPEC = ROBOTS / "ur5e_tilted" / "ur5e_tilted_poe.toml"
 # the spatial 3R fixture: the Panda with joint5 held (from the tool, joints 7, 6 and 4 place the wrist point by the
 # degree-8 polynomial: a derived spatial3 stage by default)
 SPATIAL3_SPEC = ROBOTS / "panda" / "panda_dh.toml"
+# the offset wrist (the UR5e with its last two axes apart: subproblem 6's quartic, a derived sp6 stage by default)
+SP6_SPEC = ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml"
 
 
 def specs() -> list[Path]:
-    return sorted([*ROBOTS.glob("*/*.urdf"), ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml", GENERAL_SPEC,
-                   SPATIAL3_SPEC])
+    return sorted([*ROBOTS.glob("*/*.urdf"), SP6_SPEC, GENERAL_SPEC, SPATIAL3_SPEC])
 
 
 def _name(spec: Path) -> str:
@@ -254,7 +255,8 @@ def report(names=None, json_path: Path = ROOT / "build" / "bench" / "near_singul
 
     chosen = [p for p in specs() if names is None or _name(p) in names]
     rows = [bench_robot(p) for p in chosen] + [bench_robot(p, derived=True) for p in chosen
-                                               if p.stem in DERIVED_ROBOTS or p in (GENERAL_SPEC, SPATIAL3_SPEC)]
+                                               if p.stem in DERIVED_ROBOTS or p in (GENERAL_SPEC, SPATIAL3_SPEC,
+                                                                                    SP6_SPEC)]
     lines = [f"Near-singular sweeps (the plain rows `--stages interpreted`, the \"(derived)\" rows the derived stages, "
              "the default where they cover the robot): each joint's singular configurations (det J = 0, found by "
              "bisection) moved off "

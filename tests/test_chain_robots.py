@@ -590,9 +590,11 @@ def test_a_ur_wrist_singularity_is_never_empty():
 
 
 # the URDF solver runs the C (the folder's extension), DH numpy; the offset wrist's (subproblem 6) has DH only, and
-# its C is compared with its numpy near the singularity in test_chain_c
-@pytest.mark.parametrize(("robot", "fmt"), (("ur5e", "urdf"), ("ur5e", "dh"), ("ur5e_offset", "dh")))
-def test_a_ur_near_its_wrist_singularity_is_never_empty(robot, fmt):
+# its C is compared with its numpy near the singularity in test_chain_c (interpreted) and test_derived_robot (derived)
+@pytest.mark.parametrize(("robot", "fmt", "stages"), (("ur5e", "urdf", "auto"), ("ur5e", "dh", "auto"),
+                                                      ("ur5e_offset", "dh", "auto"),
+                                                      ("ur5e_offset", "dh", "interpreted")))
+def test_a_ur_near_its_wrist_singularity_is_never_empty(robot, fmt, stages):
     """|q5| from 1e-7 to 1e-5: near, not at, the family. Within the double-root tolerance (|sin q5| <= 1e-6) the
     two wrist roots merge into one common vector on the group's axis, a family whose members need not reproduce a
     pose that is not singular (12 of 200 poses at |q5| = 1e-6 came back empty); the two roots are then taken
@@ -600,8 +602,9 @@ def test_a_ur_near_its_wrist_singularity_is_never_empty(robot, fmt):
     (or resolves them only to sqrt(eps)): its roots are refined by Newton on subproblem 6's two equations, and a
     merged one that verifies nothing is split along them (9 of 200 poses at |q5| = 1e-6 had come back empty).
     Every returned set reproduces the pose through the independent reference's FK (the solver's acceptance
-    IK_VERIFY_TOL, plus 1e-12 for the two FKs' rounding)."""
-    m, r = solver(robot, fmt), reference(robot, fmt)
+    IK_VERIFY_TOL, plus 1e-12 for the two FKs' rounding). The offset wrist on both paths: its derived sp6 stage (the
+    default) and the plan interpreter."""
+    m, r = solver(robot, fmt, stages=stages), reference(robot, fmt)
     rng = case_rng(24)
     for i in range(100):
         q = rng.uniform(-math.pi, math.pi, 6)
@@ -615,6 +618,8 @@ def test_a_ur_near_its_wrist_singularity_is_never_empty(robot, fmt):
 
 # ------------------------------------------------------------------------------------------ offset wrist (subproblem 6)
 OFFSET = "ur5e_offset"  # the UR5e with a5 = 3 cm (tests/robots/ur5e_offset, DH only): axes 5 and 6 apart
+# both paths: the derived sp6 stage (--stages auto, the default) and the plan interpreter's sp6 op
+OFFSET_PATHS = pytest.mark.parametrize("stages", ("auto", "interpreted"))
 
 
 def _joint_tol(m, q) -> float:
@@ -626,10 +631,15 @@ def _joint_tol(m, q) -> float:
     return 10.0 * math.sqrt(6.0) * m.IK_VERIFY_TOL / max(float(s[-1]), 1e-300)
 
 
-def test_offset_wrist_is_subproblem_6_and_fk_equals_the_reference():
-    m, r = solver(OFFSET, "dh"), reference(OFFSET, "dh")
+@OFFSET_PATHS
+def test_offset_wrist_is_subproblem_6_and_fk_equals_the_reference(stages):
+    m, r = solver(OFFSET, "dh", stages=stages), reference(OFFSET, "dh")
     assert "offset wrist" in m.DECOMPOSITION and "subproblem 6" in m.DECOMPOSITION
-    assert "sp6" in repr(m._PLAN) and m.MAX_IK == 8  # a quartic in q1, two elbows each
+    assert m.MAX_IK == 8  # a quartic in q1, two elbows each
+    if stages == "interpreted":
+        assert "sp6" in repr(m._PLAN)
+    else:  # the serial family's module, its first stage subproblem 6's
+        assert not hasattr(m, "_PLAN") and m._STAGES[0][0].__name__ == "_solve_stage1"
     rng = case_rng(24)
     for _ in range(20):
         q = rng.uniform(-math.pi, math.pi, 6)
@@ -638,8 +648,9 @@ def test_offset_wrist_is_subproblem_6_and_fk_equals_the_reference():
         np.testing.assert_allclose(m.jacobian(q), r.jacobian(q), atol=1e-12 * _size(m))
 
 
-def test_offset_wrist_ik_contains_the_generating_joints_and_every_set_reproduces_the_pose():
-    m, r = solver(OFFSET, "dh"), reference(OFFSET, "dh")
+@OFFSET_PATHS
+def test_offset_wrist_ik_contains_the_generating_joints_and_every_set_reproduces_the_pose(stages):
+    m, r = solver(OFFSET, "dh", stages=stages), reference(OFFSET, "dh")
     rng = case_rng(25)
     counts = {}
     for _ in range(60):
@@ -654,11 +665,12 @@ def test_offset_wrist_ik_contains_the_generating_joints_and_every_set_reproduces
     assert counts.get(8, 0) >= 20, counts  # most random poses have all eight sets
 
 
-def test_offset_wrist_sets_equal_the_multistart_reference():
+@OFFSET_PATHS
+def test_offset_wrist_sets_equal_the_multistart_reference(stages):
     """None missed, none spurious: on regular poses (sigma_min / sigma_max > 1e-3) the sets equal every solution
     the numeric reference finds, to 1e-6 rad (the reference's dedup; it converges to 1e-10 in the pose, so its
     joints are good to ~1e-10 / sigma_min <= 1e-7 here)."""
-    m, r = solver(OFFSET, "dh"), reference(OFFSET, "dh")
+    m, r = solver(OFFSET, "dh", stages=stages), reference(OFFSET, "dh")
     rng = case_rng(26)
     for k in range(4):
         q = _regular_joints(m, rng)
@@ -670,12 +682,13 @@ def test_offset_wrist_sets_equal_the_multistart_reference():
             assert min(_gap(v, w, m.JOINT_KINDS) for w in ours) < 1e-6
 
 
-def test_offset_wrist_singularity_gives_the_generating_family():
+@OFFSET_PATHS
+def test_offset_wrist_singularity_gives_the_generating_family(stages):
     """q5 = 0 or pi exactly: axis 6 parallel to axes 2, 3, 4, a one-parameter family (q6 against the group's
     sum) whose free angle also moves the wrist point. Without `previous` the family is still returned (flagged
     singular and indeterminate), with q1 and q5 of the generating configuration; with `previous` = the generating
     configuration, that configuration; with `previous` moved along the family, the member at its q6."""
-    m, r = solver(OFFSET, "dh"), reference(OFFSET, "dh")
+    m, r = solver(OFFSET, "dh", stages=stages), reference(OFFSET, "dh")
     rng = case_rng(27)
     for i in range(60):
         q = rng.uniform(-math.pi, math.pi, 6)
@@ -694,13 +707,14 @@ def test_offset_wrist_singularity_gives_the_generating_family():
         assert min(_gap(sol.values[k][[0, 4]], q[[0, 4]], "RR") for k in family) < 1e-7
         # with `previous`: q6 taken from it, the rest from closed forms at that angle (the planar pair conditioned
         # by the elbow's margin above), so again rounding, not the singular Jacobian's conditioning
+        # (a set index's row: the derived module keeps each set at its branch word, the interpreter packs them)
         near = m.ik(T, previous=q)
-        k = int(np.argmin([_gap(v, q, m.JOINT_KINDS) for v in near]))
+        k = min(np.flatnonzero(near.valid), key=lambda i: _gap(near.values[i], q, m.JOINT_KINDS))
         assert _gap(near.values[k], q, m.JOINT_KINDS) < 1e-7 and near.flags[k] & m.FLAG_INDETERMINATE
         prev = q.copy()
         prev[5] += 1e-3
         moved = m.ik(T, previous=prev)
-        k = int(np.argmin([_gap(v, prev, m.JOINT_KINDS) for v in moved]))
+        k = min(np.flatnonzero(moved.valid), key=lambda i: _gap(moved.values[i], prev, m.JOINT_KINDS))
         assert abs(math.remainder(moved.values[k][5] - prev[5], 2 * math.pi)) < 1e-12
         assert _gap(moved.values[k], q, m.JOINT_KINDS) < 2e-2  # the same member of the family, 1e-3 along it
         assert np.max(np.abs(r(moved.values[k]) - T)) <= m.IK_VERIFY_TOL + 1e-12 * _size(m)

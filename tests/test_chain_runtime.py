@@ -51,7 +51,8 @@ def _angle_gap(a, b):
 def lib():
     harness = ROOT / "tests" / "c" / "chain_runtime_harness.c"
     # the harness includes the sources: their bytes name the build (compile_shared hashes only what it is given)
-    shared = [ROOT / "runtime" / "c" / n for n in ("poly_real_roots.c", "wk_poly_ops.c", "wk_spatial3.c")]
+    shared = [ROOT / "runtime" / "c" / n
+              for n in ("poly_real_roots.c", "wk_poly_ops.c", "wk_geom3.c", "wk_spatial3.c", "wk_sp6.c")]
     h = hashlib.sha256(b"".join(p.read_bytes() for p in [*sorted(CHAIN_C.iterdir()), *shared])).hexdigest()[:16]
     so = compile_shared([harness, RUNTIME_C], [ROOT / "runtime" / "c"], "chain_runtime",
                         extra_flags=[f"-DWKT_SOURCES={h}"])
@@ -551,7 +552,7 @@ def test_the_sp6_split_resolves_a_near_wrist_pair_to_eps(lib, py):
         d0 = float(n_ @ _rot(h0, -a) @ p0 - n_ @ _rot(h4, b) @ p4)
         g = _rot(h0, a) @ _rot(h4, b) @ h5
         args = [list(v) for v in (n_, h0, p0, h4, p4)] + [d0, list(g), list(h5)]
-        out = py.sp6._sp6_split(*args[:6], *args[6:], a, q4s)
+        out = py.sp6._sp6_split(*args[:6], *args[6:], a, q4s, py.sp6.SP6_TOLS)
         nc = lib.wkt_sp6_split(_p(n_), _p(h0), _p(p0), _p(h4), _p(p4), d0, _p(g), _p(h5), a, q4s, _p(s0), _p(s4))
         assert nc == len(out) and len(out) in (1, 2), (i, delta)
         allowance = 16.0 * _sp6_split_allowance(n_, h0, p0, h4, p4, d0, g, h5, a, b)[len(out) == 1]

@@ -778,36 +778,43 @@ GENERAL = {"ur5e_tilted": (ROBOTS / "ur5e_tilted" / "ur5e_tilted_poe.toml", None
 
 # arms whose decomposition places a point by three axes in general position (a spatial 3R): (description, free joint)
 SPATIAL3 = {"panda_free5": (ROBOTS / "panda" / "panda_dh.toml", "joint5")}
+# arms with an offset wrist (subproblem 6: joints 1 and 5 from the parallel group's invariants)
+SP6 = {"ur5e_offset": (ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml", None)}
+MULTI = {**GENERAL, **SPATIAL3, **SP6}
 
 
 def _general(case: str):
-    """(C-backed solver, numpy solver, folder) of a GENERAL or SPATIAL3 arm derived with --stages derived."""
+    """(C-backed solver, numpy solver, folder) of a GENERAL, SPATIAL3 or SP6 arm derived with --stages derived."""
     key = ("general", case)
     if key not in _CACHE:
-        path, free = {**GENERAL, **SPATIAL3}[case]
+        path, free = MULTI[case]
         out = Path(tempfile.mkdtemp(prefix=f"wk_derived_{case}_"))
         own_robot.derive(path, out, name=case, stages="derived", free=free, progress=lambda _: None)
         _CACHE[key] = (own_robot.import_solver(out, case), own_robot.import_solver(out, case, backend="numpy"), out)
     return _CACHE[key]
 
 
-@pytest.mark.parametrize("case", sorted({**GENERAL, **SPATIAL3}))
+@pytest.mark.parametrize("case", sorted(MULTI))
 def test_a_multi_candidate_stage_is_derived_with_every_set_and_only_true_ones(case):
     """No decomposition fits (GENERAL: the UR5e with wrist_1 tilted; the Panda with joint1 held): the derived module's
     one stage runs the elimination on its kernel's axes, points and target. Or three axes in general position place a
     point (SPATIAL3: the Panda with joint5 held, from the tool joints 7, 6 and 4 place the shoulder point): its
     spatial3 stage takes every real root of their degree-8 polynomial (four at most: two bits of the set index), the
-    wrist the rest. 30 random poses of the reference's FK (a held joint at a random value, the design's): the
-    generating joints among the sets (to 1e-9 + 1e-13 / sigma_min of J, the pose's conditioning), every set on the pose
+    wrist the rest. Or an offset wrist (SP6: the UR5e with its last two axes 3 cm apart): its sp6 stage takes every
+    real root of subproblem 6's quartic, then joint 6 and the planar pair. 30 random poses of the reference's FK (a
+    held joint at a random value, the design's): the generating joints among the sets (to 1e-9 + 1e-13 / sigma_min
+    of J, the pose's conditioning), every set on the pose
     (none spurious), the C extension's sets, flags and order the numpy path's (both refined to the pose's rounding:
     1e-12 + 1e-14 / sigma_min apart), and on 3 poses every solution of the independent multistart among them (as many
-    as it finds for the spatial 3R; the general 6R's multistart may miss some)."""
+    as it finds for the spatial 3R and subproblem 6; the general 6R's multistart may miss some)."""
     m, py, out = _general(case)
-    path, _free = {**GENERAL, **SPATIAL3}[case]
+    path, _free = MULTI[case]
     reference = ref.load(path)
     assert not hasattr(m, "FAMILY_TOL")  # the serial family's module, no plan
     if case in SPATIAL3:
         assert m.MAX_IK == 8 and "return _spatial3_stage(_k_stage2," in (out / "python" / f"{case}.py").read_text()
+    elif case in SP6:
+        assert m.MAX_IK == 8 and "return _sp6_stage(_k_stage1," in (out / "python" / f"{case}.py").read_text()
     else:
         assert m.MAX_IK == 16
     if os.environ.get("WRISTKIN_BACKEND") != "numpy":
@@ -829,7 +836,7 @@ def test_a_multi_candidate_stage_is_derived_with_every_set_and_only_true_ones(ca
         if k < 3:
             found = ref.ik_all(reference, n, T, seed=k, starts=120, fixed={fj: q[fj]} if fj >= 0 else None)
             assert all(min(_gap(v, f) for v in a) <= 1e-6 for f in found)
-            assert case not in SPATIAL3 or len(found) == a.count
+            assert case in GENERAL or len(found) == a.count
 
 
 def test_where_the_chosen_reading_degenerates_the_next_one_solves_the_pose():
@@ -847,10 +854,12 @@ def test_where_the_chosen_reading_degenerates_the_next_one_solves_the_pose():
         assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
 
 
-@pytest.mark.parametrize("case,stream,n", [("ur5e_tilted", 2311, 10), ("panda_free5", 2313, 20)])
+@pytest.mark.parametrize("case,stream,n", [("ur5e_tilted", 2311, 10), ("panda_free5", 2313, 20),
+                                           ("ur5e_offset", 2315, 20)])
 def test_a_multi_candidate_stage_s_emitted_c_is_strict_c99_and_clean_under_the_sanitizers(case, stream, n):
     """The derived tilted UR5e's C with the elimination beside it (wk_general6r.c, wk_eigen.c), the Panda's with
-    joint5 held and its spatial3 stage (wk_spatial3.c, the root finder inlined), under -std=c99 -Wall -Wextra -Werror
+    joint5 held and its spatial3 stage (wk_spatial3.c, the root finder inlined), the offset wrist's sp6 stage
+    (wk_sp6.c), under -std=c99 -Wall -Wextra -Werror
     -pedantic and ASan/UBSan, on random, singular, unreachable and non-finite poses: the counts the Python module
     returns, nothing reported."""
     m, _, out = _general(case)
@@ -862,7 +871,6 @@ def test_a_multi_candidate_stage_s_emitted_c_is_strict_c99_and_clean_under_the_s
 
 # ------------------------------------------------------------------------------------------------ refusals
 @pytest.mark.parametrize("path,why", [
-    (ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml", "offset wrist.* needs the ops sp6, which the derived stages"),
     (ROBOTS / "iiwa14" / "iiwa14_dh.toml", "arm angle"),
 ], ids=lambda v: v.name if isinstance(v, Path) else v)
 def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, why):
@@ -875,7 +883,7 @@ def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, w
 @pytest.mark.parametrize("robot,fmt,derived", [("kr6", "urdf", True), ("ur5e", "urdf", True), ("youbot", "urdf", True),
                                                ("scara", "urdf", True),
                                                ("iiwa14", "urdf", True), ("kr6_calibrated", "urdf", False),
-                                               ("ur5e_offset", "dh", False), ("ur5e_tilted", "poe", True)])
+                                               ("ur5e_offset", "dh", True), ("ur5e_tilted", "poe", True)])
 def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_told_which(robot, fmt, derived,
                                                                                           tmp_path):
     """`--stages auto` (the default): the derived stages' module (the serial family's: ROOT_GAP_TOL, no plan) where
@@ -889,7 +897,7 @@ def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_t
         assert note.strip() == "IK: derived straight-line stages"
     else:
         assert note.strip().startswith("IK: the plan interpreter (the derived stages do not cover this robot: ")
-        assert ("calibrated" if robot == "kr6_calibrated" else "sp6") in note
+        assert "calibrated" in note
     q = np.linspace(-1.0, 1.0, m.N_JOINTS)
     if getattr(m, "_FREE", -1) >= 0:  # a held joint (the iiwa's): at its default value, 0
         q[m._FREE] = 0.0
@@ -897,9 +905,9 @@ def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_t
 
 
 def test_the_command_refuses_in_one_line_and_writes_nothing(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(_file("ur5e_offset", "dh")), "--out",
-                        str(tmp_path / "out"), "--stages", "derived"], capture_output=True, text=True, cwd=ROOT,
-                       timeout=300)
+    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(_file("iiwa14", "dh")), "--out",
+                        str(tmp_path / "out"), "--stages", "derived", "--redundancy", "arm-angle"], capture_output=True,
+                       text=True, cwd=ROOT, timeout=300)
     assert r.returncode == 1 and len(r.stderr.strip().splitlines()) == 1 and "--stages derived" in r.stderr
     assert not (tmp_path / "out" / "python").exists()
 

@@ -58,7 +58,8 @@ def _p(a):
 
 @pytest.fixture(scope="module")
 def lib():
-    sources = [ROOT / "runtime" / "c" / n for n in ("poly_real_roots.c", "wk_poly_ops.c", "wk_spatial3.c")]
+    sources = [ROOT / "runtime" / "c" / n
+               for n in ("poly_real_roots.c", "wk_poly_ops.c", "wk_geom3.c", "wk_spatial3.c")]
     h = hashlib.sha256(b"".join(p.read_bytes() for p in sources)).hexdigest()[:16]  # included: name the build
     so = compile_shared([ROOT / "tests" / "c" / "spatial3_harness.c", RUNTIME_C], [ROOT / "runtime" / "c"], "spatial3",
                         extra_flags=[f"-DWKT_SOURCES={h}"])

@@ -19,12 +19,13 @@ P_POSE = POSE[:, 3]
 
 @dataclass(frozen=True)
 class Stage:
-    kind: str  # trig_linear | rotation2d | value | wrist | quadratic | general6r | spatial3
+    kind: str  # trig_linear | rotation2d | value | wrist | quadratic | general6r | spatial3 | sp6
     joints: tuple[int, ...]
     # trig_linear (A, B, C); rotation2d (u, v, u0, v0); value (q,); wrist (3x3 M as 9 entries); quadratic (a slide
     # from a distance: (q + B)^2 = D, E the scale of D's rounding); general6r (the six axes' directions and points,
     # 18 + 18, then the product of exponentials [R | p] they must reach, 12: every joint by elimination); spatial3
-    # (three axes' directions and points, 9 + 9, the point x at the joints' zero and its target y: rot rot rot x = y)
+    # (three axes' directions and points, 9 + 9, the point x at the joints' zero and its target y: rot rot rot x = y);
+    # sp6 (subproblem 6's n, h_j, p_j, h_k, p_k, d_j, g, h_l: 3 x 5 + 1 + 3 + 3, planned._sp6_stages)
     exprs: tuple
     title: str
     rule: str
@@ -54,6 +55,8 @@ class Stage:
             return 16
         if self.kind == "spatial3":
             return 4  # a 3R's positions: at most four (Pieper)
+        if self.kind == "sp6":
+            return 4  # a quartic's real roots
         return 2 if self.kind in ("trig_linear", "wrist", "quadratic") else 1
 
     @property
@@ -76,7 +79,9 @@ def stage_output_names(st: Stage) -> list[str]:
             "general6r": [f"{w}{i}{x}" for w in "hr" for i in range(1, 7) for x in "xyz"] +
             [f"g{i}{j}" for i in range(3) for j in range(4)],
             "spatial3": [f"{w}{i}{x}" for w in "hr" for i in "abc" for x in "xyz"] +
-            [f"{p}{x}" for p in "xy" for x in "xyz"]}[st.kind]
+            [f"{p}{x}" for p in "xy" for x in "xyz"],
+            "sp6": [f"{w}{x}" for w in ("n", "h0", "p0", "h4", "p4") for x in "xyz"] + ["d0"] +
+            [f"{w}{x}" for w in ("g", "h5") for x in "xyz"]}[st.kind]
 
 
 def cs_symbols(spec):
@@ -141,8 +146,8 @@ def stage_view(spec) -> list[dict]:
                 "labelling": [list(r) for r in st.labelling]}
         # the angle stages before it: their amplification of the input's rounding widens a wrist's family band and
         # a factored distance stage's double-root band (serial_stages._wrist, _trig_linear)
-        view["amp_joints"] = [j for prior in spec.stages[:k - 1] if prior.kind in ("trig_linear", "rotation2d")
-                              for j in prior.joints]
+        view["amp_joints"] = [j for prior in spec.stages[:k - 1]
+                              if prior.kind in ("trig_linear", "rotation2d", "sp6") for j in prior.joints]
         view["factored"] = st.factored
         nxt = spec.stages[k] if k < len(spec.stages) else None
         view["probe"] = k + 1 if st.probe_next and nxt is not None and nxt.kind == "trig_linear" and any(

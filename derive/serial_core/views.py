@@ -21,10 +21,14 @@ C_RUNTIME_AFTER_STAGES = ("c/serial/sr_ik.c",)
 C_GENERAL6R_FILE = "c/serial/sr_general6r.c"
 PY_GENERAL6R_FILES = ("python/general6r.py", "python/serial_general6r.py")
 C_GENERAL6R_SHARED = ("c/wk_eigen.h", "c/wk_eigen.c", "c/wk_general6r.h", "c/wk_general6r.c")
-# a chain with a spatial3 stage: the spatial 3R's core and the root finder it calls, then its stage solver (inlined)
-C_SPATIAL3_FILES = ("c/poly_real_roots.c", "c/wk_poly_ops.c", "c/wk_spatial3.c", "c/serial/sr_spatial3.c")
-PY_SPATIAL3_FILES = ("python/poly_real_roots.py", "python/chain_poly.py", "python/spatial3.py",
-                     "python/serial_spatial3.py")
+# a chain with a spatial3 or sp6 stage: the root finder and the helpers its core calls, the core, then its stage
+# solver (inlined)
+C_POLY_FILES = ("c/poly_real_roots.c", "c/wk_poly_ops.c", "c/wk_geom3.c")
+PY_POLY_FILES = ("python/poly_real_roots.py", "python/chain_poly.py", "python/geom3.py")
+C_SPATIAL3_FILES = ("c/wk_spatial3.c", "c/serial/sr_spatial3.c")
+PY_SPATIAL3_FILES = ("python/spatial3.py", "python/serial_spatial3.py")
+C_SP6_FILES = ("c/wk_sp6.c", "c/serial/sr_sp6.c")
+PY_SP6_FILES = ("python/sp6.py", "python/serial_sp6.py")
 
 
 IDENTITY_3X4 = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0)
@@ -85,6 +89,10 @@ def py_stage_body(st: dict) -> list[str]:
         shift, width = st["shift"], st["width"]
         return [f"return _spatial3_stage(_k_stage{st['index']}, k >> {shift + width}, (k >> {shift}) & "
                 f"{2 ** width - 1}, {_tuple(st['joints'])}, q, c, s, pose, dp, prev, ws)"]
+    if st["kind"] == "sp6":  # as general6r's: its candidates once per prefix above its bits
+        shift, width = st["shift"], st["width"]
+        return [f"return _sp6_stage(_k_stage{st['index']}, k >> {shift + width}, (k >> {shift}) & "
+                f"{2 ** width - 1}, {_tuple(st['joints'])}, q, c, s, pose, dp, amp, ws)"]
     if st["kind"] == "wrist":
         joints, signs = "(" + ", ".join(map(str, st["joints"])) + ")", "(" + ", ".join(map(str, st["signs"])) + ")"
         mirror = ["if k & 1:  # the second branch mirrors the first (set k - 1's prefix)",
@@ -111,6 +119,12 @@ def c_stage_body(st: dict) -> list[str]:
         return [f"static const int joints[3] = {{ {joints} }};", "(void)amp;",
                 f"return sr_spatial3(sr_k_stage{st['index']}, (long)(k >> {shift + width}), (k >> {shift}) & "
                 f"{2 ** width - 1}, joints, q, c, s, pose, dp, prev, ws, f);"]
+    if st["kind"] == "sp6":  # as general6r's: its candidates once per prefix above its bits
+        shift, width = st["shift"], st["width"]
+        joints = ", ".join(map(str, st["joints"]))
+        return [f"static const int joints[2] = {{ {joints} }};", "(void)prev;",
+                f"return sr_sp6(sr_k_stage{st['index']}, (long)(k >> {shift + width}), (k >> {shift}) & "
+                f"{2 ** width - 1}, joints, q, c, s, pose, dp, amp, ws, f);"]
     size = {"trig_linear": 6 if st.get("factored") else 3, "rotation2d": 4, "value": 1, "wrist": 9,
             "quadratic": 3}[st["kind"]]
     call = f"sr_k_stage{st['index']}(pose, q, c, s, dp, out);"
@@ -167,6 +181,8 @@ def serial_views(ctx: dict) -> dict:
     reuse = bool(ctx.get("mirror_keeps_fk")) and bool(wrist) and wrist[0]["bit"] == 0
     general = any(st["kind"] == "general6r" for st in stages)
     spatial3 = any(st["kind"] == "spatial3" for st in stages)
+    sp6 = any(st["kind"] == "sp6" for st in stages)
+    poly = spatial3 or sp6
     c_flags = {
         "SR_N_STAGES": len(stages),
         "SR_WRIST_STAGE": wrist[0]["index"] - 1 if wrist else -1,
@@ -183,6 +199,7 @@ def serial_views(ctx: dict) -> dict:
         "SR_HAS_SLIDE_QUADRATIC": int(any(st["kind"] == "quadratic" for st in stages)),
         "SR_HAS_GENERAL6R": int(general),
         "SR_HAS_SPATIAL3": int(spatial3),
+        "SR_HAS_SP6": int(sp6),
         "SR_HAS_WRIST_MIRROR": int(bool(wrist) and wrist[0]["bit"] == 0),
         "SR_REUSE_MIRROR_CHECK": int(reuse),
         "SR_N_FOLD_BITS": len(ctx["fold_bits"]),
@@ -245,13 +262,15 @@ def serial_views(ctx: dict) -> dict:
             "c_params_slots": max(1, len(ctx["design_values"])), "c_design_values": ctx["design_values"] or ["0.0"],
             "py_base0": _frame_literal(base0), "py_tool0": _frame_literal(tool0), "design_fields": DESIGN_FIELDS,
             "py_runtime_files": (PY_RUNTIME_FILES[:-1] + (PY_GENERAL6R_FILES if general else ())
-                                 + (PY_SPATIAL3_FILES if spatial3 else ()) + PY_RUNTIME_FILES[-1:]
+                                 + (PY_POLY_FILES if poly else ()) + (PY_SPATIAL3_FILES if spatial3 else ())
+                                 + (PY_SP6_FILES if sp6 else ()) + PY_RUNTIME_FILES[-1:]
                                  + (PY_OWN_RUNTIME_FILES if own else (PY_SELECT_FILE,))),
             "select_doc": ("Joint limits (NULL = the description's limits, as the Python select); nearest valid set "
                            "to previous, or the\n * first regular one (NULL): index or -1." if own else
                            "Joint limits (NULL = none); nearest valid set to previous, or the first regular one "
                            "(NULL): index or -1."),
             "c_runtime_files": C_RUNTIME_FILES + ((C_GENERAL6R_FILE,) if general else ())
-                               + (C_SPATIAL3_FILES if spatial3 else ()),
+                               + (C_POLY_FILES if poly else ()) + (C_SPATIAL3_FILES if spatial3 else ())
+                               + (C_SP6_FILES if sp6 else ()),
             "c_runtime_after_stages": C_RUNTIME_AFTER_STAGES,
             "c_includes": [f.split("/")[-1] for f in C_GENERAL6R_SHARED if f.endswith(".h")] if general else []}

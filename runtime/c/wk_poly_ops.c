@@ -1,4 +1,4 @@
-/* wristkin: polynomial helpers of the spatial 3R (wk_spatial3.c) and subproblem-6 (chain/ck_sp6.c) kernels,
+/* wristkin: polynomial helpers of the spatial 3R (wk_spatial3.c) and subproblem-6 (wk_sp6.c) cores,
  * ascending coefficients, degree <= 8. Included verbatim into generated C99 sources (static functions). */
 /* out += s p (polynomials in t, ascending coefficients) */
 static void wk_poly_axpy(double *out, const double *p, int np, double s)

@@ -10,9 +10,9 @@
  * on the point bring a simple root to rounding. A double root of the polynomial with the target off axis a is
  * split into the pair it merged (wk_s3_split): near that axis the pair differs by ~ the distance, below the
  * polynomial's sqrt(eps). Python's twin: runtime/python/spatial3.py, step for step.
- * Needs poly_real_roots.c, wk_poly_ops.c and wristkin_runtime's flags before it. The interpreted chain's ck_spatial3 and the
- * serial arm's spatial3 stage (sr_spatial3.c) call it; tests/test_spatial3_runtime.py tests it as it is
- * (tests/c/spatial3_harness.c). */
+ * Needs poly_real_roots.c, wk_poly_ops.c, wk_geom3.c and wristkin_runtime's flags before it. The interpreted chain's
+ * ck_spatial3 and the serial arm's spatial3 stage (sr_spatial3.c) call it; tests/test_spatial3_runtime.py tests it
+ * as it is (tests/c/spatial3_harness.c). */
 #define WK_S3_MAX 12            /* candidates: eight roots, q_b = pi, and the pairs split from merged ones */
 #define WK_S3_REFINE_STEPS 8    /* Newton steps at most (spatial3.py's S3_REFINE_STEPS says why) */
 #define WK_S3_SPLIT_STEPS 8     /* Newton steps from each of a merged pair's two starts */
@@ -24,53 +24,17 @@
 #define WK_S3_CURVATURE_STEP 1e-3 /* rad: the central difference of the point's second derivative */
 #define WK_S3_CIRCLE_TOL 1e-6   /* |(cos, sin)| of q_c off 1 by more: the root at infinity, or a poorly resolved one */
 
-static double wk_s3_dot(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void wk_s3_cross(const double *a, const double *b, double *o)
-{
-    const double x = a[1] * b[2] - a[2] * b[1], y = a[2] * b[0] - a[0] * b[2], z = a[0] * b[1] - a[1] * b[0];
-    o[0] = x;
-    o[1] = y;
-    o[2] = z;
-}
-
-/* o = a + s b */
-static void wk_s3_axpy(const double *a, double s, const double *b, double *o)
-{
-    o[0] = a[0] + s * b[0];
-    o[1] = a[1] + s * b[1];
-    o[2] = a[2] + s * b[2];
-}
-
-/* p turned by q about the line (h, r): r + R (p - r), R by Rodrigues */
-static void wk_s3_turn(const double *h, const double *r, double q, const double *p, double *o)
-{
-    const double c = cos(q), s = sin(q);
-    double d[3], hx[3], hd;
-    d[0] = p[0] - r[0];
-    d[1] = p[1] - r[1];
-    d[2] = p[2] - r[2];
-    hd = wk_s3_dot(h, d) * (1.0 - c);
-    wk_s3_cross(h, d, hx);
-    o[0] = r[0] + c * d[0] + s * hx[0] + hd * h[0];
-    o[1] = r[1] + c * d[1] + s * hx[1] + hd * h[1];
-    o[2] = r[2] + c * d[2] + s * hx[2] + hd * h[2];
-}
-
 /* Rows of u . R(h2, q2) v_j over (1, cos q2, sin q2), for each v_j: (h.u)(h.v), u.v - (h.u)(h.v), u.(h x v) */
 static void wk_s3_bilinear(const double *h2, const double *u, const double (*vs)[3], double m[3][3])
 {
-    const double hu = wk_s3_dot(h2, u);
+    const double hu = wk_g3_dot(h2, u);
     int j;
     for (j = 0; j < 3; ++j) {
         double hx[3];
-        wk_s3_cross(h2, vs[j], hx);
-        m[0][j] = hu * wk_s3_dot(h2, vs[j]);
-        m[1][j] = wk_s3_dot(u, vs[j]) - hu * wk_s3_dot(h2, vs[j]);
-        m[2][j] = wk_s3_dot(u, hx);
+        wk_g3_cross(h2, vs[j], hx);
+        m[0][j] = hu * wk_g3_dot(h2, vs[j]);
+        m[1][j] = wk_g3_dot(u, vs[j]) - hu * wk_g3_dot(h2, vs[j]);
+        m[2][j] = wk_g3_dot(u, hx);
     }
 }
 
@@ -91,15 +55,14 @@ static double wk_s3_point(const double (*h0)[3], const double (*r0)[3], const do
     /* the last joint first: each turn moves the point and the lines after it; the lines before keep theirs */
     for (i = 2; i >= 0; --i) {
         int k;
-        wk_s3_turn(h0[i], r0[i], q[i], p, p);
+        wk_g3_turn(h0[i], r0[i], q[i], p, p);
         for (k = i + 1; k < 3; ++k) {
-            static const double origin[3] = {0.0, 0.0, 0.0};
-            wk_s3_turn(h0[i], r0[i], q[i], r[k], r[k]);
-            wk_s3_turn(h0[i], origin, q[i], h[k], h[k]); /* a direction turns about the axis through the origin */
+            wk_g3_turn(h0[i], r0[i], q[i], r[k], r[k]);
+            wk_g3_turn_dir(h0[i], q[i], h[k], h[k]);
         }
     }
-    wk_s3_axpy(p, -1.0, y, d);
-    return sqrt(wk_s3_dot(d, d));
+    wk_g3_axpy(p, -1.0, y, d);
+    return sqrt(wk_g3_dot(d, d));
 }
 
 /* Newton steps on rot_a rot_b rot_c x = y (Cramer's rule on the columns h_i x (p - r_i)): a step is kept only while
@@ -116,18 +79,18 @@ static double wk_s3_refine(const double (*h0)[3], const double (*r0)[3], const d
         int m, half;
         for (i = 0; i < 3; ++i) {
             double d[3];
-            wk_s3_axpy(p, -1.0, r[i], d);
-            wk_s3_cross(h[i], d, c[i]);
+            wk_g3_axpy(p, -1.0, r[i], d);
+            wk_g3_cross(h[i], d, c[i]);
         }
-        wk_s3_axpy(y, -1.0, p, b);
-        wk_s3_cross(c[1], c[2], x12);
-        det = wk_s3_dot(c[0], x12);
+        wk_g3_axpy(y, -1.0, p, b);
+        wk_g3_cross(c[1], c[2], x12);
+        det = wk_g3_dot(c[0], x12);
         if (!(fabs(det) > eps3)) break;
-        wk_s3_cross(b, c[2], bx2);
-        wk_s3_cross(c[1], b, c1b);
-        dq[0] = wk_s3_dot(b, x12) / det;
-        dq[1] = wk_s3_dot(c[0], bx2) / det;
-        dq[2] = wk_s3_dot(c[0], c1b) / det;
+        wk_g3_cross(b, c[2], bx2);
+        wk_g3_cross(c[1], b, c1b);
+        dq[0] = wk_g3_dot(b, x12) / det;
+        dq[1] = wk_g3_dot(c[0], bx2) / det;
+        dq[2] = wk_g3_dot(c[0], c1b) / det;
         if (halvings > 0) { /* damped: at most WK_S3_SPLIT_STEP_MAX in any joint (a near-singular J's step is huge) */
             const double big = fmax(fabs(dq[0]), fmax(fabs(dq[1]), fabs(dq[2])));
             if (big > WK_S3_SPLIT_STEP_MAX)
@@ -151,18 +114,6 @@ static double wk_s3_refine(const double (*h0)[3], const double (*r0)[3], const d
         err = err2;
     }
     return err;
-}
-
-/* t with rot(k, t) p = q seen normal to k (subproblem 1); 0 when either is within eps * scale of the axis */
-static int wk_s3_sp1(const double *k, const double *p, const double *q, double eps_scale, double *t)
-{
-    double pp[3], qq[3], c[3];
-    wk_s3_axpy(p, -wk_s3_dot(k, p), k, pp);
-    wk_s3_axpy(q, -wk_s3_dot(k, q), k, qq);
-    if (sqrt(wk_s3_dot(pp, pp)) <= eps_scale || sqrt(wk_s3_dot(qq, qq)) <= eps_scale) return 0;
-    wk_s3_cross(pp, qq, c);
-    *t = atan2(wk_s3_dot(k, c), wk_s3_dot(pp, qq));
-    return 1;
 }
 
 /* The largest joint difference of two sets (wrapped) */
@@ -203,31 +154,30 @@ static int wk_s3_pair_converges(const double (*h)[3], const double (*r)[3], cons
 static int wk_s3_split(const double (*h)[3], const double (*r)[3], const double *x, const double *y,
                        const double *yr, double rho, double scale, double qb, double qc, double q[2][3])
 {
-    static const double origin[3] = {0.0, 0.0, 0.0};
     double w[3], hc[3], rc[3], jb[3], jc[3], normal[3], d[3], v0[3], size, mid, disc, half;
     int k, m;
-    wk_s3_turn(h[2], r[2], qc, x, w);
-    wk_s3_turn(h[1], r[1], qb, w, w);
-    wk_s3_turn(h[1], origin, qb, h[2], hc);
-    wk_s3_turn(h[1], r[1], qb, r[2], rc);
-    wk_s3_axpy(w, -1.0, r[1], jb);
-    wk_s3_cross(h[1], jb, jb);
-    wk_s3_axpy(w, -1.0, rc, jc);
-    wk_s3_cross(hc, jc, jc);
-    wk_s3_cross(jb, jc, normal);
-    wk_s3_cross(normal, h[0], d);
-    size = sqrt(wk_s3_dot(d, d));
+    wk_g3_turn(h[2], r[2], qc, x, w);
+    wk_g3_turn(h[1], r[1], qb, w, w);
+    wk_g3_turn_dir(h[1], qb, h[2], hc);
+    wk_g3_turn(h[1], r[1], qb, r[2], rc);
+    wk_g3_axpy(w, -1.0, r[1], jb);
+    wk_g3_cross(h[1], jb, jb);
+    wk_g3_axpy(w, -1.0, rc, jc);
+    wk_g3_cross(hc, jc, jc);
+    wk_g3_cross(jb, jc, normal);
+    wk_g3_cross(normal, h[0], d);
+    size = sqrt(wk_g3_dot(d, d));
     if (!(size > 0.0)) return 0;
     for (m = 0; m < 3; ++m) d[m] /= size;
-    wk_s3_axpy(w, -1.0, r[0], v0);
-    wk_s3_axpy(v0, -wk_s3_dot(h[0], v0), h[0], v0); /* w's offset from axis a, normal to it */
-    mid = -wk_s3_dot(v0, d);
-    disc = mid * mid - wk_s3_dot(v0, v0) + rho * rho;
+    wk_g3_axpy(w, -1.0, r[0], v0);
+    wk_g3_axpy(v0, -wk_g3_dot(h[0], v0), h[0], v0); /* w's offset from axis a, normal to it */
+    mid = -wk_g3_dot(v0, d);
+    disc = mid * mid - wk_g3_dot(v0, v0) + rho * rho;
     half = disc > 0.0 ? sqrt(disc) : rho;
     for (k = 0; k < 2; ++k) {
         double p[3];
-        wk_s3_axpy(v0, k == 0 ? mid + half : mid - half, d, p);
-        if (!wk_s3_sp1(h[0], p, yr, 0.0, &q[k][0])) return 0;
+        wk_g3_axpy(v0, k == 0 ? mid + half : mid - half, d, p);
+        if (!wk_g3_sp1(h[0], p, yr, 0.0, &q[k][0])) return 0;
         q[k][1] = qb;
         q[k][2] = qc;
     }
@@ -242,8 +192,8 @@ static int wk_s3_largest_cross(const double (*vs)[3], double *o)
     int k, m;
     for (k = 0; k < 3; ++k) {
         double n2;
-        wk_s3_cross(vs[pairs[k][0]], vs[pairs[k][1]], c);
-        n2 = wk_s3_dot(c, c);
+        wk_g3_cross(vs[pairs[k][0]], vs[pairs[k][1]], c);
+        n2 = wk_g3_dot(c, c);
         if (n2 > best) {
             best = n2;
             for (m = 0; m < 3; ++m) o[m] = c[m];
@@ -269,8 +219,8 @@ static int wk_s3_pair(const double (*h)[3], const double (*r)[3], const double *
     (void)wk_s3_point(h, r, q0, x, y, p0, hh, rr);
     for (i = 0; i < 3; ++i) {
         double d[3];
-        wk_s3_axpy(p0, -1.0, rr[i], d);
-        wk_s3_cross(hh[i], d, cols[i]);
+        wk_g3_axpy(p0, -1.0, rr[i], d);
+        wk_g3_cross(hh[i], d, cols[i]);
     }
     for (i = 0; i < 3; ++i)
         for (m = 0; m < 3; ++m) rows[i][m] = cols[m][i];
@@ -282,10 +232,10 @@ static int wk_s3_pair(const double (*h)[3], const double (*r)[3], const double *
     (void)wk_s3_point(h, r, qs, x, y, minus, hh, rr);
     for (m = 0; m < 3; ++m)
         hm[m] = (plus[m] - 2.0 * p0[m] + minus[m]) / (WK_S3_CURVATURE_STEP * WK_S3_CURVATURE_STEP);
-    curv = wk_s3_dot(u, hm);
+    curv = wk_g3_dot(u, hm);
     if (!(fabs(curv) > 0.0)) return 0;
-    wk_s3_axpy(y, -1.0, p0, res);
-    s2 = 2.0 * wk_s3_dot(u, res) / curv;
+    wk_g3_axpy(y, -1.0, p0, res);
+    s2 = 2.0 * wk_g3_dot(u, res) / curv;
     if (!(s2 > 0.0)) return 0;
     half = sqrt(s2);
     for (k = 0; k < 2; ++k)
@@ -307,24 +257,24 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
     double p[3][3], pq[3][3], dt[3], ht[3], det[5], nc[5], ns[5], a5[5], poly[9], roots[8], ang[9];
     unsigned rf[8], af[9];
     int i, j, nroot, status = 0, na = 0, out = 0;
-    wk_s3_axpy(x, -1.0, r3, v);
-    hv = wk_s3_dot(h3, v);
-    wk_s3_axpy(r3, hv, h3, vb[0]); /* z - r2 over (1, cos q_c, sin q_c) */
-    wk_s3_axpy(vb[0], -1.0, r2, vb[0]);
-    wk_s3_axpy(v, -hv, h3, vb[1]);
-    wk_s3_cross(h3, v, vb[2]);
-    wk_s3_axpy(r2, -1.0, r1, u);
+    wk_g3_axpy(x, -1.0, r3, v);
+    hv = wk_g3_dot(h3, v);
+    wk_g3_axpy(r3, hv, h3, vb[0]); /* z - r2 over (1, cos q_c, sin q_c) */
+    wk_g3_axpy(vb[0], -1.0, r2, vb[0]);
+    wk_g3_axpy(v, -hv, h3, vb[1]);
+    wk_g3_cross(h3, v, vb[2]);
+    wk_g3_axpy(r2, -1.0, r1, u);
     wk_s3_bilinear(h2, u, (const double (*)[3])vb, f);
     wk_s3_bilinear(h2, h1, (const double (*)[3])vb, g);
     for (i = 0; i < 3; ++i)
         for (j = 0; j < 3; ++j) f[i][j] *= 2.0;
-    f[0][0] += wk_s3_dot(vb[0], vb[0]) + wk_s3_dot(vb[1], vb[1]) + wk_s3_dot(u, u);
-    f[0][1] += 2.0 * wk_s3_dot(vb[0], vb[1]);
-    f[0][2] += 2.0 * wk_s3_dot(vb[0], vb[2]);
-    g[0][0] += wk_s3_dot(h1, u);
-    wk_s3_axpy(y, -1.0, r1, yr);
-    dtarget = wk_s3_dot(yr, yr);
-    htarget = wk_s3_dot(h1, yr);
+    f[0][0] += wk_g3_dot(vb[0], vb[0]) + wk_g3_dot(vb[1], vb[1]) + wk_g3_dot(u, u);
+    f[0][1] += 2.0 * wk_g3_dot(vb[0], vb[1]);
+    f[0][2] += 2.0 * wk_g3_dot(vb[0], vb[2]);
+    g[0][0] += wk_g3_dot(h1, u);
+    wk_g3_axpy(y, -1.0, r1, yr);
+    dtarget = wk_g3_dot(yr, yr);
+    htarget = wk_g3_dot(h1, yr);
     /* (1, cos q_b, sin q_b) times (1 + t^2): (1 + t^2, 1 - t^2, 2 t), polynomials in t = tan(q_b / 2) */
     for (j = 0; j < 3; ++j)
         for (i = 0; i < 3; ++i) {
@@ -359,8 +309,8 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
     }
     ang[na] = 3.14159265358979323846; /* tan(q_b / 2) = infinity is no root of the polynomial: tried directly */
     af[na++] = 0u;
-    wk_s3_axpy(yr, -htarget, h1, yr_perp);
-    rho = sqrt(wk_s3_dot(yr_perp, yr_perp)); /* the target's distance from axis a (|yr|^2 - (h.yr)^2 cancels) */
+    wk_g3_axpy(yr, -htarget, h1, yr_perp);
+    rho = sqrt(wk_g3_dot(yr_perp, yr_perp)); /* the target's distance from axis a (|yr|^2 - (h.yr)^2 cancels) */
     for (i = 0; i < na && out < WK_S3_MAX; ++i) {
         const double cb = cos(ang[i]), sb = sin(ang[i]);
         double pv[3], qv[3], dd, cc, ss, w[3], t1 = 0.0;
@@ -387,11 +337,11 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
                 continue;
             }
         }
-        wk_s3_turn(h3, r3, q[out][2], x, w);
-        wk_s3_turn(h2, r2, q[out][1], w, w);
-        wk_s3_axpy(w, -1.0, r1, w);
+        wk_g3_turn(h3, r3, q[out][2], x, w);
+        wk_g3_turn(h2, r2, q[out][1], w, w);
+        wk_g3_axpy(w, -1.0, r1, w);
         fl[out] = af[i];
-        if (wk_s3_sp1(h1, w, yr, eps * scale, &t1)) {
+        if (wk_g3_sp1(h1, w, yr, eps * scale, &t1)) {
             q[out][0] = t1;
             if ((fl[out] & WK_FLAG_DOUBLE_ROOT) && out + 2 <= WK_S3_MAX) {
                 /* a merged pair elsewhere: the surface near-tangent to the target's circle, split along J's null

@@ -1,17 +1,15 @@
-"""Subproblem 6 (two joints from two invariants): its polynomial, near-double root split and Newton.
+"""Subproblem 6 for the interpreted plan's sp6 op: the chain-free core (sp6.py) with the chain's tolerances, then
+joint l about the group's axis and the rest of the plan.
 
-A wristkin runtime source: every user robot's generated module inlines it from the marker line on
-(derive/runtime_files.py), after the robot's constants; above the marker, what it reads from them and from the
-other sources (chain_stand_in.py: a stand-in robot), so that it is linted and tested as it is
+A wristkin runtime source: every user robot's generated module whose plan has an sp6 op inlines it from the marker
+line on (derive/runtime_files.py), after the robot's constants and sp6.py; above the marker, what it reads from them
+and from the other sources (chain_stand_in.py: a stand-in robot), so that it is linted and tested as it is
 (tests/test_chain_runtime.py)."""
 
 from __future__ import annotations
 
-import math
-
 from chain_points import _direction
-from chain_poly import _poly_add, _poly_mul, _scale3
-from chain_rigid import _cross, _dot, _mm, _mt, _mtv, _mv, _norm, _rot, _scale, _sub
+from chain_rigid import _cross, _dot, _mm, _mt, _mtv, _mv, _norm, _rot, _sub
 from chain_stages import _OP_STAGES
 from chain_stand_in import (
     DEGENERATE_EPS,
@@ -21,235 +19,20 @@ from chain_stand_in import (
     FLAG_SINGULAR_INVERSE,
     ON_AXIS_TOL,
     SCALE,
-    _wrap,
+    STAGE_NOISE,
+    TANGENT_TOL,
 )
-from chain_subproblems import _sp1, _sp4
-from poly_real_roots import _POLY_FLAG_DOUBLE, _poly_real_roots
+from chain_subproblems import _sp1
+from sp6 import _merged, _sp6_core, _sp6_split
 
 # wristkin: inlined from here
-# q0 = pi (tan(q0 / 2) infinite) is a candidate of subproblem 6 when cos^2 + sin^2 of the q4 it gives is 1 within
-# this: rounding of the 2x2 solve (a root of the quartic near pi would pass a looser test and be found twice)
-SP6_AT_PI_TOL = 1e-9
+# the core's tolerances (sp6._sp6_core): the chain's, with subproblem 4's bands as _trig widens them for noise 1
+SP6_TOLS = (SCALE, DEGENERATE_EPS, max(DOUBLE_ROOT_TOL, 2.0 * STAGE_NOISE), max(TANGENT_TOL, STAGE_NOISE), ON_AXIS_TOL)
 
 
 def _sp6(nv, h0, p0, h4, p4, d0, e0, g, h5):
-    """(q0, q4, flags, order) with n.rot(h0, -q0) p0 - n.rot(h4, q4) p4 = d0 and n.rot(h0, -q0) g - n.rot(h4, q4) h5
-    = e0 (subproblem 6: two equations, each linear in the cosines and sines of both angles). (cos q4, sin q4) is
-    affine in (cos q0, sin q0) by Cramer's rule; cos^2 + sin^2 = 1 is a quartic in tan(q0 / 2)."""
-    def coef(k, p, sign):
-        kp = _dot(k, p)
-        perp = _sub(p, _scale(k, kp))
-        return _dot(nv, perp), sign * _dot(nv, _cross(k, p)), kp * _dot(nv, k)
-    a1, b1, k1 = coef(h0, p0, -1.0)
-    c1, d1, m1 = coef(h4, p4, 1.0)
-    a2, b2, k2 = coef(h0, g, -1.0)
-    c2, d2, m2 = coef(h4, h5, 1.0)
-    # a c0 + b s0 - (c c4 + d s4) = rhs
-    e1, e2 = d0 - k1 + m1, e0 - k2 + m2
-    det = c1 * d2 - d1 * c2
-    if abs(det) <= DEGENERATE_EPS * SCALE:
-        return []
-    # c4 det = (a1 c0 + b1 s0 - e1) d2 - d1 (a2 c0 + b2 s0 - e2); s4 det = c1 (a2 c0 + b2 s0 - e2) - c2 (...1)
-    al = (-e1 * d2 + d1 * e2, a1 * d2 - d1 * a2, b1 * d2 - d1 * b2)
-    be = (-c1 * e2 + c2 * e1, c1 * a2 - c2 * a1, c1 * b2 - c2 * b1)
-    apoly = ([1.0, 0.0, 1.0], [1.0, 0.0, -1.0], [0.0, 2.0, 0.0])
-    pa = _poly_add(_poly_add(_scale3(apoly[0], al[0]), _scale3(apoly[1], al[1])), _scale3(apoly[2], al[2]))
-    pb = _poly_add(_poly_add(_scale3(apoly[0], be[0]), _scale3(apoly[1], be[1])), _scale3(apoly[2], be[2]))
-    pd = _scale3(apoly[0], det)
-    poly = _poly_add(_poly_add(_poly_mul(pa, pa), _poly_mul(pb, pb)), _poly_mul(pd, pd), -1.0)
-    roots, rflags, _status = _poly_real_roots(poly)
-    # tan(q0 / 2) = infinity is no root of the polynomial: q0 = pi is tried directly, kept only when it solves the
-    # system to rounding (else a root near pi, which the polynomial has, would be taken twice)
-    cands = [(2.0 * math.atan(r), FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE if fl & _POLY_FLAG_DOUBLE else 0, 1e-6)
-             for r, fl in zip(roots, rflags, strict=True)] + [(math.pi, 0, SP6_AT_PI_TOL)]
-    regular = []
-    for q0, fl, tol in cands:
-        c0, s0 = math.cos(q0), math.sin(q0)
-        cc = (al[0] + al[1] * c0 + al[2] * s0) / det
-        ss = (be[0] + be[1] * c0 + be[2] * s0) / det
-        if abs(math.hypot(cc, ss) - 1.0) > tol:  # the root at infinity, or a poorly resolved one
-            continue
-        q4 = math.atan2(ss, cc)
-        near = abs(_dot(nv, _mv(_rot(h4, q4), h5))) >= SP6_NEAR_WRIST
-        if fl and near:  # a merged double root near the wrist singularity: its two roots, each to ~eps (a merged
-            # root 3e-7 rad off the singularity verified within IK_VERIFY_TOL with q5 0.05 rad off)
-            pair = _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4)
-            if pair:
-                regular += [(a, b, (fl & ~FLAG_DOUBLE_ROOT) | _merged(pair) | FLAG_SINGULAR_INVERSE, 1)
-                            for a, b in pair]
-                continue
-        order = 2
-        if not fl:  # a merged double root far from the wrist stays (Newton is ill-conditioned there; its split is
-            # the caller's when it verifies nothing)
-            if near:  # on the second's normal parts: q4 to ~eps
-                q0, q4 = _sp6_newton_perp(nv, h0, p0, h4, p4, d0, g, h5, q0, q4)
-                order = 1
-            else:
-                q0, q4 = _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4)
-        regular.append((q0, q4, fl, order))
-    # The wrist singularity: where rot(h4, q4) h5 = +-n the second equation holds for every q0 (its quartic has a
-    # double root there, which rounding may hide), so those q4 are tried directly with q0 from the first
-    # equation alone. Where the second then holds to rounding (the pose's axis within ON_AXIS_TOL of +-n, read from
-    # the cross product) the configuration is the singular family; where it holds within the double-root tolerance
-    # of subproblem 4 (within ~1e-6 rad) the pose is near it, and the two roots there come from the split (each to
-    # ~eps; the quartic resolves them to sqrt(eps), and a family member searched over the grid stood in for them,
-    # 2.7 rad off, at 180x the median call). A regular root within 1e-6 of either is the same configuration and
-    # is dropped.
-    singular, split, anchors = [], [], []
-    t4 = _sp1(h4, h5, nv, 1.0)
-    if t4 is not None:
-        for q4 in (t4, t4 + math.pi):
-            side = _dot(nv, _mv(_rot(h4, q4), h5))
-            if abs(abs(side) - 1.0) > 1e-12:
-                continue
-            for t0, fl in _sp4(nv, h0, p0, d0 + _dot(nv, _mv(_rot(h4, q4), p4)), SCALE):
-                q0 = -t0
-                # the second equation at this q0: n . rot(h0, -q0) g must be n . R4 h5 = side (+-1)
-                w = _mtv(_rot(h0, q0), g)
-                dn = _dot(nv, w)
-                if dn * side > 0.0 and 1.0 - dn * dn <= DOUBLE_ROOT_TOL:
-                    anchors.append((q0, q4))
-                    if _norm(_cross(nv, w)) <= ON_AXIS_TOL:  # closed-form inputs: rounding, not FAMILY_TOL's noise
-                        singular.append((q0, _wrap(q4), fl | FLAG_SINGULAR_INVERSE, 2))
-                    else:
-                        pair = _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4)
-                        split += [(a, b, fl | _merged(pair) | FLAG_SINGULAR_INVERSE, 1) for a, b in pair]
-    # a regular root is dropped as the same configuration when within 1e-6 of a candidate, or within SP6_SAME_ROOT
-    # of a split root (one 1.03e-6 from its candidate was returned twice, and the generating set fell past MAX_IK)
-    kept = [r for r in regular if not (_within(r, anchors, 1e-6) or _within(r, split, SP6_SAME_ROOT))]
-    return kept + split + singular
-
-
-def _within(root, others, tol):
-    """Whether (q0, q4) of root is within tol of one of others' in both angles."""
-    return any(abs(_wrap(root[0] - o[0])) <= tol and abs(_wrap(root[1] - o[1])) <= tol for o in others)
-
-
-# |n . rot(h4, q4) h5| at or above this: the wrist near its singularity (|n . z5| = 1 there), where a root of the
-# quartic is refined on the second equation's parts normal to n (_sp6_newton_perp); below it their difference
-# |n x w0|^2 - |n x z5|^2 = (n.z5 - n.w0)(n.z5 + n.w0) loses the factor n.z5 + n.w0 ~ 2 n.z5
-SP6_NEAR_WRIST = 0.5
-
-# a regular root within this of a split root near the wrist singularity is that root found twice (both are refined
-# to ~eps; two distinct roots there are ~delta apart and both the split's)
-SP6_SAME_ROOT = 1e-9
-
-# Newton steps on subproblem 6's equations from a root (quadratic convergence from a root of the quartic or of the
-# local model: 3 suffice)
-SP6_NEWTON_STEPS = 3
-
-
-def _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4):
-    """(F1, F2) of subproblem 6 without the constants, and their gradients."""
-    r0, r4 = _rot(h0, -q0), _rot(h4, q4)
-    w0, wg, z4, z5 = _mv(r0, p0), _mv(r0, g), _mv(r4, p4), _mv(r4, h5)
-    f = (_dot(nv, w0) - _dot(nv, z4), _dot(nv, wg) - _dot(nv, z5))
-    jac = ((-_dot(nv, _cross(h0, w0)), -_dot(nv, _cross(h4, z4))),
-           (-_dot(nv, _cross(h0, wg)), -_dot(nv, _cross(h4, z5))))
-    return f, jac
-
-
-def _sp6_normal_parts(nv, h0, h4, g, h5, q0, q4):
-    """The second equation's parts normal to n at (q0, q4): u = n x w0, r = n x z5 (w0 = rot(h0, -q0) g,
-    z5 = rot(h4, q4) h5) and their derivatives -n x (h0 x w0) along q0, n x (h4 x z5) along q4 (without the sign)."""
-    w0, z5 = _mv(_rot(h0, -q0), g), _mv(_rot(h4, q4), h5)
-    return (_cross(nv, w0), _cross(nv, z5), _cross(nv, _cross(h0, w0)), _cross(nv, _cross(h4, z5)))
-
-
-def _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4):
-    """The two roots of subproblem 6 near (q0, q4), a merged near-double root (a double root of the quartic, or
-    the wrist singularity's candidate near, not at, it) that verified nothing. Along the first equation's solution
-    curve through it (tangent t, arc s) the second, n.w0 = n.z5 for the unit vectors w0 = rot(h0, -q0) g and
-    z5 = rot(h4, q4) h5, is read as |n x w0|^2 = |n x z5|^2: near the singularity both n-components are stationary
-    at +-1 and their difference (~delta^2) is read only to eps, so its roots to sqrt(eps); the parts normal to n
-    (~delta) are read to eps each. To second order in s that is qa s^2 + qb s + qc = 0 with u = n x w0, r = n x z5
-    and their derivatives along t; its two roots, polished by Newton on both equations, are the nearby solutions,
-    ~delta apart and each to ~eps (Newton on the same normal parts: _sp6_newton_perp). Where the two curves are
-    near tangent the pair merges: one root, a double one (callers keep FLAG_DOUBLE_ROOT)."""
-    (f1, _f2), ((a, b), _) = _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4)
-    gn = math.hypot(a, b)
-    if gn <= DEGENERATE_EPS * SCALE:
-        return []
-    # onto the first equation's curve (one Newton step along its gradient), then along its tangent t
-    r = -(f1 - d0) / gn
-    q0, q4 = q0 + r * a / gn, q4 + r * b / gn
-    t0, t4 = -b / gn, a / gn
-    u, rz, du0, dr4 = _sp6_normal_parts(nv, h0, h4, g, h5, q0, q4)
-    du, dr = _scale(du0, -t0), _scale(dr4, t4)  # along the tangent: d w0 / d q0 = -h0 x w0, d z5 / d q4 = h4 x z5
-    qa = _dot(du, du) - _dot(dr, dr)
-    qb = 2.0 * (_dot(u, du) - _dot(rz, dr))
-    qc = _dot(u, u) - _dot(rz, rz)
-    disc = qb * qb - 4.0 * qa * qc
-    if qa == 0.0 or not math.isfinite(disc):
-        return []
-    if disc > 0.0:
-        qq = -0.5 * (qb + math.copysign(math.sqrt(disc), qb))  # the larger root's numerator: no cancellation
-        steps = (qq / qa, qc / qq)
-    else:  # the curve's tangent touches the second's pair of lines: one double root at the vertex (the model's
-        # cubic term, ~|s|^3, moved the discriminant below 0 by 3e-6 of qb^2 at delta = 1e-6)
-        steps = (-0.5 * qb / qa,)
-    out = []
-    for s_ in steps:
-        x0, x4 = _sp6_newton_perp(nv, h0, p0, h4, p4, d0, g, h5, q0 + s_ * t0, q4 + s_ * t4)
-        out.append((_wrap(x0), _wrap(x4)))
-    return out
-
-
-def _merged(pair):
-    """FLAG_DOUBLE_ROOT when the split returned its pair merged (one root), else 0."""
-    return FLAG_DOUBLE_ROOT if len(pair) == 1 else 0
-
-
-def _sp6_newton(nv, h0, p0, h4, p4, d0, e0, g, h5, q0, q4):
-    """(q0, q4) after Newton steps on both equations of subproblem 6, each kept only when it lowers the residual:
-    the quartic resolves two roots ~delta apart only to ~sqrt(eps) in tan(q0 / 2), the equations to eps / delta
-    in the angles, and the decomposition's later ops need the better one near the wrist singularity."""
-    (f1, f2), jac = _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4)
-    res = max(abs(f1 - d0), abs(f2 - e0))
-    for _ in range(SP6_NEWTON_STEPS):
-        (ja, jb), (jc, jd) = jac
-        dt = ja * jd - jb * jc
-        if res == 0.0 or dt == 0.0:
-            break
-        r1, r2 = f1 - d0, f2 - e0
-        n0, n4 = q0 - (jd * r1 - jb * r2) / dt, q4 - (ja * r2 - jc * r1) / dt
-        (f1, f2), jac = _sp6_eval(nv, h0, p0, h4, p4, g, h5, n0, n4)
-        new = max(abs(f1 - d0), abs(f2 - e0))
-        if not new < res:
-            break
-        q0, q4, res = n0, n4, new
-    return q0, q4
-
-
-def _sp6_newton_perp(nv, h0, p0, h4, p4, d0, g, h5, q0, q4):
-    """(q0, q4) after Newton steps on the first equation and the second read as |n x w0|^2 - |n x z5|^2 (its parts
-    normal to n: _sp6_split), each kept only when it lowers the residuals measured over their gradients (metres and
-    a squared sine: compared raw, the first's rounding stopped the steps with q4 1e-11 off at delta = 3e-6). Near
-    the wrist singularity the second's n-components are stationary, so Newton on them moves q4 by eps / delta
-    (3.8e-10 at delta = 3e-7, which turned q5's angle 1e-4 off); the normal parts' residual is eps delta against a
-    gradient ~delta: q4 to ~eps."""
-    def resid(a0, a4):
-        u, rz, du0, dr4 = _sp6_normal_parts(nv, h0, h4, g, h5, a0, a4)
-        w, z4 = _mv(_rot(h0, -a0), p0), _mv(_rot(h4, a4), p4)
-        f = (_dot(nv, w) - _dot(nv, z4) - d0, _dot(u, u) - _dot(rz, rz))
-        jac = ((-_dot(nv, _cross(h0, w)), -_dot(nv, _cross(h4, z4))), (-2.0 * _dot(u, du0), -2.0 * _dot(rz, dr4)))
-        return f, jac
-    def size(f, jac):  # each residual over its gradient: a distance in radians (the two differ in units)
-        return max(abs(f[0]) / max(math.hypot(*jac[0]), 1e-300), abs(f[1]) / max(math.hypot(*jac[1]), 1e-300))
-    f, jac = resid(q0, q4)
-    res = size(f, jac)
-    for _ in range(SP6_NEWTON_STEPS):
-        (ja, jb), (jc, jd) = jac
-        dt = ja * jd - jb * jc
-        if res == 0.0 or dt == 0.0:
-            break
-        n0, n4 = q0 - (jd * f[0] - jb * f[1]) / dt, q4 - (ja * f[1] - jc * f[0]) / dt
-        f, jac = resid(n0, n4)
-        new = size(f, jac)
-        if not new < res:
-            break
-        q0, q4, res = n0, n4, new
-    return q0, q4
+    """(q0, q4, flags, order) of subproblem 6 (sp6._sp6_core) with the chain's tolerances."""
+    return _sp6_core(nv, h0, p0, h4, p4, d0, e0, g, h5, SP6_TOLS)
 
 
 def _sp6_stage(ch, g, prev, op, x, y, q, count, go_on, family, params=()):
@@ -284,7 +67,7 @@ def _sp6_stage(ch, g, prev, op, x, y, q, count, go_on, family, params=()):
             family(f | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE, place, None if prev is None else prev[ll])
         if count() == before and may_split and f & FLAG_SINGULAR_INVERSE:
             # a merged near-double root that verified nothing: the two roots it merged
-            pair = _sp6_split(nv, h0, p0, h4, p4, d0, g5, h5, q0, q4)
+            pair = _sp6_split(nv, h0, p0, h4, p4, d0, g5, h5, q0, q4, SP6_TOLS)
             for s0, s4 in pair:
                 sp6_set(s0, s4, (f & ~FLAG_DOUBLE_ROOT) | _merged(pair) | FLAG_SINGULAR_INVERSE, 1, may_split=False)
 

@@ -20,6 +20,7 @@ import math
 
 from _runtime import FLAG_DOUBLE_ROOT, FLAG_INDETERMINATE, FLAG_SINGULAR_INVERSE
 from chain_poly import _poly_add, _poly_mul
+from geom3 import _g3_axpy, _g3_cross, _g3_dot, _g3_sp1, _g3_turn, _g3_turn_dir
 from poly_real_roots import _POLY_FLAG_DOUBLE, _poly_real_roots
 
 # wristkin: inlined from here
@@ -36,45 +37,23 @@ S3_SPLIT_NEAR = 1e-3  # rad: a split root keeps the merged root's q_b, q_c to th
 S3_CURVATURE_STEP = 1e-3  # rad: the central difference of the point's second derivative (its error ~ step^2)
 
 
-def _s3_dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def _s3_cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def _s3_axpy(a, s, b):
-    """a + s b"""
-    return (a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2])
-
-
-def _s3_turn(h, r, q, p):
-    """p turned by q about the line (h, r): r + R (p - r), R by Rodrigues."""
-    c, s = math.cos(q), math.sin(q)
-    d = (p[0] - r[0], p[1] - r[1], p[2] - r[2])
-    hd = _s3_dot(h, d) * (1.0 - c)
-    hx = _s3_cross(h, d)
-    return tuple(r[m] + c * d[m] + s * hx[m] + hd * h[m] for m in range(3))
-
-
 def _s3_bilinear(h2, u, vs):
     """Rows of u . R(h2, q2) v_j over (1, cos q2, sin q2), for each v_j: (h.u)(h.v), u.v - (h.u)(h.v), u.(h x v)."""
-    hu = _s3_dot(h2, u)
-    return [[hu * _s3_dot(h2, v) for v in vs], [_s3_dot(u, v) - hu * _s3_dot(h2, v) for v in vs],
-            [_s3_dot(u, _s3_cross(h2, v)) for v in vs]]
+    hu = _g3_dot(h2, u)
+    return [[hu * _g3_dot(h2, v) for v in vs], [_g3_dot(u, v) - hu * _g3_dot(h2, v) for v in vs],
+            [_g3_dot(u, _g3_cross(h2, v)) for v in vs]]
 
 
 def _s3_point(h0, r0, q, x, y):
     """(the point rot_a rot_b rot_c x at q, the lines of a, b, c moved by the joints before them, |p - y|)."""
     p, h, r = tuple(x), [tuple(v) for v in h0], [tuple(v) for v in r0]
     for i in (2, 1, 0):  # the last joint first: each turn moves the point and the lines after it
-        p = _s3_turn(h0[i], r0[i], q[i], p)
+        p = _g3_turn(h0[i], r0[i], q[i], p)
         for k in range(i + 1, 3):
-            r[k] = _s3_turn(h0[i], r0[i], q[i], r[k])
-            h[k] = _s3_turn(h0[i], (0.0, 0.0, 0.0), q[i], h[k])  # a direction turns about the axis through 0
-    d = _s3_axpy(p, -1.0, y)
-    return p, h, r, math.sqrt(_s3_dot(d, d))
+            r[k] = _g3_turn(h0[i], r0[i], q[i], r[k])
+            h[k] = _g3_turn_dir(h0[i], q[i], h[k])
+    d = _g3_axpy(p, -1.0, y)
+    return p, h, r, math.sqrt(_g3_dot(d, d))
 
 
 def _s3_refine(h0, r0, x, y, eps3, q, steps=S3_REFINE_STEPS, halvings=0):
@@ -84,13 +63,13 @@ def _s3_refine(h0, r0, x, y, eps3, q, steps=S3_REFINE_STEPS, halvings=0):
     q = list(q)
     p, h, r, err = _s3_point(h0, r0, q, x, y)
     for _ in range(steps):
-        c = [_s3_cross(h[i], _s3_axpy(p, -1.0, r[i])) for i in range(3)]
-        b = _s3_axpy(y, -1.0, p)
-        x12 = _s3_cross(c[1], c[2])
-        det = _s3_dot(c[0], x12)
+        c = [_g3_cross(h[i], _g3_axpy(p, -1.0, r[i])) for i in range(3)]
+        b = _g3_axpy(y, -1.0, p)
+        x12 = _g3_cross(c[1], c[2])
+        det = _g3_dot(c[0], x12)
         if not abs(det) > eps3:
             break
-        dq = (_s3_dot(b, x12) / det, _s3_dot(c[0], _s3_cross(b, c[2])) / det, _s3_dot(c[0], _s3_cross(c[1], b)) / det)
+        dq = (_g3_dot(b, x12) / det, _g3_dot(c[0], _g3_cross(b, c[2])) / det, _g3_dot(c[0], _g3_cross(c[1], b)) / det)
         if halvings:  # damped: at most S3_SPLIT_STEP_MAX in any joint (a near-singular J's full step is huge)
             big = max(abs(d) for d in dq)
             if big > S3_SPLIT_STEP_MAX:
@@ -135,22 +114,22 @@ def _s3_split(h, r, x, y, yr, rho, scale, qb, qc):
     along d where rounding hides the gap) give q_a by subproblem 1, then Newton on the point from each. The two roots
     separate at eps / rho, not the polynomial's sqrt(eps). [] where they do not both converge to distinct roots (the
     merged root stands)."""
-    w = _s3_turn(h[1], r[1], qb, _s3_turn(h[2], r[2], qc, x))
-    hc, rc = _s3_turn(h[1], (0.0, 0.0, 0.0), qb, h[2]), _s3_turn(h[1], r[1], qb, r[2])
-    normal = _s3_cross(_s3_cross(h[1], _s3_axpy(w, -1.0, r[1])), _s3_cross(hc, _s3_axpy(w, -1.0, rc)))
-    d = _s3_cross(normal, h[0])
-    size = math.sqrt(_s3_dot(d, d))
+    w = _g3_turn(h[1], r[1], qb, _g3_turn(h[2], r[2], qc, x))
+    hc, rc = _g3_turn_dir(h[1], qb, h[2]), _g3_turn(h[1], r[1], qb, r[2])
+    normal = _g3_cross(_g3_cross(h[1], _g3_axpy(w, -1.0, r[1])), _g3_cross(hc, _g3_axpy(w, -1.0, rc)))
+    d = _g3_cross(normal, h[0])
+    size = math.sqrt(_g3_dot(d, d))
     if not size > 0.0:
         return []
     d = tuple(v / size for v in d)
-    v0 = _s3_axpy(w, -1.0, r[0])
-    v0 = _s3_axpy(v0, -_s3_dot(h[0], v0), h[0])  # w's offset from axis a, normal to it
-    mid = -_s3_dot(v0, d)
-    disc = mid * mid - _s3_dot(v0, v0) + rho * rho
+    v0 = _g3_axpy(w, -1.0, r[0])
+    v0 = _g3_axpy(v0, -_g3_dot(h[0], v0), h[0])  # w's offset from axis a, normal to it
+    mid = -_g3_dot(v0, d)
+    disc = mid * mid - _g3_dot(v0, v0) + rho * rho
     half = math.sqrt(disc) if disc > 0.0 else rho
     starts = []
     for t in (mid + half, mid - half):
-        qa = _s3_sp1(h[0], _s3_axpy(v0, t, d), yr, 0.0)
+        qa = _g3_sp1(h[0], _g3_axpy(v0, t, d), yr, 0.0)
         if qa is None:
             return []
         starts.append([qa, qb, qc])
@@ -164,12 +143,12 @@ def _s3_pair(h, r, x, y, scale, q0):
     s^2 u.H / 2 with H the point's second derivative along v (central differences), so the pair starts at q0 +- s v and
     Newton takes each to its root. [] where s^2 <= 0 (a complex pair) or they do not both converge to distinct roots."""
     p0, hh, rr, _err = _s3_point(h, r, q0, x, y)
-    cols = [_s3_cross(hh[i], _s3_axpy(p0, -1.0, rr[i])) for i in range(3)]
+    cols = [_g3_cross(hh[i], _g3_axpy(p0, -1.0, rr[i])) for i in range(3)]
     rows = [tuple(cols[j][i] for j in range(3)) for i in range(3)]
 
     def largest(vs):
-        best = max((_s3_cross(vs[i], vs[j]) for i, j in ((0, 1), (0, 2), (1, 2))), key=lambda c: _s3_dot(c, c))
-        size = math.sqrt(_s3_dot(best, best))
+        best = max((_g3_cross(vs[i], vs[j]) for i, j in ((0, 1), (0, 2), (1, 2))), key=lambda c: _g3_dot(c, c))
+        size = math.sqrt(_g3_dot(best, best))
         return tuple(c / size for c in best) if size > 0.0 else None
     v, u = largest(rows), largest(cols)
     if v is None or u is None:
@@ -177,23 +156,15 @@ def _s3_pair(h, r, x, y, scale, q0):
     step = S3_CURVATURE_STEP
     plus = _s3_point(h, r, [a + step * b for a, b in zip(q0, v, strict=True)], x, y)[0]
     minus = _s3_point(h, r, [a - step * b for a, b in zip(q0, v, strict=True)], x, y)[0]
-    curv = _s3_dot(u, tuple((plus[m] - 2.0 * p0[m] + minus[m]) / (step * step) for m in range(3)))
+    curv = _g3_dot(u, tuple((plus[m] - 2.0 * p0[m] + minus[m]) / (step * step) for m in range(3)))
     if not abs(curv) > 0.0:
         return []
-    s2 = 2.0 * _s3_dot(u, _s3_axpy(y, -1.0, p0)) / curv
+    s2 = 2.0 * _g3_dot(u, _g3_axpy(y, -1.0, p0)) / curv
     if not s2 > 0.0:
         return []
     half = math.sqrt(s2)
     starts = [[a + t * b for a, b in zip(q0, v, strict=True)] for t in (half, -half)]
     return _s3_pair_converges(h, r, x, y, scale, starts, q0[1], q0[2])
-
-
-def _s3_sp1(k, p, q, eps_scale):
-    """t with rot(k, t) p = q seen normal to k (subproblem 1); None when either is within eps_scale of the axis."""
-    pp, qq = _s3_axpy(p, -_s3_dot(k, p), k), _s3_axpy(q, -_s3_dot(k, q), k)
-    if math.sqrt(_s3_dot(pp, pp)) <= eps_scale or math.sqrt(_s3_dot(qq, qq)) <= eps_scale:
-        return None
-    return math.atan2(_s3_dot(k, _s3_cross(pp, qq)), _s3_dot(pp, qq))
 
 
 def _spatial3_lines(h, r, x, y, scale, eps):
@@ -203,19 +174,19 @@ def _spatial3_lines(h, r, x, y, scale, eps):
     caller verifies them."""
     h1, r1, h2, r2, h3, r3 = h[0], r[0], h[1], r[1], h[2], r[2]
     eps3 = eps * scale ** 3
-    v = _s3_axpy(x, -1.0, r3)
-    hv = _s3_dot(h3, v)
-    vb0 = _s3_axpy(_s3_axpy(r3, hv, h3), -1.0, r2)  # z - r2 over (1, cos q_c, sin q_c)
-    vb = [vb0, _s3_axpy(v, -hv, h3), _s3_cross(h3, v)]
-    u = _s3_axpy(r2, -1.0, r1)
+    v = _g3_axpy(x, -1.0, r3)
+    hv = _g3_dot(h3, v)
+    vb0 = _g3_axpy(_g3_axpy(r3, hv, h3), -1.0, r2)  # z - r2 over (1, cos q_c, sin q_c)
+    vb = [vb0, _g3_axpy(v, -hv, h3), _g3_cross(h3, v)]
+    u = _g3_axpy(r2, -1.0, r1)
     f = [[2.0 * e for e in row] for row in _s3_bilinear(h2, u, vb)]
     g = _s3_bilinear(h2, h1, vb)
-    f[0][0] += _s3_dot(vb[0], vb[0]) + _s3_dot(vb[1], vb[1]) + _s3_dot(u, u)
-    f[0][1] += 2.0 * _s3_dot(vb[0], vb[1])
-    f[0][2] += 2.0 * _s3_dot(vb[0], vb[2])
-    g[0][0] += _s3_dot(h1, u)
-    yr = _s3_axpy(y, -1.0, r1)
-    d_target, h_target = _s3_dot(yr, yr), _s3_dot(h1, yr)
+    f[0][0] += _g3_dot(vb[0], vb[0]) + _g3_dot(vb[1], vb[1]) + _g3_dot(u, u)
+    f[0][1] += 2.0 * _g3_dot(vb[0], vb[1])
+    f[0][2] += 2.0 * _g3_dot(vb[0], vb[2])
+    g[0][0] += _g3_dot(h1, u)
+    yr = _g3_axpy(y, -1.0, r1)
+    d_target, h_target = _g3_dot(yr, yr), _g3_dot(h1, yr)
     # (1, cos q_b, sin q_b) times (1 + t^2): (1 + t^2, 1 - t^2, 2 t), polynomials in t = tan(q_b / 2)
     apoly = ((1.0, 0.0, 1.0), (1.0, 0.0, -1.0), (0.0, 2.0, 0.0))
     p = [[apoly[0][i] * f[0][j] + apoly[1][i] * f[1][j] + apoly[2][i] * f[2][j] for i in range(3)] for j in range(3)]
@@ -230,8 +201,8 @@ def _spatial3_lines(h, r, x, y, scale, eps):
     angles = [(2.0 * math.atan(t), FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE if fl & _POLY_FLAG_DOUBLE else 0)
               for t, fl in zip(roots, rflags, strict=True)]
     angles.append((math.pi, 0))  # tan(q_b / 2) = infinity is no root of the polynomial: tried directly
-    yr_perp = _s3_axpy(yr, -h_target, h1)
-    rho = math.sqrt(_s3_dot(yr_perp, yr_perp))  # the target's distance from axis a (|yr|^2 - (h.yr)^2 cancels)
+    yr_perp = _g3_axpy(yr, -h_target, h1)
+    rho = math.sqrt(_g3_dot(yr_perp, yr_perp))  # the target's distance from axis a (|yr|^2 - (h.yr)^2 cancels)
     out = []
     for qb, fl in angles:
         if len(out) == S3_MAX:
@@ -253,8 +224,8 @@ def _spatial3_lines(h, r, x, y, scale, eps):
             if pair:
                 out += [(tuple(q), FLAG_SINGULAR_INVERSE) for q in pair]
                 continue
-        w = _s3_axpy(_s3_turn(h2, r2, qb, _s3_turn(h3, r3, qc, x)), -1.0, r1)
-        qa = _s3_sp1(h1, w, yr, eps * scale)
+        w = _g3_axpy(_g3_turn(h2, r2, qb, _g3_turn(h3, r3, qc, x)), -1.0, r1)
+        qa = _g3_sp1(h1, w, yr, eps * scale)
         if qa is None:
             out.append(((0.0, qb, qc), fl | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE))
             continue

@@ -38,8 +38,10 @@
 #include "../../runtime/c/chain/ck_verify.c"
 #include "../../runtime/c/poly_real_roots.c"
 #include "../../runtime/c/wk_poly_ops.c"
+#include "../../runtime/c/wk_geom3.c"
 #include "../../runtime/c/wk_spatial3.c"
 #include "../../runtime/c/chain/ck_spatial3.c"
+#include "../../runtime/c/wk_sp6.c"
 #include "../../runtime/c/chain/ck_sp6.c"
 
 /* ck_chain from flat arrays: kinds[n] (1 = slide), axes[3n], points[3n], home[12] (top 3x4 row-major) */

@@ -6,6 +6,7 @@
 
 #include "../../runtime/c/poly_real_roots.c"
 #include "../../runtime/c/wk_poly_ops.c"
+#include "../../runtime/c/wk_geom3.c"
 #include "../../runtime/c/wk_spatial3.c"
 
 int wkt_spatial3_lines(const double *h, const double *r, const double *x, const double *y, double scale, double eps,

@@ -24,7 +24,7 @@ from ...checks import jacobian_fd_error, numeric_predicate, sampler, symbolic_id
 from ...identities.dh import DHRow, chain, explicit
 from ...kinematics.general6r import numerics
 from ...kinematics.general6r import steps as elimination_steps
-from ...kinematics.poe import Chain
+from ...kinematics.poe import Chain, rot
 from ...model import Check, Derivation, Finding, Step
 from ...serial_core.stages import POSE_SYMBOLS, Stage, stage_output_names
 
@@ -187,6 +187,8 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
                 p = Chain("stage", ("a", "b", "c"), ("R",) * 3, v[:9].reshape(3, 3), v[9:18].reshape(3, 3),
                           home).fk(qs)[:3, 3]
                 return float(np.max(np.abs(p - v[21:24])))
+            if st.kind == "sp6":  # both invariants of the parallel group hold
+                return _sp6_residual(vals, qs)
             m = np.array(vals).reshape(3, 3)
             w = np.array(wrist(*qs), dtype=float)
             return float(np.max(np.abs(m - w)))
@@ -194,7 +196,9 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
                  "rotation2d": "(u, v) = Rot(q)(u0, v0) on the FK", "value": "q = expression on the FK",
                  "wrist": "M = wrist rotation on the FK", "quadratic": "(q + B)^2 = D on the FK",
                  "general6r": "exp(S_1 q_1) ... exp(S_6 q_6) = T M^-1 from the axes and points on the FK",
-                 "spatial3": "rot(h_a, q_a) rot(h_b, q_b) rot(h_c, q_c) x = y from the lines on the FK"}[st.kind]
+                 "spatial3": "rot(h_a, q_a) rot(h_b, q_b) rot(h_c, q_c) x = y from the lines on the FK",
+                 "sp6": "n . rot(h_j, -q_j) p_j - n . rot(h_k, q_k) p_k = d_j and n . rot(h_j, -q_j) g = "
+                        "n . rot(h_k, q_k) h_l on the FK"}[st.kind]
         checks: list[Check] = [numeric_predicate(err, claim, samples=200, tol=1e-9)]
         if st.kind == "general6r":
             checks.append(_elimination_finds(spec, st, at_fk))
@@ -232,6 +236,15 @@ def _poe_product(axes, points, qs) -> np.ndarray:
     """exp(S_1 q_1) ... exp(S_6 q_6) (top 3 x 4) of revolute axes (direction h, point r): the numeric product of
     exponentials of kinematics/poe.py (its own Rodrigues), home the identity."""
     return Chain("stage", tuple(f"j{i}" for i in range(6)), ("R",) * 6, axes, points, np.eye(4)).fk(qs)[:3]
+
+
+def _sp6_residual(vals, qs) -> float:
+    """The larger residual of subproblem 6's two equations at the stage's joints (q_j, q_k), its outputs (n, h_j,
+    p_j, h_k, p_k, d_j, g, h_l) read on the FK: numpy rotation matrices (kinematics/poe.rot), not the runtime's."""
+    v = np.array(vals, dtype=float)
+    nv, h0, p0, h4, p4, d0, g, h5 = v[0:3], v[3:6], v[6:9], v[9:12], v[12:15], v[15], v[16:19], v[19:22]
+    r0, r4 = rot(h0, -qs[0]), rot(h4, qs[1])
+    return max(abs(nv @ r0 @ p0 - nv @ r4 @ p4 - d0), abs(nv @ r0 @ g - nv @ r4 @ h5))
 
 
 def _elimination_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:

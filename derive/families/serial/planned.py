@@ -51,7 +51,7 @@ HELD_LABELLING_VALUES = (0.7, -1.9, 2.6, -0.4)
 # give the family's members)
 FALLBACK_READINGS = 2
 SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient",
-             "group_rest", "spatial3"}
+             "group_rest", "spatial3", "sp6"}
 
 
 class PlanError(ValueError):
@@ -148,22 +148,40 @@ class _GroupThenTwo:
                   probe_next=len(self.grp) > 1)]
 
     def rest(self, j) -> Stage:
-        """The group's joint j, the group's other joints solved: the group turns about one direction, so R_g =
-        R_d rot(h_b, q_b)^T rot(h_a, q_a)^T = rot(h_j, S + q_j) with S the others' angles signed by their axes'
-        sense along h_j (parallel DH axes may point either way): q_j is the angle of R_g about h_j less S
-        (subproblem 1 on e1 normal to h_j, against (cos S, sin S)). Reading S from the solved joints' cos and sin
-        keeps the stage small: undoing each joint's rotation in the matrix made the UR5e's stage 1,100 lines of C."""
-        axes, joints = self.axes, self.joints
-        h = axes[j]
-        rg = self.rd * _rodrigues(axes[self.jb], joints[self.jb]).T * _rodrigues(axes[self.ja], joints[self.ja]).T
-        others = sum((sp.sign(sp.simplify(axes[o].dot(h))) * joints[o] for o in self.grp if o != j), sp.Integer(0))
-        e1 = _perp(h, self.about)
-        e2 = h.cross(e1)
-        v = rg * e1
-        return Stage("rotation2d", (j,), (e1.dot(v), e2.dot(v), sp.cos(others), sp.sin(others)),
-                     f"angle {joints[j]}", "subproblem 1: the parallel group's rotation R_d rot(h_b, q_b)^T "
-                     "rot(h_a, q_a)^T about the joint's axis, less the group's other joints (signed by their axes' "
-                     "sense)")
+        """The group's joint j, the group's other joints solved, from the group's rotation R_g = R_d rot(h_b, q_b)^T
+        rot(h_a, q_a)^T (_group_rest)."""
+        rg = (self.rd * _rodrigues(self.axes[self.jb], self.joints[self.jb]).T
+              * _rodrigues(self.axes[self.ja], self.joints[self.ja]).T)
+        return _group_rest(rg, self.grp, j, self.axes, self.joints, self.about,
+                           "the parallel group's rotation R_d rot(h_b, q_b)^T rot(h_a, q_a)^T")
+
+
+class _Group:
+    """A parallel group whose rotation R_g the solved joints around it give (an offset wrist's: R_0^T T M^-1
+    R_5^T R_4^T, the orient op's R_d): its last joint once the planar pair set the others (_group_rest)."""
+
+    def __init__(self, rg, grp, axes, joints, about=None):
+        self.rg, self.grp, self.axes, self.joints, self.about = rg, list(grp), axes, joints, about
+
+    def rest(self, j) -> Stage:
+        return _group_rest(self.rg, self.grp, j, self.axes, self.joints, self.about,
+                           "the parallel group's rotation, the joints before and after it undone from the target")
+
+
+def _group_rest(rg, grp, j, axes, joints, about, source) -> Stage:
+    """The group's joint j, the group's other joints solved: the group turns about one direction, so R_g =
+    rot(h_j, S + q_j) with S the others' angles signed by their axes' sense along h_j (parallel DH axes may point
+    either way): q_j is the angle of R_g about h_j less S (subproblem 1 on e1 normal to h_j, against (cos S, sin S)).
+    Reading S from the solved joints' cos and sin keeps the stage small: undoing each joint's rotation in the matrix
+    made the UR5e's stage 1,100 lines of C."""
+    h = axes[j]
+    others = sum((sp.sign(sp.simplify(axes[o].dot(h))) * joints[o] for o in grp if o != j), sp.Integer(0))
+    e1 = _perp(h, about)
+    e2 = h.cross(e1)
+    v = rg * e1
+    return Stage("rotation2d", (j,), (e1.dot(v), e2.dot(v), sp.cos(others), sp.sin(others)), f"angle {joints[j]}",
+                 f"subproblem 1: {source} about the joint's axis, less the group's other joints (signed by their "
+                 "axes' sense)")
 
 
 def stages(rows, joints, kinds, design, defaults, convention="standard", names=None, base=None, tool=None,
@@ -310,9 +328,15 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         if k == "spatial3":  # three axes in general position place x: every real solution, by the runtime
             out.append(_spatial3_stage(op["js"], axes, points, joints, x, y))
             continue
+        if k == "sp6":  # an offset wrist: two joints from the parallel group's invariants, then the last about them
+            out += _sp6_stages(op, axes, points, joints, x, y, target.r, direction(op["n"]), about)
+            continue
         if k == "orient":
             units = [u[0] for u in op["units"]]
             rd = (prefix(range(op["lo"])).inv() * target * prefix(range(op["hi"] + 1, n)).inv()).r
+            if len(op["units"]) == 1 and len(op["units"][0]) == 3:  # a parallel group alone (after subproblem 6):
+                group = _Group(rd, op["units"][0], axes, joints, about)  # its last joint once the pair set the rest
+                continue
             if len(op["units"]) == 3 and len(op["units"][0]) == 3:  # a parallel group, then two axes (UR type)
                 group = _GroupThenTwo(rd, op["units"][0], units[1], units[2], axes, joints, about)
                 out += group.stages
@@ -423,6 +447,34 @@ def _spatial3_stage(js, axes, points, joints, x, y) -> Stage:
                  "third's is a degree-8 polynomial in tan(q_b / 2) with the extraneous (1 + t^2)^2 of the substitution "
                  "(at most four real roots, Pieper), every real root isolated at run time, the first joint by "
                  "subproblem 1")
+
+
+def _sp6_stages(op, axes, points, joints, x, y, rt, nv, about) -> list[Stage]:
+    """Subproblem 6 (an offset wrist: the parallel group's axes, direction n, keep the component along n of a point
+    and of a direction): joints j and k from n.rot(h_j, -q_j) p_j - n.rot(h_k, q_k) p_k = d_j and n.rot(h_j, -q_j) g =
+    n.rot(h_k, q_k) h_l, every real solution by the runtime (wk_sp6.c, sp6.py); then joint l about its axis from the
+    group keeping n (subproblem 1), its family at the wrist singularity (h_l along n) placed where the planar pair
+    after it reaches. x is on axis l (its turn leaves it), y = T M^-1 x its target, R_t = T M^-1's rotation."""
+    j, kk, ll = op["j"], op["k"], op["l"]
+    h0, h4, h5 = axes[j], axes[kk], axes[ll]
+    p0, p4 = y - points[j], x - points[kk]
+    d0 = nv.dot(points[kk]) - nv.dot(points[j])
+    g = rt * h5
+    exprs = (tuple(sp.simplify(v) for v in (*nv, *h0)) + tuple(p0) + tuple(sp.simplify(v) for v in h4) + tuple(p4)
+             + (_trig_reduced(d0),) + tuple(g) + tuple(sp.simplify(v) for v in h5))
+    sp6 = Stage("sp6", (j, kk), exprs, f"joints {joints[j]}, {joints[kk]} (up to four sets)",
+                "subproblem 6: the group keeps n . p of a point and of the last axis; (cos q_k, sin q_k) affine in "
+                "(cos q_j, sin q_j) by Cramer's rule, cos^2 + sin^2 = 1 a quartic in tan(q_j / 2), every real root "
+                "isolated at run time (a merged pair near the wrist singularity split, its roots to eps)")
+    # the group keeps n: n^T R_k R_l = n^T R_j^T R_t, so rot(h_l, q_l) (R_t^T R_j n) = R_k^T n
+    a = _rodrigues(h4, joints[kk]).T * nv
+    b = rt.T * _rodrigues(h0, joints[j]) * nv
+    e1 = _perp(h5, about)
+    e2 = h5.cross(e1)
+    last = Stage("rotation2d", (ll,), (e1.dot(a), e2.dot(a), e1.dot(b), e2.dot(b)), f"angle {joints[ll]}",
+                 "subproblem 1: rot(h_l, q_l) (R_t^T R_j n) = R_k^T n (the group keeps n); at the wrist singularity "
+                 "(h_l along n) a family, its member where the planar pair reaches", probe_next=True)
+    return [sp6, last]
 
 
 def _general6r_stage(axes, points, joints, target: _Motion, labelling) -> Stage:

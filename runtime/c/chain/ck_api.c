@@ -15,7 +15,7 @@ static int ck_joints(const double *joints, double *q)
     if (!wk_all_finite(joints, CK_N)) return WK_ERR_NONFINITE;
     for (j = 0; j < CK_N; ++j) {
         if (ck_revolute[j]) {
-            q[j] = ck_wrap(joints[j]);
+            q[j] = wk_wrap(joints[j]);
         } else {
             if (!(fabs(joints[j]) <= CK_LENGTH_MAX)) return WK_ERR_RANGE;
             q[j] = joints[j];
@@ -255,7 +255,7 @@ static int ck_api_ik_near(const double pose_in[12], const ck_design *design, con
          (Python's _DEGENERATE_HELD) */
         static const double held[] = CK_DEGENERATE_HELD;
         for (k = 0; k < CK_N_DEGENERATE_HELD; ++k)
-            if (fabs(ck_wrap(d->params[0] - held[k])) <= CK_GEOMETRY_TOL) {
+            if (fabs(wk_wrap(d->params[0] - held[k])) <= CK_GEOMETRY_TOL) {
                 out->status = WK_ERR_DESIGN;
                 return WK_ERR_DESIGN;
             }

@@ -41,7 +41,7 @@ static int ck_same(const double *a, const double *b)
         double d = fabs(a[i] - b[i]);
         if (ck_revolute[i] && d > CK_SAME_TOL) {
             if (fabs(d - CK_TWO_PI) > 1e-6) return 0; /* clearly apart: no wrap brings them together */
-            d = fabs(ck_wrap(a[i] - b[i]));
+            d = fabs(wk_wrap(a[i] - b[i]));
         }
         if (!(d <= CK_SAME_TOL)) return 0;
     }
@@ -94,7 +94,7 @@ static void ck_full_joints(const ck_ctx *c, const double *qc, double *full)
     full[CK_FREE] = c->free_value;
 #endif
     for (i = 0; i < CK_N; ++i)
-        if (ck_revolute[i]) full[i] = ck_wrap(full[i]);
+        if (ck_revolute[i]) full[i] = wk_wrap(full[i]);
 }
 
 /* The noise of the stages after a three-unit orientation root: 1 / g with g = |u0 x R(u1, t2) u2| (how far the middle
@@ -121,7 +121,7 @@ static void ck_raw_candidate(ck_ctx *c)
     ck_rt t;
     int i, k;
     if (out->count >= CK_MAX_IK) return;
-    for (i = 0; i < c->ideal->n; ++i) qc[i] = c->ideal->prismatic[i] ? c->q[i] : ck_wrap(c->q[i]);
+    for (i = 0; i < c->ideal->n; ++i) qc[i] = c->ideal->prismatic[i] ? c->q[i] : wk_wrap(c->q[i]);
     ck_fk_chain(c->ideal, qc, &t);
     if (!(ck_frame_error(&t, &c->target) <= CK_IK_VERIFY_TOL)) return;
     ck_full_joints(c, qc, full);
@@ -161,7 +161,7 @@ static int ck_compensated(const ck_ctx *c, double *qc)
     for (k = 0; k < raw.count; ++k) {
         double gap = 0.0;
         for (i = 0; i < CK_N; ++i) {
-            const double d = ck_revolute[i] ? fabs(ck_wrap(raw.values[k][i] - full[i]))
+            const double d = ck_revolute[i] ? fabs(wk_wrap(raw.values[k][i] - full[i]))
                                             : fabs(raw.values[k][i] - full[i]);
             if (d > gap) gap = d;
         }
@@ -275,7 +275,7 @@ static void ck_candidate(ck_ctx *c, unsigned flags)
     }
 #endif
     if (out->count >= CK_MAX_IK) return;
-    for (i = 0; i < ch->n; ++i) qc[i] = ch->prismatic[i] ? c->q[i] : ck_wrap(c->q[i]);
+    for (i = 0; i < ch->n; ++i) qc[i] = ch->prismatic[i] ? c->q[i] : wk_wrap(c->q[i]);
     /* the common case first: a set at rounding level (CK_POLISH_TOL) by the module's own FK needs neither the solver
      * chain's check nor a polish. Above it the verdicts stay the two checks' (the solver chain's frame, then the
      * module's): a set near the tolerance passes one and fails the other (a reversed chain reads T^-1's entries),
@@ -485,7 +485,7 @@ static void ck_sp6_set(ck_ctx *c, int k, const double *x, const double *y, unsig
     ns = ck_sp6_split(in->n, h0, in->p0, h4, in->p4, in->d0, in->g, h5, q0, q4, s0, s4);
     for (i = 0; i < ns; ++i)
         ck_sp6_set(c, k, x, y, flags, in, s0[i], s4[i],
-                   (f & ~WK_FLAG_DOUBLE_ROOT) | ck_sp6_merged(ns) | WK_FLAG_SINGULAR_INVERSE, 1, 0);
+                   (f & ~WK_FLAG_DOUBLE_ROOT) | wk_sp6_merged(ns) | WK_FLAG_SINGULAR_INVERSE, 1, 0);
 }
 #endif
 

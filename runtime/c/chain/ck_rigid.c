@@ -7,12 +7,6 @@ typedef struct {
     double t[3];
 } ck_rt;
 
-/* The angle in [-pi, pi], reduced exactly against 2 pi (the runtime's wk_wrap) */
-static double ck_wrap(double a)
-{
-    return wk_wrap(a); /* the runtime's exact reduction against 2 pi, as the Python module's _wrap */
-}
-
 static double ck_dot(const double *a, const double *b)
 {
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];

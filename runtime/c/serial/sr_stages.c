@@ -9,9 +9,10 @@
 typedef void (*sr_stage_kernel)(const double *pose, const double *q, const double *c, const double *s,
                                 const double *dp, double *out);
 
-/* One IK call's scratch for the stages that compute several candidates at once (the general 6R's, the spatial 3R's),
- * kept across the set words that share the prefix above their bits */
+/* One IK call's scratch for the stages that compute several candidates at once (the general 6R's, the spatial 3R's,
+ * subproblem 6's), kept across the set words that share the prefix above their bits */
 #define SR_S3_KEEP 4 /* a spatial 3R's candidates kept (Pieper's bound on a 3R's positions) */
+#define SR_SP6_KEEP 4 /* subproblem 6's candidates kept (its quartic's real roots) */
 typedef struct {
 #if SR_HAS_GENERAL6R
     long g6_key; /* the prefix the candidates were computed for (-1: none yet) */
@@ -25,7 +26,14 @@ typedef struct {
     double s3_q[SR_S3_KEEP][3];
     unsigned s3_f[SR_S3_KEEP];
 #endif
-#if !SR_HAS_GENERAL6R && !SR_HAS_SPATIAL3
+#if SR_HAS_SP6
+    long sp6_key; /* as g6_key */
+    int sp6_n;
+    double sp6_q[SR_SP6_KEEP][2];
+    double sp6_amp[SR_SP6_KEEP]; /* how much the candidate's q_k amplifies the input's rounding (sr_sp6.c) */
+    unsigned sp6_f[SR_SP6_KEEP];
+#endif
+#if !SR_HAS_GENERAL6R && !SR_HAS_SPATIAL3 && !SR_HAS_SP6
     int unused; /* C99 has no empty structs */
 #endif
 } sr_ws;
@@ -41,7 +49,11 @@ static void sr_ws_init(sr_ws *ws)
     ws->s3_key = -1;
     ws->s3_n = 0;
 #endif
-#if !SR_HAS_GENERAL6R && !SR_HAS_SPATIAL3
+#if SR_HAS_SP6
+    ws->sp6_key = -1;
+    ws->sp6_n = 0;
+#endif
+#if !SR_HAS_GENERAL6R && !SR_HAS_SPATIAL3 && !SR_HAS_SP6
     ws->unused = 0;
 #endif
 }

@@ -1,0 +1,51 @@
+"""3-vector helpers and subproblem 1 for the chain-free cores (spatial3.py, sp6.py): runtime/c/wk_geom3.c's twin,
+step for step.
+
+A wristkin runtime source: a generated module with a spatial 3R or subproblem 6 inlines it from the marker line on
+(derive/runtime_files.py), before those cores; it imports nothing, so that it is linted and tested as it is
+(tests/test_spatial3_runtime.py, tests/test_chain_runtime.py)."""
+
+from __future__ import annotations
+
+import math
+
+# wristkin: inlined from here
+
+
+def _g3_dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def _g3_cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _g3_axpy(a, s, b):
+    """a + s b"""
+    return (a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2])
+
+
+def _g3_norm(a):
+    return math.sqrt(_g3_dot(a, a))
+
+
+def _g3_turn(h, r, q, p):
+    """p turned by q about the line (h, r): r + R (p - r), R by Rodrigues."""
+    c, s = math.cos(q), math.sin(q)
+    d = (p[0] - r[0], p[1] - r[1], p[2] - r[2])
+    hd = _g3_dot(h, d) * (1.0 - c)
+    hx = _g3_cross(h, d)
+    return tuple(r[m] + c * d[m] + s * hx[m] + hd * h[m] for m in range(3))
+
+
+def _g3_turn_dir(h, q, v):
+    """The direction v turned by q about h: rot(h, q) v."""
+    return _g3_turn(h, (0.0, 0.0, 0.0), q, v)
+
+
+def _g3_sp1(k, p, q, eps_scale):
+    """t with rot(k, t) p = q seen normal to k (subproblem 1); None when either is within eps_scale of the axis."""
+    pp, qq = _g3_axpy(p, -_g3_dot(k, p), k), _g3_axpy(q, -_g3_dot(k, q), k)
+    if _g3_norm(pp) <= eps_scale or _g3_norm(qq) <= eps_scale:
+        return None
+    return math.atan2(_g3_dot(k, _g3_cross(pp, qq)), _g3_dot(pp, qq))

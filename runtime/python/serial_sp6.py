@@ -1,0 +1,62 @@
+"""Subproblem 6's stage (an offset wrist: two joints from the parallel group's invariants; sp6.py, inlined before
+it), on the direction, axes, points and constants its derived kernel gives. The candidates are computed once per
+prefix of the set index above the stage's bits and kept in the call's scratch `ws`; set k takes candidate
+(k >> shift) & 3, at most four (the quartic's real roots; the core returns none twice: a near pair 3e-11 apart is two
+roots, which a 1e-9 sameness band merged, losing the generating set). The stage sets
+amp[k] to how much its q_k amplifies the input's rounding (near the wrist singularity, g = |h_l x R_k^T n| small:
+eps / g from the quartic and Newton on its equations, eps from the split); the next stage, q_l about its axis, adds
+its own 1 / g. The FK check after the stages verifies each set. The C twin: runtime/c/serial/sr_sp6.c.
+
+A wristkin runtime source: a serial arm's generated module with an sp6 stage inlines it from the marker line on
+(derive/runtime_files.py), after its constants, derived kernels, stage functions and the sources before it; above the
+marker, what it reads from them (serial_stand_in.py: the PUMA-560 stands in for the names), so that it is linted and
+tested as it is (tests/test_derived_robot.py)."""
+
+from __future__ import annotations
+
+import math
+
+from geom3 import _g3_cross, _g3_norm, _g3_turn_dir
+from serial_stand_in import DEGENERATE_EPS
+from sp6 import _sp6_core
+
+# wristkin: inlined from here
+SP6_KEEP = 4  # the quartic's real roots
+# the core's bands: the interpreted chain's for a robot with a polynomial stage (derive/families/chain/views.py's
+# stage_tolerances: its roots carry ~1e-12), with subproblem 4's tangent band as the chain's
+SP6_DOUBLE_ROOT_TOL = 1e-12
+SP6_ON_AXIS_TOL = 1e-12
+SP6_TANGENT_TOL = 1e-9
+
+
+def _sp6_candidates(out):
+    """The candidates [(q_j, q_k), flags, amp_k] of the stage's outputs (n, h_j, p_j, h_k, p_k, d_j, g, h_l), at
+    most SP6_KEEP."""
+    nv, h0, p0, h4, p4 = (tuple(out[i:i + 3]) for i in range(0, 15, 3))
+    d0, g, h5 = out[15], tuple(out[16:19]), tuple(out[19:22])
+    scale = max(1.0, *(abs(v) for v in out[6:9]), *(abs(v) for v in out[12:16]))  # the points' and the constant's
+    tols = (scale, DEGENERATE_EPS, SP6_DOUBLE_ROOT_TOL, SP6_TANGENT_TOL, SP6_ON_AXIS_TOL)
+    kept = []
+    for q0, q4, f, order in _sp6_core(nv, h0, p0, h4, p4, d0, 0.0, g, h5, tols):
+        if len(kept) == SP6_KEEP:
+            break
+        # g = |h_l x rot(h_k, q_k)^T n|: q_k carries eps / g from the quartic (order 2), ~eps from the split
+        gap = _g3_norm(_g3_cross(h5, _g3_turn_dir(h4, -q4, nv)))
+        kept.append(((q0, q4), f, max(1.0, 1.0 / max(gap, 1e-300)) if order == 2 else 1.0))
+    return kept
+
+
+def _sp6_stage(kernel, parent, idx, joints, q, c, s, pose, dp, amp, ws):
+    """Set k's candidate (ok, flags): `kernel` the stage's outputs, `parent` the set index's prefix above the
+    stage's bits (the candidates are recomputed when it changes), `idx` the candidate."""
+    if ws.get("sp6_key") != parent:
+        ws["sp6_key"] = parent
+        ws["sp6"] = _sp6_candidates(kernel(pose, q, c, s, dp))
+    cands = ws["sp6"]
+    if idx >= len(cands):
+        return False, 0
+    vals, f, amp_k = cands[idx]
+    for j, v in zip(joints, vals, strict=True):
+        q[j], c[j], s[j] = v, math.cos(v), math.sin(v)
+    amp[joints[0]], amp[joints[1]] = 1.0, amp_k
+    return True, f
