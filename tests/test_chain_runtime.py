@@ -277,8 +277,8 @@ def test_the_conditioning_bound_decides_all_but_a_narrow_band_around_eps():
 
 
 def test_three_axes_read_a_rotation_as_the_orientation_op_and_the_arm_angle_do(lib, py):
-    """ck_orient_rest / _orient_rest (the orientation op's and the arm angle's shoulder reading, one source each
-    since the arm angle reuses it): from subproblem 2's (t1, t2) of R(u0, a0) R(u1, a1) R(u2, a2) = rd, the three
+    """ck_orient_rest / _orient_rest (the orientation op's reading of three units; the arm angle's core has its
+    own, tested through test_arm_angle): from subproblem 2's (t1, t2) of R(u0, a0) R(u1, a1) R(u2, a2) = rd, the three
     angles rebuild rd (an independent product of axis-angle rotations), C equal to Python."""
     rng = case_rng(2216)
     out = np.zeros(3)

@@ -24,22 +24,23 @@ def _kinds(ops) -> set[str]:
 def c_runtime_files(ops) -> list[str]:
     """The C runtime sources this decomposition calls, in inlining order."""
     kinds = _kinds(ops)
-    poly = ["c/poly_real_roots.c", "c/wk_poly_ops.c", "c/wk_geom3.c"] if kinds & {"spatial3", "sp6"} else []
-    return [*_C_CORE, *poly, *(["c/wk_spatial3.c", "c/chain/ck_spatial3.c"] if "spatial3" in kinds else []),
+    poly = ["c/poly_real_roots.c", "c/wk_poly_ops.c"] if kinds & {"spatial3", "sp6"} else []
+    geom = ["c/wk_geom3.c"] if kinds & {"spatial3", "sp6", "arm_angle"} else []  # the chain-free cores' helpers
+    return [*_C_CORE, *poly, *geom, *(["c/wk_spatial3.c", "c/chain/ck_spatial3.c"] if "spatial3" in kinds else []),
             *(["c/wk_sp6.c", "c/chain/ck_sp6.c"] if "sp6" in kinds else []),
-            *(["c/chain/ck_arm_angle.c"] if "arm_angle" in kinds else []), *_C_TAIL]
+            *(["c/wk_arm_angle.c", "c/chain/ck_arm_angle.c"] if "arm_angle" in kinds else []), *_C_TAIL]
 
 
 def py_runtime_files(ops) -> list[str]:
     """The Python runtime sources this decomposition calls, in inlining order (subproblem 6 and the general 3R
     stage register themselves in chain_stages._OP_STAGES, which _solve runs by the op's kind)."""
     kinds = _kinds(ops)
-    poly = ["python/poly_real_roots.py", "python/chain_poly.py", "python/geom3.py"] if kinds & {"spatial3", "sp6"} \
-        else []
+    poly = ["python/poly_real_roots.py", "python/chain_poly.py"] if kinds & {"spatial3", "sp6"} else []
+    geom = ["python/geom3.py"] if kinds & {"spatial3", "sp6", "arm_angle"} else []  # the chain-free cores' helpers
     return [*(f"python/chain_{n}.py" for n in ("design", "rigid", "poe", "subproblems", "points", "stages")), *poly,
-            *(["python/spatial3.py", "python/chain_spatial3.py"] if "spatial3" in kinds else []),
+            *geom, *(["python/spatial3.py", "python/chain_spatial3.py"] if "spatial3" in kinds else []),
             *(["python/sp6.py", "python/chain_sp6.py"] if "sp6" in kinds else []),
-            *(["python/chain_arm_angle.py"] if "arm_angle" in kinds else []),
+            *(["python/arm_angle.py", "python/chain_arm_angle.py"] if "arm_angle" in kinds else []),
             *(["python/general6r.py", "python/chain_general6r.py"] if "general6r" in kinds else []),
             *(f"python/chain_{n}.py" for n in ("solve", "verify")), "python/pose_forms.py", "python/chain_api.py",
             "python/own_api.py"]
