@@ -208,12 +208,11 @@ def bench_robot(urdf: Path, n: int, arm_angle: bool = False, derived: bool = Fal
     robot = urdf.stem
     out = Path(tempfile.mkdtemp(prefix=f"wk_bench_{robot}_"))
     t0 = time.perf_counter()
+    stages = "derived" if derived else "interpreted"
     if arm_angle:
-        own_robot.derive(urdf, out, redundancy="arm-angle", progress=lambda _: None)
-    elif derived:
-        own_robot.derive(urdf, out, free=FREE.get(robot), stages="derived", progress=lambda _: None)
+        own_robot.derive(urdf, out, redundancy="arm-angle", stages=stages, progress=lambda _: None)
     else:
-        own_robot.derive(urdf, out, free=FREE.get(robot), stages="interpreted", progress=lambda _: None)
+        own_robot.derive(urdf, out, free=FREE.get(robot), stages=stages, progress=lambda _: None)
     derive_s = time.perf_counter() - t0
     m = own_robot.import_solver(out, robot)
     rng = np.random.default_rng(7)
@@ -226,9 +225,10 @@ def bench_robot(urdf: Path, n: int, arm_angle: bool = False, derived: bool = Fal
     poses = [m.fk_matrix(q, design) for q in joints]
     ours = [m.ik(T, design).count for T in poses]
     py_us = per_call(lambda T: m.ik(T, design), poses[: min(n, 100)], 3, warmup=5) * 1e6
-    c_us = c_loop(out, robot, poses, free_value, params=not derived or held >= 0)
+    c_us = c_loop(out, robot, poses, free_value, params=not derived or held >= 0 or arm_angle)
     if derived:
-        return {"robot": robot + " (derived)", "decomposition": "derived straight-line stages (--stages derived)",
+        return {"robot": robot + (" (arm angle)" if arm_angle else "") + " (derived)",
+                "decomposition": "derived straight-line stages (--stages derived)",
                 "derive_s": derive_s, "py_us": py_us, "c_us": c_us, "sets": sum(ours) / len(ours),
                 "peers": {}, "n": n}
     if arm_angle:
@@ -254,6 +254,7 @@ def report(n: int = 200, json_path: Path = ROOT / "build" / "bench" / "own_robot
     rows = [bench_robot(p, n) for p in sorted(ROBOTS.glob("*/*.urdf"))]
     rows += [bench_robot(ROBOTS / r / f"{r}.urdf", n, arm_angle=True) for r in ARM_ANGLE_ROBOTS]
     rows += [bench_robot(ROBOTS / r / f"{r}.urdf", n, derived=True) for r in DERIVED_ROBOTS]
+    rows += [bench_robot(ROBOTS / r / f"{r}.urdf", n, arm_angle=True, derived=True) for r in ARM_ANGLE_ROBOTS]
     versions = {}
     for mod in ("eaik", "ik_geo"):
         try:

@@ -9,6 +9,7 @@ that line, for its own lint and tests; `inline` returns the part below it (a C s
 from __future__ import annotations
 
 import functools
+import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -48,6 +49,7 @@ def load_python(rel: str):
     path = RUNTIME / rel
     spec = importlib.util.spec_from_file_location(f"wristkin_runtime_{path.stem}", path)
     module = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = module  # registered before it runs: its dataclasses look their module up
     spec.loader.exec_module(module)
     return module
 

@@ -870,27 +870,36 @@ def test_a_multi_candidate_stage_s_emitted_c_is_strict_c99_and_clean_under_the_s
 
 
 # ------------------------------------------------------------------------------------------------ refusals
-@pytest.mark.parametrize("path,why", [
-    (ROBOTS / "iiwa14" / "iiwa14_dh.toml", "arm angle"),
-], ids=lambda v: v.name if isinstance(v, Path) else v)
-def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(path, why):
-    options = {"redundancy": "arm-angle"} if why == "arm angle" else {}
-    with pytest.raises(NotDerivable, match=why) as exc:
-        own_robot.load(path, stages="derived", **options)
+def _twisted_kr6(tmp_path: Path) -> Path:
+    """The KR 6's DH table with joint a3's twist 0.3 rad (no multiple of 5 degrees, where its decomposition, a
+    spherical wrist at the end, rests on the arm's structure): what the derived stages do not cover."""
+    text = _file("kr6", "dh").read_text().replace('name = "kr6_dh"', 'name = "kr6_twisted"')
+    head, a3, rest = text.partition('name = "a3"')
+    path = tmp_path / "kr6_twisted.toml"
+    path.write_text(head + a3 + rest.replace("alpha = 0.0", "alpha = 0.3", 1))
+    return path
+
+
+def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(tmp_path):
+    with pytest.raises(NotDerivable, match="twist .* is no multiple of pi/36") as exc:
+        own_robot.load(_twisted_kr6(tmp_path), stages="derived")
     assert "--stages interpreted (the plan interpreter) solves it" in str(exc.value)
 
 
 @pytest.mark.parametrize("robot,fmt,derived", [("kr6", "urdf", True), ("ur5e", "urdf", True), ("youbot", "urdf", True),
                                                ("scara", "urdf", True),
                                                ("iiwa14", "urdf", True), ("kr6_calibrated", "urdf", False),
+                                               ("iiwa14_psi", "urdf", True),
                                                ("ur5e_offset", "dh", True), ("ur5e_tilted", "poe", True)])
 def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_told_which(robot, fmt, derived,
                                                                                           tmp_path):
     """`--stages auto` (the default): the derived stages' module (the serial family's: ROOT_GAP_TOL, no plan) where
     they cover the robot, else the interpreter's (FAMILY_TOL), and the command's progress says which and why."""
     said = []
-    own_robot.derive(_file(robot, fmt), tmp_path, native=False, progress=said.append)
-    m = own_robot.import_solver(tmp_path, f"{robot}_dh" if fmt == "dh" else robot)
+    options = {"redundancy": "arm-angle"} if robot == "iiwa14_psi" else {}  # the S-R-S arm at its arm angle
+    own_robot.derive(_file(robot.removesuffix("_psi"), fmt), tmp_path, name=robot, native=False,
+                     progress=said.append, **options)
+    m = own_robot.import_solver(tmp_path, robot)
     assert hasattr(m, "ROOT_GAP_TOL") == derived and hasattr(m, "FAMILY_TOL") == (not derived)
     note = said[1]
     if derived:
@@ -905,9 +914,9 @@ def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_t
 
 
 def test_the_command_refuses_in_one_line_and_writes_nothing(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(_file("iiwa14", "dh")), "--out",
-                        str(tmp_path / "out"), "--stages", "derived", "--redundancy", "arm-angle"], capture_output=True,
-                       text=True, cwd=ROOT, timeout=300)
+    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(_twisted_kr6(tmp_path)), "--out",
+                        str(tmp_path / "out"), "--stages", "derived"], capture_output=True, text=True, cwd=ROOT,
+                       timeout=300)
     assert r.returncode == 1 and len(r.stderr.strip().splitlines()) == 1 and "--stages derived" in r.stderr
     assert not (tmp_path / "out" / "python").exists()
 

@@ -21,6 +21,7 @@ from seeding import case_rng
 
 from derive import runtime_files
 from derive.serial_core.views import (
+    C_ARM_ANGLE_FILES,
     C_GENERAL6R_FILE,
     C_RUNTIME_AFTER_STAGES,
     C_RUNTIME_FILES,
@@ -317,9 +318,9 @@ def test_the_generated_files_carry_the_sources_verbatim():
         c = (GEN_C / f"{name}.c").read_text()
         assert all(runtime_files.inline(rel) in py for rel in PY_RUNTIME_FILES), name
         assert all(runtime_files.inline(rel) in c for rel in C_RUNTIME_FILES + C_RUNTIME_AFTER_STAGES), name
-    # every serial C source is one of them, or the general 6R's, the spatial 3R's or subproblem 6's stage (a chain
-    # with such a stage carries it: test_derived_robot's multi-candidate stage tests)
-    staged = tuple(f for f in C_SPATIAL3_FILES + C_SP6_FILES if f.startswith("c/serial/"))
+    # every serial C source is one of them, or the general 6R's, the spatial 3R's, subproblem 6's or the arm angle's
+    # stage (a chain with such a stage carries it: test_derived_robot's multi-candidate stage tests, test_arm_angle)
+    staged = tuple(f for f in C_SPATIAL3_FILES + C_SP6_FILES + C_ARM_ANGLE_FILES if f.startswith("c/serial/"))
     assert sorted(C_RUNTIME_FILES + C_RUNTIME_AFTER_STAGES + (C_GENERAL6R_FILE,) + staged) == sorted(
         f"c/serial/{p.name}" for p in SR_C.glob("*.c"))
     for template in ("c/serial.c.jinja", "python/serial.py.jinja"):

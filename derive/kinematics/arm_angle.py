@@ -64,6 +64,19 @@ def centres(c: Chain):
     return s, pe + np.dot(he, s - pe) * he, w
 
 
+def numerics() -> dict:
+    """The run-time core (runtime/python/geom3.py and arm_angle.py below their markers, as the generated solvers
+    carry them) as a namespace: _arm_angle_core, _aa_angle_of."""
+    from .. import runtime_files
+
+    rt = runtime_files.load_python("python/_runtime.py")
+    ns = {"math": math, **{k: getattr(rt, k) for k in ("FLAG_DOUBLE_ROOT", "FLAG_INDETERMINATE",
+                                                        "FLAG_SINGULAR_INVERSE")}}
+    exec(compile(runtime_files.inline("python/geom3.py") + runtime_files.inline("python/arm_angle.py"),
+                 "wristkin_runtime_arm_angle", "exec"), ns)
+    return ns
+
+
 def residual(c: Chain, e, x, y) -> float:
     """The op's equations at true joints (e: their screws, 4 x 4; x, y: the wrist centre at home and placed): the
     elbow's distance |e_e x - S| = |y - S|, and the elbow point of the joints equal to E(psi) at their own psi."""

@@ -130,6 +130,7 @@ class RobotTable:
     # meeting point at infinity): refused within the geometry tolerance
     degenerate_held: tuple = ()
     chain: object = None  # the description's true chain (kinematics/poe.Chain, base and tool included)
+    arm_angle: bool = False  # an S-R-S arm whose run-time parameter is its arm angle (kinematics/arm_angle.py)
 
 
 @dataclass(frozen=True)

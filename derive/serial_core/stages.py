@@ -19,13 +19,15 @@ P_POSE = POSE[:, 3]
 
 @dataclass(frozen=True)
 class Stage:
-    kind: str  # trig_linear | rotation2d | value | wrist | quadratic | general6r | spatial3 | sp6
+    kind: str  # trig_linear | rotation2d | value | wrist | quadratic | general6r | spatial3 | sp6 | arm_angle
     joints: tuple[int, ...]
     # trig_linear (A, B, C); rotation2d (u, v, u0, v0); value (q,); wrist (3x3 M as 9 entries); quadratic (a slide
     # from a distance: (q + B)^2 = D, E the scale of D's rounding); general6r (the six axes' directions and points,
     # 18 + 18, then the product of exponentials [R | p] they must reach, 12: every joint by elimination); spatial3
     # (three axes' directions and points, 9 + 9, the point x at the joints' zero and its target y: rot rot rot x = y);
-    # sp6 (subproblem 6's n, h_j, p_j, h_k, p_k, d_j, g, h_l: 3 x 5 + 1 + 3 + 3, planned._sp6_stages)
+    # sp6 (subproblem 6's n, h_j, p_j, h_k, p_k, d_j, g, h_l: 3 x 5 + 1 + 3 + 3, planned._sp6_stages); arm_angle
+    # (the shoulder's axes h_a, h_b, h_c, its centre s, the elbow's axis h_e and point p_e, the wrist centre x at home
+    # and its target y, 8 x 3, then the arm angle psi: planned._arm_angle_stage)
     exprs: tuple
     title: str
     rule: str
@@ -43,6 +45,9 @@ class Stage:
     # the one chosen where it stays regular (derive/kinematics/general6r.choose_labelling), then the next most
     # regular, tried in turn when no candidate of the one before verifies (a pose where its equations degenerate)
     labelling: tuple[tuple[int, int, int], ...] = ((0, 0, 0),)
+    # arm_angle: the arm angle of joint values (first axis h_1, shoulder centre s, elbow point e, wrist centre w, the
+    # elbow axis's direction, 5 x 3, from the joints and the design), the module's arm_angle() reads it
+    reader: tuple = ()
     # general6r: (the solved chain at the design's defaults, a kinematics.poe.Chain; its general6r.Labelling) for
     # the derivation's records of the elimination (kinematics/general6r.steps)
     elimination: tuple | None = field(default=None, compare=False, repr=False)
@@ -55,8 +60,8 @@ class Stage:
             return 16
         if self.kind == "spatial3":
             return 4  # a 3R's positions: at most four (Pieper)
-        if self.kind == "sp6":
-            return 4  # a quartic's real roots
+        if self.kind in ("sp6", "arm_angle"):
+            return 4  # a quartic's real roots; the arm angle's two elbows x two shoulders
         return 2 if self.kind in ("trig_linear", "wrist", "quadratic") else 1
 
     @property
@@ -81,7 +86,9 @@ def stage_output_names(st: Stage) -> list[str]:
             "spatial3": [f"{w}{i}{x}" for w in "hr" for i in "abc" for x in "xyz"] +
             [f"{p}{x}" for p in "xy" for x in "xyz"],
             "sp6": [f"{w}{x}" for w in ("n", "h0", "p0", "h4", "p4") for x in "xyz"] + ["d0"] +
-            [f"{w}{x}" for w in ("g", "h5") for x in "xyz"]}[st.kind]
+            [f"{w}{x}" for w in ("g", "h5") for x in "xyz"],
+            "arm_angle": [f"{w}{x}" for w in ("ha", "hb", "hc", "s", "he", "pe", "x", "y") for x in "xyz"] +
+            ["psi"]}[st.kind]
 
 
 def cs_symbols(spec):
@@ -125,6 +132,12 @@ def serial_kernels(spec, dv: Derivation):
     for k, st in enumerate(spec.stages, start=1):
         ks.append(Kernel(f"stage{k}", f"IK stage {k} ({st.kind}): {st.title}", (pose, q, ("c", cs), ("s", ss), dp),
                          tuple(zip(stage_output_names(st), (on_cs(e, spec) for e in st.exprs), strict=True))))
+        if st.reader:  # the arm angle of joint values: what the module's arm_angle() reads (serial_arm_angle.py)
+            ks.append(Kernel("arm_angle_parts", "The first axis, the shoulder centre, the elbow point, the wrist "
+                             "centre and the elbow axis's direction the joints place (5 x 3).", (q, dp),
+                             tuple((f"{w}{x}", e) for (w, x), e in zip(
+                                 ((w, x) for w in ("h1", "s", "e", "w", "axis") for x in "xyz"), st.reader,
+                                 strict=True))))
     return ks
 
 

@@ -29,6 +29,9 @@ C_SPATIAL3_FILES = ("c/wk_spatial3.c", "c/serial/sr_spatial3.c")
 PY_SPATIAL3_FILES = ("python/spatial3.py", "python/serial_spatial3.py")
 C_SP6_FILES = ("c/wk_sp6.c", "c/serial/sr_sp6.c")
 PY_SP6_FILES = ("python/sp6.py", "python/serial_sp6.py")
+# an S-R-S arm's arm_angle stage: the 3-vector helpers, the arm angle's core, its stage solver and arm_angle verb
+C_ARM_ANGLE_FILES = ("c/wk_geom3.c", "c/wk_arm_angle.c", "c/serial/sr_arm_angle.c")
+PY_ARM_ANGLE_FILES = ("python/geom3.py", "python/arm_angle.py", "python/serial_arm_angle.py")
 
 
 IDENTITY_3X4 = (1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0)
@@ -93,6 +96,10 @@ def py_stage_body(st: dict) -> list[str]:
         shift, width = st["shift"], st["width"]
         return [f"return _sp6_stage(_k_stage{st['index']}, k >> {shift + width}, (k >> {shift}) & "
                 f"{2 ** width - 1}, {_tuple(st['joints'])}, q, c, s, pose, dp, amp, ws)"]
+    if st["kind"] == "arm_angle":  # as general6r's: its sets once per prefix above its bits
+        shift, width = st["shift"], st["width"]
+        return [f"return _arm_angle_stage(_k_stage{st['index']}, k >> {shift + width}, (k >> {shift}) & "
+                f"{2 ** width - 1}, {_tuple(st['joints'])}, q, c, s, pose, dp, prev, ws)"]
     if st["kind"] == "wrist":
         joints, signs = "(" + ", ".join(map(str, st["joints"])) + ")", "(" + ", ".join(map(str, st["signs"])) + ")"
         mirror = ["if k & 1:  # the second branch mirrors the first (set k - 1's prefix)",
@@ -125,6 +132,12 @@ def c_stage_body(st: dict) -> list[str]:
         return [f"static const int joints[2] = {{ {joints} }};", "(void)prev;",
                 f"return sr_sp6(sr_k_stage{st['index']}, (long)(k >> {shift + width}), (k >> {shift}) & "
                 f"{2 ** width - 1}, joints, q, c, s, pose, dp, amp, ws, f);"]
+    if st["kind"] == "arm_angle":  # as general6r's: its sets once per prefix above its bits
+        shift, width = st["shift"], st["width"]
+        joints = ", ".join(map(str, st["joints"]))
+        return [f"static const int joints[4] = {{ {joints} }};", "(void)amp;",
+                f"return sr_arm_angle(sr_k_stage{st['index']}, (long)(k >> {shift + width}), (k >> {shift}) & "
+                f"{2 ** width - 1}, joints, q, c, s, pose, dp, prev, ws, f);"]
     size = {"trig_linear": 6 if st.get("factored") else 3, "rotation2d": 4, "value": 1, "wrist": 9,
             "quadratic": 3}[st["kind"]]
     call = f"sr_k_stage{st['index']}(pose, q, c, s, dp, out);"
@@ -159,6 +172,15 @@ def c_stage_body(st: dict) -> list[str]:
     raise ValueError(f"stage kind {st['kind']!r}")
 
 
+def _arm_angle_verb(name: str) -> dict:
+    """The C header's and source's wk_NAME_arm_angle (sr_arm_angle.c's sr_api_arm_angle), as the interpreted
+    module's."""
+    sig = f"int wk_{name}_arm_angle(const double *joints, const wk_{name}_design *design, double *psi)"
+    return {"declaration": "/* The arm angle of joint values (the design parameter at which ik returns them): where "
+                           "they put the elbow on its\n * circle about the shoulder-wrist line. */\n" + sig + ";",
+            "definition": sig + "\n{\n    return sr_api_arm_angle(joints, design, psi);\n}"}
+
+
 def _py_tuple(items: list[str]) -> str:
     """A tuple literal: one line for up to 8 items, else rows of 9 (a screw chain's axes: 30 design values)."""
     if len(items) <= 8:
@@ -182,6 +204,7 @@ def serial_views(ctx: dict) -> dict:
     general = any(st["kind"] == "general6r" for st in stages)
     spatial3 = any(st["kind"] == "spatial3" for st in stages)
     sp6 = any(st["kind"] == "sp6" for st in stages)
+    arm_angle = any(st["kind"] == "arm_angle" for st in stages)
     poly = spatial3 or sp6
     c_flags = {
         "SR_N_STAGES": len(stages),
@@ -200,6 +223,7 @@ def serial_views(ctx: dict) -> dict:
         "SR_HAS_GENERAL6R": int(general),
         "SR_HAS_SPATIAL3": int(spatial3),
         "SR_HAS_SP6": int(sp6),
+        "SR_HAS_ARM_ANGLE": int(arm_angle),
         "SR_HAS_WRIST_MIRROR": int(bool(wrist) and wrist[0]["bit"] == 0),
         "SR_REUSE_MIRROR_CHECK": int(reuse),
         "SR_N_FOLD_BITS": len(ctx["fold_bits"]),
@@ -232,6 +256,8 @@ def serial_views(ctx: dict) -> dict:
     base0, tool0 = (own["base0"], own["tool0"]) if own else ([repr(float(v)) for v in IDENTITY_3X4],) * 2
     c_tables += [f"static const double sr_base0[12] = {{ {', '.join(base0)} }};",
                  f"static const double sr_tool0[12] = {{ {', '.join(tool0)} }};"]
+    if arm_angle:  # the core's bands scale with the robot's size (sr_arm_angle.c), as the interpreted chain's
+        c_tables.append(f"static const double sr_scale = {own['scale']};")
     if own:
         # a user robot's limits as select_ik's defaults (NULL limits: the description's), as the interpreted C's
         c_flags["SR_HAS_LIMITS"] = 1
@@ -263,7 +289,8 @@ def serial_views(ctx: dict) -> dict:
             "py_base0": _frame_literal(base0), "py_tool0": _frame_literal(tool0), "design_fields": DESIGN_FIELDS,
             "py_runtime_files": (PY_RUNTIME_FILES[:-1] + (PY_GENERAL6R_FILES if general else ())
                                  + (PY_POLY_FILES if poly else ()) + (PY_SPATIAL3_FILES if spatial3 else ())
-                                 + (PY_SP6_FILES if sp6 else ()) + PY_RUNTIME_FILES[-1:]
+                                 + (PY_SP6_FILES if sp6 else ()) + (PY_ARM_ANGLE_FILES if arm_angle else ())
+                                 + PY_RUNTIME_FILES[-1:]
                                  + (PY_OWN_RUNTIME_FILES if own else (PY_SELECT_FILE,))),
             "select_doc": ("Joint limits (NULL = the description's limits, as the Python select); nearest valid set "
                            "to previous, or the\n * first regular one (NULL): index or -1." if own else
@@ -271,6 +298,9 @@ def serial_views(ctx: dict) -> dict:
                            "(NULL): index or -1."),
             "c_runtime_files": C_RUNTIME_FILES + ((C_GENERAL6R_FILE,) if general else ())
                                + (C_POLY_FILES if poly else ()) + (C_SPATIAL3_FILES if spatial3 else ())
-                               + (C_SP6_FILES if sp6 else ()),
+                               + (C_SP6_FILES if sp6 else ()) + (C_ARM_ANGLE_FILES if arm_angle else ()),
             "c_runtime_after_stages": C_RUNTIME_AFTER_STAGES,
+            "arm_angle": arm_angle, "arm_angle_literal": str(arm_angle),
+            # verbs beyond every serial arm's (declaration, definition): an S-R-S arm's arm angle of joint values
+            "c_extra_verbs": [_arm_angle_verb(ctx["name"])] if arm_angle else [],
             "c_includes": [f.split("/")[-1] for f in C_GENERAL6R_SHARED if f.endswith(".h")] if general else []}

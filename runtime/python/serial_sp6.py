@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 
 from geom3 import _g3_cross, _g3_norm, _g3_turn_dir
-from serial_stand_in import DEGENERATE_EPS
+from serial_stand_in import DEGENERATE_EPS, _wrap
 from sp6 import _sp6_core
 
 # wristkin: inlined from here
@@ -57,6 +57,7 @@ def _sp6_stage(kernel, parent, idx, joints, q, c, s, pose, dp, amp, ws):
         return False, 0
     vals, f, amp_k = cands[idx]
     for j, v in zip(joints, vals, strict=True):
+        v = _wrap(v)  # Newton's steps reach past pi
         q[j], c[j], s[j] = v, math.cos(v), math.sin(v)
     amp[joints[0]], amp[joints[1]] = 1.0, amp_k
     return True, f

@@ -50,6 +50,7 @@ def _spatial3_stage(kernel, parent, idx, joints, q, c, s, pose, dp, prev, ws):
         return False, 0
     vals, f = cands[idx]
     for m, (j, v) in enumerate(zip(joints, vals, strict=True)):
+        v = _wrap(v)  # Newton's steps reach past pi
         if m == 0 and f & FLAG_INDETERMINATE and prev is not None:
             v = prev[j]
         q[j], c[j], s[j] = v, math.cos(v), math.sin(v)

@@ -85,3 +85,14 @@ _IK_RESULT = _FK_RESULT = None
 def _c_design(vals):
     """No C design without the extension (the generated module's binds wristkin._native's)."""
     return None
+
+
+# an S-R-S arm's module (an arm_angle stage): the robot's size and its reader kernel (the PUMA has neither: stand-ins
+# for the names serial_arm_angle.py reads)
+SCALE = 1.0
+
+
+def _k_arm_angle_parts(q, dp):
+    """The first axis, the shoulder centre, the elbow point, the wrist centre and the elbow axis's direction the
+    joints place (a derived kernel of an S-R-S arm's module)."""
+    raise NotImplementedError("the PUMA-560 has no arm angle")

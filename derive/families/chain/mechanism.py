@@ -268,11 +268,11 @@ class ChainMechanism(MechanismDefaults):
         """The robot as a DH table for `--stages derived` (kinematics/dh_table.RobotTable) on its ideal axes, with
         its held joint, the held values the IK refuses and its true chain; the arm angle or more than six solved
         joints refused with the reason (the deviation of the true axes from the ideal ones goes with it: the
-        deriving family decides what it takes)."""
+        deriving family decides what it takes). An S-R-S arm whose run-time parameter is its arm angle goes with
+        it too (its seven joints solved: the arm angle stands for the seventh)."""
         desc = self.desc
-        if desc.redundancy != "joint":
-            raise NotDerivable.because(self.NAME, "the arm angle as a run-time parameter")
-        if self.chain.n - (desc.free >= 0) > 6:
+        arm_angle = desc.redundancy == "arm-angle"
+        if self.chain.n - (desc.free >= 0) - arm_angle > 6:
             raise NotDerivable.because(self.NAME, f"{self.chain.n} joints")
         plan, ideal = self.plan()
         try:
@@ -283,7 +283,7 @@ class ChainMechanism(MechanismDefaults):
         api = self._own_api(plan, ideal)
         return RobotTable(self.NAME, self.title, desc.source, desc.rule, c.joint_names, table, c.base @ table.frame0,
                           desc.fk, self.scale(), frozenset(o["op"] for o in plan.ops),
-                          self.deviation(), api, desc.free, self.degenerate_held_reasons(), c)
+                          self.deviation(), api, desc.free, self.degenerate_held_reasons(), c, arm_angle)
 
     def _own_api(self, plan, ideal) -> OwnRobotApi:
         """The module's constants beyond the verbs: the interpreted module's, and the derived one's (robot_table)."""

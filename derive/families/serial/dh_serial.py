@@ -22,6 +22,7 @@ import sympy as sp
 
 from ...checks import jacobian_fd_error, numeric_predicate, sampler, symbolic_identity
 from ...identities.dh import DHRow, chain, explicit
+from ...kinematics import arm_angle
 from ...kinematics.general6r import numerics
 from ...kinematics.general6r import steps as elimination_steps
 from ...kinematics.poe import Chain, rot
@@ -49,6 +50,8 @@ class SerialSpec:
     # (joint index, design symbol): a joint held at a run-time value (a 7-joint arm's free joint), its stage reading
     # the symbol (the last design entry: the lengths come first)
     held: tuple[int, sp.Symbol] | None = None
+    # the design symbol of an S-R-S arm's arm angle, its run-time parameter (the arm_angle stage reads it), or None
+    arm_angle: sp.Symbol | None = None
 
 
 # ------------------------------------------------------------------------------------------- checks
@@ -57,6 +60,25 @@ def _sample_design(spec: SerialSpec, rng) -> dict:
     held = spec.held[1] if spec.held else None
     return {s: rng.uniform(-math.pi, math.pi) if s == held else v * rng.uniform(0.5, 1.5) if v != 0 else
             rng.uniform(0.0, 0.2) for s, v in zip(spec.design, spec.design_default, strict=True)}
+
+
+def _design_at(spec: SerialSpec, q: dict, dsn: dict) -> dict:
+    """The design the stages solve the FK of q at (dsn updated): a held joint at its value; an S-R-S arm's arm angle
+    at the joints' own (read on the arm_angle stage's reader: the shoulder and wrist centres, the elbow point and the
+    first axis they place, kinematics/arm_angle.angle_of)."""
+    if spec.held:
+        dsn[spec.held[1]] = q[spec.joints[spec.held[0]]]
+    if spec.arm_angle is not None:
+        st = next(s for s in spec.stages if s.kind == "arm_angle")
+        fn = _READERS.get(id(st))
+        if fn is None:
+            fn = _READERS[id(st)] = sp.lambdify((*spec.joints, *spec.design), list(st.reader), "numpy")
+        h1, s, e, w, _axis = np.array([float(v) for v in fn(*q.values(), *dsn.values())]).reshape(5, 3)
+        dsn[spec.arm_angle] = arm_angle.angle_of(h1, s, e, w)
+    return dsn
+
+
+_READERS: dict = {}  # an arm_angle stage's reader, lambdified once
 
 
 def _sample_joints(spec: SerialSpec, rng) -> dict:
@@ -158,8 +180,7 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
         def err(rng, st=st, at_fk=at_fk, wrist=wrist):
             q = _sample_joints(spec, rng)
             dsn = _sample_design(spec, rng)
-            if spec.held:  # the held joint at the design's value: the stages solve for that pose
-                dsn[spec.held[1]] = q[spec.joints[spec.held[0]]]
+            _design_at(spec, q, dsn)  # a held joint at its value, the arm angle at the joints': the stages solve that
             vals = at_fk(q, dsn)
             qs = [q[spec.joints[j]] for j in st.joints]
             if st.kind == "trig_linear":
@@ -189,6 +210,8 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
                 return float(np.max(np.abs(p - v[21:24])))
             if st.kind == "sp6":  # both invariants of the parallel group hold
                 return _sp6_residual(vals, qs)
+            if st.kind == "arm_angle":  # the shoulder and elbow carry the wrist centre onto its target
+                return _arm_angle_residual(vals, qs)
             m = np.array(vals).reshape(3, 3)
             w = np.array(wrist(*qs), dtype=float)
             return float(np.max(np.abs(m - w)))
@@ -198,16 +221,19 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
                  "general6r": "exp(S_1 q_1) ... exp(S_6 q_6) = T M^-1 from the axes and points on the FK",
                  "spatial3": "rot(h_a, q_a) rot(h_b, q_b) rot(h_c, q_c) x = y from the lines on the FK",
                  "sp6": "n . rot(h_j, -q_j) p_j - n . rot(h_k, q_k) p_k = d_j and n . rot(h_j, -q_j) g = "
-                        "n . rot(h_k, q_k) h_l on the FK"}[st.kind]
+                        "n . rot(h_k, q_k) h_l on the FK",
+                 "arm_angle": "the shoulder's and the elbow's turns carry the wrist centre x onto its target y on "
+                              "the FK"}[st.kind]
         checks: list[Check] = [numeric_predicate(err, claim, samples=200, tol=1e-9)]
         if st.kind == "general6r":
             checks.append(_elimination_finds(spec, st, at_fk))
+        if st.kind == "arm_angle":
+            checks.append(_arm_angle_finds(spec, st, at_fk))
         if st.factored:
             def factors(rng, at_fk=at_fk):
                 q = _sample_joints(spec, rng)
                 dsn = _sample_design(spec, rng)
-                if spec.held:
-                    dsn[spec.held[1]] = q[spec.joints[spec.held[0]]]
+                _design_at(spec, q, dsn)
                 a, b, c, dm, dp, em = at_fk(q, dsn)
                 # relative to (A^2 + B^2): both sides are sums of squares of metre-sized terms
                 return abs(dm * dp / 4 - (a * a + b * b - c * c)) / max(a * a + b * b, 1e-300) + (em < abs(dm)) * 1.0
@@ -247,6 +273,35 @@ def _sp6_residual(vals, qs) -> float:
     return max(abs(nv @ r0 @ p0 - nv @ r4 @ p4 - d0), abs(nv @ r0 @ g - nv @ r4 @ h5))
 
 
+def _arm_angle_residual(vals, qs) -> float:
+    """|rot_a rot_b rot_c (about the shoulder centre s) rot_e (about the elbow's line) x - y| of an arm_angle stage's
+    outputs (h_a, h_b, h_c, s, h_e, p_e, x, y, psi) at its joints (q_a, q_b, q_c, q_e): numpy rotation matrices."""
+    v = np.array(vals, dtype=float)
+    ha, hb, hc, s, he, pe, x, y = (v[3 * i:3 * i + 3] for i in range(8))
+    turned = rot(he, qs[3]) @ (x - pe) + pe
+    return float(np.max(np.abs(s + rot(ha, qs[0]) @ rot(hb, qs[1]) @ rot(hc, qs[2]) @ (turned - s) - y)))
+
+
+def _arm_angle_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:
+    """The runtime's arm-angle core (runtime/python/arm_angle.py, as the generated solvers carry it) on the stage's
+    outputs at the FK of random joints, at their own arm angle, returns those joints among its sets (to 1e-9 rad:
+    closed forms, random joints far from the stretched elbow and the shoulder's family)."""
+    core = arm_angle.numerics()
+    tols = (1.0, 1e-12, 32 * 2.220446049250313e-16, 1e-9, 64 * 2.220446049250313e-16, 1e-12)
+
+    def missed(rng):
+        q = _sample_joints(spec, rng)
+        dsn = _design_at(spec, q, _sample_design(spec, rng))
+        v = at_fk(q, dsn)
+        parts = [tuple(v[3 * i:3 * i + 3]) for i in range(8)]
+        qs = np.array([q[spec.joints[j]] for j in st.joints])
+        sets = core["_arm_angle_core"](*parts, v[24], None, tols)
+        return min((float(np.max(np.abs(np.remainder(np.array(c) - qs + math.pi, 2 * math.pi) - math.pi)))
+                    for c, _ in sets), default=math.inf)
+    return numeric_predicate(missed, "the arm-angle core on the stage's outputs, at the joints' own arm angle, returns "
+                             "the generating shoulder and elbow", samples=40, tol=1e-9)
+
+
 def _elimination_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:
     """The runtime's elimination (runtime/python/general6r.py, as the generated solvers carry it) on the stage's
     outputs at the FK of random joints returns those joints among its candidates (to 1e-6 rad: its Newton refine
@@ -256,8 +311,7 @@ def _elimination_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:
     def missed(rng):
         q = _sample_joints(spec, rng)
         dsn = _sample_design(spec, rng)
-        if spec.held:
-            dsn[spec.held[1]] = q[spec.joints[spec.held[0]]]
+        _design_at(spec, q, dsn)
         axes, points, g = _general6r_parts(at_fk(q, dsn))
         qs = np.array([q[spec.joints[j]] for j in st.joints])
         shift, reverse, hidden = st.labelling[0]

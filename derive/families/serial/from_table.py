@@ -134,7 +134,7 @@ def from_table(robot: RobotTable, auto: bool = False) -> SerialMechanism:
             # the design: a held joint's value alone (the interpreted module's); a calibrated robot's FK is its true
             # chain, which no length moves; a general 6R's lengths carry no structure (a shipped xArm6's 1e-6 m
             # offsets, below LENGTH_MIN as a design's lengths)
-            if robot.held >= 0 or calibrated or general:
+            if robot.held >= 0 or robot.arm_angle or calibrated or general:
                 lengths.append(sp.Float(v))
                 continue
             sym = sp.Symbol(_identifier(f"{label}{k}", taken), real=True)
@@ -150,13 +150,18 @@ def from_table(robot: RobotTable, auto: bool = False) -> SerialMechanism:
         held = (robot.held, sp.Symbol(_identifier(f"held_{robot.joint_names[robot.held]}", taken), real=True))
         design.append(held[1])
         defaults.append(0.0)
+    psi = None
+    if robot.arm_angle:  # the arm angle: the design (the lengths folded, as the interpreted module's), 0 by default
+        psi = sp.Symbol(_identifier("arm_angle", taken), real=True)
+        design.append(psi)
+        defaults.append(0.0)
     base, tool = _constant(robot.base), _constant(table.tool)
     spec = SerialSpec(name, robot.title, robot.source, rows, tuple(joints), tuple(kinds), tuple(design),
                       tuple(defaults), [], notes=f"standard DH table read from the description ({robot.rule})",
-                      tool=tool, base=base, held=held)
+                      tool=tool, base=base, held=held, arm_angle=psi)
     try:
         stage_list, _ = planned_stages(rows, tuple(joints), spec.kinds, tuple(design), tuple(defaults), "standard",
-                                       [str(q) for q in joints], base, tool, held, general)
+                                       [str(q) for q in joints], base, tool, held, general, psi)
     except (PlanError, ValueError) as exc:
         missing = sorted(robot.ops - SUPPORTED - {"general6r"})
         if missing:  # say what the interpreter's decomposition needs, not the search's refusal
@@ -235,6 +240,8 @@ class _DerivedRobot(SerialMechanism):
             if checks:
                 extra["design_checks"] = [{"kind": "held", "tol": repr(api.geometry_tol), "what": what}
                                           for what, _, _ in checks]
+        if self.spec.arm_angle is not None:  # the arm angle: the design (as the interpreted module's)
+            extra.update(n_lengths=0, design_names=["arm_angle"])
         return {**extra, **{k: lit[k] for k in ("limits_lower", "limits_upper", "strategy_literal",
                                                 "controls_literal", "branch_names", "description_tol")},
                 "unreachable_note": text_literal(f"this chain controls {api.controls} only") if n - bool(held) < 6

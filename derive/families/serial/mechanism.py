@@ -49,17 +49,18 @@ class SerialMechanism(SerialArm):
         n = 100 if any(st.kind == "general6r" for st in spec.stages) else 300
         for _ in range(n):
             q = [rng.uniform(-math.pi, math.pi) if k == "R" else rng.uniform(-0.5, 0.5) for k in solver.JOINT_KINDS]
-            # a held joint: at its joint value (the design's last entry)
-            design = {solver.DESIGN_NAMES[-1]: q[spec.held[0]]} if spec.held else None
+            # a held joint: at its joint value (the design's last entry); the arm angle: the joints' own
+            design = {solver.DESIGN_NAMES[-1]: q[spec.held[0]]} if spec.held else (
+                {"arm_angle": solver.arm_angle(q)} if spec.arm_angle is not None else None)
             sol = solver.ik(solver.fk_matrix(q), design)
             counts[sol.count] = counts.get(sol.count, 0) + 1
             worst_ok &= all(float(np.max(np.abs(solver.fk_matrix(v) - solver.fk_matrix(q)))) < 1e-9 for v in sol)
             diffs = [np.where(np.array(solver.JOINT_KINDS) == "R", np.remainder(v - q + math.pi, 2 * math.pi) - math.pi,
                               v - q) for v in sol]
             contains += any(float(np.max(np.abs(dq))) < 1e-6 for dq in diffs)
-        held = spec.held[1] if spec.held else None
+        held = spec.held[1] if spec.held else spec.arm_angle
         return {
-            "summary": [("design (defaults)", ", ".join(f"{d} = {v:g} {'rad (the held joint)' if d == held else 'm'}"
+            "summary": [("design (defaults)", ", ".join(f"{d} = {v:g} {'rad (run time)' if d == held else 'm'}"
                                                         for d, v in zip(spec.design, spec.design_default,
                                                                         strict=True))),
                         ("joints", ", ".join(f"{q} ({'revolute' if k == 'R' else 'prismatic'})"
@@ -67,7 +68,8 @@ class SerialMechanism(SerialArm):
                         ("IK solution sets per pose (max)", str(solver.MAX_IK))],
             "sections": [{"title": "Round trips through the generated solver",
                           "body": f"{n} seeded random joint vectors (revolute uniform in (-pi, pi], prismatic in "
-                                  f"(-0.5, 0.5) m{', the held joint at its value' if held else ''}): IK solution "
+                                  f"(-0.5, 0.5) m{', the held joint at its value' if spec.held else ''}"
+                                  f"{', at their own arm angle' if spec.arm_angle is not None else ''}): IK solution "
                                   f"counts {dict(sorted(counts.items()))}; the generating "
                                   f"joints were among the solutions {contains} of {n} times; every returned solution "
                                   f"reproduced the pose to 1e-9: {'yes' if worst_ok else 'NO'}. The independent "

@@ -35,7 +35,7 @@ from ...identities.dh import chain as dh_chain
 from ...identities.frames import rodrigues
 from ...kinematics import general6r
 from ...kinematics.general6r import REGULARITY_MIN
-from ...kinematics.planner import NoClosedForm, find_plan
+from ...kinematics.planner import NoClosedForm, arm_angle_plan, find_plan
 from ...kinematics.poe import Chain, reverse
 from ...model import NoDecomposition
 from ...serial_core.stages import P_POSE, POSE_SYMBOLS, R_POSE, Stage
@@ -51,7 +51,7 @@ HELD_LABELLING_VALUES = (0.7, -1.9, 2.6, -0.4)
 # give the family's members)
 FALLBACK_READINGS = 2
 SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient",
-             "group_rest", "spatial3", "sp6"}
+             "group_rest", "spatial3", "sp6", "arm_angle"}
 
 
 class PlanError(ValueError):
@@ -185,14 +185,16 @@ def _group_rest(rg, grp, j, axes, joints, about, source) -> Stage:
 
 
 def stages(rows, joints, kinds, design, defaults, convention="standard", names=None, base=None, tool=None,
-           held=None, general=False):
+           held=None, general=False, arm_angle=None):
     """(stages, strategy) for the DH rows (after the constant `base`, before the constant `tool`, 4x4 each): the
     planner's decomposition as symbolic stages. `held`: (joint index, design symbol) of a joint held at a run-time
     value (a 7-joint arm's free joint): its stage reads the value, and the others are planned on the chain with it
     held, its rotation kept as its symbol (so every stage holds at every held value, which the derivation checks).
     `general`: where no decomposition fits, six revolute joints are solved by elimination (a robot whose own plan
     is the general 6R's; one that a decomposition outside these stage kinds fits is refused instead: its
-    decomposition is exact and cheaper)."""
+    decomposition is exact and cheaper). `arm_angle`: the design symbol of an S-R-S arm's arm angle, its run-time
+    parameter (kinematics/planner.arm_angle_plan: the shoulder and the elbow from the wrist centre and it, then the
+    wrist)."""
     if convention != "standard":
         raise PlanError("the serial family's stages are built for standard DH tables")
     ts = dh_chain(rows, convention, None, base)
@@ -224,9 +226,12 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
                                            num(end[:3, 3], values)[:, None]]), [0, 0, 0, 1]]))
     numeric = numeric_chain(at)
     try:
-        plan = find_plan(numeric, 1e-9, lambda _c, p: all(o["op"] in SUPPORTED for o in p.ops)
-                         and all(o["op"] != "orient" or len(o["units"]) in (1, 3) or (
-                             len(o["units"]) == 2 and all(len(u) == 1 for u in o["units"])) for o in p.ops))
+        if arm_angle is not None:
+            plan = arm_angle_plan(numeric, 1e-9)
+        else:
+            plan = find_plan(numeric, 1e-9, lambda _c, p: all(o["op"] in SUPPORTED for o in p.ops)
+                             and all(o["op"] != "orient" or len(o["units"]) in (1, 3) or (
+                                 len(o["units"]) == 2 and all(len(u) == 1 for u in o["units"])) for o in p.ops))
     except NoClosedForm as exc:
         if not general or len(idx) != 6 or any(k != "R" for k in kinds):
             raise PlanError(str(exc)) from None
@@ -327,6 +332,9 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             continue
         if k == "spatial3":  # three axes in general position place x: every real solution, by the runtime
             out.append(_spatial3_stage(op["js"], axes, points, joints, x, y))
+            continue
+        if k == "arm_angle":  # an S-R-S arm: the shoulder and the elbow from the wrist centre and the arm angle
+            out.append(_arm_angle_stage(op, axes, points, joints, x, y, point(op["s"]), arm_angle, prefix))
             continue
         if k == "sp6":  # an offset wrist: two joints from the parallel group's invariants, then the last about them
             out += _sp6_stages(op, axes, points, joints, x, y, target.r, direction(op["n"]), about)
@@ -447,6 +455,29 @@ def _spatial3_stage(js, axes, points, joints, x, y) -> Stage:
                  "third's is a degree-8 polynomial in tan(q_b / 2) with the extraneous (1 + t^2)^2 of the substitution "
                  "(at most four real roots, Pieper), every real root isolated at run time, the first joint by "
                  "subproblem 1")
+
+
+def _arm_angle_stage(op, axes, points, joints, x, y, s, psi, prefix) -> Stage:
+    """An S-R-S arm's shoulder (three axes meeting at s) and elbow for the wrist centre's target y and the arm angle
+    psi, every set by the runtime (wk_arm_angle.c, arm_angle.py: two elbows, two shoulders each): the kernel gives the
+    shoulder's axes and centre, the elbow's axis and point, x (the wrist centre at home) and y, and psi. Its reader,
+    the arm angle of joint values: the first axis, s, the elbow point (the elbow axis's point nearest s) and the
+    wrist centre the joints place, and the elbow axis's direction there (derive/kinematics/arm_angle.py)."""
+    (ja, jb, jc), je = op["shoulder"], op["elbow"]
+    he, pe = axes[je], points[je]
+    e0 = (pe + he * he.dot(s - pe)).applyfunc(_trig_reduced)
+    shoulder = prefix((ja, jb, jc))
+    reader = (tuple(sp.simplify(v) for v in axes[ja]) + tuple(s) + tuple(shoulder.apply(e0)) +
+              tuple(prefix((ja, jb, jc, je)).apply(x)) + tuple(shoulder.r * he))
+    exprs = (tuple(sp.simplify(v) for i in (ja, jb, jc) for v in axes[i]) + tuple(s) +
+             tuple(sp.simplify(v) for v in he) + tuple(pe) + tuple(x) + tuple(y) + (psi,))
+    names = ", ".join(str(joints[i]) for i in (ja, jb, jc))
+    return Stage("arm_angle", (ja, jb, jc, je), exprs, f"shoulder {names} and elbow {joints[je]} at the arm angle "
+                 "(up to four sets)", "the arm angle psi places the elbow on its circle about the shoulder-wrist line "
+                 "(derive/kinematics/arm_angle.py): the elbow from |rot(h_e, q_e) (x - p_e) - (s - p_e)| = |y - s| "
+                 "(subproblem 3, two roots), the shoulder's rotation about s from the two frames (s -> y and the side "
+                 "psi gives, against s -> the turned wrist centre and the elbow point), its joints by subproblem 2 "
+                 "then 1 (two sets); at run time by the runtime's core", reader=reader)
 
 
 def _sp6_stages(op, axes, points, joints, x, y, rt, nv, about) -> list[Stage]:

@@ -61,7 +61,7 @@ static int sr_sp6(sr_stage_kernel kernel, long parent, int idx, const int *joint
     }
     if (idx >= ws->sp6_n) return 0;
     for (j = 0; j < 2; ++j) {
-        const double v = ws->sp6_q[idx][j];
+        const double v = wk_wrap(ws->sp6_q[idx][j]); /* Newton's steps reach past pi */
         q[joints[j]] = v;
         c[joints[j]] = cos(v);
         s[joints[j]] = sin(v);

@@ -54,7 +54,7 @@ static int sr_spatial3(sr_stage_kernel kernel, long parent, int idx, const int *
     }
     if (idx >= ws->s3_n) return 0;
     for (j = 0; j < 3; ++j) {
-        double v = ws->s3_q[idx][j];
+        double v = wk_wrap(ws->s3_q[idx][j]); /* Newton's steps reach past pi */
         if (j == 0 && (ws->s3_f[idx] & WK_FLAG_INDETERMINATE) && prev) v = prev[joints[0]];
         q[joints[j]] = v;
         c[joints[j]] = cos(v);

@@ -10,7 +10,7 @@ typedef void (*sr_stage_kernel)(const double *pose, const double *q, const doubl
                                 const double *dp, double *out);
 
 /* One IK call's scratch for the stages that compute several candidates at once (the general 6R's, the spatial 3R's,
- * subproblem 6's), kept across the set words that share the prefix above their bits */
+ * subproblem 6's, the arm angle's), kept across the set words that share the prefix above their bits */
 #define SR_S3_KEEP 4 /* a spatial 3R's candidates kept (Pieper's bound on a 3R's positions) */
 #define SR_SP6_KEEP 4 /* subproblem 6's candidates kept (its quartic's real roots) */
 typedef struct {
@@ -33,7 +33,13 @@ typedef struct {
     double sp6_amp[SR_SP6_KEEP]; /* how much the candidate's q_k amplifies the input's rounding (sr_sp6.c) */
     unsigned sp6_f[SR_SP6_KEEP];
 #endif
-#if !SR_HAS_GENERAL6R && !SR_HAS_SPATIAL3 && !SR_HAS_SP6
+#if SR_HAS_ARM_ANGLE
+    long aa_key; /* as g6_key */
+    int aa_n;
+    double aa_q[4][4]; /* an S-R-S arm's (q_a, q_b, q_c, q_e): two elbows x two shoulders */
+    unsigned aa_f[4];
+#endif
+#if !SR_HAS_GENERAL6R && !SR_HAS_SPATIAL3 && !SR_HAS_SP6 && !SR_HAS_ARM_ANGLE
     int unused; /* C99 has no empty structs */
 #endif
 } sr_ws;
@@ -53,7 +59,11 @@ static void sr_ws_init(sr_ws *ws)
     ws->sp6_key = -1;
     ws->sp6_n = 0;
 #endif
-#if !SR_HAS_GENERAL6R && !SR_HAS_SPATIAL3 && !SR_HAS_SP6
+#if SR_HAS_ARM_ANGLE
+    ws->aa_key = -1;
+    ws->aa_n = 0;
+#endif
+#if !SR_HAS_GENERAL6R && !SR_HAS_SPATIAL3 && !SR_HAS_SP6 && !SR_HAS_ARM_ANGLE
     ws->unused = 0;
 #endif
 }

@@ -1,0 +1,51 @@
+"""An S-R-S arm's arm_angle stage (the shoulder's three joints and the elbow for the wrist centre's target and the
+arm angle psi, the design's; arm_angle.py, inlined before it), on the axes, centres and points its derived kernel
+gives. The sets are computed once per prefix of the set index above the stage's bits and kept in the call's scratch
+`ws`; set k takes set (k >> shift) & 3 (two elbows x two shoulders). The wrist's stage follows; the FK check verifies
+each set. And the module's arm_angle(): the arm angle of joint values, read on the points its derived reader kernel
+(_k_arm_angle_parts) places. The C twin: runtime/c/serial/sr_arm_angle.c.
+
+A wristkin runtime source: a serial arm's generated module with an arm_angle stage inlines it from the marker line on
+(derive/runtime_files.py), after its constants, derived kernels, stage functions and the sources before it; above the
+marker, what it reads from them (serial_stand_in.py: the PUMA-560 stands in for the names), so that it is linted and
+tested as it is (tests/test_arm_angle.py)."""
+
+from __future__ import annotations
+
+import math
+
+from arm_angle import _aa_angle_of, _arm_angle_core
+from serial_input import _design, _joints
+from serial_stand_in import DEGENERATE_EPS, SCALE, _k_arm_angle_parts, _wrap
+
+# wristkin: inlined from here
+# the core's bands: the interpreted chain's for an S-R-S arm (derive/families/chain/views.py's stage_tolerances, the
+# templates' TANGENT_TOL and FAMILY_TOL), on the robot's size
+AA_TOLS = (SCALE, DEGENERATE_EPS, 32 * 2.220446049250313e-16, 1e-9, 64 * 2.220446049250313e-16, 1e-12)
+
+
+def _arm_angle_stage(kernel, parent, idx, joints, q, c, s, pose, dp, prev, ws):
+    """Set k's set (ok, flags): `kernel` the stage's (h_a, h_b, h_c, s, h_e, p_e, x, y, psi), `parent` the set
+    index's prefix above the stage's bits (the sets are recomputed when it changes), `idx` the set."""
+    if ws.get("aa_key") != parent:
+        out = kernel(pose, q, c, s, dp)
+        parts = [tuple(out[3 * i:3 * i + 3]) for i in range(8)]
+        ws["aa_key"] = parent
+        ws["aa"] = _arm_angle_core(*parts, out[24], None if prev is None else prev[joints[0]], AA_TOLS)
+    sets = ws["aa"]
+    if idx >= len(sets):
+        return False, 0
+    vals, f = sets[idx]
+    for j, v in zip(joints, vals, strict=True):
+        v = _wrap(v)  # the elbow's band split and the turns reach past pi
+        q[j], c[j], s[j] = v, math.cos(v), math.sin(v)
+    return True, f
+
+
+def arm_angle(joints, design=None) -> float:
+    """The arm angle of joint values: where they put the elbow on its circle about the shoulder-wrist line (0 in the
+    plane of the first axis and that line, on the side the axis points to; positive about the line from the shoulder
+    to the wrist). ik(fk_matrix(q), [arm_angle(q)]) returns q among its sets."""
+    out = _k_arm_angle_parts(list(_joints(joints)), _design(design).params)
+    h1, s, e, w, axis = (tuple(out[3 * i:3 * i + 3]) for i in range(5))
+    return _aa_angle_of(h1, s, e, w, axis, AA_TOLS)
