@@ -25,7 +25,6 @@ from derive import own_robot
 from derive.families.serial.from_table import ANGLE_SNAP, ROUNDING_DEVIATION
 from derive.kinematics.dh_table import PARALLEL_TOL, standard_dh
 from derive.kinematics.poe import Chain
-from derive.model import NotDerivable
 
 ROBOTS = Path(__file__).parent / "robots"
 MERGE_CANDIDATE = 0x10000  # the runtime's internal flag: a pair within its stage's noise of a double root
@@ -869,10 +868,10 @@ def test_a_multi_candidate_stage_s_emitted_c_is_strict_c99_and_clean_under_the_s
     assert counts[-2][0] == 0 and counts[-1][0] == 0
 
 
-# ------------------------------------------------------------------------------------------------ refusals
+# ------------------------------------------------------------------------------------------------ twists, refusals
 def _twisted_kr6(tmp_path: Path) -> Path:
-    """The KR 6's DH table with joint a3's twist 0.3 rad (no multiple of 5 degrees, where its decomposition, a
-    spherical wrist at the end, rests on the arm's structure): what the derived stages do not cover."""
+    """The KR 6's DH table with joint a3's twist 0.3 rad (no multiple of 5 degrees): axes a2 and a3 no longer
+    parallel, its spherical wrist still at the end."""
     text = _file("kr6", "dh").read_text().replace('name = "kr6_dh"', 'name = "kr6_twisted"')
     head, a3, rest = text.partition('name = "a3"')
     path = tmp_path / "kr6_twisted.toml"
@@ -880,10 +879,27 @@ def _twisted_kr6(tmp_path: Path) -> Path:
     return path
 
 
-def test_what_the_derived_stages_do_not_cover_is_refused_with_the_reason(tmp_path):
-    with pytest.raises(NotDerivable, match="twist .* is no multiple of pi/36") as exc:
-        own_robot.load(_twisted_kr6(tmp_path), stages="derived")
-    assert "--stages interpreted (the plan interpreter) solves it" in str(exc.value)
+def test_a_twist_off_the_5_degree_grid_is_derived_with_the_interpreter_s_sets(tmp_path):
+    """A twist off the grid stays a number in the derived stages (no structure rests on it: the planner's relations
+    are parallel axes, a twist of 0 or pi, and meeting axes, which the lengths make). Was refused ("no multiple of
+    pi/36"). The twisted KR 6 (--stages auto: derived) on 60 random poses of the reference's FK: the same set counts
+    as the interpreter's, the generating joints among them (1e-9 + 1e-13 / sigma_min), C equal to numpy."""
+    path = _twisted_kr6(tmp_path)
+    own_robot.derive(path, tmp_path / "d", progress=lambda _: None)
+    own_robot.derive(path, tmp_path / "i", stages="interpreted", native=False, progress=lambda _: None)
+    m, py = (own_robot.import_solver(tmp_path / "d", "kr6_twisted", backend=b) for b in (None, "numpy"))
+    interp = own_robot.import_solver(tmp_path / "i", "kr6_twisted")
+    assert hasattr(m, "ROOT_GAP_TOL") and not hasattr(m, "FAMILY_TOL")
+    reference = ref.load(path)
+    rng = case_rng(2320)
+    for _ in range(60):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        T = reference(q)
+        a, b, c = m.ik(T), py.ik(T), interp.ik(T)
+        smin = np.linalg.svd(reference.jacobian(q), compute_uv=False)[-1]
+        assert a.count == b.count == c.count >= 1
+        assert min(_gap(v, q) for v in a) <= 1e-9 + 1e-13 / smin
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in a)
 
 
 @pytest.mark.parametrize("robot,fmt,derived", [("kr6", "urdf", True), ("ur5e", "urdf", True), ("youbot", "urdf", True),
@@ -914,10 +930,13 @@ def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_t
 
 
 def test_the_command_refuses_in_one_line_and_writes_nothing(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(_twisted_kr6(tmp_path)), "--out",
-                        str(tmp_path / "out"), "--stages", "derived"], capture_output=True, text=True, cwd=ROOT,
-                       timeout=300)
-    assert r.returncode == 1 and len(r.stderr.strip().splitlines()) == 1 and "--stages derived" in r.stderr
+    """A robot no IK covers (the iiwa14 with its elbow a4 held: the other six a self-motion): one line naming why
+    and the choices that work, exit code 1, no solver written, with --stages derived as without."""
+    r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(_file("iiwa14", "dh")), "--out",
+                        str(tmp_path / "out"), "--stages", "derived", "--free", "a4"], capture_output=True, text=True,
+                       cwd=ROOT, timeout=300)
+    assert r.returncode == 1 and len(r.stderr.strip().splitlines()) == 1 and "self-motion" in r.stderr
+    assert "--free a1" in r.stderr
     assert not (tmp_path / "out" / "python").exists()
 
 

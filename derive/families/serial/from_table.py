@@ -3,9 +3,9 @@ standard DH table, kinematics/dh_table.py), derived as this family's straight-li
 PUMA-560's are (no plan interpreted at run time). The table's lengths stay design parameters (defaults: the
 robot's), its angles are made exact, and a derivation step proves the table is the user's robot.
 
-The robot's family refuses what the table cannot hold (the arm angle, more than six solved joints); here
-the robot must not be calibrated, the angles must be multiples of pi / 36 and the planner's decomposition must fit
-the stage kinds planned.py emits, else the robot is refused with the reason. A 7-joint arm's held joint stays a
+The robot's family refuses what the table cannot hold (more than six solved joints, the arm angle standing for a
+seventh); here the planner's decomposition must fit the stage kinds planned.py emits, else the robot is refused with
+the reason (a calibrated robot: under --stages auto, left to the interpreter). A 7-joint arm's held joint stays a
 joint of the table, its value the design (the lengths folded, so the design is the interpreted module's); its stage
 reads it, and the others are planned with it held. A slide's row adds q to d (its DH frame on the previous
 frame's origin: kinematics/dh_table.py)."""
@@ -33,9 +33,11 @@ from .planned import SUPPORTED, PlanError
 from .planned import stages as planned_stages
 
 # an angle of the table (twist, offset) within this of a multiple of pi / 36 (5 degrees) is that multiple: the
-# decomposition's structure (parallel, perpendicular axes) must be exact for the stages (a twist off the grid is
-# refused), and exact offsets keep the derivation symbolic (floating-point offsets made a UR's take 50 s instead of
-# 12; an offset off the grid stays a number). A description's rounded angles (8 decimals: 5e-9) move the end frame
+# decomposition's structure (parallel, perpendicular axes) must be exact for the stages, and exact offsets keep the
+# derivation symbolic (floating-point offsets made a UR's take 50 s instead of 12). An angle off the grid stays a
+# number: no structure rests on it (the planner's relations are parallel axes, a twist of 0 or pi, and meeting axes,
+# which the lengths make; a KR 6 or a UR5e with a twist of 0.3 or 1.2 rad derives in 4-5 s, its sets the
+# interpreter's). A description's rounded angles (8 decimals: 5e-9) move the end frame
 # by at most their sum times the robot's size, which the description step's tolerance states and checks.
 ANGLE_SNAP = 1e-8
 ANGLE_GRID = 36
@@ -118,11 +120,8 @@ def from_table(robot: RobotTable, auto: bool = False) -> SerialMechanism:
     snapped = 0.0  # the angles' changes when made exact, summed
     for k, ((a, alpha, d, theta), q) in enumerate(zip(table.rows, joints, strict=True), start=1):
         angles = [_angle(alpha, snap), _angle(theta, snap)]
-        if angles[0] is None and general:  # no structure rests on a general 6R's twists: they stay numbers
+        if angles[0] is None:  # a twist off the grid stays a number: no structure rests on it
             angles[0] = sp.Float(alpha)
-        if angles[0] is None:
-            raise NotDerivable.because(name, f"joint {robot.joint_names[k - 1]}'s DH twist ({alpha:.9g} rad) is "
-                                             f"no multiple of pi/{ANGLE_GRID}")
         if angles[1] is None:  # an offset off the grid (the Z1's 2.886 rad) stays a number: no structure rests on it
             angles[1] = sp.Float(theta)
         snapped += abs(alpha - float(angles[0])) + abs(theta - float(angles[1]))
