@@ -549,14 +549,21 @@ def test_a_wrist_at_the_base_is_solved_from_the_tool(tmp_path):
             assert len(ref.ik_all(ref_chain, 6, T, seed=k, starts=200)) == sol.count
 
 
-def test_a_general_3r_arm_is_solved_by_its_polynomial(tmp_path):
+@pytest.mark.parametrize("stages", ("auto", "interpreted"))
+def test_a_general_3r_arm_is_solved_by_its_polynomial(tmp_path, stages):
     """No two of the first three axes meet or are parallel: no invariant separates them, so their joints come
-    from every real root of a degree-8 polynomial (subproblem 5 in effect); the sets equal the reference's."""
+    from every real root of a degree-8 polynomial (subproblem 5 in effect); the sets equal the reference's. Both
+    paths: the derived spatial3 stage (the default: its twists off the 5-degree grid stay numbers) and the
+    interpreter's spatial3 op."""
     spec = tmp_path / "skew3.toml"
     spec.write_text(poe_spec("skew3", "general 3R arm + wrist", **SKEW3))
-    own_robot.derive(spec, tmp_path / "out", progress=lambda _: None, native=False)
+    own_robot.derive(spec, tmp_path / "out", progress=lambda _: None, native=False, stages=stages)
     m, r = own_robot.import_solver(tmp_path / "out", "skew3"), ref.load(spec)
-    assert "spatial3" in repr(m._PLAN) and m.MAX_IK == 8
+    assert m.MAX_IK == 8
+    if stages == "interpreted":
+        assert "spatial3" in repr(m._PLAN)
+    else:
+        assert "return _spatial3_stage(_k_stage1," in (tmp_path / "out" / "python" / "skew3.py").read_text()
     rng = case_rng(22)
     for k in range(20):
         q = rng.uniform(-math.pi, math.pi, 6)

@@ -54,6 +54,13 @@ def _tuple(xs) -> str:
     return "(" + "".join(f"{x}, " for x in xs) + ")"
 
 
+# the stages that compute several candidates once per prefix above their bits (besides the general 6R's): kind ->
+# (Python solver, C solver, what each takes after the kernel, prefix, index, joints, q, c, s, pose, dp: previous for
+# a family's member, or amp for the amplification it sets)
+MULTI_CANDIDATE = {"spatial3": ("_spatial3_stage", "sr_spatial3", "prev"), "sp6": ("_sp6_stage", "sr_sp6", "amp"),
+                   "arm_angle": ("_arm_angle_stage", "sr_arm_angle", "prev")}
+
+
 def _amp_before(st: dict) -> str:
     """The wrist's family band factor: the product of the amplifications of the angle stages before it (each reads
     the joints the ones before it solved, so their errors compound; 1 without)."""
@@ -88,18 +95,11 @@ def py_stage_body(st: dict) -> list[str]:
         return [f"return _general6r(_k_stage{st['index']}, k >> {shift + width}, (k >> {shift}) & {2 ** width - 1},",
                 f"                  {readings},",
                 f"                  {_tuple(st['joints'])}, q, c, s, pose, dp, ws)"]
-    if st["kind"] == "spatial3":  # as general6r's: its candidates once per prefix above its bits
+    if st["kind"] in MULTI_CANDIDATE:  # as general6r's: its candidates once per prefix above its bits
+        fn, _, extra = MULTI_CANDIDATE[st["kind"]]
         shift, width = st["shift"], st["width"]
-        return [f"return _spatial3_stage(_k_stage{st['index']}, k >> {shift + width}, (k >> {shift}) & "
-                f"{2 ** width - 1}, {_tuple(st['joints'])}, q, c, s, pose, dp, prev, ws)"]
-    if st["kind"] == "sp6":  # as general6r's: its candidates once per prefix above its bits
-        shift, width = st["shift"], st["width"]
-        return [f"return _sp6_stage(_k_stage{st['index']}, k >> {shift + width}, (k >> {shift}) & "
-                f"{2 ** width - 1}, {_tuple(st['joints'])}, q, c, s, pose, dp, amp, ws)"]
-    if st["kind"] == "arm_angle":  # as general6r's: its sets once per prefix above its bits
-        shift, width = st["shift"], st["width"]
-        return [f"return _arm_angle_stage(_k_stage{st['index']}, k >> {shift + width}, (k >> {shift}) & "
-                f"{2 ** width - 1}, {_tuple(st['joints'])}, q, c, s, pose, dp, prev, ws)"]
+        return [f"return {fn}(_k_stage{st['index']}, k >> {shift + width}, (k >> {shift}) & {2 ** width - 1}, "
+                f"{_tuple(st['joints'])}, q, c, s, pose, dp, {extra}, ws)"]
     if st["kind"] == "wrist":
         joints, signs = "(" + ", ".join(map(str, st["joints"])) + ")", "(" + ", ".join(map(str, st["signs"])) + ")"
         mirror = ["if k & 1:  # the second branch mirrors the first (set k - 1's prefix)",
@@ -120,24 +120,14 @@ def c_stage_body(st: dict) -> list[str]:
                 "(void)amp;", "*f = 0u;",
                 f"return sr_general6r(sr_k_stage{st['index']}, (long)(k >> {shift + width}), (k >> {shift}) & "
                 f"{2 ** width - 1}, readings, {len(st['labelling'])}, joints, q, c, s, pose, dp, ws, f);"]
-    if st["kind"] == "spatial3":  # as general6r's: its candidates once per prefix above its bits
+    if st["kind"] in MULTI_CANDIDATE:  # as general6r's: its candidates once per prefix above its bits
+        _, fn, extra = MULTI_CANDIDATE[st["kind"]]
         shift, width = st["shift"], st["width"]
         joints = ", ".join(map(str, st["joints"]))
-        return [f"static const int joints[3] = {{ {joints} }};", "(void)amp;",
-                f"return sr_spatial3(sr_k_stage{st['index']}, (long)(k >> {shift + width}), (k >> {shift}) & "
-                f"{2 ** width - 1}, joints, q, c, s, pose, dp, prev, ws, f);"]
-    if st["kind"] == "sp6":  # as general6r's: its candidates once per prefix above its bits
-        shift, width = st["shift"], st["width"]
-        joints = ", ".join(map(str, st["joints"]))
-        return [f"static const int joints[2] = {{ {joints} }};", "(void)prev;",
-                f"return sr_sp6(sr_k_stage{st['index']}, (long)(k >> {shift + width}), (k >> {shift}) & "
-                f"{2 ** width - 1}, joints, q, c, s, pose, dp, amp, ws, f);"]
-    if st["kind"] == "arm_angle":  # as general6r's: its sets once per prefix above its bits
-        shift, width = st["shift"], st["width"]
-        joints = ", ".join(map(str, st["joints"]))
-        return [f"static const int joints[4] = {{ {joints} }};", "(void)amp;",
-                f"return sr_arm_angle(sr_k_stage{st['index']}, (long)(k >> {shift + width}), (k >> {shift}) & "
-                f"{2 ** width - 1}, joints, q, c, s, pose, dp, prev, ws, f);"]
+        return [f"static const int joints[{len(st['joints'])}] = {{ {joints} }};",
+                f"(void){'amp' if extra == 'prev' else 'prev'};",
+                f"return {fn}(sr_k_stage{st['index']}, (long)(k >> {shift + width}), (k >> {shift}) & "
+                f"{2 ** width - 1}, joints, q, c, s, pose, dp, {extra}, ws, f);"]
     size = {"trig_linear": 6 if st.get("factored") else 3, "rotation2d": 4, "value": 1, "wrist": 9,
             "quadratic": 3}[st["kind"]]
     call = f"sr_k_stage{st['index']}(pose, q, c, s, dp, out);"

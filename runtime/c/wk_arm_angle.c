@@ -87,34 +87,6 @@ static double wk_aa_angle_of(const double *h1, const double *s, const double *e,
     return atan2(wk_g3_dot(side, n2), wk_g3_dot(side, n1));
 }
 
-/* Roots t of a cos t + b sin t = c (at most 2): a double root once (flagged), a vanishing equation one
- * representative t = 0 (flagged indeterminate); `scale` the equation's size */
-static int wk_aa_trig(double a, double b, double c, double scale, const wk_aa_tols *tol, double *t, unsigned *f)
-{
-    const double r = hypot(a, b);
-    double u, phi, w;
-    if (r <= tol->on_axis * scale) {
-        if (!(fabs(c) <= tol->on_axis * scale)) return 0;
-        t[0] = 0.0;
-        f[0] = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
-        return 1;
-    }
-    u = c / r;
-    if (!(fabs(u) <= 1.0 + tol->tangent)) return 0;
-    u = u > 1.0 ? 1.0 : (u < -1.0 ? -1.0 : u);
-    phi = atan2(b, a);
-    if (1.0 - u * u <= tol->double_root) {
-        t[0] = phi + (u > 0.0 ? 0.0 : 3.141592653589793);
-        f[0] = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
-        return 1;
-    }
-    w = acos(u);
-    t[0] = phi + w;
-    t[1] = phi - w;
-    f[0] = f[1] = 0u;
-    return 2;
-}
-
 /* t with |rot(k, t) p1 - p2| = d (subproblem 3) */
 static int wk_aa_sp3(const double *k, const double *p1, const double *p2, double d, const wk_aa_tols *tol, double *t,
                      unsigned *f)
@@ -124,7 +96,8 @@ static int wk_aa_sp3(const double *k, const double *p1, const double *p2, double
     double perp[3], kx[3];
     wk_g3_axpy(p1, -kp1, k, perp);
     wk_g3_cross(k, p1, kx);
-    return wk_aa_trig(wk_g3_dot(p2, perp), wk_g3_dot(p2, kx), c, tol->scale * tol->scale, tol, t, f);
+    return wk_g3_trig(wk_g3_dot(p2, perp), wk_g3_dot(p2, kx), c, tol->scale * tol->scale, tol->on_axis,
+                      tol->tangent, tol->double_root, t, f);
 }
 
 /* (t1, t2) with rot(k1, t1) p1 = rot(k2, t2) p2 for unit vectors (subproblem 2), at most 2: the common vector

@@ -1,4 +1,5 @@
-/* wristkin: 3-vector helpers and subproblem 1 for the chain-free cores (wk_spatial3.c, wk_sp6.c) (C99, libm only).
+/* wristkin: 3-vector helpers, subproblem 1 and a trig equation for the chain-free cores (wk_spatial3.c, wk_sp6.c,
+ * wk_arm_angle.c) (C99, libm only; the runtime's flags before it).
  * Included verbatim into generated C99 sources before them (static inline: a core that does not use one of them
  * leaves no unused function behind). Python's twin: runtime/python/geom3.py, step for step. */
 static inline double wk_g3_dot(const double *a, const double *b)
@@ -60,4 +61,34 @@ static inline int wk_g3_sp1(const double *k, const double *p, const double *q, d
     wk_g3_cross(pp, qq, c);
     *t = atan2(wk_g3_dot(k, c), wk_g3_dot(pp, qq));
     return 1;
+}
+
+/* Roots t of a cos t + b sin t = c (at most 2): a double root once (flagged), where 1 - u^2 is within double_root; a
+ * vanishing equation (|(a, b)| and |c| within on_axis of `scale`) one representative t = 0, flagged indeterminate;
+ * |u| = |c| / |(a, b)| up to 1 + tangent counts as a root */
+static inline int wk_g3_trig(double a, double b, double c, double scale, double on_axis, double tangent,
+                             double double_root, double *t, unsigned *f)
+{
+    const double r = hypot(a, b);
+    double u, phi, w;
+    if (r <= on_axis * scale) {
+        if (!(fabs(c) <= on_axis * scale)) return 0;
+        t[0] = 0.0;
+        f[0] = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
+        return 1;
+    }
+    u = c / r;
+    if (!(fabs(u) <= 1.0 + tangent)) return 0;
+    u = u > 1.0 ? 1.0 : (u < -1.0 ? -1.0 : u);
+    phi = atan2(b, a);
+    if (1.0 - u * u <= double_root) {
+        t[0] = phi + (u > 0.0 ? 0.0 : 3.141592653589793);
+        f[0] = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
+        return 1;
+    }
+    w = acos(u);
+    t[0] = phi + w;
+    t[1] = phi - w;
+    f[0] = f[1] = 0u;
+    return 2;
 }

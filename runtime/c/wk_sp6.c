@@ -251,33 +251,11 @@ static int wk_sp6_sp4(const double *n, const double *h0, const double *p0, doubl
                       unsigned *f)
 {
     const double kp = wk_g3_dot(h0, p0);
-    double perp[3], kx[3], a, b, c, r, u, phi, w;
+    double perp[3], kx[3];
     wk_g3_axpy(p0, -kp, h0, perp);
     wk_g3_cross(h0, p0, kx);
-    a = wk_g3_dot(n, perp);
-    b = wk_g3_dot(n, kx);
-    c = d - kp * wk_g3_dot(n, h0);
-    r = hypot(a, b);
-    if (r <= tol->on_axis * tol->scale) {
-        if (!(fabs(c) <= tol->on_axis * tol->scale)) return 0;
-        t[0] = 0.0;
-        f[0] = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
-        return 1;
-    }
-    u = c / r;
-    if (!(fabs(u) <= 1.0 + tol->tangent)) return 0;
-    u = u > 1.0 ? 1.0 : (u < -1.0 ? -1.0 : u);
-    phi = atan2(b, a);
-    if (1.0 - u * u <= tol->double_root) {
-        t[0] = phi + (u > 0.0 ? 0.0 : 3.141592653589793);
-        f[0] = WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
-        return 1;
-    }
-    w = acos(u);
-    t[0] = phi + w;
-    t[1] = phi - w;
-    f[0] = f[1] = 0u;
-    return 2;
+    return wk_g3_trig(wk_g3_dot(n, perp), wk_g3_dot(n, kx), d - kp * wk_g3_dot(n, h0), tol->scale, tol->on_axis,
+                      tol->tangent, tol->double_root, t, f);
 }
 
 /* The candidates (q0, q4, flags, order) of subproblem 6, at most WK_SP6_MAX, the regular ones first. `order`: how

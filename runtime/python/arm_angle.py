@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 
 from _runtime import FLAG_DOUBLE_ROOT, FLAG_INDETERMINATE, FLAG_SINGULAR_INVERSE
-from geom3 import _g3_axpy, _g3_cross, _g3_dot, _g3_norm, _g3_sp1, _g3_turn, _g3_turn_dir
+from geom3 import _g3_axpy, _g3_cross, _g3_dot, _g3_norm, _g3_sp1, _g3_trig, _g3_turn, _g3_turn_dir
 
 # wristkin: inlined from here
 # The core's tolerances, the caller's (wk_arm_angle.c's wk_aa_tols says what each is):
@@ -72,31 +72,14 @@ def _aa_angle_of(h1, s, e, w, axis, tols):
     return math.atan2(_g3_dot(side, n2), _g3_dot(side, n1))
 
 
-def _aa_trig(a, b, c, scale, tols):
-    """Roots t of a cos t + b sin t = c: [(t, flags)], a double root once (flagged), a vanishing equation one
-    representative t = 0 (flagged indeterminate)."""
-    _, _, double_root, tangent, on_axis, _ = tols
-    r = math.hypot(a, b)
-    if r <= on_axis * scale:
-        return [(0.0, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE)] if abs(c) <= on_axis * scale else []
-    u = c / r
-    if not abs(u) <= 1.0 + tangent:
-        return []
-    u = max(-1.0, min(1.0, u))
-    phi = math.atan2(b, a)
-    if 1.0 - u * u <= double_root:
-        return [(phi + (0.0 if u > 0.0 else math.pi), FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE)]
-    w = math.acos(u)
-    return [(phi + w, 0), (phi - w, 0)]
-
-
 def _aa_sp3(k, p1, p2, d, tols):
     """t with |rot(k, t) p1 - p2| = d (subproblem 3): (p2 . p1_perp) cos t + (p2 . k x p1) sin t = (|p1|^2 +
     |p2|^2 - d^2) / 2 - (k.p1)(k.p2)."""
     kp1 = _g3_dot(k, p1)
     perp = _g3_axpy(p1, -kp1, k)
     c = 0.5 * (_g3_dot(p1, p1) + _g3_dot(p2, p2) - d * d) - kp1 * _g3_dot(k, p2)
-    return _aa_trig(_g3_dot(p2, perp), _g3_dot(p2, _g3_cross(k, p1)), c, tols[0] * tols[0], tols)
+    scale, _, double_root, tangent, on_axis, _ = tols
+    return _g3_trig(_g3_dot(p2, perp), _g3_dot(p2, _g3_cross(k, p1)), c, scale * scale, on_axis, tangent, double_root)
 
 
 def _aa_sp2(p1, k1, p2, k2, tols):

@@ -1,5 +1,5 @@
-"""3-vector helpers and subproblem 1 for the chain-free cores (spatial3.py, sp6.py): runtime/c/wk_geom3.c's twin,
-step for step.
+"""3-vector helpers, subproblem 1 and a trig equation for the chain-free cores (spatial3.py, sp6.py, arm_angle.py):
+runtime/c/wk_geom3.c's twin, step for step.
 
 A wristkin runtime source: a generated module with a spatial 3R or subproblem 6 inlines it from the marker line on
 (derive/runtime_files.py), before those cores; it imports nothing, so that it is linted and tested as it is
@@ -8,6 +8,8 @@ A wristkin runtime source: a generated module with a spatial 3R or subproblem 6 
 from __future__ import annotations
 
 import math
+
+from _runtime import FLAG_DOUBLE_ROOT, FLAG_INDETERMINATE, FLAG_SINGULAR_INVERSE
 
 # wristkin: inlined from here
 
@@ -49,3 +51,21 @@ def _g3_sp1(k, p, q, eps_scale):
     if _g3_norm(pp) <= eps_scale or _g3_norm(qq) <= eps_scale:
         return None
     return math.atan2(_g3_dot(k, _g3_cross(pp, qq)), _g3_dot(pp, qq))
+
+
+def _g3_trig(a, b, c, scale, on_axis, tangent, double_root):
+    """Roots t of a cos t + b sin t = c: [(t, flags)], a double root once (flagged) where 1 - u^2 is within
+    double_root; a vanishing equation (|(a, b)| and |c| within on_axis of `scale`) one representative t = 0, flagged
+    indeterminate; |u| = |c| / |(a, b)| up to 1 + tangent counts as a root."""
+    r = math.hypot(a, b)
+    if r <= on_axis * scale:
+        return [(0.0, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE)] if abs(c) <= on_axis * scale else []
+    u = c / r
+    if not abs(u) <= 1.0 + tangent:
+        return []
+    u = max(-1.0, min(1.0, u))
+    phi = math.atan2(b, a)
+    if 1.0 - u * u <= double_root:
+        return [(phi + (0.0 if u > 0.0 else math.pi), FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE)]
+    w = math.acos(u)
+    return [(phi + w, 0), (phi - w, 0)]

@@ -16,9 +16,9 @@ from __future__ import annotations
 
 import math
 
-from _runtime import FLAG_DOUBLE_ROOT, FLAG_INDETERMINATE, FLAG_SINGULAR_INVERSE, _wrap
+from _runtime import FLAG_DOUBLE_ROOT, FLAG_SINGULAR_INVERSE, _wrap
 from chain_poly import _poly_add, _poly_mul, _scale3
-from geom3 import _g3_axpy, _g3_cross, _g3_dot, _g3_norm, _g3_sp1, _g3_turn_dir
+from geom3 import _g3_axpy, _g3_cross, _g3_dot, _g3_norm, _g3_sp1, _g3_trig, _g3_turn_dir
 from poly_real_roots import _POLY_FLAG_DOUBLE, _poly_real_roots
 
 # wristkin: inlined from here
@@ -137,24 +137,11 @@ def _within(root, others, tol):
 
 
 def _sp6_sp4(nv, h0, p0, d, tols):
-    """t with n . rot(h0, t) p0 = d (subproblem 4): [(t, flags)], a double root once (flagged), a vanishing equation
-    one representative t = 0 (flagged indeterminate)."""
+    """t with n . rot(h0, t) p0 = d (subproblem 4): [(t, flags)] (_g3_trig)."""
     scale, _degenerate, double_root, tangent, on_axis = tols
     kp = _g3_dot(h0, p0)
-    a, b = _g3_dot(nv, _g3_axpy(p0, -kp, h0)), _g3_dot(nv, _g3_cross(h0, p0))
-    c = d - kp * _g3_dot(nv, h0)
-    r = math.hypot(a, b)
-    if r <= on_axis * scale:
-        return [(0.0, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE)] if abs(c) <= on_axis * scale else []
-    u = c / r
-    if not abs(u) <= 1.0 + tangent:
-        return []
-    u = max(-1.0, min(1.0, u))
-    phi = math.atan2(b, a)
-    if 1.0 - u * u <= double_root:
-        return [(phi + (0.0 if u > 0.0 else math.pi), FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE)]
-    w = math.acos(u)
-    return [(phi + w, 0), (phi - w, 0)]
+    return _g3_trig(_g3_dot(nv, _g3_axpy(p0, -kp, h0)), _g3_dot(nv, _g3_cross(h0, p0)), d - kp * _g3_dot(nv, h0), scale,
+                    on_axis, tangent, double_root)
 
 
 def _sp6_eval(nv, h0, p0, h4, p4, g, h5, q0, q4):
