@@ -88,24 +88,25 @@ def multistart(chain, T, psi, seed, starts=60):
     return found
 
 
-@PATHS
-def test_an_srs_arm_is_solved_at_its_arm_angle(stages):
+def test_an_srs_arm_is_solved_at_its_arm_angle():
     """Random poses of the iiwa14 at the arm angle of the joints that made them: the generating joints among the
     sets, every set reaching the pose on the URDF's own transforms at that arm angle (read geometrically), and the
-    sets equal to the multistart reference's (none missing, none spurious), in C and on numpy."""
-    m, py, _ = solver(stages)
-    if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
-        assert m.BACKEND == "c"
-    assert m.DESIGN_NAMES == ("arm_angle",) and m.MAX_IK == 8 and "arm angle" in m.DECOMPOSITION
+    sets equal to the multistart reference's (none missing, none spurious), in C and on numpy, on both paths (one
+    test: the reference's solutions, ~20 s of LM, are the pose's and serve both)."""
     chain = ref.load(IIWA)
+    mods = [solver(stages)[:2] for stages in ("auto", "interpreted")]
+    for m, _ in mods:
+        if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
+            assert m.BACKEND == "c"
+        assert m.DESIGN_NAMES == ("arm_angle",) and m.MAX_IK == 8 and "arm angle" in m.DECOMPOSITION
     rng = case_rng(2300)
     for k in range(6):
         q = rng.uniform(-math.pi, math.pi, 7)
         T = chain(q)
         psi = reference_angle(chain, q)
-        assert abs(math.remainder(m.arm_angle(q) - psi, 2 * math.pi)) < 1e-12
         found = multistart(chain, T, psi, seed=k) if k < 2 else None
-        for mod in (m, py):
+        for mod in (m for pair in mods for m in pair):
+            assert abs(math.remainder(mod.arm_angle(q) - psi, 2 * math.pi)) < 1e-12
             s = mod.ik(T, [psi])
             assert s.status == mod.STATUS_OK, s.reason
             sets = s.values[s.valid]
