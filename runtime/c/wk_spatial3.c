@@ -149,12 +149,13 @@ static int wk_s3_pair_converges(const double (*h)[3], const double (*r)[3], cons
  * point's image w = rot_b rot_c x must lie on the circle of radius rho about axis a, which the surface w(q_b, q_c)
  * crosses twice. Near the merged root the surface meets the circle's plane along the line through w in the direction
  * d = n x h_a (n its normal there): its two points on the circle (the line's centre-nearest point +-rho along d where
- * rounding hides the gap) give q_a by subproblem 1, then Newton on the point from each. The two roots separate at
+ * rounding hides the gap) give q_a by subproblem 1 and (q_b, q_c) moved along the surface to them, then Newton on the
+ * point from each. The two roots separate at
  * eps / rho, not the polynomial's sqrt(eps). Returns 1 with the pair in q, or 0 (the merged root stands). */
 static int wk_s3_split(const double (*h)[3], const double (*r)[3], const double *x, const double *y,
                        const double *yr, double rho, double scale, double qb, double qc, double q[2][3])
 {
-    double w[3], hc[3], rc[3], jb[3], jc[3], normal[3], d[3], v0[3], size, mid, disc, half;
+    double w[3], hc[3], rc[3], jb[3], jc[3], normal[3], d[3], v0[3], size, mid, disc, half, gbb, gbc, gcc, det, db, dc;
     int k, m;
     wk_g3_turn(h[2], r[2], qc, x, w);
     wk_g3_turn(h[1], r[1], qb, w, w);
@@ -174,12 +175,22 @@ static int wk_s3_split(const double (*h)[3], const double (*r)[3], const double 
     mid = -wk_g3_dot(v0, d);
     disc = mid * mid - wk_g3_dot(v0, v0) + rho * rho;
     half = disc > 0.0 ? sqrt(disc) : rho;
+    /* (q_b, q_c) per unit of d on the surface: jb db + jc dc = d (|jb x jc|^2 = the 2 x 2 system's determinant) */
+    gbb = wk_g3_dot(jb, jb);
+    gbc = wk_g3_dot(jb, jc);
+    gcc = wk_g3_dot(jc, jc);
+    det = wk_g3_dot(normal, normal);
+    db = (gcc * wk_g3_dot(jb, d) - gbc * wk_g3_dot(jc, d)) / det;
+    dc = (gbb * wk_g3_dot(jc, d) - gbc * wk_g3_dot(jb, d)) / det;
     for (k = 0; k < 2; ++k) {
+        const double t = k == 0 ? mid + half : mid - half;
         double p[3];
-        wk_g3_axpy(v0, k == 0 ? mid + half : mid - half, d, p);
+        wk_g3_axpy(v0, t, d, p);
         if (!wk_g3_sp1(h[0], p, yr, 0.0, &q[k][0])) return 0;
-        q[k][1] = qb;
-        q[k][2] = qc;
+        /* the start on the surface, off axis a as the root is: from w itself (on the axis when the pair is
+         * symmetric about it) J's column of q_a vanishes and Newton's step is noise */
+        q[k][1] = qb + t * db;
+        q[k][2] = qc + t * dc;
     }
     return wk_s3_pair_converges(h, r, x, y, scale, qb, qc, q);
 }
@@ -243,12 +254,34 @@ static int wk_s3_pair(const double (*h)[3], const double (*r)[3], const double *
     return wk_s3_pair_converges(h, r, x, y, scale, q0[1], q0[2], q);
 }
 
+/* q_c of the root q_b: the two equations (rows f, g over (1, cos q_c, sin q_c) at q_b's (1, cos, sin)) are linear in
+ * its cos and sin; 0 where they do not fix it (a vanishing determinant, or (cos, sin) off the unit circle) */
+static int wk_s3_qc(double f[3][3], double g[3][3], double dtarget, double htarget, double eps3, double qb, double *qc)
+{
+    const double cb = cos(qb), sb = sin(qb);
+    double pv[3], qv[3], dd, cc, ss;
+    int j;
+    for (j = 0; j < 3; ++j) {
+        pv[j] = f[0][j] + cb * f[1][j] + sb * f[2][j];
+        qv[j] = g[0][j] + cb * g[1][j] + sb * g[2][j];
+    }
+    dd = pv[1] * qv[2] - pv[2] * qv[1];
+    if (fabs(dd) <= eps3) return 0;
+    cc = ((dtarget - pv[0]) * qv[2] - pv[2] * (htarget - qv[0])) / dd;
+    ss = (pv[1] * (htarget - qv[0]) - qv[1] * (dtarget - pv[0])) / dd;
+    if (fabs(hypot(cc, ss) - 1.0) > WK_S3_CIRCLE_TOL) return 0;
+    *qc = atan2(ss, cc);
+    return 1;
+}
+
 /* The candidates (q_a, q_b, q_c) of rot_a rot_b rot_c x = y, h[i] / r[i] the lines of a, b, c at the joints' zero,
  * into q (rows of 3) with their flags (a double root of the polynomial: WK_FLAG_DOUBLE_ROOT; q_a undetermined, the
  * point on axis a: WK_FLAG_INDETERMINATE with q_a = 0). `scale` the lengths' size, `eps` the relative size below
- * which a coefficient is degenerate. Returns the count (<= WK_S3_MAX); the caller verifies them. */
+ * which a coefficient is degenerate, `on_axis` the relative distance from axis a within which the point is on it
+ * (the caller's rounding band: farther off, q_a is read from the point's offset, accurate to ~eps scale / rho, as
+ * the pose determines it). Returns the count (<= WK_S3_MAX); the caller verifies them. */
 static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double *x, const double *y, double scale,
-                       double eps, double q[WK_S3_MAX][3], unsigned *fl)
+                       double eps, double on_axis, double q[WK_S3_MAX][3], unsigned *fl)
 {
     const double *h1 = h[0], *r1 = r[0], *h2 = h[1], *r2 = r[1], *h3 = h[2], *r3 = r[2];
     static const double apoly[3][3] = { {1.0, 0.0, 1.0}, {1.0, 0.0, -1.0}, {0.0, 2.0, 0.0} };
@@ -256,7 +289,7 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
     double v[3], vb[3][3], u[3], f[3][3], g[3][3], hv, dtarget, htarget, yr[3], yr_perp[3], rho;
     double p[3][3], pq[3][3], dt[3], ht[3], det[5], nc[5], ns[5], a5[5], poly[9], roots[8], ang[9];
     unsigned rf[8], af[9];
-    int i, j, nroot, status = 0, na = 0, out = 0;
+    int i, j, nroot, status = 0, na = 0, out = 0, near_axis;
     wk_g3_axpy(x, -1.0, r3, v);
     hv = wk_g3_dot(h3, v);
     wk_g3_axpy(r3, hv, h3, vb[0]); /* z - r2 over (1, cos q_c, sin q_c) */
@@ -311,21 +344,30 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
     af[na++] = 0u;
     wk_g3_axpy(yr, -htarget, h1, yr_perp);
     rho = sqrt(wk_g3_dot(yr_perp, yr_perp)); /* the target's distance from axis a (|yr|^2 - (h.yr)^2 cancels) */
+    near_axis = on_axis * scale < rho && rho <= WK_S3_SPLIT_NEAR * scale;
     for (i = 0; i < na && out < WK_S3_MAX; ++i) {
-        const double cb = cos(ang[i]), sb = sin(ang[i]);
-        double pv[3], qv[3], dd, cc, ss, w[3], t1 = 0.0;
-        for (j = 0; j < 3; ++j) {
-            pv[j] = f[0][j] + cb * f[1][j] + sb * f[2][j];
-            qv[j] = g[0][j] + cb * g[1][j] + sb * g[2][j];
+        double w[3], qb = ang[i], qc = 0.0, t1 = 0.0;
+        if (near_axis && !(af[i] & WK_FLAG_DOUBLE_ROOT) && i + 2 < na && !(af[i + 1] & WK_FLAG_DOUBLE_ROOT)) {
+            /* two simple roots a hair apart near axis a: a pair the polynomial resolved only to its sqrt(eps), whose
+             * images sit near the axis, where q_a is noise: split from their midpoint */
+            const double gap = wk_wrap(ang[i + 1] - qb), mid = qb + 0.5 * gap;
+            double pair[2][3];
+            if (fabs(gap) <= WK_S3_SPLIT_NEAR && out + 2 <= WK_S3_MAX &&
+                wk_s3_qc(f, g, dtarget, htarget, eps3, mid, &qc) &&
+                wk_s3_split(h, r, x, y, yr, rho, scale, mid, qc, pair)) {
+                int k, m;
+                for (k = 0; k < 2; ++k) {
+                    for (m = 0; m < 3; ++m) q[out][m] = pair[k][m];
+                    fl[out++] = WK_FLAG_SINGULAR_INVERSE;
+                }
+                ++i;
+                continue;
+            }
         }
-        dd = pv[1] * qv[2] - pv[2] * qv[1];
-        if (fabs(dd) <= eps3) continue;
-        cc = ((dtarget - pv[0]) * qv[2] - pv[2] * (htarget - qv[0])) / dd;
-        ss = (pv[1] * (htarget - qv[0]) - qv[1] * (dtarget - pv[0])) / dd;
-        if (fabs(hypot(cc, ss) - 1.0) > WK_S3_CIRCLE_TOL) continue;
-        q[out][1] = ang[i];
-        q[out][2] = atan2(ss, cc);
-        if ((af[i] & WK_FLAG_DOUBLE_ROOT) && rho > eps * scale && out + 2 <= WK_S3_MAX) {
+        if (!wk_s3_qc(f, g, dtarget, htarget, eps3, qb, &qc)) continue;
+        q[out][1] = qb;
+        q[out][2] = qc;
+        if ((af[i] & WK_FLAG_DOUBLE_ROOT) && rho > on_axis * scale && out + 2 <= WK_S3_MAX) {
             /* a merged pair: near axis a its two roots differ by ~rho, below the polynomial's resolution */
             double pair[2][3];
             if (wk_s3_split(h, r, x, y, yr, rho, scale, q[out][1], q[out][2], pair)) {
@@ -341,7 +383,7 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
         wk_g3_turn(h2, r2, q[out][1], w, w);
         wk_g3_axpy(w, -1.0, r1, w);
         fl[out] = af[i];
-        if (wk_g3_sp1(h1, w, yr, eps * scale, &t1)) {
+        if (wk_g3_sp1(h1, w, yr, on_axis * scale, &t1)) {
             q[out][0] = t1;
             if ((fl[out] & WK_FLAG_DOUBLE_ROOT) && out + 2 <= WK_S3_MAX) {
                 /* a merged pair elsewhere: the surface near-tangent to the target's circle, split along J's null

@@ -8,7 +8,7 @@ other sources (chain_stand_in.py: a stand-in robot), so that it is linted and te
 from __future__ import annotations
 
 from chain_stages import _OP_STAGES
-from chain_stand_in import DEGENERATE_EPS, SCALE
+from chain_stand_in import DEGENERATE_EPS, ON_AXIS_TOL, SCALE
 from spatial3 import _spatial3_lines
 
 # wristkin: inlined from here
@@ -18,7 +18,7 @@ def _spatial3(ch, ja, jb, jc, x, y):
     """(q_a, q_b, q_c, flags) with e_a e_b e_c x = y for three revolute axes in general position (spatial3.py)."""
     js = (ja, jb, jc)
     return [(*q, f) for q, f in _spatial3_lines([ch.axes[j] for j in js], [ch.points[j] for j in js], x, y, SCALE,
-                                                DEGENERATE_EPS)]
+                                                DEGENERATE_EPS, ON_AXIS_TOL)]
 
 
 def _spatial3_stage(ch, g, prev, op, x, y, q, count, go_on, family, params=()):

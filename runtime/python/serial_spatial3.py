@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 
-from serial_stand_in import DEGENERATE_EPS, FLAG_INDETERMINATE, _wrap
+from serial_stand_in import DEGENERATE_EPS, FLAG_INDETERMINATE, ON_AXIS_TOL, _wrap
 from spatial3 import _spatial3_lines
 
 # wristkin: inlined from here
@@ -30,7 +30,8 @@ def _s3_candidates(out):
     r = [tuple(out[9 + 3 * i:12 + 3 * i]) for i in range(3)]
     scale = max(1.0, *(abs(v) for v in out[9:24]))  # the points', the point's and its target's largest coordinate
     kept = []
-    for q, f in _spatial3_lines(h, r, tuple(out[18:21]), tuple(out[21:24]), scale, DEGENERATE_EPS):
+    for q, f in _spatial3_lines(h, r, tuple(out[18:21]), tuple(out[21:24]), scale, DEGENERATE_EPS,
+                                ON_AXIS_TOL):
         if len(kept) == S3_KEEP:
             break
         if any(all(abs(_wrap(a - b)) <= S3_SAME for a, b in zip(q, other, strict=True)) for other, _ in kept):

@@ -111,12 +111,13 @@ def _s3_split(h, r, x, y, yr, rho, scale, qb, qc):
     the point's image w = rot_b rot_c x must lie on the circle of radius rho about axis a, which the surface w(q_b,
     q_c) crosses twice. Near the merged root the surface meets the circle's plane along the line through w in the
     direction d = n x h_a (n its normal there): its two points on the circle (the line's centre-nearest point +-rho
-    along d where rounding hides the gap) give q_a by subproblem 1, then Newton on the point from each. The two roots
-    separate at eps / rho, not the polynomial's sqrt(eps). [] where they do not both converge to distinct roots (the
-    merged root stands)."""
+    along d where rounding hides the gap) give q_a by subproblem 1 and (q_b, q_c) moved along the surface to them,
+    then Newton on the point from each. The two roots separate at eps / rho, not the polynomial's sqrt(eps). [] where
+    they do not both converge to distinct roots (the merged root stands)."""
     w = _g3_turn(h[1], r[1], qb, _g3_turn(h[2], r[2], qc, x))
     hc, rc = _g3_turn_dir(h[1], qb, h[2]), _g3_turn(h[1], r[1], qb, r[2])
-    normal = _g3_cross(_g3_cross(h[1], _g3_axpy(w, -1.0, r[1])), _g3_cross(hc, _g3_axpy(w, -1.0, rc)))
+    jb, jc = _g3_cross(h[1], _g3_axpy(w, -1.0, r[1])), _g3_cross(hc, _g3_axpy(w, -1.0, rc))
+    normal = _g3_cross(jb, jc)
     d = _g3_cross(normal, h[0])
     size = math.sqrt(_g3_dot(d, d))
     if not size > 0.0:
@@ -127,12 +128,18 @@ def _s3_split(h, r, x, y, yr, rho, scale, qb, qc):
     mid = -_g3_dot(v0, d)
     disc = mid * mid - _g3_dot(v0, v0) + rho * rho
     half = math.sqrt(disc) if disc > 0.0 else rho
+    # (q_b, q_c) per unit of d on the surface: jb db + jc dc = d (|jb x jc|^2 = the 2 x 2 system's determinant)
+    gbb, gbc, gcc, det = _g3_dot(jb, jb), _g3_dot(jb, jc), _g3_dot(jc, jc), _g3_dot(normal, normal)
+    db = (gcc * _g3_dot(jb, d) - gbc * _g3_dot(jc, d)) / det
+    dc = (gbb * _g3_dot(jc, d) - gbc * _g3_dot(jb, d)) / det
     starts = []
     for t in (mid + half, mid - half):
         qa = _g3_sp1(h[0], _g3_axpy(v0, t, d), yr, 0.0)
         if qa is None:
             return []
-        starts.append([qa, qb, qc])
+        # the start on the surface, off axis a as the root is: from w itself (on the axis when the pair is symmetric
+        # about it) J's column of q_a vanishes and Newton's step is noise
+        starts.append([qa, qb + t * db, qc + t * dc])
     return _s3_pair_converges(h, r, x, y, scale, starts, qb, qc)
 
 
@@ -167,11 +174,13 @@ def _s3_pair(h, r, x, y, scale, q0):
     return _s3_pair_converges(h, r, x, y, scale, starts, q0[1], q0[2])
 
 
-def _spatial3_lines(h, r, x, y, scale, eps):
+def _spatial3_lines(h, r, x, y, scale, eps, on_axis):
     """The candidates [(q_a, q_b, q_c), flags] of rot_a rot_b rot_c x = y, h[i] / r[i] the lines of a, b, c at the
     joints' zero (flags: a double root of the polynomial, FLAG_DOUBLE_ROOT; the point on axis a, FLAG_INDETERMINATE
-    with q_a = 0). `scale` the lengths' size, `eps` the relative size below which a coefficient is degenerate. The
-    caller verifies them."""
+    with q_a = 0). `scale` the lengths' size, `eps` the relative size below which a coefficient is degenerate,
+    `on_axis` the relative distance from axis a within which the point is on it (the caller's rounding band: farther
+    off, q_a is read from the point's offset, accurate to ~eps scale / rho, as the pose determines it). The caller
+    verifies them."""
     h1, r1, h2, r2, h3, r3 = h[0], r[0], h[1], r[1], h[2], r[2]
     eps3 = eps * scale ** 3
     v = _g3_axpy(x, -1.0, r3)
@@ -203,29 +212,46 @@ def _spatial3_lines(h, r, x, y, scale, eps):
     angles.append((math.pi, 0))  # tan(q_b / 2) = infinity is no root of the polynomial: tried directly
     yr_perp = _g3_axpy(yr, -h_target, h1)
     rho = math.sqrt(_g3_dot(yr_perp, yr_perp))  # the target's distance from axis a (|yr|^2 - (h.yr)^2 cancels)
-    out = []
-    for qb, fl in angles:
-        if len(out) == S3_MAX:
-            break
+
+    def q_c(qb):
+        """q_c of the root q_b (the two equations linear in its cos and sin), None where they do not fix it."""
         cb, sb = math.cos(qb), math.sin(qb)
         pv = [f[0][j] + cb * f[1][j] + sb * f[2][j] for j in range(3)]
         qv = [g[0][j] + cb * g[1][j] + sb * g[2][j] for j in range(3)]
         dd = pv[1] * qv[2] - pv[2] * qv[1]
         if abs(dd) <= eps3:
-            continue
+            return None
         cc = ((d_target - pv[0]) * qv[2] - pv[2] * (h_target - qv[0])) / dd
         ss = (pv[1] * (h_target - qv[0]) - qv[1] * (d_target - pv[0])) / dd
-        if abs(math.hypot(cc, ss) - 1.0) > S3_CIRCLE_TOL:
+        return math.atan2(ss, cc) if abs(math.hypot(cc, ss) - 1.0) <= S3_CIRCLE_TOL else None
+    near_axis = on_axis * scale < rho <= S3_SPLIT_NEAR * scale
+    out = []
+    i = 0
+    while i < len(angles) and len(out) < S3_MAX:
+        qb, fl = angles[i]
+        i += 1
+        if near_axis and not fl & FLAG_DOUBLE_ROOT and i < len(angles) - 1 and not angles[i][1] & FLAG_DOUBLE_ROOT:
+            # two simple roots a hair apart near axis a: a pair the polynomial resolved only to its sqrt(eps), whose
+            # images sit near the axis, where q_a is noise: split from their midpoint
+            gap = math.remainder(angles[i][0] - qb, 2.0 * math.pi)
+            mid = qb + 0.5 * gap
+            qc = q_c(mid) if abs(gap) <= S3_SPLIT_NEAR else None
+            pair = _s3_split(h, r, x, y, yr, rho, scale, mid, qc) if qc is not None else []
+            if pair and len(out) + 2 <= S3_MAX:
+                out += [(tuple(q), FLAG_SINGULAR_INVERSE) for q in pair]
+                i += 1
+                continue
+        qc = q_c(qb)
+        if qc is None:
             continue
-        qc = math.atan2(ss, cc)
-        if fl & FLAG_DOUBLE_ROOT and rho > eps * scale and len(out) + 2 <= S3_MAX:
+        if fl & FLAG_DOUBLE_ROOT and rho > on_axis * scale and len(out) + 2 <= S3_MAX:
             # a merged pair: near axis a its two roots differ by ~rho, below the polynomial's resolution
             pair = _s3_split(h, r, x, y, yr, rho, scale, qb, qc)
             if pair:
                 out += [(tuple(q), FLAG_SINGULAR_INVERSE) for q in pair]
                 continue
         w = _g3_axpy(_g3_turn(h2, r2, qb, _g3_turn(h3, r3, qc, x)), -1.0, r1)
-        qa = _g3_sp1(h1, w, yr, eps * scale)
+        qa = _g3_sp1(h1, w, yr, on_axis * scale)
         if qa is None:
             out.append(((0.0, qb, qc), fl | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE))
             continue

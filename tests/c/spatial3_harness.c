@@ -10,11 +10,11 @@
 #include "../../runtime/c/wk_spatial3.c"
 
 int wkt_spatial3_lines(const double *h, const double *r, const double *x, const double *y, double scale, double eps,
-                       double *q, unsigned *fl);
+                       double on_axis, double *q, unsigned *fl);
 
 /* h, r: 3 x 3 row-major (a line per row); q: WK_S3_MAX x 3; fl: WK_S3_MAX */
 int wkt_spatial3_lines(const double *h, const double *r, const double *x, const double *y, double scale, double eps,
-                       double *q, unsigned *fl)
+                       double on_axis, double *q, unsigned *fl)
 {
-    return wk_spatial3((const double (*)[3])h, (const double (*)[3])r, x, y, scale, eps, (double (*)[3])q, fl);
+    return wk_spatial3((const double (*)[3])h, (const double (*)[3])r, x, y, scale, eps, on_axis, (double (*)[3])q, fl);
 }

@@ -14,7 +14,8 @@ static int ck_spatial3(const ck_chain *ch, int ja, int jb, int jc, const double 
             h[i][m] = ch->axis[js[i]][m];
             r[i][m] = ch->point[js[i]][m];
         }
-    n = wk_spatial3((const double (*)[3])h, (const double (*)[3])r, x, y, CK_SCALE, CK_DEGENERATE_EPS, q, fl);
+    n = wk_spatial3((const double (*)[3])h, (const double (*)[3])r, x, y, CK_SCALE, CK_DEGENERATE_EPS, CK_ON_AXIS_TOL, q,
+                    fl);
     for (i = 0; i < n; ++i) {
         qa[i] = q[i][0];
         qb[i] = q[i][1];

@@ -24,7 +24,7 @@ static int sr_s3_candidates(const double *out, sr_ws *ws)
     for (i = 9; i < 24; ++i) /* the lengths' size: the points', the point's and its target's largest coordinate */
         if (fabs(out[i]) > scale) scale = fabs(out[i]);
     nc = wk_spatial3((const double (*)[3])h, (const double (*)[3])r, out + 18, out + 21, scale, SR_DEGENERATE_EPS,
-                     cand, fl);
+                     SR_ON_AXIS_TOL, cand, fl);
     for (i = 0; i < nc && n < SR_S3_KEEP; ++i) {
         int dup = 0;
         for (j = 0; j < n && !dup; ++j) {
