@@ -195,6 +195,9 @@ def serial_views(ctx: dict) -> dict:
     spatial3 = any(st["kind"] == "spatial3" for st in stages)
     sp6 = any(st["kind"] == "sp6" for st in stages)
     arm_angle = any(st["kind"] == "arm_angle" for st in stages)
+    multi = [st["kind"] for st in stages if st["kind"] in MULTI_CANDIDATE or st["kind"] == "general6r"]
+    if len(multi) > 1:  # the call's scratch (sr_stages.c's sr_ws, serial_stages._ws_take) holds one stage's candidates
+        raise ValueError(f"stages {multi}: a chain has one multi-candidate stage at most")
     poly = spatial3 or sp6
     c_flags = {
         "SR_N_STAGES": len(stages),

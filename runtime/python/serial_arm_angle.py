@@ -12,11 +12,10 @@ tested as it is (tests/test_arm_angle.py)."""
 
 from __future__ import annotations
 
-import math
-
 from arm_angle import _aa_angle_of, _arm_angle_core
 from serial_input import _design, _joints
-from serial_stand_in import DEGENERATE_EPS, SCALE, _k_arm_angle_parts, _wrap
+from serial_stages import _ws_take
+from serial_stand_in import DEGENERATE_EPS, SCALE, _k_arm_angle_parts
 
 # wristkin: inlined from here
 # the core's bands: the interpreted chain's for an S-R-S arm (derive/families/chain/views.py's stage_tolerances, the
@@ -27,19 +26,12 @@ AA_TOLS = (SCALE, DEGENERATE_EPS, 32 * 2.220446049250313e-16, 1e-9, 64 * 2.22044
 def _arm_angle_stage(kernel, parent, idx, joints, q, c, s, pose, dp, prev, ws):
     """Set k's set (ok, flags): `kernel` the stage's (h_a, h_b, h_c, s, h_e, p_e, x, y, psi), `parent` the set
     index's prefix above the stage's bits (the sets are recomputed when it changes), `idx` the set."""
-    if ws.get("aa_key") != parent:
+    def sets():
         out = kernel(pose, q, c, s, dp)
         parts = [tuple(out[3 * i:3 * i + 3]) for i in range(8)]
-        ws["aa_key"] = parent
-        ws["aa"] = _arm_angle_core(*parts, out[24], None if prev is None else prev[joints[0]], AA_TOLS)
-    sets = ws["aa"]
-    if idx >= len(sets):
-        return False, 0
-    vals, f = sets[idx]
-    for j, v in zip(joints, vals, strict=True):
-        v = _wrap(v)  # the elbow's band split and the turns reach past pi
-        q[j], c[j], s[j] = v, math.cos(v), math.sin(v)
-    return True, f
+        return _arm_angle_core(*parts, out[24], None if prev is None else prev[joints[0]], AA_TOLS)
+    cand = _ws_take(ws, parent, sets, idx, joints, q, c, s)
+    return (False, 0) if cand is None else (True, cand[1])
 
 
 def arm_angle(joints, design=None) -> float:

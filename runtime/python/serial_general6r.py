@@ -12,11 +12,10 @@ tested as it is (tests/test_derived_robot.py)."""
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from general6r import g6_frames_of, g6_solve
 from serial_fk import _spectrum
+from serial_stages import _ws_take
 from serial_stand_in import (
     DOUBLE_ROOT_POLISH_TOL,
     FLAG_SINGULAR_INVERSE,
@@ -106,13 +105,6 @@ def _general6r(kernel, parent, idx, readings, joints, q, c, s, pose, dp, ws):
     """Set k's candidate (ok, flags): `kernel` the stage's (axes, points, target), `parent` the set index's prefix
     above the stage's bits (the candidates are recomputed when it changes), `idx` the candidate, `readings` the
     loop's readings in the order they are tried."""
-    if ws.get("g6_key") != parent:
-        ws["g6_key"] = parent
-        ws["g6"] = _g6_candidates(kernel(pose, q, c, s, dp), readings, joints, q, pose, dp)
-    cands = ws["g6"]
-    if idx >= len(cands):
-        return False, 0
-    vals, f = cands[idx]
-    for j, v in zip(joints, vals, strict=True):
-        q[j], c[j], s[j] = v, math.cos(v), math.sin(v)
-    return True, f
+    cand = _ws_take(ws, parent, lambda: _g6_candidates(kernel(pose, q, c, s, dp), readings, joints, q, pose, dp),
+                    idx, joints, q, c, s)
+    return (False, 0) if cand is None else (True, cand[1])

@@ -14,10 +14,9 @@ tested as it is (tests/test_derived_robot.py)."""
 
 from __future__ import annotations
 
-import math
-
 from geom3 import _g3_cross, _g3_norm, _g3_turn_dir
-from serial_stand_in import DEGENERATE_EPS, _wrap
+from serial_stages import _ws_take
+from serial_stand_in import DEGENERATE_EPS
 from sp6 import _sp6_core
 
 # wristkin: inlined from here
@@ -49,15 +48,8 @@ def _sp6_candidates(out):
 def _sp6_stage(kernel, parent, idx, joints, q, c, s, pose, dp, amp, ws):
     """Set k's candidate (ok, flags): `kernel` the stage's outputs, `parent` the set index's prefix above the
     stage's bits (the candidates are recomputed when it changes), `idx` the candidate."""
-    if ws.get("sp6_key") != parent:
-        ws["sp6_key"] = parent
-        ws["sp6"] = _sp6_candidates(kernel(pose, q, c, s, dp))
-    cands = ws["sp6"]
-    if idx >= len(cands):
+    cand = _ws_take(ws, parent, lambda: _sp6_candidates(kernel(pose, q, c, s, dp)), idx, joints, q, c, s)
+    if cand is None:
         return False, 0
-    vals, f, amp_k = cands[idx]
-    for j, v in zip(joints, vals, strict=True):
-        v = _wrap(v)  # Newton's steps reach past pi
-        q[j], c[j], s[j] = v, math.cos(v), math.sin(v)
-    amp[joints[0]], amp[joints[1]] = 1.0, amp_k
-    return True, f
+    amp[joints[0]], amp[joints[1]] = 1.0, cand[2]
+    return True, cand[1]

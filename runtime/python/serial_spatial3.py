@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 
+from serial_stages import _ws_take
 from serial_stand_in import DEGENERATE_EPS, FLAG_INDETERMINATE, ON_AXIS_TOL, _wrap
 from spatial3 import _spatial3_lines
 
@@ -43,16 +44,10 @@ def _s3_candidates(out):
 def _spatial3_stage(kernel, parent, idx, joints, q, c, s, pose, dp, prev, ws):
     """Set k's candidate (ok, flags): `kernel` the stage's (axes, points, x, y), `parent` the set index's prefix above
     the stage's bits (the candidates are recomputed when it changes), `idx` the candidate."""
-    if ws.get("s3_key") != parent:
-        ws["s3_key"] = parent
-        ws["s3"] = _s3_candidates(kernel(pose, q, c, s, dp))
-    cands = ws["s3"]
-    if idx >= len(cands):
+    cand = _ws_take(ws, parent, lambda: _s3_candidates(kernel(pose, q, c, s, dp)), idx, joints, q, c, s)
+    if cand is None:
         return False, 0
-    vals, f = cands[idx]
-    for m, (j, v) in enumerate(zip(joints, vals, strict=True)):
-        v = _wrap(v)  # Newton's steps reach past pi
-        if m == 0 and f & FLAG_INDETERMINATE and prev is not None:
-            v = prev[j]
-        q[j], c[j], s[j] = v, math.cos(v), math.sin(v)
-    return True, f
+    if cand[1] & FLAG_INDETERMINATE and prev is not None:  # the first joint's family: previous's member
+        v = prev[joints[0]]
+        q[joints[0]], c[joints[0]], s[joints[0]] = v, math.cos(v), math.sin(v)
+    return True, cand[1]

@@ -53,6 +53,22 @@ def _family_member(j, q, c, s, prev):
     q[j], c[j], s[j] = (v, 1.0, 0.0) if v == 0.0 else (v, math.cos(v), math.sin(v))
 
 
+def _ws_take(ws, parent, compute, idx, joints, q, c, s):
+    """Candidate idx of the stage that computes several at once (the general 6R's, the spatial 3R's, subproblem 6's,
+    the arm angle's: one per chain), its candidates compute()d once per `parent`, the set index's prefix above its
+    bits, and kept in the call's scratch ws: its joints into q, c, s (wrapped: Newton's steps and band splits reach
+    past pi). Returns the candidate (values, flags[, amplification]), None when there is no such candidate."""
+    if ws.get("key") != parent:
+        ws["key"], ws["cands"] = parent, compute()
+    if idx >= len(ws["cands"]):
+        return None
+    cand = ws["cands"][idx]
+    for j, v in zip(joints, cand[0], strict=True):
+        v = _wrap(v)
+        q[j], c[j], s[j] = v, math.cos(v), math.sin(v)
+    return cand
+
+
 def _design_size(dp):
     """The design's size: its largest length, at least 1 (a stage's coefficients carry rounding of that order)."""
     return max(1.0, max(map(abs, dp[:N_LENGTHS]), default=0.0))

@@ -26,24 +26,15 @@ static wk_aa_tols sr_aa_tols(void)
 static int sr_arm_angle(sr_stage_kernel kernel, long parent, int idx, const int *joints, double *q, double *c,
                         double *s, const double *pose, const double *dp, const double *prev, sr_ws *ws, unsigned *f)
 {
-    int j;
-    if (ws->aa_key != parent) {
+    if (ws->key != parent) {
         const wk_aa_tols t = sr_aa_tols();
         double out[25];
         kernel(pose, q, c, s, dp, out);
-        ws->aa_key = parent;
-        ws->aa_n = wk_arm_angle(out, out + 3, out + 6, out + 9, out + 12, out + 15, out + 18, out + 21, out[24],
-                                prev ? &prev[joints[0]] : NULL, &t, ws->aa_q, ws->aa_f);
+        ws->key = parent;
+        ws->n = wk_arm_angle(out, out + 3, out + 6, out + 9, out + 12, out + 15, out + 18, out + 21, out[24],
+                             prev ? &prev[joints[0]] : NULL, &t, ws->q, ws->f);
     }
-    if (idx >= ws->aa_n) return 0;
-    for (j = 0; j < 4; ++j) {
-        const double v = wk_wrap(ws->aa_q[idx][j]); /* the elbow's band split and the turns reach past pi */
-        q[joints[j]] = v;
-        c[joints[j]] = cos(v);
-        s[joints[j]] = sin(v);
-    }
-    *f = ws->aa_f[idx];
-    return 1;
+    return sr_ws_take(ws, idx, joints, q, c, s, f);
 }
 
 /* The arm angle of joint values (Python's arm_angle): where they put the elbow point on its circle about the

@@ -28,14 +28,14 @@ static void sr_g6_sort(sr_ws *ws, int n)
     int i, j, m;
     for (i = 1; i < n; ++i) {
         double v[6];
-        const unsigned fl = ws->g6_f[i];
-        for (m = 0; m < 6; ++m) v[m] = ws->g6_q[i][m];
-        for (j = i; j > 0 && sr_g6_order(ws->g6_q[j - 1], v) > 0; --j) {
-            for (m = 0; m < 6; ++m) ws->g6_q[j][m] = ws->g6_q[j - 1][m];
-            ws->g6_f[j] = ws->g6_f[j - 1];
+        const unsigned fl = ws->f[i];
+        for (m = 0; m < 6; ++m) v[m] = ws->q[i][m];
+        for (j = i; j > 0 && sr_g6_order(ws->q[j - 1], v) > 0; --j) {
+            for (m = 0; m < 6; ++m) ws->q[j][m] = ws->q[j - 1][m];
+            ws->f[j] = ws->f[j - 1];
         }
-        for (m = 0; m < 6; ++m) ws->g6_q[j][m] = v[m];
-        ws->g6_f[j] = fl;
+        for (m = 0; m < 6; ++m) ws->q[j][m] = v[m];
+        ws->f[j] = fl;
     }
 }
 
@@ -84,20 +84,20 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
         for (j = 0; j < 6; ++j) x[joints[j]] = wk_wrap(x[joints[j]]);
         for (m = 0; m < n && dup < 0; ++m) {
             int same = 1;
-            for (j = 0; j < 6 && same; ++j) same = fabs(wk_wrap(x[joints[j]] - ws->g6_q[m][j])) <= SR_G6_SAME;
+            for (j = 0; j < 6 && same; ++j) same = fabs(wk_wrap(x[joints[j]] - ws->q[m][j])) <= SR_G6_SAME;
             if (same) dup = m;
         }
         if (dup >= 0) { /* one solution found twice: the better fit stands for it */
             if (err < errs[dup]) {
-                for (j = 0; j < 6; ++j) ws->g6_q[dup][j] = x[joints[j]];
+                for (j = 0; j < 6; ++j) ws->q[dup][j] = x[joints[j]];
                 errs[dup] = err;
             }
             continue;
         }
         if (n == SR_MAX_IK) continue; /* more than 16: a degenerate pose's family, the first 16 kept */
-        for (j = 0; j < 6; ++j) ws->g6_q[n][j] = x[joints[j]];
+        for (j = 0; j < 6; ++j) ws->q[n][j] = x[joints[j]];
         errs[n] = err;
-        ws->g6_f[n] = sr_g6_singular(x, dp, joints) ? WK_FLAG_SINGULAR_INVERSE : 0u;
+        ws->f[n] = sr_g6_singular(x, dp, joints) ? WK_FLAG_SINGULAR_INVERSE : 0u;
         ++n;
     }
     sr_g6_sort(ws, n);
@@ -122,21 +122,12 @@ static int sr_general6r(sr_stage_kernel kernel, long parent, int idx, const int 
                         const int *joints, double *q, double *c, double *s, const double *pose, const double *dp,
                         sr_ws *ws, unsigned *f)
 {
-    int j;
-    if (ws->g6_key != parent) {
+    if (ws->key != parent) {
         double out[48];
         kernel(pose, q, c, s, dp, out);
-        ws->g6_key = parent;
-        ws->g6_n = sr_g6_candidates(out, readings, n_readings, joints, q, pose, dp, ws);
+        ws->key = parent;
+        ws->n = sr_g6_candidates(out, readings, n_readings, joints, q, pose, dp, ws);
     }
-    if (idx >= ws->g6_n) return 0;
-    for (j = 0; j < 6; ++j) {
-        const double v = ws->g6_q[idx][j];
-        q[joints[j]] = v;
-        c[joints[j]] = cos(v);
-        s[joints[j]] = sin(v);
-    }
-    *f = ws->g6_f[idx];
-    return 1;
+    return sr_ws_take(ws, idx, joints, q, c, s, f);
 }
 #endif

@@ -34,14 +34,14 @@ static int sr_sp6_candidates(const double *out, sr_ws *ws)
     nc = wk_sp6(out, out + 3, out + 6, out + 9, out + 12, out[15], 0.0, out + 16, out + 19, &t, q0, q4, fl, ord);
     for (i = 0; i < nc && n < SR_SP6_KEEP; ++i) {
         double a[3], x[3], g;
-        ws->sp6_q[n][0] = q0[i];
-        ws->sp6_q[n][1] = q4[i];
-        ws->sp6_f[n] = fl[i];
+        ws->q[n][0] = q0[i];
+        ws->q[n][1] = q4[i];
+        ws->f[n] = fl[i];
         /* g = |h_l x rot(h_k, q_k)^T n|: q_k carries eps / g from the quartic (order 2), ~eps from the split */
         wk_g3_turn_dir(out + 9, -q4[i], out, a);
         wk_g3_cross(out + 19, a, x);
         g = wk_g3_norm(x);
-        ws->sp6_amp[n] = ord[i] == 2 ? fmax(1.0, 1.0 / fmax(g, 1e-300)) : 1.0;
+        ws->amp[n] = ord[i] == 2 ? fmax(1.0, 1.0 / fmax(g, 1e-300)) : 1.0;
         ++n;
     }
     return n;
@@ -52,23 +52,15 @@ static int sr_sp6_candidates(const double *out, sr_ws *ws)
 static int sr_sp6(sr_stage_kernel kernel, long parent, int idx, const int *joints, double *q, double *c, double *s,
                   const double *pose, const double *dp, double *amp, sr_ws *ws, unsigned *f)
 {
-    int j;
-    if (ws->sp6_key != parent) {
+    if (ws->key != parent) {
         double out[22];
         kernel(pose, q, c, s, dp, out);
-        ws->sp6_key = parent;
-        ws->sp6_n = sr_sp6_candidates(out, ws);
+        ws->key = parent;
+        ws->n = sr_sp6_candidates(out, ws);
     }
-    if (idx >= ws->sp6_n) return 0;
-    for (j = 0; j < 2; ++j) {
-        const double v = wk_wrap(ws->sp6_q[idx][j]); /* Newton's steps reach past pi */
-        q[joints[j]] = v;
-        c[joints[j]] = cos(v);
-        s[joints[j]] = sin(v);
-    }
+    if (!sr_ws_take(ws, idx, joints, q, c, s, f)) return 0;
     amp[joints[0]] = 1.0;
-    amp[joints[1]] = ws->sp6_amp[idx];
-    *f = ws->sp6_f[idx];
+    amp[joints[1]] = ws->amp[idx];
     return 1;
 }
 #endif

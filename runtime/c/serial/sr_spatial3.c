@@ -29,12 +29,12 @@ static int sr_s3_candidates(const double *out, sr_ws *ws)
         int dup = 0;
         for (j = 0; j < n && !dup; ++j) {
             int same = 1;
-            for (m = 0; m < 3 && same; ++m) same = fabs(wk_wrap(cand[i][m] - ws->s3_q[j][m])) <= SR_S3_SAME;
+            for (m = 0; m < 3 && same; ++m) same = fabs(wk_wrap(cand[i][m] - ws->q[j][m])) <= SR_S3_SAME;
             dup = same;
         }
         if (dup) continue;
-        for (m = 0; m < 3; ++m) ws->s3_q[n][m] = cand[i][m];
-        ws->s3_f[n] = fl[i];
+        for (m = 0; m < 3; ++m) ws->q[n][m] = cand[i][m];
+        ws->f[n] = fl[i];
         ++n;
     }
     return n;
@@ -45,22 +45,19 @@ static int sr_s3_candidates(const double *out, sr_ws *ws)
 static int sr_spatial3(sr_stage_kernel kernel, long parent, int idx, const int *joints, double *q, double *c,
                        double *s, const double *pose, const double *dp, const double *prev, sr_ws *ws, unsigned *f)
 {
-    int j;
-    if (ws->s3_key != parent) {
+    if (ws->key != parent) {
         double out[24];
         kernel(pose, q, c, s, dp, out);
-        ws->s3_key = parent;
-        ws->s3_n = sr_s3_candidates(out, ws);
+        ws->key = parent;
+        ws->n = sr_s3_candidates(out, ws);
     }
-    if (idx >= ws->s3_n) return 0;
-    for (j = 0; j < 3; ++j) {
-        double v = wk_wrap(ws->s3_q[idx][j]); /* Newton's steps reach past pi */
-        if (j == 0 && (ws->s3_f[idx] & WK_FLAG_INDETERMINATE) && prev) v = prev[joints[0]];
-        q[joints[j]] = v;
-        c[joints[j]] = cos(v);
-        s[joints[j]] = sin(v);
+    if (!sr_ws_take(ws, idx, joints, q, c, s, f)) return 0;
+    if ((*f & WK_FLAG_INDETERMINATE) && prev) { /* the first joint's family: previous's member */
+        const double v = prev[joints[0]];
+        q[joints[0]] = v;
+        c[joints[0]] = cos(v);
+        s[joints[0]] = sin(v);
     }
-    *f = ws->s3_f[idx];
     return 1;
 }
 #endif

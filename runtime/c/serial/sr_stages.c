@@ -9,37 +9,34 @@
 typedef void (*sr_stage_kernel)(const double *pose, const double *q, const double *c, const double *s,
                                 const double *dp, double *out);
 
-/* One IK call's scratch for the stages that compute several candidates at once (the general 6R's, the spatial 3R's,
- * subproblem 6's, the arm angle's), kept across the set words that share the prefix above their bits */
+/* One IK call's scratch for the stage that computes several candidates at once (the general 6R's, the spatial 3R's,
+ * subproblem 6's or the arm angle's: a chain has one at most, derive/serial_core/views.py), kept across the set words
+ * that share the prefix above its bits; sized by that stage's candidates and joints */
 #define SR_S3_KEEP 4 /* a spatial 3R's candidates kept (Pieper's bound on a 3R's positions) */
 #define SR_SP6_KEEP 4 /* subproblem 6's candidates kept (its quartic's real roots) */
-typedef struct {
 #if SR_HAS_GENERAL6R
-    long g6_key; /* the prefix the candidates were computed for (-1: none yet) */
-    int g6_n;
-    double g6_q[SR_MAX_IK][6];
-    unsigned g6_f[SR_MAX_IK];
+#define SR_WS_SETS SR_MAX_IK
+#define SR_WS_JOINTS 6
+#elif SR_HAS_SPATIAL3
+#define SR_WS_SETS SR_S3_KEEP
+#define SR_WS_JOINTS 3
+#elif SR_HAS_SP6
+#define SR_WS_SETS SR_SP6_KEEP
+#define SR_WS_JOINTS 2
+#elif SR_HAS_ARM_ANGLE
+#define SR_WS_SETS 4   /* two elbows x two shoulders */
+#define SR_WS_JOINTS 4 /* the shoulder's three and the elbow */
+#else
+#define SR_WS_SETS 0
 #endif
-#if SR_HAS_SPATIAL3
-    long s3_key; /* as g6_key */
-    int s3_n;
-    double s3_q[SR_S3_KEEP][3];
-    unsigned s3_f[SR_S3_KEEP];
-#endif
-#if SR_HAS_SP6
-    long sp6_key; /* as g6_key */
-    int sp6_n;
-    double sp6_q[SR_SP6_KEEP][2];
-    double sp6_amp[SR_SP6_KEEP]; /* how much the candidate's q_k amplifies the input's rounding (sr_sp6.c) */
-    unsigned sp6_f[SR_SP6_KEEP];
-#endif
-#if SR_HAS_ARM_ANGLE
-    long aa_key; /* as g6_key */
-    int aa_n;
-    double aa_q[4][4]; /* an S-R-S arm's (q_a, q_b, q_c, q_e): two elbows x two shoulders */
-    unsigned aa_f[4];
-#endif
-#if !SR_HAS_GENERAL6R && !SR_HAS_SPATIAL3 && !SR_HAS_SP6 && !SR_HAS_ARM_ANGLE
+typedef struct {
+#if SR_WS_SETS > 0
+    long key; /* the prefix the candidates were computed for (-1: none yet) */
+    int n;
+    double q[SR_WS_SETS][SR_WS_JOINTS];
+    double amp[SR_WS_SETS]; /* how much a candidate's last joint amplifies the input's rounding (subproblem 6's) */
+    unsigned f[SR_WS_SETS];
+#else
     int unused; /* C99 has no empty structs */
 #endif
 } sr_ws;
@@ -47,26 +44,31 @@ typedef struct {
 /* a fresh scratch for one IK call */
 static void sr_ws_init(sr_ws *ws)
 {
-#if SR_HAS_GENERAL6R
-    ws->g6_key = -1;
-    ws->g6_n = 0;
-#endif
-#if SR_HAS_SPATIAL3
-    ws->s3_key = -1;
-    ws->s3_n = 0;
-#endif
-#if SR_HAS_SP6
-    ws->sp6_key = -1;
-    ws->sp6_n = 0;
-#endif
-#if SR_HAS_ARM_ANGLE
-    ws->aa_key = -1;
-    ws->aa_n = 0;
-#endif
-#if !SR_HAS_GENERAL6R && !SR_HAS_SPATIAL3 && !SR_HAS_SP6 && !SR_HAS_ARM_ANGLE
+#if SR_WS_SETS > 0
+    ws->key = -1;
+    ws->n = 0;
+#else
     ws->unused = 0;
 #endif
 }
+
+#if SR_WS_SETS > 0
+/* Candidate idx of the scratch into q, c, s at the stage's joints (wrapped: Newton's steps and band splits reach past
+ * pi), its flags into *f; 0 when there is no such candidate */
+static int sr_ws_take(const sr_ws *ws, int idx, const int *joints, double *q, double *c, double *s, unsigned *f)
+{
+    int j;
+    if (idx >= ws->n) return 0;
+    for (j = 0; j < SR_WS_JOINTS; ++j) {
+        const double v = wk_wrap(ws->q[idx][j]);
+        q[joints[j]] = v;
+        c[joints[j]] = cos(v);
+        s[joints[j]] = sin(v);
+    }
+    *f = ws->f[idx];
+    return 1;
+}
+#endif
 
 #if SR_HAS_TRIG_LINEAR || SR_WRIST_STAGE >= 0
 /* the root a two-root stage takes in set k: +1 when bit `bit` of k is 0 (the +acos root, the first wrist branch) */
