@@ -13,6 +13,14 @@
  * and the serial arm's arm_angle stage (serial/sr_arm_angle.c) call it with their tolerances; tests/test_arm_angle.py
  * tests it through both. */
 
+/* The bands (double_root, tangent, on_axis, family) on the closed-form stages' inputs: the interpreted chain's for an
+ * S-R-S arm (derive/families/chain/views.py's stage_tolerances), which the serial stage runs the core at (arm_angle.py's
+ * AA_BANDS) */
+#define WK_AA_DOUBLE_ROOT (32.0 * DBL_EPSILON)
+#define WK_AA_TANGENT 1e-9
+#define WK_AA_ON_AXIS (64.0 * DBL_EPSILON)
+#define WK_AA_FAMILY 1e-12
+
 /* the caller's tolerances (the interpreted chain's CK_* of an S-R-S arm; the serial stage takes the same) */
 typedef struct {
     double scale;       /* the chain's size: the distance equation's and the elbow's offset bands scale with it */

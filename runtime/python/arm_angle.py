@@ -23,6 +23,10 @@ from geom3 import _g3_axpy, _g3_cross, _g3_dot, _g3_norm, _g3_sp1, _g3_trig, _g3
 # wristkin: inlined from here
 # The core's tolerances, the caller's (wk_arm_angle.c's wk_aa_tols says what each is):
 # (scale, degenerate, double_root, tangent, on_axis, family)
+# The bands (double_root, tangent, on_axis, family) on the closed-form stages' inputs: the interpreted chain's for an
+# S-R-S arm (derive/families/chain/views.py's stage_tolerances, the templates' TANGENT_TOL and FAMILY_TOL), which the
+# serial stage and the audit's check run it at (wk_arm_angle.c's WK_AA_* twins)
+AA_BANDS = (32 * 2.220446049250313e-16, 1e-9, 64 * 2.220446049250313e-16, 1e-12)
 
 
 def _aa_unit(v):

@@ -12,15 +12,13 @@ tested as it is (tests/test_arm_angle.py)."""
 
 from __future__ import annotations
 
-from arm_angle import _aa_angle_of, _arm_angle_core
+from arm_angle import AA_BANDS, _aa_angle_of, _arm_angle_core
 from serial_input import _design, _joints
 from serial_stages import _ws_take
 from serial_stand_in import DEGENERATE_EPS, SCALE, _k_arm_angle_parts
 
 # wristkin: inlined from here
-# the core's bands: the interpreted chain's for an S-R-S arm (derive/families/chain/views.py's stage_tolerances, the
-# templates' TANGENT_TOL and FAMILY_TOL), on the robot's size
-AA_TOLS = (SCALE, DEGENERATE_EPS, 32 * 2.220446049250313e-16, 1e-9, 64 * 2.220446049250313e-16, 1e-12)
+AA_TOLS = (SCALE, DEGENERATE_EPS, *AA_BANDS)  # the core's bands (arm_angle.py), on the robot's size
 
 
 def _arm_angle_stage(kernel, parent, idx, joints, q, c, s, pose, dp, prev, ws):

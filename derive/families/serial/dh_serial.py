@@ -14,6 +14,7 @@ verifies every candidate by FK, so poses a < 6-DOF chain cannot reach give an em
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field, replace
 
@@ -70,15 +71,16 @@ def _design_at(spec: SerialSpec, q: dict, dsn: dict) -> dict:
         dsn[spec.held[1]] = q[spec.joints[spec.held[0]]]
     if spec.arm_angle is not None:
         st = next(s for s in spec.stages if s.kind == "arm_angle")
-        fn = _READERS.get(id(st))
-        if fn is None:
-            fn = _READERS[id(st)] = sp.lambdify((*spec.joints, *spec.design), list(st.reader), "numpy")
+        fn = _reader(tuple(spec.joints), tuple(spec.design), tuple(st.reader))
         h1, s, e, w, _axis = np.array([float(v) for v in fn(*q.values(), *dsn.values())]).reshape(5, 3)
         dsn[spec.arm_angle] = arm_angle.angle_of(h1, s, e, w)
     return dsn
 
 
-_READERS: dict = {}  # an arm_angle stage's reader, lambdified once
+@functools.lru_cache(maxsize=8)
+def _reader(joints: tuple, design: tuple, reader: tuple):
+    """An arm_angle stage's reader, lambdified once per (symbols, expressions): the samples of every check read it."""
+    return sp.lambdify((*joints, *design), list(reader), "numpy")
 
 
 def _sample_joints(spec: SerialSpec, rng) -> dict:
@@ -287,7 +289,7 @@ def _arm_angle_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:
     outputs at the FK of random joints, at their own arm angle, returns those joints among its sets (to 1e-9 rad:
     closed forms, random joints far from the stretched elbow and the shoulder's family)."""
     core = arm_angle.numerics()
-    tols = (1.0, 1e-12, 32 * 2.220446049250313e-16, 1e-9, 64 * 2.220446049250313e-16, 1e-12)
+    tols = (1.0, 1e-12, *core["AA_BANDS"])  # the bands the emitted stage runs it at, on a unit size
 
     def missed(rng):
         q = _sample_joints(spec, rng)

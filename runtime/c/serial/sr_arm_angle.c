@@ -7,17 +7,16 @@
  * (a wristkin runtime source, inlined whole into a serial arm's generated C that has an arm_angle stage, after
  * sr_verify.c; Python's serial_arm_angle.py; derive/serial_core/views.py, tests/test_arm_angle.py) */
 #if SR_HAS_ARM_ANGLE
-/* the core's bands: the interpreted chain's for an S-R-S arm (derive/families/chain/views.py's stage_tolerances,
- * the templates' TANGENT_TOL and FAMILY_TOL), on the robot's size sr_scale */
+/* the core's bands (wk_arm_angle.c's WK_AA_*), on the robot's size sr_scale */
 static wk_aa_tols sr_aa_tols(void)
 {
     wk_aa_tols t;
     t.scale = sr_scale;
     t.degenerate = SR_DEGENERATE_EPS;
-    t.double_root = 32.0 * DBL_EPSILON;
-    t.tangent = 1e-9;
-    t.on_axis = 64.0 * DBL_EPSILON;
-    t.family = 1e-12;
+    t.double_root = WK_AA_DOUBLE_ROOT;
+    t.tangent = WK_AA_TANGENT;
+    t.on_axis = WK_AA_ON_AXIS;
+    t.family = WK_AA_FAMILY;
     return t;
 }
 
