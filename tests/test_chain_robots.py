@@ -240,19 +240,24 @@ def test_a_calibrated_arm_is_solved_on_ideal_axes_and_polished_on_the_true_ones(
             assert ref.pose_error(r(v), T) < 1e-10
 
 
-def test_a_held_joint_that_leaves_a_self_motion_is_refused_and_never_picked():
+def test_an_srs_arm_s_held_elbow_is_planned_as_a_self_motion_and_never_picked():
     """The iiwa14 with its elbow a4 held: the spherical shoulder turns the arm about the shoulder-wrist line and the
-    spherical wrist undoes it, so every reachable pose has infinitely many solutions. Was: a solver emitted whose
+    spherical wrist undoes it, so every reachable pose has infinitely many solutions. Was: a solver whose
     decomposition (a general 3R for the wrist centre) reported every such pose unreachable (20 of 20 generating
-    poses). Now refused with the reason, and not among the choices listed or picked without --free."""
+    poses); then refused. Now planned as the held elbow (the shoulder at previous's arm angle, then the wrist: the
+    derived stages solve it, tests/test_derived_robot.py), which the plan interpreter refuses with the reason; listed
+    last among the choices and never picked without --free (its poses are only those at the elbow's reach)."""
     from derive.families.chain import workable_free_joints
     from derive.model import NoDecomposition
 
-    with pytest.raises(NoDecomposition, match="self-motion"):
-        own_robot.load(_file("iiwa14", "urdf"), free="a4").plan()
+    held = own_robot.load(_file("iiwa14", "urdf"), free="a4", stages="interpreted")
+    assert held.held_elbow and [op["op"] for op in held.plan()[0].ops] == ["begin", "held_elbow", "orient"]
+    with pytest.raises(NoDecomposition, match="self-motion, which the derived stages solve"):
+        held.derive()
     mech = own_robot.load(_file("iiwa14", "urdf"), stages="interpreted")
     choices = workable_free_joints(mech.NAME, mech.title, mech.desc)
-    assert "a4" not in choices and {"a1", "a3", "a5", "a7"} <= set(choices)
+    assert choices[-1] == "a4" and {"a1", "a3", "a5", "a7"} <= set(choices)
+    assert mech.desc.free != 3 and not mech.held_elbow
 
 
 def test_a_tolerance_below_the_deviation_leaves_the_general_6r():

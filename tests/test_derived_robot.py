@@ -780,13 +780,16 @@ SPATIAL3 = {"panda_free5": (ROBOTS / "panda" / "panda_dh.toml", "joint5")}
 # arms with an offset wrist (subproblem 6: joints 1 and 5 from the parallel group's invariants)
 SP6 = {"ur5e_offset": (ROBOTS / "ur5e_offset" / "ur5e_offset_dh.toml", None)}
 MULTI = {**GENERAL, **SPATIAL3, **SP6}
+# an S-R-S arm with its elbow held: a self-motion (the shoulder at previous's arm angle)
+HELD_ELBOW = {"iiwa14_free4": (ROBOTS / "iiwa14" / "iiwa14_dh.toml", "a4")}
 
 
 def _general(case: str):
-    """(C-backed solver, numpy solver, folder) of a GENERAL, SPATIAL3 or SP6 arm derived with --stages derived."""
+    """(C-backed solver, numpy solver, folder) of a GENERAL, SPATIAL3, SP6 or HELD_ELBOW arm derived with --stages
+    derived."""
     key = ("general", case)
     if key not in _CACHE:
-        path, free = MULTI[case]
+        path, free = {**MULTI, **HELD_ELBOW}[case]
         out = Path(tempfile.mkdtemp(prefix=f"wk_derived_{case}_"))
         own_robot.derive(path, out, name=case, stages="derived", free=free, progress=lambda _: None)
         _CACHE[key] = (own_robot.import_solver(out, case), own_robot.import_solver(out, case, backend="numpy"), out)
@@ -853,12 +856,49 @@ def test_where_the_chosen_reading_degenerates_the_next_one_solves_the_pose():
         assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
 
 
+def test_an_srs_arm_with_its_elbow_held_is_solved_at_previous_s_arm_angle():
+    """The iiwa14 with a4 held (kinematics/planner.held_elbow_plan): a self-motion. 40 random joint sets (a4 the
+    design, at random): their pose is reached, status indeterminate; with them as previous the generating joints are
+    among the sets (the family's member at previous's arm angle, to 1e-9: closed forms away from the stretched
+    elbow), every set on the pose and flagged indeterminate, C equal to numpy; without previous every set on the pose
+    at arm angle 0 (the module's arm_angle), and the member found is its own previous's. With the held value 1e-6 off
+    (the wrist centre ~4e-7 m off the elbow's reach, beyond the 1e-9 band) the pose is unreachable, as a random pose
+    is."""
+    m, py, out = _general("iiwa14_free4")
+    reference = ref.load(HELD_ELBOW["iiwa14_free4"][0])
+    assert m.MAX_IK == 4 and "return _held_elbow_stage(_k_stage2," in (out / "python" / "iiwa14_free4.py").read_text()
+    rng = case_rng(2330)
+    for _ in range(40):
+        q = rng.uniform(-math.pi, math.pi, 7)
+        q[3] = rng.uniform(0.2, 2.8) * rng.choice([-1.0, 1.0])  # the elbow bent (0: stretched, the driver's)
+        design, T = [float(q[3])], reference(q)
+        a, b = m.ik(T, design, previous=q), py.ik(T, design, previous=q)
+        assert a.status == m.STATUS_INDETERMINATE and 1 <= a.count <= 4
+        assert min(_gap(v, q) for v in a) <= 1e-9
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in a)
+        assert all(f & m.FLAG_INDETERMINATE for f in a.flags[a.valid])
+        assert a.count == b.count and list(a.flags) == list(b.flags)
+        assert np.max(np.abs(a.values[a.valid] - b.values[b.valid])) <= 1e-12
+        home = m.ik(T, design)
+        assert home.status == m.STATUS_INDETERMINATE
+        for v in home:
+            assert ref.pose_error(reference(np.asarray(v)), T) <= 1e-9
+            assert abs(math.remainder(m.arm_angle(v, design), 2 * math.pi)) <= 1e-9
+            assert min(_gap(w, v) for w in m.ik(T, design, previous=v)) <= 1e-9
+        for solver in (m, py):
+            off = solver.ik(T, [design[0] + 1e-6])
+            assert off.status == solver.STATUS_UNREACHABLE and off.count == 0
+    far = reference(rng.uniform(-math.pi, math.pi, 7))
+    assert m.ik(far, [1.0]).status == m.STATUS_UNREACHABLE
+
+
 @pytest.mark.parametrize("case,stream,n", [("ur5e_tilted", 2311, 10), ("panda_free5", 2313, 20),
-                                           ("ur5e_offset", 2315, 20)])
+                                           ("ur5e_offset", 2315, 20), ("iiwa14_free4", 2331, 20)])
 def test_a_multi_candidate_stage_s_emitted_c_is_strict_c99_and_clean_under_the_sanitizers(case, stream, n):
     """The derived tilted UR5e's C with the elimination beside it (wk_general6r.c, wk_eigen.c), the Panda's with
     joint5 held and its spatial3 stage (wk_spatial3.c, the root finder inlined), the offset wrist's sp6 stage
-    (wk_sp6.c), under -std=c99 -Wall -Wextra -Werror
+    (wk_sp6.c), the iiwa14's with its elbow held (wk_arm_angle.c; at the driver's held 0 the arm is stretched),
+    under -std=c99 -Wall -Wextra -Werror
     -pedantic and ASan/UBSan, on random, singular, unreachable and non-finite poses: the counts the Python module
     returns, nothing reported."""
     m, _, out = _general(case)
@@ -930,13 +970,14 @@ def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_t
 
 
 def test_the_command_refuses_in_one_line_and_writes_nothing(tmp_path):
-    """A robot no IK covers (the iiwa14 with its elbow a4 held: the other six a self-motion): one line naming why
-    and the choices that work, exit code 1, no solver written, with --stages derived as without."""
+    """A robot the chosen IK does not cover (the iiwa14 with its elbow a4 held, a self-motion, which only the derived
+    stages solve, asked of the plan interpreter): one line naming why and what does, exit code 1, no solver
+    written."""
     r = subprocess.run([sys.executable, "-m", "derive.cli", "derive", str(_file("iiwa14", "dh")), "--out",
-                        str(tmp_path / "out"), "--stages", "derived", "--free", "a4"], capture_output=True, text=True,
-                       cwd=ROOT, timeout=300)
+                        str(tmp_path / "out"), "--stages", "interpreted", "--free", "a4"], capture_output=True,
+                       text=True, cwd=ROOT, timeout=300)
     assert r.returncode == 1 and len(r.stderr.strip().splitlines()) == 1 and "self-motion" in r.stderr
-    assert "--free a1" in r.stderr
+    assert "--stages auto or derived" in r.stderr
     assert not (tmp_path / "out" / "python").exists()
 
 

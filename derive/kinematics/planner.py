@@ -84,6 +84,8 @@ def op_branches(op: dict) -> int:
         return 2 if len(op["units"]) == 3 else 1
     if op["op"] == "arm_angle":
         return 4  # the elbow bent either way, two shoulder sets for each
+    if op["op"] == "held_elbow":
+        return 2  # the shoulder's two sets (the elbow held)
     if op["op"] == "general6r":
         return 16  # the general 6R has at most 16 solutions (Lee and Liang; Raghavan and Roth)
     return 1
@@ -370,6 +372,32 @@ def arm_angle_plan(c: Chain, tol: float) -> Plan:
                 f"shoulder-wrist line at the design's arm angle (0: in the plane of {names[0]}'s axis), "
                 f"{names[ELBOW]} from the distance, the shoulder's rotation from two directions, then the wrist's "
                 "orientation")
+    return Plan(ops, False, strategy, list(g.used.values()))
+
+
+def held_elbow_plan(c: Chain, tol: float) -> Plan:
+    """The plan of an S-R-S arm with its elbow held (the six joints left: a spherical shoulder, axes 0-2, and a
+    spherical wrist, axes 3-5): a self-motion, the shoulder turning the arm about the shoulder-wrist line and the wrist
+    undoing the turn. A pose is reached only where its wrist centre is as far from the shoulder centre as the held
+    elbow leaves it; there, at the arm angle of previous (else 0), the shoulder's two sets, then the wrist's
+    orientation (kinematics/arm_angle.py; the runtime's arm-angle core with the elbow held). Refused (NoClosedForm)
+    unless the six joints are two spherical groups."""
+    if c.n != 6 or any(k != "R" for k in c.kinds):
+        raise NoClosedForm(f"a held elbow needs the six other joints revolute (this chain: {''.join(c.kinds)})")
+    g = Geometry(c, tol)
+    names = c.joint_names
+    for js, what in (((0, 1, 2), "shoulder"), ((3, 4, 5), "wrist")):
+        if g.meet(js) is None:
+            raise NoClosedForm(f"a held elbow needs a spherical shoulder and wrist: axes "
+                               f"{', '.join(names[j] for j in js)} meet in no point (the {what})")
+    ops = [{"op": "begin", "x": ("meet", 3, 4, 5), "lo": 0, "hi": 5},
+           {"op": "held_elbow", "shoulder": [0, 1, 2], "s": ("meet", 0, 1, 2)},
+           {"op": "orient", "units": [[3], [4], [5]], "lo": 3, "hi": 5}]
+    strategy = (f"the held elbow of an S-R-S arm (axes {', '.join(names[j] for j in (0, 1, 2))} meet at the shoulder, "
+                f"{', '.join(names[j] for j in (3, 4, 5))} at the wrist): a self-motion, reached only where the wrist "
+                "centre is as far from the shoulder centre as the held elbow leaves it; there every arm angle reaches "
+                "the pose: the member at previous's arm angle (else 0), flagged indeterminate, the shoulder's two "
+                "sets, then the wrist's orientation")
     return Plan(ops, False, strategy, list(g.used.values()))
 
 

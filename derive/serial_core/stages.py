@@ -19,7 +19,8 @@ P_POSE = POSE[:, 3]
 
 @dataclass(frozen=True)
 class Stage:
-    kind: str  # trig_linear | rotation2d | value | wrist | quadratic | general6r | spatial3 | sp6 | arm_angle
+    # trig_linear | rotation2d | value | wrist | quadratic | general6r | spatial3 | sp6 | arm_angle | held_elbow
+    kind: str
     joints: tuple[int, ...]
     # trig_linear (A, B, C); rotation2d (u, v, u0, v0); value (q,); wrist (3x3 M as 9 entries); quadratic (a slide
     # from a distance: (q + B)^2 = D, E the scale of D's rounding); general6r (the six axes' directions and points,
@@ -27,7 +28,8 @@ class Stage:
     # (three axes' directions and points, 9 + 9, the point x at the joints' zero and its target y: rot rot rot x = y);
     # sp6 (subproblem 6's n, h_j, p_j, h_k, p_k, d_j, g, h_l: 3 x 5 + 1 + 3 + 3, planned._sp6_stages); arm_angle
     # (the shoulder's axes h_a, h_b, h_c, its centre s, the elbow's axis h_e and point p_e, the wrist centre x at home
-    # and its target y, 8 x 3, then the arm angle psi: planned._arm_angle_stage)
+    # and its target y, 8 x 3, then the arm angle psi: planned._arm_angle_stage); held_elbow (as arm_angle's without
+    # psi, x where the held elbow puts the wrist centre: planned._held_elbow_stage)
     exprs: tuple
     title: str
     rule: str
@@ -45,8 +47,8 @@ class Stage:
     # the one chosen where it stays regular (derive/kinematics/general6r.choose_labelling), then the next most
     # regular, tried in turn when no candidate of the one before verifies (a pose where its equations degenerate)
     labelling: tuple[tuple[int, int, int], ...] = ((0, 0, 0),)
-    # arm_angle: the arm angle of joint values (first axis h_1, shoulder centre s, elbow point e, wrist centre w, the
-    # elbow axis's direction, 5 x 3, from the joints and the design), the module's arm_angle() reads it
+    # arm_angle, held_elbow: the arm angle of joint values (first axis h_1, shoulder centre s, elbow point e, wrist
+    # centre w, the elbow axis's direction, 5 x 3, from the joints and the design), the module's arm_angle() reads it
     reader: tuple = ()
     # general6r: (the solved chain at the design's defaults, a kinematics.poe.Chain; its general6r.Labelling) for
     # the derivation's records of the elimination (kinematics/general6r.steps)
@@ -62,6 +64,8 @@ class Stage:
             return 4  # a 3R's positions: at most four (Pieper)
         if self.kind in ("sp6", "arm_angle"):
             return 4  # a quartic's real roots; the arm angle's two elbows x two shoulders
+        if self.kind == "held_elbow":
+            return 2  # the shoulder's two sets
         return 2 if self.kind in ("trig_linear", "wrist", "quadratic") else 1
 
     @property
@@ -88,7 +92,8 @@ def stage_output_names(st: Stage) -> list[str]:
             "sp6": [f"{w}{x}" for w in ("n", "h0", "p0", "h4", "p4") for x in "xyz"] + ["d0"] +
             [f"{w}{x}" for w in ("g", "h5") for x in "xyz"],
             "arm_angle": [f"{w}{x}" for w in ("ha", "hb", "hc", "s", "he", "pe", "x", "y") for x in "xyz"] +
-            ["psi"]}[st.kind]
+            ["psi"],
+            "held_elbow": [f"{w}{x}" for w in ("ha", "hb", "hc", "s", "he", "pe", "x", "y") for x in "xyz"]}[st.kind]
 
 
 def cs_symbols(spec):

@@ -58,7 +58,8 @@ def _tuple(xs) -> str:
 # (Python solver, C solver, what each takes after the kernel, prefix, index, joints, q, c, s, pose, dp: previous for
 # a family's member, or amp for the amplification it sets)
 MULTI_CANDIDATE = {"spatial3": ("_spatial3_stage", "sr_spatial3", "prev"), "sp6": ("_sp6_stage", "sr_sp6", "amp"),
-                   "arm_angle": ("_arm_angle_stage", "sr_arm_angle", "prev")}
+                   "arm_angle": ("_arm_angle_stage", "sr_arm_angle", "prev"),
+                   "held_elbow": ("_held_elbow_stage", "sr_held_elbow", "prev")}
 
 
 def _amp_before(st: dict) -> str:
@@ -195,6 +196,8 @@ def serial_views(ctx: dict) -> dict:
     spatial3 = any(st["kind"] == "spatial3" for st in stages)
     sp6 = any(st["kind"] == "sp6" for st in stages)
     arm_angle = any(st["kind"] == "arm_angle" for st in stages)
+    held_elbow = any(st["kind"] == "held_elbow" for st in stages)
+    aa_core = arm_angle or held_elbow  # the arm-angle core, its stage solvers and the arm_angle verb
     multi = [st["kind"] for st in stages if st["kind"] in MULTI_CANDIDATE or st["kind"] == "general6r"]
     if len(multi) > 1:  # the call's scratch (sr_stages.c's sr_ws, serial_stages._ws_take) holds one stage's candidates
         raise ValueError(f"stages {multi}: a chain has one multi-candidate stage at most")
@@ -217,6 +220,7 @@ def serial_views(ctx: dict) -> dict:
         "SR_HAS_SPATIAL3": int(spatial3),
         "SR_HAS_SP6": int(sp6),
         "SR_HAS_ARM_ANGLE": int(arm_angle),
+        "SR_HAS_HELD_ELBOW": int(held_elbow),
         "SR_HAS_WRIST_MIRROR": int(bool(wrist) and wrist[0]["bit"] == 0),
         "SR_REUSE_MIRROR_CHECK": int(reuse),
         "SR_N_FOLD_BITS": len(ctx["fold_bits"]),
@@ -249,7 +253,7 @@ def serial_views(ctx: dict) -> dict:
     base0, tool0 = (own["base0"], own["tool0"]) if own else ([repr(float(v)) for v in IDENTITY_3X4],) * 2
     c_tables += [f"static const double sr_base0[12] = {{ {', '.join(base0)} }};",
                  f"static const double sr_tool0[12] = {{ {', '.join(tool0)} }};"]
-    if arm_angle:  # the core's bands scale with the robot's size (sr_arm_angle.c), as the interpreted chain's
+    if aa_core:  # the core's bands scale with the robot's size (sr_arm_angle.c), as the interpreted chain's
         c_tables.append(f"static const double sr_scale = {own['scale']};")
     if own:
         # a user robot's limits as select_ik's defaults (NULL limits: the description's), as the interpreted C's
@@ -282,7 +286,7 @@ def serial_views(ctx: dict) -> dict:
             "py_base0": _frame_literal(base0), "py_tool0": _frame_literal(tool0), "design_fields": DESIGN_FIELDS,
             "py_runtime_files": (PY_RUNTIME_FILES[:-1] + (PY_GENERAL6R_FILES if general else ())
                                  + (PY_POLY_FILES if poly else ()) + (PY_SPATIAL3_FILES if spatial3 else ())
-                                 + (PY_SP6_FILES if sp6 else ()) + (PY_ARM_ANGLE_FILES if arm_angle else ())
+                                 + (PY_SP6_FILES if sp6 else ()) + (PY_ARM_ANGLE_FILES if aa_core else ())
                                  + PY_RUNTIME_FILES[-1:]
                                  + (PY_OWN_RUNTIME_FILES if own else (PY_SELECT_FILE,))),
             "select_doc": ("Joint limits (NULL = the description's limits, as the Python select); nearest valid set "
@@ -291,9 +295,9 @@ def serial_views(ctx: dict) -> dict:
                            "(NULL): index or -1."),
             "c_runtime_files": C_RUNTIME_FILES + ((C_GENERAL6R_FILE,) if general else ())
                                + (C_POLY_FILES if poly else ()) + (C_SPATIAL3_FILES if spatial3 else ())
-                               + (C_SP6_FILES if sp6 else ()) + (C_ARM_ANGLE_FILES if arm_angle else ()),
+                               + (C_SP6_FILES if sp6 else ()) + (C_ARM_ANGLE_FILES if aa_core else ()),
             "c_runtime_after_stages": C_RUNTIME_AFTER_STAGES,
             "arm_angle": arm_angle, "arm_angle_literal": str(arm_angle),
             # verbs beyond every serial arm's (declaration, definition): an S-R-S arm's arm angle of joint values
-            "c_extra_verbs": [_arm_angle_verb(ctx["name"])] if arm_angle else [],
+            "c_extra_verbs": [_arm_angle_verb(ctx["name"])] if aa_core else [],
             "c_includes": [f.split("/")[-1] for f in C_GENERAL6R_SHARED if f.endswith(".h")] if general else []}

@@ -205,10 +205,12 @@ static void wk_aa_orient_rest(const double *ha, const double *hb, const double *
 
 /* The sets out[m] = (q_a, q_b, q_c, q_e) with flags[m], at most 4 (two elbows x two shoulders): h_a, h_b, h_c the
  * shoulder's axes (meeting at s), h_e / p_e the elbow's axis and a point on it, x the wrist centre at home, w its
- * target, psi the arm angle; prev_a: previous's q_a (a shoulder family's member), or NULL. */
+ * target, psi the arm angle; prev_a: previous's q_a (a shoulder family's member), or NULL. held_e: the elbow held at
+ * this value (NULL: solved), the arm a self-motion: w within the tangent band of the distance it leaves the wrist
+ * centre from s, else no set; the sets at psi, flagged indeterminate (every psi reaches the pose). */
 static int wk_arm_angle(const double *ha, const double *hb, const double *hc, const double *s, const double *he,
                         const double *pe, const double *x, const double *w, double psi, const double *prev_a,
-                        const wk_aa_tols *tol, double out[4][4], unsigned *flags)
+                        const double *held_e, const wk_aa_tols *tol, double out[4][4], unsigned *flags)
 {
     double u[3], n1[3], n2[3], side[3], elbow[3], xe[3], se[3], sw[3], te[2];
     unsigned fe[2];
@@ -222,8 +224,18 @@ static int wk_arm_angle(const double *ha, const double *hb, const double *hc, co
     wk_g3_axpy(pe, wk_g3_dot(he, se), he, elbow); /* the elbow axis's point nearest s */
     wk_g3_axpy(x, -1.0, pe, xe);
     wk_g3_axpy(w, -1.0, s, sw);
-    ne = wk_aa_sp3(he, xe, se, wk_g3_norm(sw), tol, te, fe);
-    if (ne == 1 && (fe[0] & WK_FLAG_DOUBLE_ROOT)) {
+    if (held_e) {
+        double xh[3];
+        wk_g3_turn(he, pe, *held_e, x, xh);
+        wk_g3_axpy(xh, -1.0, s, xh);
+        if (!(fabs(wk_g3_norm(xh) - wk_g3_norm(sw)) <= tol->tangent * tol->scale)) return 0;
+        te[0] = *held_e;
+        fe[0] = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
+        ne = 1;
+    } else {
+        ne = wk_aa_sp3(he, xe, se, wk_g3_norm(sw), tol, te, fe);
+    }
+    if (!held_e && ne == 1 && (fe[0] & WK_FLAG_DOUBLE_ROOT)) {
         /* the arm (nearly) stretched or folded: the merged roots are the elbow bent to either side of the line,
          * where the shoulder and wrist differ by a half turn: both sides, a band's width off the line */
         const double band = sqrt(tol->double_root);

@@ -144,10 +144,12 @@ def _aa_orient_rest(ha, hb, hc, r, t1, t2, tols):
     return -t1, t2, 0.0 if t3 is None else t3
 
 
-def _arm_angle_core(ha, hb, hc, s, he, pe, x, w, psi, prev_a, tols):
+def _arm_angle_core(ha, hb, hc, s, he, pe, x, w, psi, prev_a, tols, held=None):
     """The sets [((q_a, q_b, q_c, q_e), flags)], at most four (two elbows x two shoulders): h_a, h_b, h_c the
     shoulder's axes (meeting at s), h_e / p_e the elbow's axis and a point on it, x the wrist centre at home, w its
-    target, psi the arm angle; prev_a: previous's q_a (a shoulder family's member), or None."""
+    target, psi the arm angle; prev_a: previous's q_a (a shoulder family's member), or None. held: the elbow held at
+    this value (None: solved), the arm a self-motion: w within the tangent band of the distance it leaves the wrist
+    centre from s, else no set; the sets at psi, flagged indeterminate (every psi reaches the pose)."""
     scale, _, double_root, _, on_axis, _ = tols
     plane = _aa_plane(ha, s, w, on_axis)
     if plane is None:
@@ -155,8 +157,14 @@ def _arm_angle_core(ha, hb, hc, s, he, pe, x, w, psi, prev_a, tols):
     u, n1, n2, plane_flags = plane
     side = _g3_axpy(_g3_axpy((0.0, 0.0, 0.0), math.cos(psi), n1), math.sin(psi), n2)  # the elbow's side of s -> w
     elbow = _g3_axpy(pe, _g3_dot(he, _g3_axpy(s, -1.0, pe)), he)  # the elbow axis's point nearest s
-    roots = _aa_sp3(he, _g3_axpy(x, -1.0, pe), _g3_axpy(s, -1.0, pe), _g3_norm(_g3_axpy(w, -1.0, s)), tols)
-    if len(roots) == 1 and roots[0][1] & FLAG_DOUBLE_ROOT:
+    if held is not None:
+        reach = _g3_norm(_g3_axpy(_g3_turn(he, pe, held, x), -1.0, s))
+        if not abs(reach - _g3_norm(_g3_axpy(w, -1.0, s))) <= tols[3] * scale:
+            return []
+        roots = [(held, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE)]
+    else:
+        roots = _aa_sp3(he, _g3_axpy(x, -1.0, pe), _g3_axpy(s, -1.0, pe), _g3_norm(_g3_axpy(w, -1.0, s)), tols)
+    if held is None and len(roots) == 1 and roots[0][1] & FLAG_DOUBLE_ROOT:
         # the arm (nearly) stretched or folded: the distance fixes the elbow only to ~sqrt(eps), and its two roots,
         # merged, are the elbow bent to either side of the line, where the shoulder and wrist differ by a half turn
         # (q3 and q5 of an iiwa): both sides, each a band's width off the line, so that the elbow's side (and the

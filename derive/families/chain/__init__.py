@@ -55,7 +55,9 @@ def spec_for_file(path: Path, name=None, base=None, tip=None, free=None, geometr
 
 def free_joint_choices(name: str, title: str, desc) -> list[tuple[tuple, str, ChainMechanism]]:
     """Every joint that, held as the run-time parameter, leaves a chain solved in closed form, cheapest first:
-    (cost, joint name, mechanism), cost = (the general 6R elimination, branches, position in the chain)."""
+    (cost, joint name, mechanism), cost = (a self-motion, the general 6R elimination, branches, position in the
+    chain). A self-motion (an S-R-S arm's elbow held: its poses only where the wrist centre is at the elbow's reach,
+    each a family) comes last and is never picked without --free."""
     out = []
     for k, jname in enumerate(desc.chain.joint_names):
         mech = ChainMechanism(name, title, replace(desc, free=k))
@@ -64,7 +66,7 @@ def free_joint_choices(name: str, title: str, desc) -> list[tuple[tuple, str, Ch
         except NoDecomposition:
             continue
         general = any(op["op"] == "general6r" for op in plan.ops)
-        out.append(((general, plan.branches, k), jname, mech))
+        out.append(((mech.held_elbow, general, plan.branches, k), jname, mech))
     return sorted(out, key=lambda c: c[0])
 
 
@@ -83,12 +85,12 @@ def from_spec(spec: Spec) -> ChainMechanism:
         return mech
     if desc.free < 0:
         choices = free_joint_choices(head["name"], head["title"], desc)
-        if desc.chain.n > 7 or not choices:
+        if desc.chain.n > 7 or not choices or choices[0][0][0]:
             raise spec.error("free", f"the joint held as a run-time parameter (the chain has {desc.chain.n} joints; a "
                                      f"closed form solves at most 6): "
                                      f"{_choice_text([c[1] for c in choices])}")
         # no --free: the cheapest choice, said in the solver's decomposition text with the others
-        (general, branches, _), jname, chosen = choices[0]
+        (_, general, branches, _), jname, chosen = choices[0]
         others = ", ".join(c[1] for c in choices[1:]) or "none"
         how = "the general 6R elimination" if general else f"a decomposition with {branches} branches"
         chosen.free_note = (f"free joint {jname} chosen (no --free given): the cheapest closed form ({how}); the "

@@ -10,9 +10,19 @@ import numpy as np
 
 from ...checks import jacobian_fd_error, numeric_predicate
 from ...kinematics import general6r
+from ...kinematics.arm_angle import ELBOW
 from ...kinematics.dh_table import NoDHTable, OwnRobotApi, RobotTable, standard_dh
 from ...kinematics.geometry import common_point
-from ...kinematics.planner import Geometry, NoClosedForm, Plan, arm_angle_plan, find_plan, op_branches, replay
+from ...kinematics.planner import (
+    Geometry,
+    NoClosedForm,
+    Plan,
+    arm_angle_plan,
+    find_plan,
+    held_elbow_plan,
+    op_branches,
+    replay,
+)
 from ...kinematics.poe import Chain, normalised, reduce_free, reverse
 from ...kinematics.subproblems import subproblem_checks
 from ...literals import c_num, floats, own_api_literals, vectors
@@ -53,6 +63,7 @@ class ChainMechanism(MechanismDefaults):
         self._labelling: general6r.Labelling | None = None
         self._degenerate: tuple[tuple[float, str], ...] | None = None
         self._samples: tuple[float, ...] | None = None  # _held_samples, computed once
+        self._held_elbow: bool | None = None  # held_elbow, computed once
         self._kernels: list | None = None  # derive's FK / Jacobian kernels, emitted as they were checked
         self.free_note = ""  # how the free joint was chosen when the user gave none
 
@@ -74,6 +85,9 @@ class ChainMechanism(MechanismDefaults):
             if deviation > ARM_ANGLE_DEVIATION:
                 raise NoClosedForm(f"the arm angle needs an S-R-S arm within {ARM_ANGLE_DEVIATION:g}: its axes are "
                                    f"{deviation:.2g} off meeting (a calibrated arm: hold a joint instead, --free)")
+        if self._plan is None and self.held_elbow:
+            self._plan = held_elbow_plan(self.solver_chain(self.chain, FREE_SAMPLES[1]), self.desc.geometry_tol)
+            self._ideal = self.idealise(self._plan)
         if self._plan is None:
             self._refuse_self_motion()
             samples = self._held_samples()
@@ -126,6 +140,20 @@ class ChainMechanism(MechanismDefaults):
                    for r in self._spanning(plan))
 
     @property
+    def held_elbow(self) -> bool:
+        """The free joint is an S-R-S arm's elbow (the iiwa's a4), which leaves the other six a self-motion: solved by
+        the derived stages at previous's arm angle (kinematics/planner.held_elbow_plan), flagged indeterminate."""
+        if self._held_elbow is None:
+            self._held_elbow = False
+            if self.desc.free == ELBOW and self.chain.n == 7 and self.desc.redundancy != "arm-angle":
+                try:
+                    arm_angle_plan(self.chain, self.desc.geometry_tol)
+                    self._held_elbow = self._self_motion_ratio(FREE_SAMPLES[1:], 4) <= SELF_MOTION_RATIO
+                except NoClosedForm:
+                    pass
+        return self._held_elbow
+
+    @property
     def arm_angle(self) -> bool:
         """The run-time parameter is the arm angle (an S-R-S arm, derive/kinematics/arm_angle.py)."""
         return self.desc.redundancy == "arm-angle"
@@ -158,6 +186,8 @@ class ChainMechanism(MechanismDefaults):
         degenerate for every value and refused it)."""
         if self.desc.free < 0:
             return (0.0,)
+        if self.held_elbow:  # a self-motion at every value, which its plan solves
+            return FREE_SAMPLES
         if self._samples is None:  # two SVDs per value: read by the plan, its checks and the derivation
             self._samples = tuple(v for v in FREE_SAMPLES if self._self_motion_ratio([v], 2) > SELF_MOTION_RATIO)
         return self._samples
@@ -173,7 +203,7 @@ class ChainMechanism(MechanismDefaults):
           infinitely many solutions; found as the largest sigma_min / sigma_max over two random configurations
           reaching SELF_MOTION_RATIO (_isolated_minima);
         - a value where axes the decomposition meets across the held joint turn parallel (_breaking_held)."""
-        if self.desc.free < 0 or self.chain.n != 7:
+        if self.desc.free < 0 or self.chain.n != 7 or self.held_elbow:
             return ()
         if self._degenerate is None:
             motion = _isolated_minima(lambda v: self._self_motion_ratio([v], 2), SELF_MOTION_RATIO)
@@ -305,6 +335,9 @@ class ChainMechanism(MechanismDefaults):
 
     # ------------------------------------------------------------------------------------------ derivation
     def derive(self) -> Derivation:
+        if self.held_elbow:
+            raise NoClosedForm(f"holding the elbow {self.chain.joint_names[ELBOW]} leaves a self-motion, which the "
+                               "derived stages solve (--stages auto or derived) and the plan interpreter does not")
         c, desc = self.chain, self.desc
         dv = Derivation(self.NAME, self.title, "user description", {})
         scale = self.scale()
@@ -646,6 +679,11 @@ def _roles(plan: Plan, ch: Chain):
         if op["op"] == "begin":
             x_home = geometry.point(op["x"])
             place_end = op["hi"] + 1
+        if op["op"] == "held_elbow":  # the shoulder's two sets (the elbow held): its middle joint's sign
+            roles.append(("shoulder", "sign", op["shoulder"][1], ()))
+            labels["shoulder"] = ("positive", "negative")
+            count += 1
+            continue
         if op["op"] == "arm_angle":  # the elbow bent either way, the shoulder's two sets: their joints' signs
             roles += [("elbow", "sign", op["elbow"], ()), ("shoulder", "sign", op["shoulder"][1], ())]
             labels.update({"elbow": ("positive", "negative"), "shoulder": ("positive", "negative")})

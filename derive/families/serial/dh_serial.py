@@ -71,10 +71,16 @@ def _design_at(spec: SerialSpec, q: dict, dsn: dict) -> dict:
         dsn[spec.held[1]] = q[spec.joints[spec.held[0]]]
     if spec.arm_angle is not None:
         st = next(s for s in spec.stages if s.kind == "arm_angle")
-        fn = _reader(tuple(spec.joints), tuple(spec.design), tuple(st.reader))
-        h1, s, e, w, _axis = np.array([float(v) for v in fn(*q.values(), *dsn.values())]).reshape(5, 3)
-        dsn[spec.arm_angle] = arm_angle.angle_of(h1, s, e, w)
+        dsn[spec.arm_angle] = _own_arm_angle(spec, st, q, dsn)
     return dsn
+
+
+def _own_arm_angle(spec: SerialSpec, st: Stage, q: dict, dsn: dict) -> float:
+    """The arm angle of joint values q (design dsn), read on the stage's reader: the shoulder and wrist centres, the
+    elbow point and the first axis they place (kinematics/arm_angle.angle_of)."""
+    fn = _reader(tuple(spec.joints), tuple(spec.design), tuple(st.reader))
+    h1, s, e, w, _axis = np.array([float(v) for v in fn(*q.values(), *dsn.values())]).reshape(5, 3)
+    return arm_angle.angle_of(h1, s, e, w)
 
 
 @functools.lru_cache(maxsize=8)
@@ -214,6 +220,8 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
                 return _sp6_residual(vals, qs)
             if st.kind == "arm_angle":  # the shoulder and elbow carry the wrist centre onto its target
                 return _arm_angle_residual(vals, qs)
+            if st.kind == "held_elbow":  # the shoulder carries the wrist centre (the held elbow's) onto its target
+                return _arm_angle_residual(vals, [*qs, 0.0])
             m = np.array(vals).reshape(3, 3)
             w = np.array(wrist(*qs), dtype=float)
             return float(np.max(np.abs(m - w)))
@@ -225,11 +233,13 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
                  "sp6": "n . rot(h_j, -q_j) p_j - n . rot(h_k, q_k) p_k = d_j and n . rot(h_j, -q_j) g = "
                         "n . rot(h_k, q_k) h_l on the FK",
                  "arm_angle": "the shoulder's and the elbow's turns carry the wrist centre x onto its target y on "
-                              "the FK"}[st.kind]
+                              "the FK",
+                 "held_elbow": "the shoulder's turns carry the wrist centre x (where the held elbow puts it) onto its "
+                               "target y on the FK"}[st.kind]
         checks: list[Check] = [numeric_predicate(err, claim, samples=200, tol=1e-9)]
         if st.kind == "general6r":
             checks.append(_elimination_finds(spec, st, at_fk))
-        if st.kind == "arm_angle":
+        if st.kind in ("arm_angle", "held_elbow"):
             checks.append(_arm_angle_finds(spec, st, at_fk))
         if st.factored:
             def factors(rng, at_fk=at_fk):
@@ -287,7 +297,8 @@ def _arm_angle_residual(vals, qs) -> float:
 def _arm_angle_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:
     """The runtime's arm-angle core (runtime/python/arm_angle.py, as the generated solvers carry it) on the stage's
     outputs at the FK of random joints, at their own arm angle, returns those joints among its sets (to 1e-9 rad:
-    closed forms, random joints far from the stretched elbow and the shoulder's family)."""
+    closed forms, random joints far from the stretched elbow and the shoulder's family). A held elbow's stage: the core
+    with the elbow held (at 0: x has its turn), the arm angle the joints' own, as previous's is at run time."""
     core = arm_angle.numerics()
     tols = (1.0, 1e-12, *core["AA_BANDS"])  # the bands the emitted stage runs it at, on a unit size
 
@@ -297,11 +308,16 @@ def _arm_angle_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:
         v = at_fk(q, dsn)
         parts = [tuple(v[3 * i:3 * i + 3]) for i in range(8)]
         qs = np.array([q[spec.joints[j]] for j in st.joints])
-        sets = core["_arm_angle_core"](*parts, v[24], None, tols)
-        return min((float(np.max(np.abs(np.remainder(np.array(c) - qs + math.pi, 2 * math.pi) - math.pi)))
+        if held:
+            sets = core["_arm_angle_core"](*parts, _own_arm_angle(spec, st, q, dsn), None, tols, held=0.0)
+        else:
+            sets = core["_arm_angle_core"](*parts, v[24], None, tols)
+        return min((float(np.max(np.abs(np.remainder(np.array(c[:len(qs)]) - qs + math.pi, 2 * math.pi) - math.pi)))
                     for c, _ in sets), default=math.inf)
+    held = st.kind == "held_elbow"
     return numeric_predicate(missed, "the arm-angle core on the stage's outputs, at the joints' own arm angle, returns "
-                             "the generating shoulder and elbow", samples=40, tol=1e-9)
+                             "the generating shoulder" + ("" if held else " and elbow") +
+                             (" (the elbow held: the pose on its reach)" if held else ""), samples=40, tol=1e-9)
 
 
 def _elimination_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:

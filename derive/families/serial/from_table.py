@@ -160,7 +160,8 @@ def from_table(robot: RobotTable, auto: bool = False) -> SerialMechanism:
                       tool=tool, base=base, held=held, arm_angle=psi)
     try:
         stage_list, _ = planned_stages(rows, tuple(joints), spec.kinds, tuple(design), tuple(defaults), "standard",
-                                       [str(q) for q in joints], base, tool, held, general, psi)
+                                       [str(q) for q in joints], base, tool, held, general, psi,
+                                       "held_elbow" in robot.ops)
     except (PlanError, ValueError) as exc:
         missing = sorted(robot.ops - SUPPORTED - {"general6r"})
         if missing:  # say what the interpreter's decomposition needs, not the search's refusal

@@ -35,7 +35,7 @@ from ...identities.dh import chain as dh_chain
 from ...identities.frames import rodrigues
 from ...kinematics import general6r
 from ...kinematics.general6r import REGULARITY_MIN
-from ...kinematics.planner import NoClosedForm, arm_angle_plan, find_plan
+from ...kinematics.planner import NoClosedForm, arm_angle_plan, find_plan, held_elbow_plan
 from ...kinematics.poe import Chain, reverse
 from ...model import NoDecomposition
 from ...serial_core.stages import P_POSE, POSE_SYMBOLS, R_POSE, Stage
@@ -51,7 +51,7 @@ HELD_LABELLING_VALUES = (0.7, -1.9, 2.6, -0.4)
 # give the family's members)
 FALLBACK_READINGS = 2
 SUPPORTED = {"begin", "first_plane", "last_plane", "first_dist", "last_dist", "single", "linear", "orient",
-             "group_rest", "spatial3", "sp6", "arm_angle"}
+             "group_rest", "spatial3", "sp6", "arm_angle", "held_elbow"}
 
 
 class PlanError(ValueError):
@@ -185,7 +185,7 @@ def _group_rest(rg, grp, j, axes, joints, about, source) -> Stage:
 
 
 def stages(rows, joints, kinds, design, defaults, convention="standard", names=None, base=None, tool=None,
-           held=None, general=False, arm_angle=None):
+           held=None, general=False, arm_angle=None, held_elbow=False):
     """(stages, strategy) for the DH rows (after the constant `base`, before the constant `tool`, 4x4 each): the
     planner's decomposition as symbolic stages. `held`: (joint index, design symbol) of a joint held at a run-time
     value (a 7-joint arm's free joint): its stage reads the value, and the others are planned on the chain with it
@@ -194,7 +194,8 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
     is the general 6R's; one that a decomposition outside these stage kinds fits is refused instead: its
     decomposition is exact and cheaper). `arm_angle`: the design symbol of an S-R-S arm's arm angle, its run-time
     parameter (kinematics/planner.arm_angle_plan: the shoulder and the elbow from the wrist centre and it, then the
-    wrist)."""
+    wrist). `held_elbow`: the held joint is an S-R-S arm's elbow, the others a self-motion (planner.held_elbow_plan:
+    the shoulder at previous's arm angle, then the wrist)."""
     if convention != "standard":
         raise PlanError("the serial family's stages are built for standard DH tables")
     ts = dh_chain(rows, convention, None, base)
@@ -228,6 +229,8 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
     try:
         if arm_angle is not None:
             plan = arm_angle_plan(numeric, 1e-9)
+        elif held_elbow:
+            plan = held_elbow_plan(numeric, 1e-9)
         else:
             plan = find_plan(numeric, 1e-9, lambda _c, p: all(o["op"] in SUPPORTED for o in p.ops)
                              and all(o["op"] != "orient" or len(o["units"]) in (1, 3) or (
@@ -335,6 +338,10 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             continue
         if k == "arm_angle":  # an S-R-S arm: the shoulder and the elbow from the wrist centre and the arm angle
             out.append(_arm_angle_stage(op, axes, points, joints, x, y, point(op["s"]), arm_angle, prefix))
+            continue
+        if k == "held_elbow":  # the elbow held: the shoulder at previous's arm angle, where the wrist centre is reached
+            out.append(_held_elbow_stage(op, axes, points, joints, x, y, point(op["s"]), about, frames[hj][:3, 3],
+                                         prefix))
             continue
         if k == "sp6":  # an offset wrist: two joints from the parallel group's invariants, then the last about them
             out += _sp6_stages(op, axes, points, joints, x, y, target.r, direction(op["n"]), about)
@@ -478,6 +485,29 @@ def _arm_angle_stage(op, axes, points, joints, x, y, s, psi, prefix) -> Stage:
                  "(subproblem 3, two roots), the shoulder's rotation about s from the two frames (s -> y and the side "
                  "psi gives, against s -> the turned wrist centre and the elbow point), its joints by subproblem 2 "
                  "then 1 (two sets); at run time by the runtime's core", reader=reader)
+
+
+def _held_elbow_stage(op, axes, points, joints, x, y, s, he, pe, prefix) -> Stage:
+    """An S-R-S arm's shoulder (three axes meeting at s) with its elbow held (axis he through pe, its turn in the
+    solved chain's axes after it, so x, the wrist centre at home, is where the held elbow puts it): a self-motion. The
+    runtime's arm-angle core with the elbow held (wk_arm_angle.c, arm_angle.py): no set unless |y - s| = |x - s|
+    within its tangent band; else the shoulder's two sets at the arm angle of previous (else 0), flagged
+    indeterminate. The kernel gives the shoulder's axes and centre, the elbow's axis and point, x and y; its reader,
+    the arm angle of joint values (as the arm_angle stage's)."""
+    ja, jb, jc = op["shoulder"]
+    e0 = (pe + he * he.dot(s - pe)).applyfunc(_trig_reduced)
+    shoulder = prefix((ja, jb, jc))
+    reader = (tuple(sp.simplify(v) for v in axes[ja]) + tuple(s) + tuple(shoulder.apply(e0)) + tuple(shoulder.apply(x))
+              + tuple((shoulder.r * he).applyfunc(sp.simplify)))
+    exprs = (tuple(sp.simplify(v) for i in (ja, jb, jc) for v in axes[i]) + tuple(s) +
+             tuple(sp.simplify(v) for v in he) + tuple(pe) + tuple(x) + tuple(y))
+    names = ", ".join(str(joints[i]) for i in (ja, jb, jc))
+    return Stage("held_elbow", (ja, jb, jc), exprs, f"shoulder {names} with the elbow held (a self-motion, up to two "
+                 "sets)", "the held elbow leaves the wrist centre |x - s| from the shoulder centre, which the shoulder "
+                 "keeps: the pose is reached only where |y - s| = |x - s|, and there at every arm angle "
+                 "(derive/kinematics/arm_angle.py): previous's (else 0), the shoulder's rotation about s from the two "
+                 "frames, its joints by subproblem 2 then 1 (two sets); at run time by the runtime's core",
+                 reader=reader)
 
 
 def _sp6_stages(op, axes, points, joints, x, y, rt, nv, about) -> list[Stage]:

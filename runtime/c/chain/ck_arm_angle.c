@@ -34,7 +34,7 @@ static int ck_arm_angle(const ck_chain *ch, const ck_op *op, const double *s, co
     const wk_aa_tols t = ck_aa_tols();
     const int ja = op->js[0];
     return wk_arm_angle(ch->axis[ja], ch->axis[op->js[1]], ch->axis[op->js[2]], s, ch->axis[op->j], ch->point[op->j],
-                        x, w, psi, prev ? &prev[ja] : NULL, &t, out, flags);
+                        x, w, psi, prev ? &prev[ja] : NULL, NULL, &t, out, flags);
 }
 
 /* The arm angle of joint values (Python's arm_angle), on the ideal chain the op reads: where the joints put the

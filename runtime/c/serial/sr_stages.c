@@ -10,7 +10,7 @@ typedef void (*sr_stage_kernel)(const double *pose, const double *q, const doubl
                                 const double *dp, double *out);
 
 /* One IK call's scratch for the stage that computes several candidates at once (the general 6R's, the spatial 3R's,
- * subproblem 6's or the arm angle's: a chain has one at most, derive/serial_core/views.py), kept across the set words
+ * subproblem 6's, the arm angle's or the held elbow's: a chain has one at most, derive/serial_core/views.py), kept across the set words
  * that share the prefix above its bits; sized by that stage's candidates and joints */
 #define SR_S3_KEEP 4 /* a spatial 3R's candidates kept (Pieper's bound on a 3R's positions) */
 #define SR_SP6_KEEP 4 /* subproblem 6's candidates kept (its quartic's real roots) */
@@ -26,6 +26,9 @@ typedef void (*sr_stage_kernel)(const double *pose, const double *q, const doubl
 #elif SR_HAS_ARM_ANGLE
 #define SR_WS_SETS 4   /* two elbows x two shoulders */
 #define SR_WS_JOINTS 4 /* the shoulder's three and the elbow */
+#elif SR_HAS_HELD_ELBOW
+#define SR_WS_SETS 4   /* the core's sets (two shoulders: the elbow held) */
+#define SR_WS_JOINTS 3 /* the shoulder's three */
 #else
 #define SR_WS_SETS 0
 #endif
