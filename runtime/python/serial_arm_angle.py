@@ -14,6 +14,7 @@ tested as it is (tests/test_arm_angle.py)."""
 from __future__ import annotations
 
 from arm_angle import AA_BANDS, _aa_angle_of, _arm_angle_core
+from geom3 import _g3_axpy, _g3_norm
 from serial_input import _design, _joints
 from serial_stages import _ws_take
 from serial_stand_in import DEGENERATE_EPS, SCALE, _k_arm_angle_parts
@@ -42,8 +43,14 @@ def _held_elbow_stage(kernel, parent, idx, joints, q, c, s, pose, dp, prev, ws):
         out = kernel(pose, q, c, s, dp)
         parts = [tuple(out[3 * i:3 * i + 3]) for i in range(8)]
         psi = 0.0 if prev is None else _arm_angle_at(prev, dp)
-        return [(v[:3], f) for v, f in _arm_angle_core(*parts, psi, None if prev is None else prev[joints[0]], AA_TOLS,
-                                                       held=0.0)]
+        out = [(v[:3], f) for v, f in _arm_angle_core(*parts, psi, None if prev is None else prev[joints[0]], AA_TOLS,
+                                                      held=0.0)]
+        if not out:
+            reach, target = (_g3_norm(_g3_axpy(parts[i], -1.0, parts[3])) for i in (6, 7))
+            ws["why"] = (f"the wrist centre is {target:.9g} m from the shoulder centre, {target - reach:+.3g} m off "
+                         f"the {reach:.9g} m the held elbow keeps (the other joints a self-motion: only poses at that "
+                         "reach)")
+        return out
     cand = _ws_take(ws, parent, sets, idx, joints, q, c, s)
     return (False, 0) if cand is None else (True, cand[1])
 

@@ -153,6 +153,8 @@ def _ik_numpy(pose, d, previous):
         _runtime.merge_indistinct(values, valid, flags, aux, _FOLD_BITS, _REVOLUTE,
                                   lambda x, step, accept: _refit(x, p, d.params, step, accept), size, N_JOINTS >= 6)
     reasons = [f"{unreachable} of {MAX_IK} branch words have a stage with no real solution"] if unreachable else []
+    if "why" in ws:  # a stage's own words for why it has no solution (the held elbow's reach)
+        reasons.insert(0, ws["why"])
     if beyond:
         reasons.append(f"{beyond} set(s) need a prismatic joint beyond LENGTH_MAX = {LENGTH_MAX:g} m (fk rejects them)")
     note = _projected_note(dev)
