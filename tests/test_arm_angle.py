@@ -304,3 +304,25 @@ def test_description_files_as_shipped(tmp_path, stages):
     with pytest.raises((NoClosedForm, NoDecomposition), match="joint_a1, joint_a2, joint_a3 meet in no point"):
         own_robot.load(kuka / "urdf" / "lbr_iiwa_14_r820.xacro", tip="tool0", redundancy="arm-angle",
                        packages={"kuka_lbr_iiwa_support": str(kuka)})
+
+
+def test_the_elbow_held_of_a_description_file_as_shipped(tmp_path):
+    """pybullet's iiwa as shipped (axes 5e-13 off an exact S-R-S arm) with its elbow lbr_iiwa_joint_4 held (a
+    self-motion, kinematics/planner.held_elbow_plan): its FK's poses are within the held elbow's reach band (1e-9 of
+    its size) and solved, previous's generating joints among the sets, C equal to numpy; the arm angle's module
+    verb reads the member's angle (tests/test_derived_robot.py tests the iiwa14 fixture at length)."""
+    import pybullet_data
+
+    urdf = Path(pybullet_data.getDataPath()) / "kuka_iiwa" / "model.urdf"
+    own_robot.derive(urdf, tmp_path, name="pb_held", free="lbr_iiwa_joint_4", progress=lambda _: None)
+    m = own_robot.import_solver(tmp_path, "pb_held")
+    py = own_robot.import_solver(tmp_path, "pb_held", backend="numpy")
+    rng = case_rng(2307)
+    for _ in range(10):
+        q = rng.uniform(-math.pi, math.pi, 7)
+        T = m.fk_matrix(q, [q[3]])
+        for mod in (m, py):
+            s = mod.ik(T, [q[3]], previous=q)
+            assert s.status == mod.STATUS_INDETERMINATE and min(_gap(v, q) for v in s.values[s.valid]) < 1e-9
+            assert abs(math.remainder(mod.arm_angle(s.values[s.valid][0], [q[3]]) - mod.arm_angle(q, [q[3]]),
+                                      2 * math.pi)) < 1e-9
