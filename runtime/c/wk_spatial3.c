@@ -150,8 +150,8 @@ static int wk_s3_pair_converges(const double (*h)[3], const double (*r)[3], cons
  * crosses twice. Near the merged root the surface meets the circle's plane along the line through w in the direction
  * d = n x h_a (n its normal there): its two points on the circle (the line's centre-nearest point +-rho along d where
  * rounding hides the gap) give q_a by subproblem 1 and (q_b, q_c) moved along the surface to them, then Newton on the
- * point from each. The two roots separate at
- * eps / rho, not the polynomial's sqrt(eps). Returns 1 with the pair in q, or 0 (the merged root stands). */
+ * point from each. The two roots separate at eps / rho, not the polynomial's sqrt(eps). Returns 1 with the pair in q,
+ * or 0 (the merged root stands). */
 static int wk_s3_split(const double (*h)[3], const double (*r)[3], const double *x, const double *y,
                        const double *yr, double rho, double scale, double qb, double qc, double q[2][3])
 {
@@ -274,6 +274,17 @@ static int wk_s3_qc(double f[3][3], double g[3][3], double dtarget, double htarg
     return 1;
 }
 
+/* A split pair into the candidates from row `out` on, flagged singular (the pair meets where J is): the next row */
+static int wk_s3_put_pair(double pair[2][3], double q[WK_S3_MAX][3], unsigned *fl, int out)
+{
+    int k, m;
+    for (k = 0; k < 2; ++k) {
+        for (m = 0; m < 3; ++m) q[out][m] = pair[k][m];
+        fl[out++] = WK_FLAG_SINGULAR_INVERSE;
+    }
+    return out;
+}
+
 /* The candidates (q_a, q_b, q_c) of rot_a rot_b rot_c x = y, h[i] / r[i] the lines of a, b, c at the joints' zero,
  * into q (rows of 3) with their flags (a double root of the polynomial: WK_FLAG_DOUBLE_ROOT; q_a undetermined, the
  * point on axis a: WK_FLAG_INDETERMINATE with q_a = 0). `scale` the lengths' size, `eps` the relative size below
@@ -355,11 +366,7 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
             if (fabs(gap) <= WK_S3_SPLIT_NEAR && out + 2 <= WK_S3_MAX &&
                 wk_s3_qc(f, g, dtarget, htarget, eps3, mid, &qc) &&
                 wk_s3_split(h, r, x, y, yr, rho, scale, mid, qc, pair)) {
-                int k, m;
-                for (k = 0; k < 2; ++k) {
-                    for (m = 0; m < 3; ++m) q[out][m] = pair[k][m];
-                    fl[out++] = WK_FLAG_SINGULAR_INVERSE;
-                }
+                out = wk_s3_put_pair(pair, q, fl, out);
                 ++i;
                 continue;
             }
@@ -371,11 +378,7 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
             /* a merged pair: near axis a its two roots differ by ~rho, below the polynomial's resolution */
             double pair[2][3];
             if (wk_s3_split(h, r, x, y, yr, rho, scale, q[out][1], q[out][2], pair)) {
-                int k, m;
-                for (k = 0; k < 2; ++k) {
-                    for (m = 0; m < 3; ++m) q[out][m] = pair[k][m];
-                    fl[out++] = WK_FLAG_SINGULAR_INVERSE;
-                }
+                out = wk_s3_put_pair(pair, q, fl, out);
                 continue;
             }
         }
@@ -390,11 +393,7 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
                  * vector */
                 double pair[2][3];
                 if (wk_s3_pair(h, r, x, y, scale, q[out], pair)) {
-                    int k, m;
-                    for (k = 0; k < 2; ++k) {
-                        for (m = 0; m < 3; ++m) q[out][m] = pair[k][m];
-                        fl[out++] = WK_FLAG_SINGULAR_INVERSE;
-                    }
+                    out = wk_s3_put_pair(pair, q, fl, out);
                     continue;
                 }
             }

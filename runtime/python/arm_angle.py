@@ -150,7 +150,7 @@ def _arm_angle_core(ha, hb, hc, s, he, pe, x, w, psi, prev_a, tols, held=None):
     target, psi the arm angle; prev_a: previous's q_a (a shoulder family's member), or None. held: the elbow held at
     this value (None: solved), the arm a self-motion: w within the tangent band of the distance it leaves the wrist
     centre from s, else no set; the sets at psi, flagged indeterminate (every psi reaches the pose)."""
-    scale, _, double_root, _, on_axis, _ = tols
+    scale, _, double_root, tangent, on_axis, _ = tols
     plane = _aa_plane(ha, s, w, on_axis)
     if plane is None:
         return []
@@ -159,7 +159,7 @@ def _arm_angle_core(ha, hb, hc, s, he, pe, x, w, psi, prev_a, tols, held=None):
     elbow = _g3_axpy(pe, _g3_dot(he, _g3_axpy(s, -1.0, pe)), he)  # the elbow axis's point nearest s
     if held is not None:
         reach = _g3_norm(_g3_axpy(_g3_turn(he, pe, held, x), -1.0, s))
-        if not abs(reach - _g3_norm(_g3_axpy(w, -1.0, s))) <= tols[3] * scale:
+        if not abs(reach - _g3_norm(_g3_axpy(w, -1.0, s))) <= tangent * scale:
             return []
         roots = [(held, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE)]
     else:

@@ -55,9 +55,10 @@ def _family_member(j, q, c, s, prev):
 
 def _ws_take(ws, parent, compute, idx, joints, q, c, s):
     """Candidate idx of the stage that computes several at once (the general 6R's, the spatial 3R's, subproblem 6's,
-    the arm angle's: one per chain), its candidates compute()d once per `parent`, the set index's prefix above its
-    bits, and kept in the call's scratch ws: its joints into q, c, s (wrapped: Newton's steps and band splits reach
-    past pi). Returns the candidate (values, flags[, amplification]), None when there is no such candidate."""
+    the arm angle's or the held elbow's: one per chain), its candidates compute()d once per `parent`, the set
+    index's prefix above its bits, and kept in the call's scratch ws: its joints into q, c, s (wrapped: Newton's
+    steps and band splits reach past pi). Returns the candidate (values, flags[, amplification]), None when there is
+    no such candidate."""
     if ws.get("key") != parent:
         ws["key"], ws["cands"] = parent, compute()
     if idx >= len(ws["cands"]):

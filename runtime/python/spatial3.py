@@ -230,14 +230,15 @@ def _spatial3_lines(h, r, x, y, scale, eps, on_axis):
     while i < len(angles) and len(out) < S3_MAX:
         qb, fl = angles[i]
         i += 1
-        if near_axis and not fl & FLAG_DOUBLE_ROOT and i < len(angles) - 1 and not angles[i][1] & FLAG_DOUBLE_ROOT:
+        if (near_axis and not fl & FLAG_DOUBLE_ROOT and i < len(angles) - 1 and not angles[i][1] & FLAG_DOUBLE_ROOT
+                and len(out) + 2 <= S3_MAX):
             # two simple roots a hair apart near axis a: a pair the polynomial resolved only to its sqrt(eps), whose
             # images sit near the axis, where q_a is noise: split from their midpoint
             gap = math.remainder(angles[i][0] - qb, 2.0 * math.pi)
             mid = qb + 0.5 * gap
             qc = q_c(mid) if abs(gap) <= S3_SPLIT_NEAR else None
             pair = _s3_split(h, r, x, y, yr, rho, scale, mid, qc) if qc is not None else []
-            if pair and len(out) + 2 <= S3_MAX:
+            if pair:
                 out += [(tuple(q), FLAG_SINGULAR_INVERSE) for q in pair]
                 i += 1
                 continue

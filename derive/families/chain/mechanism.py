@@ -64,6 +64,7 @@ class ChainMechanism(MechanismDefaults):
         self._degenerate: tuple[tuple[float, str], ...] | None = None
         self._samples: tuple[float, ...] | None = None  # _held_samples, computed once
         self._held_elbow: bool | None = None  # held_elbow, computed once
+        self._everywhere: float | None = None  # _everywhere_ratio, computed once
         self._kernels: list | None = None  # derive's FK / Jacobian kernels, emitted as they were checked
         self.free_note = ""  # how the free joint was chosen when the user gave none
 
@@ -148,7 +149,7 @@ class ChainMechanism(MechanismDefaults):
             if self.desc.free == ELBOW and self.chain.n == 7 and self.desc.redundancy != "arm-angle":
                 try:
                     arm_angle_plan(self.chain, self.desc.geometry_tol)
-                    self._held_elbow = self._self_motion_ratio(FREE_SAMPLES[1:], 4) <= SELF_MOTION_RATIO
+                    self._held_elbow = self._everywhere_ratio() <= SELF_MOTION_RATIO
                 except NoClosedForm:
                     pass
         return self._held_elbow
@@ -230,6 +231,14 @@ class ChainMechanism(MechanismDefaults):
                 ratios.append(s[-1] / s[0])
         return max(ratios)
 
+    def _everywhere_ratio(self) -> float:
+        """_self_motion_ratio at held values away from 0 (where joints may line up), four configurations each: at or
+        below SELF_MOTION_RATIO the held chain is a self-motion at every value (computed once: held_elbow and
+        _refuse_self_motion read it)."""
+        if self._everywhere is None:
+            self._everywhere = self._self_motion_ratio(FREE_SAMPLES[1:], 4)
+        return self._everywhere
+
     def _refuse_self_motion(self) -> None:
         """Holding the free joint can leave the other six a self-motion (the iiwa's elbow a4 held: its spherical
         shoulder turns the arm about the shoulder-wrist line and its spherical wrist undoes the turn): the held
@@ -238,7 +247,7 @@ class ChainMechanism(MechanismDefaults):
         Refused here, so that a 7-joint arm without --free never picks it and lists the choices that work."""
         if self.desc.free < 0 or self.chain.n != 7:
             return
-        ratio = self._self_motion_ratio(FREE_SAMPLES[1:], 4)  # held values away from 0, where joints may line up
+        ratio = self._everywhere_ratio()
         if ratio <= SELF_MOTION_RATIO:
             name = self.chain.joint_names[self.desc.free]
             raise NoClosedForm(f"holding {name} leaves the other six joints a self-motion: their Jacobian has rank < 6 "

@@ -301,6 +301,7 @@ def _arm_angle_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:
     with the elbow held (at 0: x has its turn), the arm angle the joints' own, as previous's is at run time."""
     core = arm_angle.numerics()
     tols = (1.0, 1e-12, *core["AA_BANDS"])  # the bands the emitted stage runs it at, on a unit size
+    held = st.kind == "held_elbow"
 
     def missed(rng):
         q = _sample_joints(spec, rng)
@@ -314,7 +315,6 @@ def _arm_angle_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:
             sets = core["_arm_angle_core"](*parts, v[24], None, tols)
         return min((float(np.max(np.abs(np.remainder(np.array(c[:len(qs)]) - qs + math.pi, 2 * math.pi) - math.pi)))
                     for c, _ in sets), default=math.inf)
-    held = st.kind == "held_elbow"
     return numeric_predicate(missed, "the arm-angle core on the stage's outputs, at the joints' own arm angle, returns "
                              "the generating shoulder" + ("" if held else " and elbow") +
                              (" (the elbow held: the pose on its reach)" if held else ""), samples=40, tol=1e-9)

@@ -340,8 +340,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             out.append(_arm_angle_stage(op, axes, points, joints, x, y, point(op["s"]), arm_angle, prefix))
             continue
         if k == "held_elbow":  # the elbow held: the shoulder at previous's arm angle, where the wrist centre is reached
-            out.append(_held_elbow_stage(op, axes, points, joints, x, y, point(op["s"]), about, frames[hj][:3, 3],
-                                         prefix))
+            out.append(_held_elbow_stage(op, axes, joints, x, y, point(op["s"]), about, frames[hj][:3, 3], prefix))
             continue
         if k == "sp6":  # an offset wrist: two joints from the parallel group's invariants, then the last about them
             out += _sp6_stages(op, axes, points, joints, x, y, target.r, direction(op["n"]), about)
@@ -464,45 +463,47 @@ def _spatial3_stage(js, axes, points, joints, x, y) -> Stage:
                  "subproblem 1")
 
 
+def _srs_parts(axes, shoulder, s, he, pe, x, y, prefix, wrist_movers) -> tuple[tuple, tuple]:
+    """What an S-R-S arm's arm_angle and held_elbow stages share: the kernel's outputs (the shoulder's axes h_a, h_b,
+    h_c, its centre s, the elbow's axis h_e and point p_e, the wrist centre x at home and its target y) and the
+    reader, the arm angle of joint values: the first axis, s, the elbow point (the elbow axis's point nearest s) and
+    the wrist centre the joints place (`wrist_movers`: the shoulder's, and the elbow where it is solved), and the
+    elbow axis's direction there (derive/kinematics/arm_angle.py)."""
+    ja = shoulder[0]
+    e0 = (pe + he * he.dot(s - pe)).applyfunc(_trig_reduced)
+    turn = prefix(shoulder)
+    reader = (tuple(sp.simplify(v) for v in axes[ja]) + tuple(s) + tuple(turn.apply(e0)) +
+              tuple(prefix(wrist_movers).apply(x)) + tuple(turn.r * he))
+    exprs = (tuple(sp.simplify(v) for i in shoulder for v in axes[i]) + tuple(s) +
+             tuple(sp.simplify(v) for v in he) + tuple(pe) + tuple(x) + tuple(y))
+    return exprs, reader
+
+
 def _arm_angle_stage(op, axes, points, joints, x, y, s, psi, prefix) -> Stage:
     """An S-R-S arm's shoulder (three axes meeting at s) and elbow for the wrist centre's target y and the arm angle
-    psi, every set by the runtime (wk_arm_angle.c, arm_angle.py: two elbows, two shoulders each): the kernel gives the
-    shoulder's axes and centre, the elbow's axis and point, x (the wrist centre at home) and y, and psi. Its reader,
-    the arm angle of joint values: the first axis, s, the elbow point (the elbow axis's point nearest s) and the
-    wrist centre the joints place, and the elbow axis's direction there (derive/kinematics/arm_angle.py)."""
+    psi, every set by the runtime (wk_arm_angle.c, arm_angle.py: two elbows, two shoulders each): the kernel gives
+    _srs_parts's outputs, then psi; its reader, _srs_parts's."""
     (ja, jb, jc), je = op["shoulder"], op["elbow"]
-    he, pe = axes[je], points[je]
-    e0 = (pe + he * he.dot(s - pe)).applyfunc(_trig_reduced)
-    shoulder = prefix((ja, jb, jc))
-    reader = (tuple(sp.simplify(v) for v in axes[ja]) + tuple(s) + tuple(shoulder.apply(e0)) +
-              tuple(prefix((ja, jb, jc, je)).apply(x)) + tuple(shoulder.r * he))
-    exprs = (tuple(sp.simplify(v) for i in (ja, jb, jc) for v in axes[i]) + tuple(s) +
-             tuple(sp.simplify(v) for v in he) + tuple(pe) + tuple(x) + tuple(y) + (psi,))
+    exprs, reader = _srs_parts(axes, (ja, jb, jc), s, axes[je], points[je], x, y, prefix, (ja, jb, jc, je))
     names = ", ".join(str(joints[i]) for i in (ja, jb, jc))
-    return Stage("arm_angle", (ja, jb, jc, je), exprs, f"shoulder {names} and elbow {joints[je]} at the arm angle "
-                 "(up to four sets)", "the arm angle psi places the elbow on its circle about the shoulder-wrist line "
-                 "(derive/kinematics/arm_angle.py): the elbow from |rot(h_e, q_e) (x - p_e) - (s - p_e)| = |y - s| "
-                 "(subproblem 3, two roots), the shoulder's rotation about s from the two frames (s -> y and the side "
-                 "psi gives, against s -> the turned wrist centre and the elbow point), its joints by subproblem 2 "
-                 "then 1 (two sets); at run time by the runtime's core", reader=reader)
+    return Stage("arm_angle", (ja, jb, jc, je), exprs + (psi,), f"shoulder {names} and elbow {joints[je]} at the arm "
+                 "angle (up to four sets)", "the arm angle psi places the elbow on its circle about the shoulder-wrist "
+                 "line (derive/kinematics/arm_angle.py): the elbow from |rot(h_e, q_e) (x - p_e) - (s - p_e)| = "
+                 "|y - s| (subproblem 3, two roots), the shoulder's rotation about s from the two frames (s -> y and "
+                 "the side psi gives, against s -> the turned wrist centre and the elbow point), its joints by "
+                 "subproblem 2 then 1 (two sets); at run time by the runtime's core", reader=reader)
 
 
-def _held_elbow_stage(op, axes, points, joints, x, y, s, he, pe, prefix) -> Stage:
+def _held_elbow_stage(op, axes, joints, x, y, s, he, pe, prefix) -> Stage:
     """An S-R-S arm's shoulder (three axes meeting at s) with its elbow held (axis he through pe, its turn in the
     solved chain's axes after it, so x, the wrist centre at home, is where the held elbow puts it): a self-motion. The
     runtime's arm-angle core with the elbow held (wk_arm_angle.c, arm_angle.py): no set unless |y - s| = |x - s|
     within its tangent band; else the shoulder's two sets at the arm angle of previous (else 0), flagged
-    indeterminate. The kernel gives the shoulder's axes and centre, the elbow's axis and point, x and y; its reader,
-    the arm angle of joint values (as the arm_angle stage's)."""
-    ja, jb, jc = op["shoulder"]
-    e0 = (pe + he * he.dot(s - pe)).applyfunc(_trig_reduced)
-    shoulder = prefix((ja, jb, jc))
-    reader = (tuple(sp.simplify(v) for v in axes[ja]) + tuple(s) + tuple(shoulder.apply(e0)) + tuple(shoulder.apply(x))
-              + tuple((shoulder.r * he).applyfunc(sp.simplify)))
-    exprs = (tuple(sp.simplify(v) for i in (ja, jb, jc) for v in axes[i]) + tuple(s) +
-             tuple(sp.simplify(v) for v in he) + tuple(pe) + tuple(x) + tuple(y))
-    names = ", ".join(str(joints[i]) for i in (ja, jb, jc))
-    return Stage("held_elbow", (ja, jb, jc), exprs, f"shoulder {names} with the elbow held (a self-motion, up to two "
+    indeterminate. The kernel gives _srs_parts's outputs; its reader, _srs_parts's."""
+    shoulder = tuple(op["shoulder"])
+    exprs, reader = _srs_parts(axes, shoulder, s, he, pe, x, y, prefix, shoulder)
+    names = ", ".join(str(joints[i]) for i in shoulder)
+    return Stage("held_elbow", shoulder, exprs, f"shoulder {names} with the elbow held (a self-motion, up to two "
                  "sets)", "the held elbow leaves the wrist centre |x - s| from the shoulder centre, which the shoulder "
                  "keeps: the pose is reached only where |y - s| = |x - s|, and there at every arm angle "
                  "(derive/kinematics/arm_angle.py): previous's (else 0), the shoulder's rotation about s from the two "

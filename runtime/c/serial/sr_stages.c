@@ -10,8 +10,8 @@ typedef void (*sr_stage_kernel)(const double *pose, const double *q, const doubl
                                 const double *dp, double *out);
 
 /* One IK call's scratch for the stage that computes several candidates at once (the general 6R's, the spatial 3R's,
- * subproblem 6's, the arm angle's or the held elbow's: a chain has one at most, derive/serial_core/views.py), kept across the set words
- * that share the prefix above its bits; sized by that stage's candidates and joints */
+ * subproblem 6's, the arm angle's or the held elbow's: a chain has one at most, derive/serial_core/views.py), kept
+ * across the set words that share the prefix above its bits; sized by that stage's candidates and joints */
 #define SR_S3_KEEP 4 /* a spatial 3R's candidates kept (Pieper's bound on a 3R's positions) */
 #define SR_SP6_KEEP 4 /* subproblem 6's candidates kept (its quartic's real roots) */
 #if SR_HAS_GENERAL6R
