@@ -14,6 +14,10 @@ import math
 import numpy as np
 
 GRID = np.linspace(-math.pi, math.pi, 721)
+# a base where two of det J's zeros along q_j meet shows no sign change (the irb120's elbow and shoulder
+# singularities along q3 with q2 = 0: the upper arm along axis 1, seed 904638): another base is drawn, up to this
+# many more per joint
+SPARE_BASES = 3
 
 
 def _bisect(det, lo: float, hi: float, flo: float) -> float:
@@ -33,10 +37,13 @@ def _bisect(det, lo: float, hi: float, flo: float) -> float:
 def singular_configurations(jacobian, n: int, rng, joints=None, bases: int = 2, per_base: int = 2,
                             fixed: dict | None = None):
     """[(j, q)]: q with det jacobian(q) = 0, found along joint j (for j in `joints`, default all) from `bases`
-    random joint sets (with `fixed` joints held at their values), at most `per_base` crossings each."""
+    random joint sets with a crossing (with `fixed` joints held at their values; up to SPARE_BASES more drawn where one
+    shows none), at most `per_base` crossings each."""
     out = []
     for j in range(n) if joints is None else joints:
-        for _ in range(bases):
+        kept = drawn = 0
+        while kept < bases and drawn < bases + SPARE_BASES:
+            drawn += 1
             q = rng.uniform(-math.pi, math.pi, n)
             for k, v in (fixed or {}).items():
                 q[k] = v
@@ -54,4 +61,5 @@ def singular_configurations(jacobian, n: int, rng, joints=None, bases: int = 2, 
                 x[j] = _bisect(det, a, b, fa)
                 out.append((j, x))
                 found += 1
+            kept += found > 0
     return out
