@@ -3,8 +3,9 @@
 Per robot, one run, same machine: `wristkin derive` wall time, the emitted module's ik from Python (C extension),
 its numpy path, and the emitted C in a C loop (bench/own_robots.py's harness), over seeded random poses; sets per
 pose, and how often the generating joints were among them. Robots: the UR5e with wrist_1 tilted 10 degrees
-(tests/robots/ur5e_tilted), pybullet's xArm6 as shipped, the Panda with panda_joint1 held, and three random
-general 6R arms (axes and points drawn from a fixed seed, written as POE specs).
+(tests/robots/ur5e_tilted), pybullet's xArm6 as shipped, the Panda with panda_joint1 held, the KR 6 calibrated 1e-5
+off (tests/chain_specs.kr6_near_special: 1e-5 from parallel axes and a spherical wrist) and three random general 6R
+arms (axes and points drawn from a fixed seed, written as POE specs).
 
 Runs alone:  .venv/bin/python bench/general6r.py [--quick]
 """
@@ -18,6 +19,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import argparse  # noqa: E402
 import math  # noqa: E402
 import platform  # noqa: E402
+import sys  # noqa: E402
 import tempfile  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
@@ -27,6 +29,8 @@ from own_robots import c_loop  # noqa: E402
 from timing import per_call  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tests"))
+from chain_specs import kr6_near_special  # noqa: E402
 
 
 def _random_spec(folder: Path, k: int) -> Path:
@@ -50,6 +54,7 @@ def robots(folder: Path):
     yield "ur5e_tilted", ROOT / "tests/robots/ur5e_tilted/ur5e_tilted_poe.toml", None
     yield "xarm6", Path(pybullet_data.getDataPath()) / "xarm/xarm6_robot.urdf", None
     yield "panda_free1", ROOT / "tests/robots/panda/panda_dh.toml", "joint1"
+    yield "kr6_near_special", kr6_near_special(folder), None
     for k in range(3):
         yield f"general{k}", _random_spec(folder, k), None
 

@@ -197,6 +197,27 @@ class Labelling:
     hidden: int  # the eigenvalue's variable: 0, 1, 2 for the third, fourth, fifth joint of the labelled loop
     regularity: float  # its worst regularity over the sampled poses
     scores: tuple  # (shift, reverse, hidden, regularity) of every option, in OPTIONS order
+    # (shift, reverse, hidden) of the options in the order chosen: complete on the sampled poses first, then fewest
+    # misses, then the regularity rule (choose_labelling); the runtime falls back along it
+    ranked: tuple = ()
+    sampled: int = 0  # the sampled poses the choice was tried on (random and near singular), and how many of them
+    near_singular: int = 0  # were moved off a singular configuration
+    misses: int = 0  # those whose generating joints this labelling's candidates missed
+
+    def readings(self, n: int) -> tuple:
+        """The first n readings the runtime tries in turn: the chosen one, then each time the first in rank order
+        that hides a joint none before hides and, among those, runs the other eigenproblem (the deflated 16 x 16 of
+        a hidden t3, the 24 x 24 companion otherwise) where one does. A pose where one reading degenerates tends to
+        degenerate every reading alike: the Panda with joint1 held at a family pose fails in C on every deflated
+        reading tried, and the companion hiding joint 1 solves it."""
+        out = [self.ranked[0]] if self.ranked else []
+        while len(out) < min(n, len(self.ranked)):
+            hidden = {hidden_joint(o) for o in out}
+            paths = {o[2] == 0 for o in out}
+            left = [o for o in self.ranked if o not in out]
+            out.append(max(left, key=lambda o: (2 * (hidden_joint(o) not in hidden) + ((o[2] == 0) not in paths),
+                                                -left.index(o))))
+        return tuple(out)
 
     def text(self, names) -> str:
         order = [names[j] for j in (list(range(6))[::-1] if self.reverse else list(range(6)))]
@@ -206,9 +227,102 @@ class Labelling:
                 f"{order[1]} eliminated, {order[2 + self.hidden]} the eigenvalue's variable, {order[5]} last")
 
 
+def hidden_joint(option) -> int:
+    """The joint (0-based) whose angle a reading (shift, reverse, hidden) takes as the eigenvalue's."""
+    shift, reverse, hidden = option
+    order = list(range(6))[::-1] if reverse else list(range(6))
+    return order[(shift + 2 + hidden) % 6]
+
+
+# The sampled poses a labelling must solve completely: random joints, and joints moved SINGULAR_OFFSET off a singular
+# configuration (det J = 0 along one joint). A hidden angle that two solutions share, or nearly (a wrist 1e-5 from
+# spherical: its flips share the arm's angles to 1e-5, and q5 = +-delta near its singularity), merges eigenvalues
+# into a cluster whose members the eigenproblem resolves only to its k-th root of eps: the candidates then miss
+# (a KR 6 calibrated 1e-5 off, read with an arm joint hidden: 9 of 80 such poses). Reading another joint as the
+# hidden one keeps them apart, and the sample is what tells which.
+RANDOM_SAMPLES = 6
+SINGULAR_SAMPLES = 6
+SINGULAR_OFFSET = 1e-3  # rad: near enough that a near-singular cluster shows, far enough that the pose fixes the
+# joints to ~1e-13 (the 1e-6 below holds with room)
+SAMPLE_TOL = 1e-6  # rad: a candidate this close (wrapped, every joint) returns the generating joints
+SINGULAR_GRID = 48  # points of the det J scan along a joint
+# A reading's work per root (_work): a near-special arm (a KR 6 calibrated 1e-4 off) read with its nearly spherical
+# wrist's q5 hidden has spurious real eigenvalues and a cluster sharing q5 = 0 (4-5 of 13 real roots, 600 us per IK
+# in C against 110 us read otherwise). Readings within WORK_SLACK of the cheapest complete one count as equal.
+SHARED_ROOT_WORK = 10
+WORK_SLACK = 1.25
+
+
+def _near_singular(chain: Chain, joint: int, rng: np.random.Generator):
+    """Random joints with `joint` moved SINGULAR_OFFSET off a zero of det J along it (bisected from a sign change
+    of the scan), or None where det J keeps its sign along that joint."""
+    q = rng.uniform(-np.pi, np.pi, chain.n)
+
+    def det(v):
+        qq = q.copy()
+        qq[joint] = v
+        return float(np.linalg.det(chain.jacobian(qq)))
+
+    grid = np.linspace(-np.pi, np.pi, SINGULAR_GRID + 1)
+    vals = [det(v) for v in grid]
+    crossings = [k for k in range(SINGULAR_GRID) if vals[k] == 0.0 or vals[k] * vals[k + 1] < 0.0]
+    if not crossings:
+        return None
+    k = crossings[int(rng.integers(len(crossings)))]
+    lo, hi, flo = grid[k], grid[k + 1], vals[k]
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        fm = det(mid)
+        if (fm < 0.0) == (flo < 0.0) and fm != 0.0:
+            lo, flo = mid, fm
+        else:
+            hi = mid
+    q[joint] = 0.5 * (lo + hi) + (SINGULAR_OFFSET if rng.random() < 0.5 else -SINGULAR_OFFSET)
+    return q
+
+
+def _samples(chains, rng: np.random.Generator) -> tuple[list, int]:
+    """(frames, home, joints, pose) of the sampled poses over the chains in turn, and how many are near singular."""
+    g6 = numerics()
+    out, near = [], 0
+    for i in range(RANDOM_SAMPLES + SINGULAR_SAMPLES):
+        chain = chains[i % len(chains)]
+        q = rng.uniform(-np.pi, np.pi, 6) if i < RANDOM_SAMPLES else _near_singular(chain, (i - RANDOM_SAMPLES) % 6,
+                                                                                      rng)
+        if q is None:
+            continue
+        near += i >= RANDOM_SAMPLES
+        out.append((g6.g6_z_frames(chain.axes, chain.points), chain.home, q, chain.fk(q)))
+    return out, near
+
+
+def _misses(option, samples) -> int:
+    """The sampled poses whose generating joints the option's candidates do not return."""
+    g6 = numerics()
+    shift, rev, hidden = option
+    return sum(all(np.max(np.abs(_wrapped(np.array(c) - q))) > SAMPLE_TOL
+                   for c in g6.g6_solve(frames, home, pose, shift, rev, hidden))
+               for frames, home, q, pose in samples)
+
+
+def _work(option, samples) -> float:
+    """The option's per-root work on the sampled poses, averaged: its real eigenvalues, each shared one (a null space
+    of dimension > 1: the shift pencil, in C an SVD ~20x an LU) counted SHARED_ROOT_WORK times."""
+    g6 = numerics()
+    shift, rev, hidden = option
+    total = 0
+    for frames, home, _, pose in samples:
+        real, shared = g6.g6_root_work(g6.g6_labelled(g6.g6_loop_links(frames, home, pose), shift, rev)[0], hidden)
+        total += real + SHARED_ROOT_WORK * shared
+    return total / max(len(samples), 1)
+
+
 def choose_labelling(chains, rng: np.random.Generator, poses: int = 4) -> Labelling:
-    """The labelling whose elimination stays regular at every sampled pose of every chain given (a free joint's
-    held values give several), the best worst case; NoDecomposition when every one is degenerate."""
+    """The labelling that returns the generating joints at every sampled pose (random and near singular) of every
+    chain given (a free joint's held values give several; where none does, the fewest misses), among those the ones
+    within WORK_SLACK of the least work per root, and among those the best worst regularity, a hidden t3 preferred
+    within HIDDEN_T3_PREFERENCE of it. Every regular option is ranked so (the runtime falls back along the order).
+    NoDecomposition when every one is degenerate."""
     chains = [chains] if isinstance(chains, Chain) else list(chains)
     for chain in chains:
         if chain.n != 6 or any(k != "R" for k in chain.kinds):
@@ -224,19 +338,29 @@ def choose_labelling(chains, rng: np.random.Generator, poses: int = 4) -> Labell
         worst = min(g6.g6_regularity(g6.g6_labelled(g6.g6_loop_links(f, h, t), shift, rev)[0], hidden)
                     for f, h, t in cases)
         scores.append((shift, rev, hidden, worst))
-    best = max(scores, key=lambda s: s[3])
     # hidden t3 (0) deflates the determinant's (1 + x^2)^4 and runs a 16 x 16 eigenproblem instead of 24 x 24 (~3x
     # cheaper, runtime/python/general6r.py): preferred while it costs at most two digits of regularity (the
     # candidates are refined on the chain; the regularity only has to keep roots apart)
-    best0 = max((s for s in scores if s[2] == 0), key=lambda s: s[3])
-    if best0[3] >= max(REGULARITY_MIN, best[3] / HIDDEN_T3_PREFERENCE):
-        best = best0
-    if not best[3] >= REGULARITY_MIN:
+    regular = sorted((s for s in scores if s[3] >= REGULARITY_MIN),
+                     key=lambda s: -s[3] * (HIDDEN_T3_PREFERENCE if s[2] == 0 else 1.0))
+    if not regular:
+        best = max(s[3] for s in scores)
         raise NoDecomposition(f"the general 6R elimination is degenerate for every labelling of the loop (best "
-                              f"regularity {best[3]:.1e} < {REGULARITY_MIN:g}): the 14 equations are dependent for "
+                              f"regularity {best:.1e} < {REGULARITY_MIN:g}): the 14 equations are dependent for "
                               "this geometry")
-    return Labelling(best[0], best[1], best[2], best[3], tuple(scores))
+    samples, near = _samples(chains, rng)
+    misses = {sc[:3]: _misses(sc[:3], samples) for sc in regular}
+    work = {sc[:3]: _work(sc[:3], samples) for sc in regular}
+    fewest = min(misses.values())
+    cheapest = min(w for o, w in work.items() if misses[o] == fewest)
 
+    def rank(sc):  # complete first; then cheap (a near-special arm's spurious and shared roots); then regular
+        o = sc[:3]
+        return misses[o], misses[o] > fewest or work[o] > WORK_SLACK * cheapest, regular.index(sc)
+    order = sorted(regular, key=rank)
+    best = order[0]
+    return Labelling(best[0], best[1], best[2], best[3], tuple(scores), tuple(s[:3] for s in order), len(samples),
+                     near, misses[best[:3]])
 
 def op(labelling: Labelling) -> dict:
     """The planner op that runs the elimination (one op solving all six joints)."""
@@ -339,8 +463,11 @@ def steps(chain: Chain, labelling: Labelling, rng: np.random.Generator, poses: i
                     (numeric_predicate(eq_err, "(P X - r) = Q Y at the joints of the chain's own FK, relative to "
                                        "(1 + the chain's size)^3 (the equations are cubic in lengths)", samples=40,
                                        tol=1e-12),),
-                    note=f"regularity (sigma_min / sigma_max of Q and of M(0.3), worst of 4 poses) "
-                         f"{labelling.regularity:.1e} >= {REGULARITY_MIN:g}; best of {len(OPTIONS)} labellings"))
+                    note=f"chosen of {len(OPTIONS)} labellings: the generating joints returned at "
+                         f"{labelling.sampled - labelling.misses} of {labelling.sampled} sampled poses "
+                         f"({labelling.near_singular} of them {SINGULAR_OFFSET:g} rad off a singular configuration), "
+                         f"work per root within {WORK_SLACK:g}x the least, then regularity (sigma_min / sigma_max of Q "
+                         f"and of M(0.3), worst of 4 poses) {labelling.regularity:.1e} >= {REGULARITY_MIN:g}"))
     mismatch = symbolic_mismatch(chain, rng)
     out.append(Step("g6_symbolic", "The run-time coefficients are the symbolic ones", "the general equations of "
                     "g6_structure with the robot's DH constants substituted (exact 0 and +-1 kept), against the "

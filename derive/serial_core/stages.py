@@ -44,8 +44,8 @@ class Stage:
     # the member is the one that stage reaches (serial_stages._family_by_reach), probed on its kernel
     probe_next: bool = False
     # general6r: the elimination's readings of the loop, (shift, reverse, hidden) each (runtime/python/general6r.py):
-    # the one chosen where it stays regular (derive/kinematics/general6r.choose_labelling), then the next most
-    # regular, tried in turn when no candidate of the one before verifies (a pose where its equations degenerate)
+    # the one chosen (complete on sampled poses, regular: derive/kinematics/general6r.choose_labelling), then the next
+    # in that order, tried in turn when no candidate of the one before verifies (a pose where its equations degenerate)
     labelling: tuple[tuple[int, int, int], ...] = ((0, 0, 0),)
     # arm_angle, held_elbow: the arm angle of joint values (first axis h_1, shoulder centre s, elbow point e, wrist
     # centre w, the elbow axis's direction, 5 x 3, from the joints and the design), the module's arm_angle() reads it

@@ -306,21 +306,36 @@ def _g6_roots(t6, n, hidden):
     return np.linalg.eigvals(mat), phi, a, b, c
 
 
-def g6_candidates(links, hidden=0):
-    """Loop angles (t1..t6) of every real root of the eliminated system for the loop's links."""
+def _g6_real_roots(links, hidden):
+    """(P with its constant, the pseudo-inverse of Q, phi, the real eigenvalues x, M(x) of each, their singular values
+    and right singular vectors) of the loop's links read with `hidden` the eigenvalue's angle."""
     P, Q, r = g6_equations(links)
     u, sq, vt = np.linalg.svd(Q)
     n, pc = u[:, 8:].T, _g6_with_constant(P, r)
     t6 = np.einsum("fe,eabc->fabc", n, pc)
     qpinv = (vt.T / sq) @ u[:, :8].T
     roots, phi, a, b, c = _g6_roots(t6, n, hidden)
-    others = [k for k in range(3) if k != hidden]
     xs = np.array([x.real for x in roots  # a near-real pair once, at its real part
                    if x.imag >= 0.0 and abs(x.imag) <= G6_REAL_TOL * (1.0 + abs(x))])
+    ms = (a * xs[:, None, None] + b) * xs[:, None, None] + c  # M(x) of every real root at once
+    svs, vts = np.linalg.svd(ms)[1:] if len(xs) else (np.zeros((0, 12)), np.zeros((0, 12, 12)))
+    return pc, qpinv, phi, xs, ms, svs, vts
+
+
+def g6_root_work(links, hidden=0):
+    """(real eigenvalues, those whose M(x) has a null space of dimension > 1) of the loop read with `hidden`: the
+    per-root work a reading costs (each real root is back-substituted, refined and verified; a shared one takes the
+    shift pencil, and the C its SVD). derive/kinematics/general6r.choose_labelling weighs readings by it."""
+    svs = _g6_real_roots(links, hidden)[5]
+    return len(svs), int(sum(np.sum(sv <= G6_NULL_TOL * sv[0]) > 1 for sv in svs))
+
+
+def g6_candidates(links, hidden=0):
+    """Loop angles (t1..t6) of every real root of the eliminated system for the loop's links."""
+    pc, qpinv, phi, xs, ms, svs, vts = _g6_real_roots(links, hidden)
+    others = [k for k in range(3) if k != hidden]
     if len(xs) == 0:
         return []
-    ms = (a * xs[:, None, None] + b) * xs[:, None, None] + c  # M(x) of every real root at once
-    _, svs, vts = np.linalg.svd(ms)
     angles = []
     for x, m, sv, vt in zip(xs, ms, svs, vts, strict=True):
         vs = [vt[-1]] if np.sum(sv <= G6_NULL_TOL * sv[0]) <= 1 else _g6_monomial_vectors(m)

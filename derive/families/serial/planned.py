@@ -34,7 +34,6 @@ import sympy as sp
 from ...identities.dh import chain as dh_chain
 from ...identities.frames import rodrigues
 from ...kinematics import general6r
-from ...kinematics.general6r import REGULARITY_MIN
 from ...kinematics.planner import NoClosedForm, arm_angle_plan, find_plan, held_elbow_plan
 from ...kinematics.poe import Chain, reverse
 from ...model import NoDecomposition
@@ -544,10 +543,7 @@ def _general6r_stage(axes, points, joints, target: _Motion, labelling) -> Stage:
     wk_general6r.c): the kernel gives the six axes' directions and points (the design's lengths and a held joint's
     value in them, the rest folded) and the product of exponentials exp(S_1 q_1) ... exp(S_6 q_6) = T M^-1 they must
     reach; the runtime's elimination returns the candidates."""
-    chosen = (labelling.shift, int(labelling.reverse), labelling.hidden)
-    others = sorted((sc for sc in labelling.scores if (sc[0], int(sc[1]), sc[2]) != chosen and sc[3] >= REGULARITY_MIN),
-                    key=lambda sc: -sc[3])
-    readings = (chosen, *((sc[0], int(sc[1]), sc[2]) for sc in others[:FALLBACK_READINGS]))
+    readings = tuple((sh, int(rev), hid) for sh, rev, hid in labelling.readings(1 + FALLBACK_READINGS))
     exprs = tuple(sp.simplify(x) for a in axes for x in a) + tuple(_trig_reduced(x) for p in points for x in p) + tuple(
         target.r[i, j] if j < 3 else target.t[i] for i in range(3) for j in range(4))
     names = ", ".join(str(q) for q in joints)
@@ -555,7 +551,8 @@ def _general6r_stage(axes, points, joints, target: _Motion, labelling) -> Stage:
                  "Raghavan-Roth's 14 equations of the loop exp(S_1 q_1) ... exp(S_6 q_6) (T M^-1)^-1 = I, two angles "
                  "eliminated, Manocha-Canny's eigenproblem in the hidden angle's half-angle tangent; labelling "
                  f"shift {labelling.shift}, reverse {int(labelling.reverse)}, hidden {labelling.hidden}; where no "
-                 "candidate of it verifies (a pose where its equations degenerate), the next most regular readings "
+                 "candidate of it verifies (a pose where its equations degenerate), the next readings (each hiding "
+                 "another joint) "
                  f"{', '.join(str(r) for r in readings[1:])} in turn", labelling=readings)
 
 
