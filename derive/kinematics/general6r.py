@@ -205,19 +205,24 @@ class Labelling:
     misses: int = 0  # those whose generating joints this labelling's candidates missed
 
     def readings(self, n: int) -> tuple:
-        """The first n readings the runtime tries in turn: the chosen one, then each time the first in rank order
-        that hides a joint none before hides and, among those, runs the other eigenproblem (the deflated 16 x 16 of
-        a hidden t3, the 24 x 24 companion otherwise) where one does. A pose where one reading degenerates tends to
-        degenerate every reading alike: the Panda with joint1 held at a family pose fails in C on every deflated
-        reading tried, and the companion hiding joint 1 solves it."""
-        out = [self.ranked[0]] if self.ranked else []
-        while len(out) < min(n, len(self.ranked)):
+        """The first n readings the runtime tries in turn: the chosen one; then the first in rank order that hides
+        another joint and runs the same eigenproblem (the runtime's second try where the sets' count is odd: as
+        cheap as the first); then the first that hides a third joint and runs the other eigenproblem (the deflated
+        16 x 16 of a hidden t3, the 24 x 24 companion otherwise); then the rest in rank order. A pose where one
+        reading degenerates tends to degenerate every reading alike: the Panda with joint1 held at a family pose
+        fails in C on every deflated reading tried, and the companion hiding joint 1 solves it."""
+        if not self.ranked:
+            return ()
+        first = self.ranked[0]
+        out = [first]
+        for same_path in (True, False):
             hidden = {hidden_joint(o) for o in out}
-            paths = {o[2] == 0 for o in out}
-            left = [o for o in self.ranked if o not in out]
-            out.append(max(left, key=lambda o: (2 * (hidden_joint(o) not in hidden) + ((o[2] == 0) not in paths),
-                                                -left.index(o))))
-        return tuple(out)
+            fits = [o for o in self.ranked if hidden_joint(o) not in hidden and ((o[2] == 0) == (first[2] == 0)) ==
+                    same_path]
+            if fits:
+                out.append(fits[0])
+        out += [o for o in self.ranked if o not in out]
+        return tuple(out[:n])
 
     def text(self, names) -> str:
         order = [names[j] for j in (list(range(6))[::-1] if self.reverse else list(range(6)))]

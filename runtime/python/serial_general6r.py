@@ -43,18 +43,31 @@ def _g6_singular(q, dp, joints):
 
 
 def _g6_candidates(out, readings, joints, q, pose, dp):
-    """The candidates of the first of the readings (shift, reverse, hidden) whose candidates verify: the next is tried
-    only where none of one's does (its equations degenerate at this pose)."""
+    """The verified, distinct candidates of the readings (shift, reverse, hidden) in turn, sorted (_g6_order): the
+    next is tried where none of one's verifies (its equations degenerate at this pose), and once more where their
+    count is odd. Real solutions come in pairs: the determinant's real roots, counted with multiplicity, are even in
+    number (real coefficients, even degree), so an odd count is a double root the pose cannot split or a solution
+    this reading missed (a near-special arm near its singularities: the KR 6 1e-5 from special), which another
+    reading, hiding another joint, finds. One more at most: a double root's pose costs two readings, not all."""
+    kept, errs, tried_odd = [], [], False
     for labelling in readings:
-        found = _g6_reading(out, labelling, joints, q, pose, dp)
-        if found:
-            return found
-    return []
+        _g6_reading(out, labelling, joints, q, pose, dp, kept, errs)
+        if kept and (len(kept) % 2 == 0 or tried_odd):
+            break
+        tried_odd = bool(kept)
+    for i in range(1, len(kept)):  # insertion sort by _g6_order, as the C runtime's (stable)
+        item, j = kept[i], i
+        while j > 0 and _g6_order(kept[j - 1], item) > 0:
+            kept[j] = kept[j - 1]
+            j -= 1
+        kept[j] = item
+    return kept
 
 
-def _g6_reading(out, labelling, joints, q, pose, dp):
-    """The verified, distinct candidates of one reading of the loop ((joint values of `joints`, flags), at most
-    MAX_IK): out = the stage kernel's axes (18), points (18) and target [R | p] (12); q carries the joints solved
+def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs):
+    """The verified candidates of one reading of the loop appended to kept ((joint values of `joints`, flags), at
+    most MAX_IK; their residuals to errs), each unless it is a kept one within G6_SAME (then the better fit stands
+    for it): out = the stage kernel's axes (18), points (18) and target [R | p] (12); q carries the joints solved
     before the stage (a held joint's value)."""
     axes = np.array(out[:18], dtype=float).reshape(6, 3)
     frames = g6_frames_of(axes, np.array(out[18:36], dtype=float).reshape(6, 3))
@@ -62,7 +75,6 @@ def _g6_reading(out, labelling, joints, q, pose, dp):
     shift, reverse, hidden = labelling
     size = max(abs(pose[3]), abs(pose[7]), abs(pose[11]))
     target = DOUBLE_ROOT_POLISH_TOL * max(1.0, size)
-    kept, errs = [], []
     for cand in g6_solve(frames, np.eye(4), g4, shift, bool(reverse), hidden):
         x = list(q)
         for j, v in zip(joints, cand, strict=True):
@@ -83,13 +95,6 @@ def _g6_reading(out, labelling, joints, q, pose, dp):
             continue
         kept.append((vals, FLAG_SINGULAR_INVERSE if _g6_singular(x, dp, joints) else 0))
         errs.append(err)
-    for i in range(1, len(kept)):  # insertion sort by _g6_order, as the C runtime's (stable)
-        item, j = kept[i], i
-        while j > 0 and _g6_order(kept[j - 1], item) > 0:
-            kept[j] = kept[j - 1]
-            j -= 1
-        kept[j] = item
-    return kept
 
 
 def _g6_order(a, b):
