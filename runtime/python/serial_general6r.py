@@ -48,11 +48,12 @@ def _g6_candidates(out, readings, joints, q, pose, dp):
     count is odd. Real solutions come in pairs: the determinant's real roots, counted with multiplicity, are even in
     number (real coefficients, even degree), so an odd count is a double root the pose cannot split or a solution
     this reading missed (a near-special arm near its singularities: the KR 6 1e-5 from special), which another
-    reading, hiding another joint, finds. One more at most: a double root's pose costs two readings, not all."""
+    reading, hiding another joint, finds. Not where two of the reading's candidates met in one set (a double root:
+    its two eigenvalues, one solution), and once at most: such a pose costs one reading, any other two at most."""
     kept, errs, tried_odd = [], [], False
     for labelling in readings:
-        _g6_reading(out, labelling, joints, q, pose, dp, kept, errs)
-        if kept and (len(kept) % 2 == 0 or tried_odd):
+        merged = _g6_reading(out, labelling, joints, q, pose, dp, kept, errs)
+        if kept and (len(kept) % 2 == 0 or tried_odd or merged):
             break
         tried_odd = bool(kept)
     for i in range(1, len(kept)):  # insertion sort by _g6_order, as the C runtime's (stable)
@@ -67,14 +68,16 @@ def _g6_candidates(out, readings, joints, q, pose, dp):
 def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs):
     """The verified candidates of one reading of the loop appended to kept ((joint values of `joints`, flags), at
     most MAX_IK; their residuals to errs), each unless it is a kept one within G6_SAME (then the better fit stands
-    for it): out = the stage kernel's axes (18), points (18) and target [R | p] (12); q carries the joints solved
-    before the stage (a held joint's value)."""
+    for it); returns how many of its candidates met one of its own within G6_SAME: out = the stage kernel's axes
+    (18), points (18) and target [R | p] (12); q carries the joints solved before the stage (a held joint's
+    value)."""
     axes = np.array(out[:18], dtype=float).reshape(6, 3)
     frames = g6_frames_of(axes, np.array(out[18:36], dtype=float).reshape(6, 3))
     g4 = np.vstack([np.array(out[36:48], dtype=float).reshape(3, 4), [0.0, 0.0, 0.0, 1.0]])
     shift, reverse, hidden = labelling
     size = max(abs(pose[3]), abs(pose[7]), abs(pose[11]))
     target = DOUBLE_ROOT_POLISH_TOL * max(1.0, size)
+    first, merged = len(kept), 0
     for cand in g6_solve(frames, np.eye(4), g4, shift, bool(reverse), hidden):
         x = list(q)
         for j, v in zip(joints, cand, strict=True):
@@ -88,6 +91,7 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs):
         dup = next((m for m, (other, _) in enumerate(kept)
                     if all(abs(_wrap(a - b)) <= G6_SAME for a, b in zip(vals, other, strict=True))), -1)
         if dup >= 0:  # one solution found twice: the better fit stands for it
+            merged += dup >= first
             if err < errs[dup]:
                 kept[dup], errs[dup] = (vals, kept[dup][1]), err
             continue
@@ -95,6 +99,7 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs):
             continue
         kept.append((vals, FLAG_SINGULAR_INVERSE if _g6_singular(x, dp, joints) else 0))
         errs.append(err)
+    return merged
 
 
 def _g6_order(a, b):

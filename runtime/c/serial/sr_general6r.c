@@ -54,16 +54,19 @@ static int sr_g6_singular(const double *q, const double *dp, const int *joints)
 
 /* The verified candidates of one reading of the loop appended to ws's first n (at most SR_MAX_IK; their residuals
  * to errs), each unless it is a kept one within SR_G6_SAME (then the better fit stands for it); returns the new
- * count: out = the stage kernel's axes (18), points (18) and target [R | p] (12); q carries the joints solved
- * before the stage (a held joint's value) */
+ * count, and in *merged how many of its candidates met one of its own: out = the stage kernel's axes (18),
+ * points (18) and target [R | p] (12); q carries the joints solved before the stage (a held joint's value) */
 static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, const int *joints,
-                         const double *q, const double *pose, const double *dp, sr_ws *ws, double *errs, int n)
+                         const double *q, const double *pose, const double *dp, sr_ws *ws, double *errs, int n,
+                         int *merged)
 {
     static const double id4[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     double frames[96], g4[16], cand[WK_G6_MAX_CANDIDATES * 6];
     const double size = fmax(fabs(pose[3]), fmax(fabs(pose[7]), fabs(pose[11])));
     const double target = SR_DOUBLE_ROOT_POLISH_TOL * fmax(1.0, size);
+    const int first = n;
     int i, j, m, nr;
+    *merged = 0;
     wk_g6_z_frames(out, out + 18, frames);
     for (i = 0; i < 12; ++i) g4[i] = out[36 + i];
     g4[12] = g4[13] = g4[14] = 0.0;
@@ -89,6 +92,7 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
             if (same) dup = m;
         }
         if (dup >= 0) { /* one solution found twice: the better fit stands for it */
+            if (dup >= first) ++*merged;
             if (err < errs[dup]) {
                 for (j = 0; j < 6; ++j) ws->q[dup][j] = x[joints[j]];
                 errs[dup] = err;
@@ -108,16 +112,17 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
  * where none of one's verifies (its equations degenerate at this pose), and once more where their count is odd.
  * Real solutions come in pairs (the determinant's real roots, counted with multiplicity, are even in number), so an
  * odd count is a double root the pose cannot split or a solution this reading missed (a near-special arm near its
- * singularities), which another reading finds (Python's _g6_candidates) */
+ * singularities), which another reading finds; not where two of the reading's candidates met in one set (a double
+ * root), and once at most (Python's _g6_candidates) */
 static int sr_g6_candidates(const double *out, const int (*readings)[3], int n, const int *joints, const double *q,
                             const double *pose, const double *dp, sr_ws *ws)
 {
     double errs[SR_MAX_IK];
-    int i, found = 0, tried_odd = 0;
+    int i, found = 0, tried_odd = 0, merged = 0;
     for (i = 0; i < n; ++i) {
         found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], joints, q, pose, dp, ws, errs,
-                              found);
-        if (found > 0 && (found % 2 == 0 || tried_odd)) break;
+                              found, &merged);
+        if (found > 0 && (found % 2 == 0 || tried_odd || merged)) break;
         tried_odd = found > 0;
     }
     sr_g6_sort(ws, found);
