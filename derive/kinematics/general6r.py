@@ -197,8 +197,9 @@ class Labelling:
     hidden: int  # the eigenvalue's variable: 0, 1, 2 for the third, fourth, fifth joint of the labelled loop
     regularity: float  # its worst regularity over the sampled poses
     scores: tuple  # (shift, reverse, hidden, regularity) of every option, in OPTIONS order
-    # (shift, reverse, hidden) of the options in the order chosen: complete on the sampled poses first, then fewest
-    # misses, then the regularity rule (choose_labelling); the runtime falls back along it
+    # (shift, reverse, hidden) of the regular options in the order chosen: fewest misses on the sampled poses, then
+    # within WORK_SLACK of the least work per root, then the regularity rule (choose_labelling); readings() picks the
+    # runtime's fallbacks from it
     ranked: tuple = ()
     sampled: int = 0  # the sampled poses the choice was tried on (random and near singular), and how many of them
     near_singular: int = 0  # were moved off a singular configuration
