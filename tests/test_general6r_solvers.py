@@ -152,6 +152,6 @@ def test_a_reading_that_misses_solutions_is_refused_by_the_audit():
         return next(st for st in g6.steps(chain, lab, np.random.default_rng(12)) if st.name == "g6_solutions")
     assert solutions_step(labelling).passed
     # the regularity's own pick: the best worst regularity, a hidden t3 within HIDDEN_T3_PREFERENCE of it
-    regular = max(labelling.scores, key=lambda sc: sc[3] * (g6.HIDDEN_T3_PREFERENCE if sc[2] == 0 else 1.0))
+    regular = max(labelling.scores, key=g6.regularity_preference)
     assert regular[:3] != labelling.ranked[0]
     assert not solutions_step(g6.Labelling(*regular, labelling.scores)).passed

@@ -312,15 +312,25 @@ def _misses(option, samples) -> int:
 
 
 def _work(option, samples) -> float:
-    """The option's per-root work on the sampled poses, averaged: its real eigenvalues, each shared one (a null space
-    of dimension > 1: the shift pencil, in C an SVD ~20x an LU) counted SHARED_ROOT_WORK times."""
+    """The option's per-root work on the sampled poses, averaged: its real eigenvalues (each back-substituted,
+    refined and verified), each shared one (M(x) with a null space of dimension > 1: the shift pencil, in C an SVD
+    ~20x an LU) counted SHARED_ROOT_WORK times more. The runtime's own roots (its _g6_real_roots, which g6_candidates
+    reads), so the count is the emitted solver's."""
     g6 = numerics()
     shift, rev, hidden = option
     total = 0
     for frames, home, _, pose in samples:
-        real, shared = g6.g6_root_work(g6.g6_labelled(g6.g6_loop_links(frames, home, pose), shift, rev)[0], hidden)
-        total += real + SHARED_ROOT_WORK * shared
+        svs = g6._g6_real_roots(g6.g6_labelled(g6.g6_loop_links(frames, home, pose), shift, rev)[0], hidden)[5]
+        total += len(svs) + SHARED_ROOT_WORK * sum(int(np.sum(sv <= g6.G6_NULL_TOL * sv[0]) > 1) for sv in svs)
     return total / max(len(samples), 1)
+
+
+def regularity_preference(score) -> float:
+    """The regularity rule's sort value of a score (shift, reverse, hidden, regularity), larger first: the regularity,
+    a hidden t3 (0) counted HIDDEN_T3_PREFERENCE times (it deflates the determinant's (1 + x^2)^4 and runs a 16 x 16
+    eigenproblem instead of 24 x 24, ~3x cheaper: preferred while it costs at most two digits of regularity; the
+    candidates are refined on the chain, the regularity only has to keep roots apart)."""
+    return score[3] * (HIDDEN_T3_PREFERENCE if score[2] == 0 else 1.0)
 
 
 def choose_labelling(chains, rng: np.random.Generator, poses: int = 4) -> Labelling:
@@ -344,11 +354,7 @@ def choose_labelling(chains, rng: np.random.Generator, poses: int = 4) -> Labell
         worst = min(g6.g6_regularity(g6.g6_labelled(g6.g6_loop_links(f, h, t), shift, rev)[0], hidden)
                     for f, h, t in cases)
         scores.append((shift, rev, hidden, worst))
-    # hidden t3 (0) deflates the determinant's (1 + x^2)^4 and runs a 16 x 16 eigenproblem instead of 24 x 24 (~3x
-    # cheaper, runtime/python/general6r.py): preferred while it costs at most two digits of regularity (the
-    # candidates are refined on the chain; the regularity only has to keep roots apart)
-    regular = sorted((s for s in scores if s[3] >= REGULARITY_MIN),
-                     key=lambda s: -s[3] * (HIDDEN_T3_PREFERENCE if s[2] == 0 else 1.0))
+    regular = sorted((s for s in scores if s[3] >= REGULARITY_MIN), key=lambda s: -regularity_preference(s))
     if not regular:
         best = max(s[3] for s in scores)
         raise NoDecomposition(f"the general 6R elimination is degenerate for every labelling of the loop (best "
@@ -356,13 +362,13 @@ def choose_labelling(chains, rng: np.random.Generator, poses: int = 4) -> Labell
                               "this geometry")
     samples, near = _samples(chains, rng)
     misses = {sc[:3]: _misses(sc[:3], samples) for sc in regular}
-    work = {sc[:3]: _work(sc[:3], samples) for sc in regular}
     fewest = min(misses.values())
-    cheapest = min(w for o, w in work.items() if misses[o] == fewest)
+    work = {o: _work(o, samples) for o, m in misses.items() if m == fewest}  # only where it decides
+    cheapest = min(work.values())
 
     def rank(sc):  # complete first; then cheap (a near-special arm's spurious and shared roots); then regular
         o = sc[:3]
-        return misses[o], misses[o] > fewest or work[o] > WORK_SLACK * cheapest, regular.index(sc)
+        return misses[o], o not in work or work[o] > WORK_SLACK * cheapest, regular.index(sc)
     order = sorted(regular, key=rank)
     best = order[0]
     return Labelling(best[0], best[1], best[2], best[3], tuple(scores), tuple(s[:3] for s in order), len(samples),

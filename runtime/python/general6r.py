@@ -322,14 +322,6 @@ def _g6_real_roots(links, hidden):
     return pc, qpinv, phi, xs, ms, svs, vts
 
 
-def g6_root_work(links, hidden=0):
-    """(real eigenvalues, those whose M(x) has a null space of dimension > 1) of the loop read with `hidden`: the
-    per-root work a reading costs (each real root is back-substituted, refined and verified; a shared one takes the
-    shift pencil, and the C its SVD). derive/kinematics/general6r.choose_labelling weighs readings by it."""
-    svs = _g6_real_roots(links, hidden)[5]
-    return len(svs), int(sum(np.sum(sv <= G6_NULL_TOL * sv[0]) > 1 for sv in svs))
-
-
 def g6_candidates(links, hidden=0):
     """Loop angles (t1..t6) of every real root of the eliminated system for the loop's links."""
     pc, qpinv, phi, xs, ms, svs, vts = _g6_real_roots(links, hidden)
