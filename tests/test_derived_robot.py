@@ -168,17 +168,24 @@ def test_the_derived_solver_returns_every_set_and_only_true_ones(robot, fmt):
 
 @pytest.mark.parametrize("robot", DERIVED)
 def test_c_returns_the_numpy_sets(robot):
-    """The folder's C extension and the numpy path return the same sets (1e-12) and flags."""
+    """The folder's C extension and the numpy path return the same sets and flags: to 1e-12, plus the rounding the
+    pose's conditioning lets through, 16 eps (1 + |p|) / sigma_min of the reference Jacobian at the set (both
+    paths round differently, and near a singularity a rounding-size pose difference moves the joints by it: the
+    youBot 8e-5 rad from its stretched elbow, 8.3e-12 apart at test seed 715393, Haswell)."""
     m, py, _ = derived(robot)
     if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
         assert m.BACKEND == "c"
     assert py.BACKEND == "numpy"
+    reference = ref.load(_file(robot, "urdf"))
     rng = case_rng(2303)
     for _ in range(30):
         T = m.fk_matrix(rng.uniform(-math.pi, math.pi, m.N_JOINTS))
         a, b = m.ik(T), py.ik(T)
         assert a.count == b.count and list(a.valid) == list(b.valid) and list(a.flags) == list(b.flags)
-        assert np.max(np.abs(np.asarray(a.values)[a.valid] - np.asarray(b.values)[b.valid])) <= 1e-12
+        scale = 1.0 + float(np.max(np.abs(T[:3, 3])))
+        for x, y in zip(np.asarray(a.values)[a.valid], np.asarray(b.values)[b.valid], strict=True):
+            smin = np.linalg.svd(reference.jacobian(x), compute_uv=False)[-1]
+            assert np.max(np.abs(x - y)) <= 1e-12 + 16 * np.finfo(float).eps * scale / smin
 
 
 def test_a_five_joint_arm_answers_what_it_cannot_reach_with_what_it_controls(tmp_path):
