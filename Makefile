@@ -27,7 +27,7 @@ TEST_WORKERS ?= auto
 # The second pass of `make test-portable`: another CPU's numeric kernels and another set of random cases.
 PORTABLE_SEED ?= 2
 # Numerically sensitive tests: every comparison against the independent reference, the fuzz tests and the
-# drift check.
+# drift check. Own robots derived by an earlier pass of the checkout are reused (tests/derived_cache.py).
 SENSITIVE_TESTS := tests/test_underactuated_wrist.py tests/test_reference_underactuated_wrist.py \
 	tests/test_poly_real_roots.py tests/test_dh.py tests/test_reference_dh.py tests/test_screw_robots.py \
 	tests/test_rsr_wrist.py tests/test_scara_rsr.py tests/test_reference_rsr_selfcheck.py \

@@ -19,6 +19,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import derived_cache
 import numpy as np
 import pytest
 from chain_specs import SKEW3, poe_spec
@@ -49,8 +50,8 @@ def solver(robot: str, fmt: str = "urdf", **options):
         out = Path(tempfile.mkdtemp(prefix=f"wk_{robot}_{fmt}_"))
         name = f"{robot}_{fmt}_solver"
         # the URDF solvers run the C (the folder's extension), the DH and POE ones numpy: both paths are tested
-        own_robot.derive(_file(robot, fmt), out, name=name, free=FREE.get(robot), progress=lambda _: None,
-                         native=fmt == "urdf", **options)
+        derived_cache.derive(_file(robot, fmt), out, name=name, free=FREE.get(robot), native=fmt == "urdf",
+                             **options)
         _CACHE[key] = (own_robot.import_solver(out, name), out)
     return _CACHE[key][0]
 

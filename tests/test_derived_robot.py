@@ -13,6 +13,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+import derived_cache
 import numpy as np
 import pytest
 from cbuild import SANITIZE_FLAGS, STRICT_FLAGS, compiler
@@ -47,8 +48,7 @@ def derived(robot: str, fmt: str = "urdf"):
     if key not in _CACHE:
         out = Path(tempfile.mkdtemp(prefix=f"wk_derived_{robot}_{fmt}_"))
         name = f"{robot}_{fmt}_derived"
-        own_robot.derive(_file(robot, fmt), out, name=name, stages="derived", native=fmt == "urdf",
-                         progress=lambda _: None)
+        derived_cache.derive(_file(robot, fmt), out, name=name, stages="derived", native=fmt == "urdf")
         _CACHE[key] = (own_robot.import_solver(out, name), own_robot.import_solver(out, name, backend="numpy"), out)
     return _CACHE[key]
 
@@ -222,11 +222,12 @@ def test_a_calibrated_robot_is_solved_on_its_ideal_geometry_and_polished_on_its_
     (1e-9), as many sets as the interpreted module on the random poses, C and numpy within their polish's reach
     (DOUBLE_ROOT_POLISH_TOL / sigma_min of J)."""
     path = _file("kr6_calibrated", fmt)
-    own_robot.derive(path, tmp_path, name="kr6c", stages="derived", native=fmt == "urdf", progress=lambda _: None)
-    own_robot.derive(path, tmp_path, name="kr6c_interp", stages="interpreted", native=False, progress=lambda _: None)
-    m, py = own_robot.import_solver(tmp_path, "kr6c"), own_robot.import_solver(tmp_path, "kr6c", backend="numpy")
-    interp = own_robot.import_solver(tmp_path, "kr6c_interp")
-    assert m.CALIBRATED and hasattr(m, "ROOT_GAP_TOL") and "true_chain" in (tmp_path / "audit" / "kr6c.md").read_text()
+    derived_cache.derive(path, tmp_path / "d", name="kr6c", stages="derived", native=fmt == "urdf")
+    derived_cache.derive(path, tmp_path / "i", name="kr6c_interp", stages="interpreted", native=False)
+    m, py = own_robot.import_solver(tmp_path / "d", "kr6c"), own_robot.import_solver(tmp_path / "d", "kr6c", "numpy")
+    interp = own_robot.import_solver(tmp_path / "i", "kr6c_interp")
+    audit = (tmp_path / "d" / "audit" / "kr6c.md").read_text()
+    assert m.CALIBRATED and hasattr(m, "ROOT_GAP_TOL") and "true_chain" in audit
     reference = ref.load(path)
     rng = case_rng(2330)
     poses = [(rng.uniform(-math.pi, math.pi, 6), 1e-9) for _ in range(40)]
@@ -269,13 +270,13 @@ def held(robot: str, fmt: str, free):
     """(derived module, its numpy twin, the interpreted module) of the arm with `free` held."""
     key = (robot, fmt, free)
     if key not in _CACHE:
-        out = Path(tempfile.mkdtemp(prefix=f"wk_held_{robot}_{fmt}_"))
         mods = []
         for stages, name in (("derived", f"{robot}_{fmt}_held"), ("interpreted", f"{robot}_{fmt}_held_interp")):
-            own_robot.derive(_file(robot, fmt), out, name=name, stages=stages, free=free, native=fmt == "urdf",
-                             progress=lambda _: None)
-            mods.append(own_robot.import_solver(out, name))
-        _CACHE[key] = (mods[0], own_robot.import_solver(out, mods[0].NAME, backend="numpy"), mods[1])
+            out = Path(tempfile.mkdtemp(prefix=f"wk_held_{robot}_{fmt}_{stages}_"))
+            derived_cache.derive(_file(robot, fmt), out, name=name, stages=stages, free=free, native=fmt == "urdf")
+            mods.append((own_robot.import_solver(out, name), out))
+        (module, out), (interpreted, _) = mods
+        _CACHE[key] = (module, own_robot.import_solver(out, module.NAME, backend="numpy"), interpreted)
     return _CACHE[key]
 
 
@@ -798,7 +799,7 @@ def _general(case: str):
     if key not in _CACHE:
         path, free = {**MULTI, **HELD_ELBOW}[case]
         out = Path(tempfile.mkdtemp(prefix=f"wk_derived_{case}_"))
-        own_robot.derive(path, out, name=case, stages="derived", free=free, progress=lambda _: None)
+        derived_cache.derive(path, out, name=case, stages="derived", free=free)
         _CACHE[key] = (own_robot.import_solver(out, case), own_robot.import_solver(out, case, backend="numpy"), out)
     return _CACHE[key]
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
+import derived_cache
 import numpy as np
 import pytest
 from chain_specs import kr6_near_special
@@ -51,7 +52,7 @@ def solver(name):
     if name not in _CACHE:
         path, free = _source(name)
         out = Path(tempfile.mkdtemp(prefix=f"wk_g6_{name}_"))
-        own_robot.derive(path, out, name=f"{name}_g6", free=free, progress=lambda _: None)
+        derived_cache.derive(path, out, name=f"{name}_g6", free=free)
         _CACHE[name] = (own_robot.import_solver(out, f"{name}_g6"), out)
     return _CACHE[name][0]
 

@@ -17,6 +17,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -49,6 +50,62 @@ def test_generated_is_fresh_on_other_kernels(tmp_path, machine):
     stale = [rel for rel in files if (ROOT / "generated" / rel).read_bytes() != (out / rel).read_bytes()]
     assert not stale, f"generated/ differs from a regeneration on {machine} ({stale}): run `make regenerate`; " \
                       "if it still differs, a machine-dependent number reached a generated file"
+
+
+# Own robots whose derivation makes numeric choices: a general 6R (its reading chosen on sampled poses), a Panda with
+# a joint held (a general 6R with fallback readings), a calibrated arm (its true chain's constants). The options are
+# the helpers' own, so the modules compared are the ones the solver tests use (tests/derived_cache.py).
+OWN_ROBOTS = {
+    "ur5e_tilted_g6": (ROOT / "tests" / "robots" / "ur5e_tilted" / "ur5e_tilted_poe.toml",
+                       {"name": "ur5e_tilted_g6", "free": None}),
+    "panda_free1": (ROOT / "tests" / "robots" / "panda" / "panda_dh.toml",
+                    {"name": "panda_free1", "stages": "derived", "free": "joint1"}),
+    "kr6c": (ROOT / "tests" / "robots" / "kr6_calibrated" / "kr6_calibrated.urdf",
+             {"name": "kr6c", "stages": "derived", "native": True}),
+}
+
+
+@pytest.mark.parametrize("robot", sorted(OWN_ROBOTS))
+def test_own_robots_derive_to_the_same_solver_on_other_kernels(tmp_path, robot):
+    """A user robot derived under the other machine's kernels (a fresh process) gives the solver this run's (or an
+    earlier pass's: tests/derived_cache.py) derivation gives: the same files, and on random poses the same sets.
+    Not the same bytes, unlike generated/: a description's numbers pass numpy's reductions (BLAS products, SIMD
+    norms), so a calibrated arm's constants differ in their last ulp (kr6c: -7.000001999999983e-09 against
+    ...9856e-09) and a measured error can fall into the next decade of the audit (panda_free1's elimination check:
+    < 1e-11 against < 1e-12). Both solvers solve the same chain to rounding, so their sets agree to that rounding
+    over the Jacobian's sigma_min (1e-9 holds at random poses with sigma_min above 1e-6)."""
+    import json
+
+    import derived_cache
+    from reference import chain as ref
+    from seeding import case_rng
+
+    from derive import own_robot
+
+    source, options = OWN_ROBOTS[robot]
+    here, there = tmp_path / "here", tmp_path / "there"
+    derived_cache.derive(source, here, **options)
+    env = {k: v for k, v in os.environ.items() if k not in ("OPENBLAS_CORETYPE", "NPY_DISABLE_CPU_FEATURES")}
+    env.update(MACHINES[OTHER])
+    code = ("import json, sys; from derive import own_robot; "
+            "own_robot.derive(sys.argv[1], sys.argv[2], progress=lambda _: None, **json.loads(sys.argv[3]))")
+    subprocess.run([sys.executable, "-c", code, str(source), str(there), json.dumps(options)],
+                   cwd=ROOT, env=env, check=True, capture_output=True, text=True)
+    assert _files(here) == _files(there)
+    a, b = (own_robot.import_solver(d, options["name"], backend="numpy") for d in (here, there))
+    reference = ref.load(source)
+    rng = case_rng(2400)
+    fj = getattr(a, "_FREE", -1)  # a held joint: its value is the design's, the generating one here
+    for _ in range(10):
+        q = rng.uniform(-2.5, 2.5, reference.n)
+        jac = reference.jacobian(q)
+        if np.linalg.svd(np.delete(jac, [fj], axis=1) if fj >= 0 else jac, compute_uv=False)[-1] < 1e-6:
+            continue
+        T, design = reference(q), ([float(q[fj])] if fj >= 0 else None)
+        sa, sb = a.ik(T, design), b.ik(T, design)
+        assert sa.count == sb.count > 0, q
+        for x in sa:
+            assert min(float(np.max(np.abs(np.asarray(x) - np.asarray(y)))) for y in sb) < 1e-9, q
 
 
 def test_no_timestamps_paths_or_hosts_in_generated():

@@ -22,6 +22,7 @@ import math
 import os
 from pathlib import Path
 
+import derived_cache
 import numpy as np
 import pytest
 from reference.singular import singular_configurations
@@ -45,7 +46,7 @@ EPS = float(np.finfo(float).eps)
 def solvers(request, tmp_path_factory):
     name = request.param
     out = tmp_path_factory.mktemp(f"near_{name}")
-    own_robot.derive(ROBOTS_DIR / name / f"{name}.urdf", out, free=ROBOTS[name], progress=lambda _: None)
+    derived_cache.derive(ROBOTS_DIR / name / f"{name}.urdf", out, free=ROBOTS[name])
     c = own_robot.import_solver(out, name)
     if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
         assert c.BACKEND == "c"
