@@ -4,9 +4,8 @@
 cases. A derivation does not read the test seed; half of a later pass was SymPy deriving the same robots again (479
 of 963 s on 2 cores). So a later pass takes the folder a pass before it derived from the same inputs and spends its
 time on what the kernels and the seed change: the solvers' sets against the reference, the emitted code as another
-machine runs it (a user derives once and deploys). An own robot's bytes can differ across kernels in a constant's last
-ulp (README, "Testing"); test_generated_fresh.py's own-robot test derives a sample under the other kernels and checks
-the same files and the same sets.
+machine runs it (a user derives once and deploys). The derivation's bytes do not depend on the kernels:
+test_generated_fresh.py derives a sample of own robots under the other kernels and compares them byte for byte.
 
 An entry is keyed by the description's bytes, the options, the bytes of every file under derive/, runtime/ and
 templates/, the versions of Python, SymPy, NumPy and CasADi, and the C compiler: any change derives again. It is

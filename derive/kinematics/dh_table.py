@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .poe import Chain
+from .same_bits import chain_product, dot, norm, rigid_inverse, unit
 
 # |z_{k} x z_{k+1}| below this: parallel axes (the common normal through the previous origin); a distance below it
 # (metres, relative to the chain's size): the axes meet
@@ -55,12 +56,12 @@ def link(a: float, alpha: float, d: float, theta: float) -> np.ndarray:
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
-    return v / np.linalg.norm(v)
+    return unit(v)
 
 
 def _angle(u: np.ndarray, v: np.ndarray, about: np.ndarray) -> float:
     """The angle turning unit u onto unit v about the unit axis normal to both."""
-    return math.atan2(float(np.dot(np.cross(u, v), about)), float(np.dot(u, v)))
+    return math.atan2(dot(np.cross(u, v), about), dot(u, v))
 
 
 def standard_dh(chain: Chain) -> DHTable:
@@ -71,8 +72,8 @@ def standard_dh(chain: Chain) -> DHTable:
     slide = [k == "P" for k in chain.kinds]
     z = axes[0]
     # the base origin's foot on axis 0 (a slide's axis placed through the base origin)
-    o = np.zeros(3) if slide[0] else chain.points[0] - np.dot(chain.points[0], z) * z
-    if np.linalg.norm(np.cross(z, [0.0, 0.0, 1.0])) <= PARALLEL_TOL:
+    o = np.zeros(3) if slide[0] else chain.points[0] - dot(chain.points[0], z) * z
+    if norm(np.cross(z, [0.0, 0.0, 1.0])) <= PARALLEL_TOL:
         x = np.array([1.0, 0.0, 0.0])  # axis 0 along +-z: x as the base's (frame 0 = the base when on it)
     else:
         x = _unit(np.cross([0.0, 0.0, 1.0], z))
@@ -84,26 +85,26 @@ def standard_dh(chain: Chain) -> DHTable:
         zn, rn = axes[k + 1], o if slide[k + 1] else chain.points[k + 1]  # a slide's axis through this origin
         c = np.cross(z, zn)
         w = rn - o
-        if np.linalg.norm(c) <= PARALLEL_TOL:  # parallel: the normal through o (d = 0)
-            perp = w - np.dot(w, z) * z
+        if norm(c) <= PARALLEL_TOL:  # parallel: the normal through o (d = 0)
+            perp = w - dot(w, z) * z
             t = 0.0
-            xn = _unit(perp) if np.linalg.norm(perp) > PARALLEL_TOL * size else x
+            xn = _unit(perp) if norm(perp) > PARALLEL_TOL * size else x
             on = o + perp
         else:  # the feet of the common normal: o + t z on axis k, rn + s zn on axis k+1
-            zz = float(np.dot(z, zn))
-            t = (np.dot(w, z) - zz * np.dot(w, zn)) / (1.0 - zz * zz)
-            s = (zz * np.dot(w, z) - np.dot(w, zn)) / (1.0 - zz * zz)
+            zz = float(dot(z, zn))
+            t = (dot(w, z) - zz * dot(w, zn)) / (1.0 - zz * zz)
+            s = (zz * dot(w, z) - dot(w, zn)) / (1.0 - zz * zz)
             foot, on = o + t * z, rn + s * zn
             gap = on - foot
-            xn = _unit(gap) if np.linalg.norm(gap) > PARALLEL_TOL * size else _unit(c)
-        a = float(np.dot(on - (o + t * z), xn))
+            xn = _unit(gap) if norm(gap) > PARALLEL_TOL * size else _unit(c)
+        a = float(dot(on - (o + t * z), xn))
         rows.append((a, _angle(z, zn, xn), float(t), _angle(x, xn, z)))
         z, x, o = zn, xn, on
     rows.append((0.0, 0.0, 0.0, 0.0))
     last = np.eye(4)
     last[:3, :3] = np.column_stack([x, np.cross(z, x), z])
     last[:3, 3] = o
-    tool = np.linalg.inv(last) @ chain.home @ chain.tool
+    tool = chain_product(rigid_inverse(last), chain.home, chain.tool)
     return DHTable(tuple(rows), frame0, tool, tuple(chain.kinds))
 
 

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .same_bits import matmul, norm, solve_small
+
 
 def parallel_deviation(a, b) -> float:
     """sin of the angle between two axis directions (0: parallel or anti-parallel)."""
@@ -21,15 +23,18 @@ def line_distance(pa, a, pb, b) -> float:
 
 
 def common_point(points, dirs) -> tuple[np.ndarray, float]:
-    """The least-squares point nearest to every line, and its largest distance from one of them."""
+    """The least-squares point nearest to every line, and its largest distance from one of them (the same bits on
+    every CPU where the lines are not all parallel: an ideal chain's points become generated constants)."""
     m = np.zeros((3, 3))
     v = np.zeros(3)
     for p, a in zip(points, dirs, strict=True):
         proj = np.eye(3) - np.outer(a, a)
         m += proj
-        v += proj @ p
-    w = np.linalg.lstsq(m, v, rcond=None)[0]
-    dev = max(float(np.linalg.norm((np.eye(3) - np.outer(a, a)) @ (w - p))) for p, a in zip(points, dirs, strict=True))
+        v += matmul(proj, p)
+    w = solve_small(m, v)
+    if w is None:  # parallel lines: every point of a common perpendicular line fits; the least-norm one
+        w = np.linalg.lstsq(m, v, rcond=None)[0]
+    dev = max(norm(matmul(np.eye(3) - np.outer(a, a), w - p)) for p, a in zip(points, dirs, strict=True))
     return w, dev
 
 

@@ -16,18 +16,20 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .same_bits import chain_product, dot, matmul, rigid_inverse, unit
+
 
 def rot(axis, angle: float) -> np.ndarray:
     """Rotation about a unit axis (Rodrigues)."""
     k = np.asarray(axis, dtype=float)
     kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
-    return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * kx @ kx
+    return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * matmul(kx, kx)
 
 
 def rpy_matrix(rpy) -> np.ndarray:
     """URDF's fixed-axis roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll)."""
     r, p, y = rpy
-    return rot((0, 0, 1), y) @ rot((0, 1, 0), p) @ rot((1, 0, 0), r)
+    return chain_product(rot((0, 0, 1), y), rot((0, 1, 0), p), rot((1, 0, 0), r))
 
 
 def transform(rotation=None, position=None) -> np.ndarray:
@@ -44,7 +46,7 @@ def screw(kind: str, axis, point, q: float) -> np.ndarray:
     if kind == "P":
         return transform(None, np.asarray(axis) * q)
     r = rot(axis, q)
-    return transform(r, np.asarray(point) - r @ np.asarray(point))
+    return transform(r, np.asarray(point) - matmul(r, point))
 
 
 @dataclass(frozen=True)
@@ -102,8 +104,8 @@ class Chain:
 
 def normalised(chain: Chain) -> Chain:
     """Unit axes, and each revolute axis's point moved to its foot from the base origin (canonical data)."""
-    axes = np.array([a / np.linalg.norm(a) for a in chain.axes])
-    points = np.array([p - np.dot(p, a) * a if k == "R" else np.zeros(3)
+    axes = np.array([unit(a) for a in chain.axes])
+    points = np.array([p - dot(p, a) * a if k == "R" else np.zeros(3)
                        for k, a, p in zip(chain.kinds, axes, chain.points, strict=True)])
     return replace(chain, axes=axes, points=points)
 
@@ -120,7 +122,7 @@ def dh_link(convention: str, a: float, alpha: float, d: float, theta: float) -> 
     rz = transform(rot((0, 0, 1), theta))
     rx = transform(rot((1, 0, 0), alpha))
     tz, tx = transform(None, (0, 0, d)), transform(None, (a, 0, 0))
-    return rz @ tz @ tx @ rx if convention == "standard" else rx @ tx @ rz @ tz
+    return chain_product(rz, tz, tx, rx) if convention == "standard" else chain_product(rx, tx, rz, tz)
 
 
 def from_dh(name, convention, rows, **kw) -> Chain:
@@ -131,9 +133,9 @@ def from_dh(name, convention, rows, **kw) -> Chain:
     for _name, _kind, a, alpha, d, theta, direction in rows:
         if convention == "standard":
             pairs.append((direction * t[:3, 2], t[:3, 3].copy()))
-            t = t @ dh_link(convention, a, alpha, d, theta)
+            t = matmul(t, dh_link(convention, a, alpha, d, theta))
         else:
-            t = t @ dh_link(convention, a, alpha, d, theta)
+            t = matmul(t, dh_link(convention, a, alpha, d, theta))
             pairs.append((direction * t[:3, 2], t[:3, 3].copy()))
     return from_frames(name, [r[0] for r in rows], [r[1] for r in rows], pairs, t, source_format=convention, **kw)
 
@@ -143,21 +145,22 @@ def reduce_free(chain: Chain, index: int, value: float) -> Chain:
     home frame move rigidly with it."""
     m = screw(chain.kinds[index], chain.axes[index], chain.points[index], value)
     keep = [i for i in range(chain.n) if i != index]
-    axes = np.array([m[:3, :3] @ chain.axes[i] if i > index else chain.axes[i] for i in keep])
-    points = np.array([m[:3, :3] @ chain.points[i] + m[:3, 3] if i > index else chain.points[i] for i in keep])
+    axes = np.array([matmul(m[:3, :3], chain.axes[i]) if i > index else chain.axes[i] for i in keep])
+    points = np.array([matmul(m[:3, :3], chain.points[i]) + m[:3, 3] if i > index else chain.points[i]
+                       for i in keep])
     return normalised(replace(chain, joint_names=tuple(chain.joint_names[i] for i in keep),
                               kinds=tuple(chain.kinds[i] for i in keep), axes=axes, points=points,
-                              home=m @ chain.home, lower=chain.lower[keep], upper=chain.upper[keep]))
+                              home=matmul(m, chain.home), lower=chain.lower[keep], upper=chain.upper[keep]))
 
 
 def reverse(chain: Chain) -> Chain:
     """The chain read from the tool to the base: T^-1 = M^-1 exp(-S_n q_n) ... exp(-S_1 q_1) becomes a chain in
     the home tool frame whose joint k is joint n-1-k with its value negated (axes flipped instead)."""
-    minv = np.linalg.inv(chain.home)
+    minv = rigid_inverse(chain.home)
     r, t = minv[:3, :3], minv[:3, 3]
     idx = list(range(chain.n))[::-1]
-    axes = np.array([-(r @ chain.axes[i]) for i in idx])
-    points = np.array([r @ chain.points[i] + t for i in idx])
+    axes = np.array([-matmul(r, chain.axes[i]) for i in idx])
+    points = np.array([matmul(r, chain.points[i]) + t for i in idx])
     return normalised(replace(chain, joint_names=tuple(chain.joint_names[i] for i in idx),
                               kinds=tuple(chain.kinds[i] for i in idx), axes=axes, points=points, home=minv,
                               lower=chain.lower[idx], upper=chain.upper[idx]))

@@ -12,6 +12,7 @@ import numpy as np
 
 from ...kinematics.planner import DEFAULT_GEOMETRY_TOL
 from ...kinematics.poe import Chain, dh_link, from_dh, from_frames, rot, rpy_matrix, transform
+from ...kinematics.same_bits import norm, unit
 from ...spec import COMMON_FIELDS, Spec, common
 from . import urdf
 from .description_names import JOINT_NAME
@@ -98,9 +99,9 @@ def _limits(js: Spec, kind: str, unit: str) -> tuple[float, float]:
 
 def _unit(spec: Spec, field: str) -> np.ndarray:
     v = np.array(spec.vector(field, 3))
-    if not np.linalg.norm(v) > 1e-9:
+    if not norm(v) > 1e-9:
         raise spec.error(field, "a nonzero direction", list(v))
-    return v / np.linalg.norm(v)
+    return unit(v)
 
 
 def read(spec: Spec, path_hint: Path | None = None) -> Description:

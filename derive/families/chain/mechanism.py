@@ -24,6 +24,7 @@ from ...kinematics.planner import (
     replay,
 )
 from ...kinematics.poe import Chain, normalised, reduce_free, reverse
+from ...kinematics.same_bits import dot, norm
 from ...kinematics.subproblems import subproblem_checks
 from ...literals import c_num, floats, own_api_literals, vectors
 from ...mechanism import CApi, MechanismDefaults
@@ -291,10 +292,10 @@ class ChainMechanism(MechanismDefaults):
             js = [full(j) for j in rel.joints]
             if rel.kind == "parallel":
                 ref = axes[js[0]]
-                mean = sum(np.sign(np.dot(ref, axes[j])) * axes[j] for j in js)
-                mean /= np.linalg.norm(mean)
+                mean = sum(np.sign(dot(ref, axes[j])) * axes[j] for j in js)
+                mean /= norm(mean)
                 for j in js:
-                    axes[j] = np.sign(np.dot(ref, axes[j])) * mean
+                    axes[j] = np.sign(dot(ref, axes[j])) * mean
         for rel in relations:
             if rel.kind == "meet":
                 js = [full(j) for j in rel.joints]
@@ -335,7 +336,8 @@ class ChainMechanism(MechanismDefaults):
 
     def scale(self) -> float:
         c = self.chain
-        return max(1e-3, float(np.max(np.linalg.norm(c.points, axis=1))), float(np.linalg.norm(c.home[:3, 3])))
+        # same_bits: a generated constant (SCALE), the same on every CPU
+        return max(1e-3, *(norm(p) for p in c.points), norm(c.home[:3, 3]))
 
     def deviation(self) -> float:
         _, ideal = self.plan()

@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from ...kinematics.poe import from_frames, rpy_matrix, transform
+from ...kinematics.same_bits import matmul, norm
 from ...model import DescriptionError
 from .description_names import JOINT_NAME
 
@@ -212,7 +213,7 @@ class Model:
         """The unit axis of a movable joint (URDF's default x)."""
         a = j.element.find("axis")
         v = np.array(self.floats(a, "xyz", 3, (1.0, 0.0, 0.0)))
-        n = float(np.linalg.norm(v))
+        n = norm(v)
         if not n > 0.0:
             raise self.error(a, f"joint {j.name!r} is {j.type} with a zero axis")
         return v / n
@@ -334,7 +335,7 @@ def read(path: str | Path, base: str | None = None, tip: str | None = None, name
     t = np.eye(4)
     names, kinds, pairs, lower, upper, folded = [], [], [], [], [], []
     for j in path_joints:
-        t = t @ model.origin(j)
+        t = matmul(t, model.origin(j))  # the same bits on every CPU: these numbers become the solver's constants
         if j.type == "fixed":
             folded.append(j.name)
             continue
@@ -344,7 +345,7 @@ def read(path: str | Path, base: str | None = None, tip: str | None = None, name
         lo, hi = model.limits(j)
         names.append(j.name)
         kinds.append("P" if j.type == "prismatic" else "R")
-        pairs.append((t[:3, :3] @ axis, t[:3, 3].copy()))
+        pairs.append((matmul(t[:3, :3], axis), t[:3, 3].copy()))
         lower.append(lo)
         upper.append(hi)
     if not names:

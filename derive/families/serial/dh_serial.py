@@ -337,8 +337,11 @@ def _elimination_finds(spec: SerialSpec, st: Stage, at_fk) -> Check:
                             bool(reverse), hidden)
         return min((float(np.max(np.abs(np.remainder(np.array(c) - qs + math.pi, 2 * math.pi) - math.pi)))
                     for c in cands), default=math.inf)
+    # floor: the refined candidates' rounding on 40 poses moves with the eigensolver's kernels across a decade
+    # boundary (the Panda with joint1 held: < 1e-11 on this CPU's, < 1e-12 on Sandybridge's), so the audit, the same
+    # bytes on every CPU, states it below 1e-10
     return numeric_predicate(missed, "the elimination on the stage's outputs returns the generating joints",
-                             samples=40, tol=1e-6)
+                             samples=40, tol=1e-6, floor=1e-10)
 
 
 def wrist_stage(spec_rows_wrist, joints3, m_expr, title: str, rule: str, joint_idx) -> Stage:
