@@ -28,29 +28,30 @@ import numpy as np
 
 from .geometry import common_point
 from .poe import Chain
+from .same_bits import dot, norm  # the centres and the elbow point are generated constants
 
 SHOULDER, ELBOW, WRIST = (0, 1, 2), 3, (4, 5, 6)
 
 
 def arm_plane(h1, s, w):
     """(u, n1, n2): the unit from s to w, the first axis's part normal to it (unit), u x n1."""
-    u = (w - s) / np.linalg.norm(w - s)
-    n1 = h1 - np.dot(h1, u) * u
-    n1 = n1 / np.linalg.norm(n1)
+    u = (w - s) / norm(w - s)
+    n1 = h1 - dot(h1, u) * u
+    n1 = n1 / norm(n1)
     return u, n1, np.cross(u, n1)
 
 
 def angle_of(h1, s, e, w) -> float:
     """psi of the elbow point e."""
     u, n1, n2 = arm_plane(h1, s, w)
-    side = (e - s) - np.dot(e - s, u) * u
-    return math.atan2(float(np.dot(side, n2)), float(np.dot(side, n1)))
+    side = (e - s) - dot(e - s, u) * u
+    return math.atan2(dot(side, n2), dot(side, n1))
 
 
 def elbow_point(h1, s, w, psi, d_se, d_ew):
     """E(psi) (the definition above)."""
     u, n1, n2 = arm_plane(h1, s, w)
-    length = float(np.linalg.norm(w - s))
+    length = norm(w - s)
     cos_a = (d_se ** 2 + length ** 2 - d_ew ** 2) / (2.0 * d_se * length)
     sin_a = math.sqrt(max(0.0, 1.0 - cos_a ** 2))
     return s + d_se * (cos_a * u + sin_a * (math.cos(psi) * n1 + math.sin(psi) * n2))
@@ -61,7 +62,7 @@ def centres(c: Chain):
     s = common_point([c.points[j] for j in SHOULDER], [c.axes[j] for j in SHOULDER])[0]
     w = common_point([c.points[j] for j in WRIST], [c.axes[j] for j in WRIST])[0]
     he, pe = c.axes[ELBOW], c.points[ELBOW]
-    return s, pe + np.dot(he, s - pe) * he, w
+    return s, pe + dot(he, s - pe) * he, w
 
 
 def numerics() -> dict:
