@@ -11,6 +11,7 @@ buckets (derive/report_numbers.py)."""
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 
@@ -63,26 +64,15 @@ def rigid_inverse(t) -> np.ndarray:
 
 
 def solve_small(a, b, rel_pivot: float = 1e-12) -> np.ndarray | None:
-    """a^-1 b for a small square a by elimination with partial pivoting in Python floats, or None where a pivot is
-    at or below rel_pivot of a's largest entry (the caller's least squares decide; they are not the same bits
-    everywhere, but a rank-deficient system has no unique answer to print anyway)."""
-    m = [list(map(float, row)) + [float(x)] for row, x in zip(np.asarray(a).tolist(), np.asarray(b).tolist(),
-                                                              strict=True)]
-    n = len(m)
-    big = max(abs(x) for row in m for x in row[:n])
-    for k in range(n):
-        p = max(range(k, n), key=lambda i: abs(m[i][k]))
-        if not abs(m[p][k]) > rel_pivot * big:
-            return None
-        m[k], m[p] = m[p], m[k]
-        for i in range(k + 1, n):
-            f = m[i][k] / m[k][k]
-            for j in range(k + 1, n + 1):
-                m[i][j] -= f * m[k][j]
-    x = [0.0] * n
-    for i in range(n - 1, -1, -1):
-        acc = m[i][n]
-        for j in range(i + 1, n):
-            acc -= m[i][j] * x[j]
-        x[i] = acc / m[i][i]
-    return np.array(x)
+    """a^-1 b for a small square a by elimination with partial pivoting in Python floats (the runtime's
+    solve_square, which the C runtime's wk_square_solve mirrors step for step), or None where a pivot is at or below
+    rel_pivot of a's largest entry (the caller's least squares decide)."""
+    x = _runtime().solve_square(np.asarray(a, dtype=float).tolist(), np.asarray(b, dtype=float).tolist(), rel_pivot)
+    return None if x is None else np.array(x)
+
+
+@lru_cache(maxsize=1)
+def _runtime():
+    from .. import runtime_files
+
+    return runtime_files.load_python("python/_runtime.py")
