@@ -62,7 +62,8 @@ def derive(source, out: Path, **options) -> None:
     from derive import own_robot
 
     out = Path(out)
-    if os.environ.get("WRISTKIN_TEST_DERIVE_CACHE") == "0" or not _empty(out):
+    if (os.environ.get("WRISTKIN_TEST_DERIVE_CACHE") == "0" or not _empty(out)
+            or not isinstance(source, (str, Path)) or not Path(source).is_file()):
         own_robot.derive(source, out, progress=lambda _: None, **options)
         return
     entry = CACHE / key(source, options)

@@ -177,7 +177,7 @@ def test_a_user_s_own_c_file_in_the_folder_leaves_the_extension_built(tmp_path):
     main beside them made the build fail, and the solvers fell back to numpy with an empty reason."""
     if os.environ.get("WRISTKIN_BACKEND") == "numpy":
         pytest.skip("the numpy backend is forced")
-    own_robot.derive(ROBOTS / "kr6" / "kr6.urdf", tmp_path, name="kr6_mine", progress=lambda _: None)
+    derived_cache.derive(ROBOTS / "kr6" / "kr6.urdf", tmp_path, name="kr6_mine")
     # a timing harness as users write one: built on its own with -D_POSIX_C_SOURCE, which the extension's flags lack
     (tmp_path / "c" / "my_harness.c").write_text('#include <time.h>\n#include "kr6_mine.h"\n'
                                                  "int main(void) { struct timespec t; clock_gettime(CLOCK_MONOTONIC, "
@@ -491,7 +491,7 @@ def test_a_scara_with_equal_links_folded_keeps_both_elbows(tmp_path):
             ("prismatic", 0.0, "0", 0.0, 0.0), ("revolute", 0.0, "0", 0.1, 0.0)]
     spec = tmp_path / "scara_eq.toml"
     spec.write_text(_dh_spec("scara_eq", rows))
-    own_robot.derive(spec, tmp_path / "out", progress=lambda _: None)
+    derived_cache.derive(spec, tmp_path / "out")
     r = ref.load(spec)
     for backend in ("numpy", None):
         m = own_robot.import_solver(tmp_path / "out", "scara_eq", backend)
@@ -509,7 +509,7 @@ def test_chains_with_fewer_joints_and_slides(name, tmp_path):
     rows, words, max_sets = SMALL[name]
     spec = tmp_path / f"{name}.toml"
     spec.write_text(_dh_spec(name, rows))
-    own_robot.derive(spec, tmp_path / "out", progress=lambda _: None)
+    derived_cache.derive(spec, tmp_path / "out")
     m, r = own_robot.import_solver(tmp_path / "out", name), ref.load(spec)
     assert words in m.DECOMPOSITION and m.MAX_IK == max_sets
     rng = case_rng(19)
@@ -541,7 +541,7 @@ def test_a_wrist_at_the_base_is_solved_from_the_tool(tmp_path):
     spec = tmp_path / "backwards.toml"
     spec.write_text(poe_spec("backwards", "KR6 reversed", back.axes, back.points, back.home[:3, 3], rpy,
                              back.joint_names))
-    own_robot.derive(spec, tmp_path / "out", progress=lambda _: None)
+    derived_cache.derive(spec, tmp_path / "out")
     m, ref_chain = own_robot.import_solver(tmp_path / "out", "backwards"), ref.load(spec)
     assert m.DECOMPOSITION.startswith("from the tool") and m.MAX_IK == 8
     rng = case_rng(20)
@@ -564,7 +564,7 @@ def test_a_general_3r_arm_is_solved_by_its_polynomial(tmp_path):
     spec.write_text(poe_spec("skew3", "general 3R arm + wrist", **SKEW3))
     mods = []
     for stages in ("auto", "interpreted"):
-        own_robot.derive(spec, tmp_path / stages, progress=lambda _: None, native=False, stages=stages)
+        derived_cache.derive(spec, tmp_path / stages, native=False, stages=stages)
         mods.append(own_robot.import_solver(tmp_path / stages, "skew3"))
     derived, interpreted = mods
     assert derived.MAX_IK == interpreted.MAX_IK == 8 and "spatial3" in repr(interpreted._PLAN)
@@ -761,7 +761,7 @@ def test_panda_sets_meet_their_reported_residual_on_the_modules_own_fk(free, tmp
     9.8e-10 (measured on the held, reversed solver chain, not on base . chain . tool). The derived stages check a set
     on the FK from its joints' cos and sin as the stages gave them, fk_matrix takes them from the values: the two
     differ by the FK's own rounding (fk_rounding: 16 eps of the pose's size), which the bound allows."""
-    own_robot.derive(_file("panda", "dh"), tmp_path, name="panda_t", free=free, progress=lambda _: None, native=True)
+    derived_cache.derive(_file("panda", "dh"), tmp_path, name="panda_t", free=free, native=True)
     m = own_robot.import_solver(tmp_path, "panda_t")
     assert m.DESIGN_NAMES == (free,)
     rng = case_rng(31)
@@ -787,7 +787,7 @@ def test_panda_with_joint2_held_is_solved_away_from_its_self_motion(tmp_path):
     decomposition", joint1/joint3 collinear). Now planned at the sampled values away from those (the general 6R),
     the generating joints found at other values, and ik at joint2 within GEOMETRY_TOL of 0 or pi refused with
     InvalidDesign in C (WK_ERR_DESIGN, worded by the numpy path) and on numpy (it said "unreachable")."""
-    own_robot.derive(_file("panda", "dh"), tmp_path, name="panda_j2", free="joint2", progress=lambda _: None)
+    derived_cache.derive(_file("panda", "dh"), tmp_path, name="panda_j2", free="joint2")
     m = own_robot.import_solver(tmp_path, "panda_j2")
     py = own_robot.import_solver(tmp_path, "panda_j2", backend="numpy")
     if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
@@ -818,7 +818,7 @@ def test_panda_with_joint6_held_is_solved_where_its_joints_5_and_7_meet(tmp_path
     0 or pi (the meeting point at infinity) ik refuses the held value with InvalidDesign, naming the axes. None of the
     multistart reference's sets missing, none spurious (each distinct and reaching the pose on the description's own
     products), C and numpy, also 1e-4 from the refused values (the meeting point 880 m away)."""
-    own_robot.derive(_file("panda", "dh"), tmp_path, name="panda_j6", free="joint6", progress=lambda _: None)
+    derived_cache.derive(_file("panda", "dh"), tmp_path, name="panda_j6", free="joint6")
     m = own_robot.import_solver(tmp_path, "panda_j6")
     py = own_robot.import_solver(tmp_path, "panda_j6", backend="numpy")
     if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback

@@ -133,7 +133,7 @@ def test_a_joint_named_as_the_kernels_own_names_is_renamed_in_them(tmp_path):
                               for n, t, a in (("c", "revolute", "[0, 0, 1]"), ("s", "prismatic", "[0, 0, 1]"),
                                               ("t3", "prismatic", "[1, 0, 0]")))
                     + "[home]\nposition = [0.2, 0, 0]\n")
-    own_robot.derive(spec, tmp_path / "out", stages="derived", progress=lambda _: None)
+    derived_cache.derive(spec, tmp_path / "out", stages="derived")
     m = own_robot.import_solver(tmp_path / "out", "names")
     assert m.JOINT_NAMES == ("c", "s", "t3")
     if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
@@ -193,8 +193,7 @@ def test_a_five_joint_arm_answers_what_it_cannot_reach_with_what_it_controls(tmp
     about h_5): its reachable poses are a 5-dimensional set, so a reachable pose turned about a random direction
     is out of reach; it is refused, C and numpy alike, with what the chain controls, as the interpreter does."""
     m, py, _ = derived("youbot")
-    own_robot.derive(_file("youbot", "urdf"), tmp_path, name="youbot_interp", native=False, stages="interpreted",
-                     progress=lambda _: None)
+    derived_cache.derive(_file("youbot", "urdf"), tmp_path, name="youbot_interp", native=False, stages="interpreted")
     interp = own_robot.import_solver(tmp_path, "youbot_interp")
     reference = ref.load(_file("youbot", "urdf"))
     rng = case_rng(2304)
@@ -414,7 +413,7 @@ def test_a_held_slide_is_the_design_and_the_arm_solves_around_it(tmp_path):
     spec = _on_a_rail(tmp_path)
     mods = []
     for stages in ("derived", "interpreted"):
-        own_robot.derive(spec, tmp_path / stages, stages=stages, free="rail", progress=lambda _: None)
+        derived_cache.derive(spec, tmp_path / stages, stages=stages, free="rail")
         mods.append(own_robot.import_solver(tmp_path / stages, "kr6_rail"))
     m, interp = mods
     py = own_robot.import_solver(tmp_path / "derived", "kr6_rail", backend="numpy")
@@ -455,7 +454,7 @@ def test_a_slide_placed_by_a_distance_is_a_quadratic_stage_with_both_roots(tmp_p
     spec.write_text(STANFORD)
     mods = []
     for stages in ("derived", "interpreted"):
-        own_robot.derive(spec, tmp_path / stages, stages=stages, progress=lambda _: None)
+        derived_cache.derive(spec, tmp_path / stages, stages=stages)
         mods.append(own_robot.import_solver(tmp_path / stages, "stanford"))
     m, interp = mods
     py = own_robot.import_solver(tmp_path / "derived", "stanford", backend="numpy")
@@ -502,8 +501,7 @@ def test_the_derived_module_offers_what_the_interpreted_one_does(robot, tmp_path
     select(branch=) a set of that branch), the same pose forms (xyz + rpy, quaternion) and the same command line
     (the sets' branches and values, text and JSON)."""
     m, _, out = derived(robot)
-    own_robot.derive(_file(robot, "urdf"), tmp_path, name=f"{robot}_interp", native=False, stages="interpreted",
-                     progress=lambda _: None)
+    derived_cache.derive(_file(robot, "urdf"), tmp_path, name=f"{robot}_interp", native=False, stages="interpreted")
     interp = own_robot.import_solver(tmp_path, f"{robot}_interp")
     public = {n for n in dir(interp) if not n.startswith("_")} - INTERPRETER_ONLY
     assert public <= {n for n in dir(m) if not n.startswith("_")}
@@ -553,12 +551,11 @@ def test_base_and_tool_frames_replace_the_description_s_as_in_the_interpreted_mo
     as the interpreted module's with the same frames (1e-12); IK of such a pose returns the generating joints, in C
     and on numpy."""
     path = _file("kr6", "dh")
-    own_robot.derive(path, tmp_path / "d", name="kr6_framed", stages="derived", progress=lambda _: None)
+    derived_cache.derive(path, tmp_path / "d", name="kr6_framed", stages="derived")
     m = own_robot.import_solver(tmp_path / "d", "kr6_framed")
     py = own_robot.import_solver(tmp_path / "d", "kr6_framed", backend="numpy")
     reference = ref.load(path)
-    own_robot.derive(path, tmp_path / "i", name="kr6_interp", native=False, stages="interpreted",
-                     progress=lambda _: None)
+    derived_cache.derive(path, tmp_path / "i", name="kr6_interp", native=False, stages="interpreted")
     interp = own_robot.import_solver(tmp_path / "i", "kr6_interp")
     assert m._TOOL != m._BASE and np.array_equal(m._TOOL, interp.make_design().tool)
     assert np.array_equal(m._BASE, interp.make_design().base)
@@ -933,8 +930,8 @@ def test_a_twist_off_the_5_degree_grid_is_derived_with_the_interpreter_s_sets(tm
     pi/36"). The twisted KR 6 (--stages auto: derived) on 60 random poses of the reference's FK: the same set counts
     as the interpreter's, the generating joints among them (1e-9 + 1e-13 / sigma_min), C equal to numpy."""
     path = _twisted_kr6(tmp_path)
-    own_robot.derive(path, tmp_path / "d", progress=lambda _: None)
-    own_robot.derive(path, tmp_path / "i", stages="interpreted", native=False, progress=lambda _: None)
+    derived_cache.derive(path, tmp_path / "d")
+    derived_cache.derive(path, tmp_path / "i", stages="interpreted", native=False)
     m, py = (own_robot.import_solver(tmp_path / "d", "kr6_twisted", backend=b) for b in (None, "numpy"))
     interp = own_robot.import_solver(tmp_path / "i", "kr6_twisted")
     assert hasattr(m, "ROOT_GAP_TOL") and not hasattr(m, "FAMILY_TOL")
@@ -1082,7 +1079,7 @@ def test_description_files_as_shipped_are_derived(case, tmp_path):
     options = dict(options)
     if "packages" in options:
         options["packages"] = {k: str(_rtb(v)) for k, v in options["packages"].items()}
-    own_robot.derive(_rtb(rel), tmp_path, name=case, stages="derived", native=False, progress=lambda _: None,
+    derived_cache.derive(_rtb(rel), tmp_path, name=case, stages="derived", native=False,
                      **options)
     m = own_robot.import_solver(tmp_path, case)
     reference = ref.urdf_fk(_rtb(twin), base, tip)
@@ -1119,7 +1116,7 @@ def test_a_wrist_of_another_form_is_read_from_its_axes(tmp_path):
     1e-6 + 1e-13 / delta."""
     spec = tmp_path / "w60.toml"
     spec.write_text(W60)
-    own_robot.derive(spec, tmp_path / "out", stages="derived", native=False, progress=lambda _: None)
+    derived_cache.derive(spec, tmp_path / "out", stages="derived", native=False)
     m = own_robot.import_solver(tmp_path / "out", "w60")
     assert "wrist" not in {st.kind for st in own_robot.load(spec, stages="derived").spec.stages}
     reference = ref.load(spec)

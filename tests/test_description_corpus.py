@@ -18,6 +18,7 @@ import sys
 import warnings
 from pathlib import Path
 
+import derived_cache
 import numpy as np
 import pytest
 from reference import chain as ref
@@ -102,7 +103,7 @@ def corpus_solver(key: str, tmp_path_factory):
         tmp = tmp_path_factory.mktemp(key)
         # the reader is given the packages that its own search would not find (kuka's *_support names)
         given = {k: str(v()) for k, v in packages.items() if "support" in k}
-        own_robot.derive(file, tmp / "out", name=key, progress=lambda _: None, native=key.startswith("pybullet"),
+        derived_cache.derive(file, tmp / "out", name=key, native=key.startswith("pybullet"),
                          xacro_args=args, packages=given, **options)
         solver = own_robot.import_solver(tmp / "out", key)
         urdf = twin() if twin else file if file.suffix == ".urdf" else _expanded_by_xacro(file, packages, args, tmp)
