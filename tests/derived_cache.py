@@ -66,10 +66,10 @@ def derive(source, out: Path, **options) -> None:
             or not isinstance(source, (str, Path)) or not Path(source).is_file()):
         own_robot.derive(source, out, progress=lambda _: None, **options)
         return
-    entry = CACHE / key(source, options)
+    folder = _folder()
+    entry = folder / key(source, options)
     if not entry.is_dir():
-        CACHE.mkdir(parents=True, exist_ok=True)
-        fresh = Path(tempfile.mkdtemp(prefix="fresh-", dir=CACHE))
+        fresh = Path(tempfile.mkdtemp(prefix="fresh-", dir=folder))
         try:
             own_robot.derive(source, fresh, progress=lambda _: None, **options)
         except BaseException:
@@ -82,7 +82,14 @@ def derive(source, out: Path, **options) -> None:
     shutil.copytree(entry, out, dirs_exist_ok=True)
 
 
-def entry(source, options: dict) -> Path | None:
-    """The folder an earlier derivation of these inputs left, if any."""
-    path = CACHE / key(source, options)
-    return path if path.is_dir() else None
+def _folder() -> Path:
+    """This tree's entries (CACHE/<tree key>); the first use on a tree removes the entries of earlier trees, so the
+    cache holds one tree's derivations (~30 MB), not every edit's."""
+    folder = CACHE / _tree_key()[:16]
+    if not folder.is_dir():
+        if CACHE.is_dir():
+            for old in CACHE.iterdir():
+                if old.name != folder.name:
+                    shutil.rmtree(old, ignore_errors=True)
+        folder.mkdir(parents=True, exist_ok=True)
+    return folder
