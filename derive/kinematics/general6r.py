@@ -305,8 +305,14 @@ def _samples(chains, rng: np.random.Generator) -> tuple[list, int]:
         if q is None:
             continue
         near += i >= RANDOM_SAMPLES
-        out.append((g6.g6_z_frames(chain.axes, chain.points), chain.home, q, chain.fk(q)))
+        out.append(_sample(g6, chain, q))
     return out, near
+
+
+def _sample(g6, chain: Chain, q) -> tuple:
+    """(frames, home, joints, pose) of one sampled pose, as _misses and _work read it (g6: the runtime's numerics,
+    loaded once by the caller)."""
+    return g6.g6_z_frames(chain.axes, chain.points), chain.home, q, chain.fk(q)
 
 
 def _misses(option, samples) -> int:
@@ -377,11 +383,7 @@ def choose_labelling(chains, rng: np.random.Generator, poses: int = 4) -> Labell
         o = sc[:3]
         return misses[o], o not in work or work[o] > WORK_SLACK * cheapest, regular.index(sc)
     order = sorted(regular, key=rank)
-    extra = []
-    for i in range(VALIDATION_SAMPLES):
-        chain = chains[i % len(chains)]
-        q = rng.uniform(-np.pi, np.pi, 6)
-        extra.append((g6.g6_z_frames(chain.axes, chain.points), chain.home, q, chain.fk(q)))
+    extra = [_sample(g6, chains[i % len(chains)], rng.uniform(-np.pi, np.pi, 6)) for i in range(VALIDATION_SAMPLES)]
     valid = next((sc for sc in order[:VALIDATED] if misses[sc[:3]] == fewest and _misses(sc[:3], extra) == 0),
                  order[0])
     order.remove(valid)
