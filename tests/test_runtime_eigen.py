@@ -59,6 +59,8 @@ def lib():
     so.wk_null_vector.restype = ctypes.c_int
     so.wk_null_vector_lu.argtypes = [ctypes.c_int, _DP, _DP, ctypes.POINTER(ctypes.c_double)]
     so.wk_null_vector_lu.restype = ctypes.c_int
+    so.wk_small_singular_vectors.argtypes = [ctypes.c_int, _DP, ctypes.c_int, _DP, _DP]
+    so.wk_small_singular_vectors.restype = ctypes.c_int
     return so
 
 
@@ -599,6 +601,48 @@ def test_null_vector_against_svd(lib, m):
                 assert min(np.linalg.norm(v - vt), np.linalg.norm(v + vt)) <= slack / gap * 4
         else:
             assert rel[1] == 1.0
+
+
+@pytest.mark.parametrize("m", [1, 2, 5, 12])
+def test_small_singular_vectors_against_svd(lib, m):
+    """The k smallest right singular vectors (a general 6R cluster's subspace): the singular values ascending and
+    within backward error of LAPACK's, each vector a unit one with |M v_j| = sigma_j to that error, the k of them
+    orthonormal, and their span the reference's where the gap after sigma_k determines it (angle <= c m eps /
+    gap). A cluster of three singular values 1e-9 .. 1e-6 with a gap of 1e-3 after it is the 6R's case."""
+    rng = case_rng(9340 + m)
+    for trial in range(6):
+        M = rng.standard_normal((m, m))
+        if trial % 2 == 1 and m > 3:
+            u, s, vh = np.linalg.svd(M)
+            s[-3:] = s[0] * np.array([1e-6, 1e-7, 1e-9])
+            s[:-3] = np.maximum(s[:-3], 1e-3 * s[0])
+            M = (u * s) @ vh
+        k = min(m, 3)
+        v, rel = np.full(k * m + 2, 7.25), np.full(m + 2, 7.25)
+        assert lib.wk_small_singular_vectors(m, np.ascontiguousarray(M), k, v, rel) == OK
+        assert list(v[k * m:]) == [7.25, 7.25] and list(rel[m:]) == [7.25, 7.25]
+        v, rel = v[: k * m].reshape(k, m), rel[:m]
+        u, s, vh = np.linalg.svd(M)
+        slack = C_BACK * m * EPS
+        assert np.all(np.diff(rel) >= 0.0)
+        assert np.max(np.abs(rel - s[::-1] / s[0])) <= slack
+        assert np.max(np.abs(v @ v.T - np.eye(k))) <= slack
+        for j in range(k):
+            assert abs(np.linalg.norm(M @ v[j]) - s[m - 1 - j]) <= slack * s[0]
+        if k < m and s[m - k - 1] - s[m - k] > 1e-6 * s[0]:
+            ref = vh[m - k:]  # the reference span's basis
+            sines = np.linalg.svd(v @ ref.T, compute_uv=False)
+            assert np.min(sines) >= 1.0 - slack * s[0] / (s[m - k - 1] - s[m - k])
+
+
+def test_small_singular_vectors_refuses_bad_input(lib):
+    M = np.eye(4)
+    v, rel = np.zeros(16), np.zeros(4)
+    assert lib.wk_small_singular_vectors(4, M, 0, v, rel) != OK
+    assert lib.wk_small_singular_vectors(4, M, 5, v, rel) != OK
+    bad = M.copy()
+    bad[1, 2] = np.nan
+    assert lib.wk_small_singular_vectors(4, bad, 2, v, rel) != OK
 
 
 def test_null_vector_of_the_quadratic_at_its_eigenvalues(lib):

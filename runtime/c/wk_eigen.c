@@ -677,15 +677,12 @@ int wk_generalized_quadratic_eig(int m, const double *A, const double *B, const 
  * of W, which for sigma ~ 0 would be rounding noise. Each sigma is within ~ c m eps sigma_max (relatively
  * accurate when M is a well-conditioned matrix times a column scaling: Demmel & Veselic). At most 60 sweeps
  * (quadratic convergence: ~6-8 at m = 12, ~20 us on the bench machine). */
-int wk_null_vector(int m, const double *M, double *v, double *rel)
+/* The one-sided Jacobi sweeps of wk_null_vector: V (m x m, row-major) receives the right singular vectors as its
+ * columns and sig the singular values of M / 2^e (unordered; e an exact power-of-two scaling, the same for all). */
+static int wk_jacobi_right(int m, const double *M, double *V, double *sig)
 {
-    double W[WK_NULL_MAXM * WK_NULL_MAXM], V[WK_NULL_MAXM * WK_NULL_MAXM], sig[WK_NULL_MAXM];
-    double smax = 0.0;
-    int i, j, p, q, sweep, rotated = 1, e, jmin = 0, j2 = -1;
-    if (!M || !v || m < 1 || m > WK_NULL_MAXM)
-        return WK_EIG_ERR_INPUT;
-    if (!wk_eig_finite(m * m, M))
-        return WK_EIG_ERR_INPUT;
+    double W[WK_NULL_MAXM * WK_NULL_MAXM];
+    int i, j, p, q, sweep, rotated = 1, e;
     e = wk_eig_exponent(m * m, M);
     for (i = 0; i < m * m; ++i) {
         W[i] = ldexp(M[i], -e);
@@ -736,6 +733,23 @@ int wk_null_vector(int m, const double *M, double *v, double *rel)
             for (i = 0; i < m; ++i)
                 ss += (W[i * m + j] / amax) * (W[i * m + j] / amax);
         sig[j] = amax * sqrt(ss); /* scaled sum: a tiny column's norm does not underflow */
+    }
+    return WK_EIG_OK;
+}
+
+int wk_null_vector(int m, const double *M, double *v, double *rel)
+{
+    double V[WK_NULL_MAXM * WK_NULL_MAXM], sig[WK_NULL_MAXM];
+    double smax = 0.0;
+    int i, j, jmin = 0, j2 = -1, rc;
+    if (!M || !v || m < 1 || m > WK_NULL_MAXM)
+        return WK_EIG_ERR_INPUT;
+    if (!wk_eig_finite(m * m, M))
+        return WK_EIG_ERR_INPUT;
+    rc = wk_jacobi_right(m, M, V, sig);
+    if (rc != WK_EIG_OK)
+        return rc;
+    for (j = 0; j < m; ++j) {
         if (sig[j] > smax)
             smax = sig[j];
         if (sig[j] < sig[jmin])
@@ -750,6 +764,36 @@ int wk_null_vector(int m, const double *M, double *v, double *rel)
         rel[0] = smax > 0.0 ? sig[jmin] / smax : 0.0;
         rel[1] = j2 < 0 ? 1.0 : (smax > 0.0 ? sig[j2] / smax : 0.0);
     }
+    return WK_EIG_OK;
+}
+
+int wk_small_singular_vectors(int m, const double *M, int k, double *v, double *rel)
+{
+    double V[WK_NULL_MAXM * WK_NULL_MAXM], sig[WK_NULL_MAXM];
+    int order[WK_NULL_MAXM], i, j, rc;
+    double smax = 0.0;
+    if (!M || !v || !rel || m < 1 || m > WK_NULL_MAXM || k < 1 || k > m)
+        return WK_EIG_ERR_INPUT;
+    if (!wk_eig_finite(m * m, M))
+        return WK_EIG_ERR_INPUT;
+    rc = wk_jacobi_right(m, M, V, sig);
+    if (rc != WK_EIG_OK)
+        return rc;
+    for (j = 0; j < m; ++j) { /* ascending by insertion, ties in column order (stable) */
+        int at = j;
+        while (at > 0 && sig[order[at - 1]] > sig[j]) {
+            order[at] = order[at - 1];
+            --at;
+        }
+        order[at] = j;
+        if (sig[j] > smax)
+            smax = sig[j];
+    }
+    for (j = 0; j < m; ++j)
+        rel[j] = smax > 0.0 ? sig[order[j]] / smax : 0.0;
+    for (j = 0; j < k; ++j)
+        for (i = 0; i < m; ++i)
+            v[j * m + i] = V[i * m + order[j]];
     return WK_EIG_OK;
 }
 

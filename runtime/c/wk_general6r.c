@@ -305,7 +305,8 @@ static int g6_small_solve(int k, double *a, double *b)
     return 1;
 }
 
-#define G6_MAXK 4
+#define G6_MAXK 4 /* the most solutions one root's (nearly) shared null space gives */
+#define G6_MAXV (1 + G6_MAXK) /* a root's vectors: its null vector and a cluster's G6_MAXK */
 
 /* max |a[i][j]| over i, j >= k of the 12 x 12 a (-1 when every entry there is NaN): four running maxima, not one
  * chain of compare-and-move through (12 - k)^2 entries, which bounded the complete pivoting's time */
@@ -334,8 +335,9 @@ static double g6_abs_max(const double *a, int k)
 
 /* The null vector of M (12 x 12) by LU with complete pivoting (rank-revealing in practice: the pivots decrease):
  * U's last pivot ~ 0, the rest solved by back substitution with z_last = 1. Returns 0 (the caller takes the SVD
- * path) when the second-smallest pivot is within WK_G6_NULL_TOL of the largest: a null space of dimension > 1. */
-static int g6_lu_null(const double *M, double *v)
+ * path) when the second-smallest pivot is within WK_G6_NULL_TOL of the largest: a null space of dimension > 1;
+ * second receives that ratio. */
+static int g6_lu_null(const double *M, double *v, double *second)
 {
     double a[144], z[12], big, norm = 0.0;
     int rp[12], cp[12], i, j, k;
@@ -375,7 +377,8 @@ static int g6_lu_null(const double *M, double *v)
             a[12 * i + k] = 0.0;
         }
     }
-    if (!(fabs(a[12 * 10 + 10]) > WK_G6_NULL_TOL * fabs(a[0]))) return 0;
+    *second = fabs(a[0]) > 0.0 ? fabs(a[12 * 10 + 10]) / fabs(a[0]) : 0.0;
+    if (!(*second > WK_G6_NULL_TOL)) return 0;
     z[11] = 1.0;
     for (i = 10; i >= 0; --i) {
         double s = 0.0;
@@ -388,71 +391,84 @@ static int g6_lu_null(const double *M, double *v)
     return 1;
 }
 
-/* The monomial vectors in the null space of M (12 x 12): its null vector, or, where k > 1 solutions share the
- * hidden angle, the k vectors with the shift structure u^(i+1) v^j = u u^i v^j (eigenvectors of a k x k pencil).
- * Returns how many were written to m (rows of 12). */
-static int g6_monomial_vectors(const double *M, double m[G6_MAXK][12])
+/* The vectors of the span of basis (k rows of 12) with the shift structure u^(i+1) v^j = u u^i v^j: eigenvectors of
+ * the k x k pencil it gives, those with a real u (|Im u| <= real_tol (1 + |u|)), written to m. Returns how many. */
+static int g6_shift_vectors(double basis[G6_MAXK][12], int k, double real_tol, double m[][12])
 {
-    double work[144], basis[G6_MAXK][12], rel[2], scale = 0.0;
-    int k = 0, i, j, c;
-    if (g6_lu_null(M, m[0])) return 1; /* a simple root: the LU's null vector (the SVD below is 20x slower) */
-    for (i = 0; i < 144; ++i) scale += M[i] * M[i];
-    scale = sqrt(scale);
-    memcpy(work, M, sizeof work);
-    while (k < G6_MAXK) {
-        if (wk_null_vector(12, work, basis[k], rel) != WK_EIG_OK) return 0;
-        ++k;
-        if (!(rel[1] <= WK_G6_NULL_TOL)) break;
-        /* the next null direction: push this one's singular value up to the matrix's size */
-        for (i = 0; i < 12; ++i)
-            for (j = 0; j < 12; ++j) work[12 * i + j] += scale * basis[k - 1][i] * basis[k - 1][j];
-    }
-    if (k == 1) {
-        memcpy(m[0], basis[0], sizeof m[0]);
-        return 1;
-    }
-    {
-        double down[9][G6_MAXK], up[9][G6_MAXK], nd = 0.0, nu = 0.0, lhs[G6_MAXK * G6_MAXK], rhs[G6_MAXK * G6_MAXK];
-        double e[G6_MAXK * G6_MAXK], wr[G6_MAXK], wi[G6_MAXK], wk[WK_EIG_WORK(G6_MAXK)];
-        int n = 0, swap;
-        for (i = 0; i < 9; ++i)
-            for (c = 0; c < k; ++c) {
-                down[i][c] = basis[c][i];
-                up[i][c] = basis[c][i + 3];
-                nd += down[i][c] * down[i][c];
-                nu += up[i][c] * up[i][c];
-            }
-        swap = nd < nu; /* u large: read the shift the other way (1 / u), better scaled */
-        /* normal equations of the least-squares E with lhs E = rhs (9 x k each) */
-        for (i = 0; i < k; ++i)
-            for (j = 0; j < k; ++j) {
-                double s = 0.0, t = 0.0;
-                for (c = 0; c < 9; ++c) {
-                    const double li = swap ? up[c][i] : down[c][i];
-                    s += li * (swap ? up[c][j] : down[c][j]);
-                    t += li * (swap ? down[c][j] : up[c][j]);
-                }
-                lhs[i * k + j] = s;
-                rhs[i * k + j] = t;
-            }
-        if (!g6_small_solve(k, lhs, rhs)) return 0;
-        memcpy(e, rhs, sizeof(double) * (size_t)(k * k));
-        if (wk_eig_real(k, e, wr, wi, wk) != WK_EIG_OK) return 0;
+    double down[9][G6_MAXK], up[9][G6_MAXK], nd = 0.0, nu = 0.0, lhs[G6_MAXK * G6_MAXK], rhs[G6_MAXK * G6_MAXK];
+    double e[G6_MAXK * G6_MAXK], wr[G6_MAXK], wi[G6_MAXK], wk[WK_EIG_WORK(G6_MAXK)];
+    int n = 0, swap, i, j, c;
+    for (i = 0; i < 9; ++i)
         for (c = 0; c < k; ++c) {
-            double shifted[G6_MAXK * G6_MAXK], vec[G6_MAXK], r2[2];
-            if (!(fabs(wi[c]) <= 1e-6 * (1.0 + fabs(wr[c])))) continue;
-            memcpy(shifted, rhs, sizeof(double) * (size_t)(k * k));
-            for (i = 0; i < k; ++i) shifted[i * k + i] -= wr[c];
-            if (wk_null_vector(k, shifted, vec, r2) != WK_EIG_OK) continue;
-            for (i = 0; i < 12; ++i) {
-                double s = 0.0;
-                for (j = 0; j < k; ++j) s += basis[j][i] * vec[j];
-                m[n][i] = s;
-            }
-            ++n;
+            down[i][c] = basis[c][i];
+            up[i][c] = basis[c][i + 3];
+            nd += down[i][c] * down[i][c];
+            nu += up[i][c] * up[i][c];
         }
-        return n;
+    swap = nd < nu; /* u large: read the shift the other way (1 / u), better scaled */
+    /* normal equations of the least-squares E with lhs E = rhs (9 x k each) */
+    for (i = 0; i < k; ++i)
+        for (j = 0; j < k; ++j) {
+            double s = 0.0, t = 0.0;
+            for (c = 0; c < 9; ++c) {
+                const double li = swap ? up[c][i] : down[c][i];
+                s += li * (swap ? up[c][j] : down[c][j]);
+                t += li * (swap ? down[c][j] : up[c][j]);
+            }
+            lhs[i * k + j] = s;
+            rhs[i * k + j] = t;
+        }
+    if (!g6_small_solve(k, lhs, rhs)) return 0;
+    memcpy(e, rhs, sizeof(double) * (size_t)(k * k));
+    if (wk_eig_real(k, e, wr, wi, wk) != WK_EIG_OK) return 0;
+    for (c = 0; c < k; ++c) {
+        double shifted[G6_MAXK * G6_MAXK], vec[G6_MAXK], r2[2];
+        if (!(fabs(wi[c]) <= real_tol * (1.0 + hypot(wr[c], wi[c])))) continue;
+        memcpy(shifted, rhs, sizeof(double) * (size_t)(k * k));
+        for (i = 0; i < k; ++i) shifted[i * k + i] -= wr[c];
+        if (wk_null_vector(k, shifted, vec, r2) != WK_EIG_OK) continue;
+        for (i = 0; i < 12; ++i) {
+            double s = 0.0;
+            for (j = 0; j < k; ++j) s += basis[j][i] * vec[j];
+            m[n][i] = s;
+        }
+        ++n;
     }
+    return n;
+}
+
+/* sigma_2 / sigma_max of M(x) up to this (above WK_G6_NULL_TOL): x is one of a cluster of nearly equal roots, whose
+ * k <= G6_MAXK smallest singular vectors give the cluster's solutions (general6r.py's G6_CLUSTER_TOL says why) */
+#define G6_CLUSTER_TOL 1e-4
+#define G6_CLUSTER_REAL_TOL 1e-3 /* the shift pencil's |Im u| / (1 + |u|) up to this on a cluster's subspace */
+#define G6_SHIFT_REAL_TOL 1e-6   /* the same on an exact null space */
+/* the LU's second-smallest pivot over its first above this: no cluster (the SVD is not run). Complete pivoting's
+ * pivots track the singular values within a modest factor at m = 12; 100 leaves room for it */
+#define G6_CLUSTER_SCREEN 1e-2
+
+/* The monomial vectors of the root x with M = M(x) (12 x 12), as general6r.py's _g6_monomial_vectors: its null
+ * vector; where k > 1 solutions share the hidden angle (a null space of dimension k) the k vectors of that space
+ * with the shift structure instead; and where they share it only nearly (a cluster), the null vector and the
+ * cluster subspace's vectors. Returns how many were written to m (rows of 12). */
+static int g6_monomial_vectors(const double *M, double m[G6_MAXV][12])
+{
+    double basis[G6_MAXK][12], rel[12], second = 0.0;
+    int n = 0, k = 0;
+    if (g6_lu_null(M, m[0], &second)) {
+        n = 1; /* a simple root: the LU's null vector (the SVD below is 20x slower) */
+        if (second > G6_CLUSTER_SCREEN) return 1;
+    }
+    if (wk_small_singular_vectors(12, M, G6_MAXK, basis[0], rel) != WK_EIG_OK) return n;
+    while (k < 12 && rel[k] <= WK_G6_NULL_TOL) ++k;
+    if (k > 1) /* an exact multiple root: its null space's vectors only */
+        return g6_shift_vectors(basis, k < G6_MAXK ? k : G6_MAXK, G6_SHIFT_REAL_TOL, m);
+    if (n == 0) { /* the LU's pivots said a null space of dimension > 1, the singular values one */
+        memcpy(m[0], basis[0], sizeof m[0]);
+        n = 1;
+    }
+    k = 0;
+    while (k < G6_MAXK && rel[k] <= G6_CLUSTER_TOL) ++k;
+    return k > 1 ? n + g6_shift_vectors(basis, k, G6_CLUSTER_REAL_TOL, m + n) : n;
 }
 
 /* ------------------------------------------------------------------ hidden t3: the (1 + x^2)^4 deflated
@@ -1174,7 +1190,7 @@ static int g6_emit(const double *A, const double *B, const double *C, double x, 
                    double links[6][16], double P[G6_NEQ][27], const g6_qr *f, const int *joints, double sign,
                    const double *frames, const double *home, const double *pose, double *q, int n, int max_out)
 {
-    double M[144], m[G6_MAXK][12], angles[3];
+    double M[144], m[G6_MAXV][12], angles[3];
     const int a = hidden == 0 ? 1 : 0, b = hidden == 2 ? 1 : 2;
     int i, c, count;
     for (i = 0; i < 144; ++i) M[i] = infinite ? A[i] : (A[i] * x + B[i]) * x + C[i];

@@ -16,7 +16,7 @@
 extern "C" {
 #endif
 
-#define WK_G6_MAX_CANDIDATES 48 /* 24 eigenvalues, a shared hidden angle giving up to 4 sets each: capped */
+#define WK_G6_MAX_CANDIDATES 120 /* 24 eigenvalues, each giving its null vector and a cluster's 4 at most */
 #define WK_G6_NULL_TOL 1e-8     /* sigma / sigma_max of M(x) up to this spans its null space */
 #define WK_G6_REFINE_STEPS 8    /* Newton steps per candidate at most (a simple root: 1-2 to rounding, then it stops;
                                    a double root converges linearly, halving the distance per step) */

@@ -75,6 +75,16 @@ G6_NULL_TOL = 1e-8  # singular values of M(x) up to this x the largest span its 
 # down to rcond ~1e-6. A genuinely complex pair that close gives a candidate the verification rejects.
 G6_REAL_TOL = 1e-4
 G6_SHIFT_REAL_TOL = 1e-6  # the same for the k x k shift pencil's eigenvalues u (k solutions sharing the hidden angle)
+# sigma_2 / sigma_max of M(x) up to this (above G6_NULL_TOL): x is one of a cluster of nearly equal roots. Where k
+# solutions share a hidden angle only nearly (a near-special arm: the KR 6 1e-5 from a spherical wrist hides a joint
+# whose four solutions agree to ~1e-5, more so near its wrist singularity), the cluster's eigenvalues are nearly
+# defective and resolve to eps^(1/k) at best: 0.13 rad apart where the solutions are 1e-5, and C's and LAPACK's
+# eigensolvers then find different members, some as complex pairs. Their invariant subspace is well determined: the
+# k <= G6_MAXK singular vectors of M(x) below this give the k solutions' monomial vectors through the shift pencil,
+# as for an exact multiple root, from any member near the cluster; offered besides the root's own null vector.
+G6_CLUSTER_TOL = 1e-4
+G6_CLUSTER_REAL_TOL = 1e-3  # the shift pencil's |Im u| / (1 + |u|) up to this on a cluster's approximate subspace
+G6_MAXK = 4  # the most solutions a cluster's subspace gives (the C runtime's fixed arrays)
 _G6_PHIS = (0.0, 2.0 * math.pi / 3.0, -2.0 * math.pi / 3.0, math.pi / 2.0)
 _G6_BLOCKS = (0, 3, 8, 11)  # the x rows of the 14's vectors l, p, p x l, (p.p) l - 2 (p.l) p (y follows)
 G6_RCOND_GOOD = 1e-4  # the deflated K this well conditioned (equilibrated rows): no further origin phi tried
@@ -324,13 +334,13 @@ def _g6_real_roots(links, hidden):
 
 def g6_candidates(links, hidden=0):
     """Loop angles (t1..t6) of every real root of the eliminated system for the loop's links."""
-    pc, qpinv, phi, xs, ms, svs, vts = _g6_real_roots(links, hidden)
+    pc, qpinv, phi, xs, _, svs, vts = _g6_real_roots(links, hidden)
     others = [k for k in range(3) if k != hidden]
     if len(xs) == 0:
         return []
     angles = []
-    for x, m, sv, vt in zip(xs, ms, svs, vts, strict=True):
-        vs = [vt[-1]] if np.sum(sv <= G6_NULL_TOL * sv[0]) <= 1 else _g6_monomial_vectors(m)
+    for x, sv, vt in zip(xs, svs, vts, strict=True):
+        vs = _g6_monomial_vectors(sv, vt)
         for v in vs:
             row = [0.0, 0.0, 0.0]
             row[hidden] = phi + 2.0 * math.atan(x)
@@ -339,22 +349,28 @@ def g6_candidates(links, hidden=0):
     return _g6_complete_many(np.array(angles), links, pc, qpinv) if angles else []
 
 
-def _g6_monomial_vectors(m):
-    """The monomial vectors u^i v^j in the null space of M(x): its null vector, or, where several solutions share
-    the hidden angle (a null space of dimension k > 1, e.g. a wrist's two flips), the k vectors of that space
-    with the shift structure u^(i+1) v^j = u u^i v^j: eigenvectors of the k x k pencil it gives."""
-    _, sv, vt = np.linalg.svd(m)
-    k = max(1, int(np.sum(sv <= G6_NULL_TOL * sv[0])))
-    if k == 1:
-        return [vt[-1]]
-    basis = vt[-k:].T  # 12 x k
+def _g6_monomial_vectors(sv, vt):
+    """The monomial vectors u^i v^j in the null space of M(x) (its singular values sv, descending, and right singular
+    vectors vt): its null vector; where several solutions share the hidden angle (a null space of dimension k > 1,
+    e.g. a wrist's two flips) the k vectors of that space with the shift structure (_g6_shift_vectors) instead; and
+    where they share it only nearly (G6_CLUSTER_TOL), the null vector and the cluster subspace's vectors."""
+    k = int(np.sum(sv <= G6_NULL_TOL * sv[0]))
+    if k > 1:
+        return _g6_shift_vectors(vt[-min(k, G6_MAXK):].T, G6_SHIFT_REAL_TOL)
+    k = min(G6_MAXK, int(np.sum(sv <= G6_CLUSTER_TOL * sv[0])))
+    return [vt[-1]] + (_g6_shift_vectors(vt[-k:].T, G6_CLUSTER_REAL_TOL) if k > 1 else [])
+
+
+def _g6_shift_vectors(basis, real_tol):
+    """The vectors of span(basis) (12 x k) with the shift structure u^(i+1) v^j = u u^i v^j: eigenvectors of the
+    k x k pencil it gives, those with a real u (|Im u| <= real_tol (1 + |u|))."""
+    k = basis.shape[1]
     grid = basis.reshape(4, 3, k)
     down, up = grid[:3].reshape(9, k), grid[1:].reshape(9, k)
     swap = np.linalg.norm(down) < np.linalg.norm(up)  # u large: the shift read the other way (1/u), better scaled
     lhs, rhs = (up, down) if swap else (down, up)
     vals, vecs = np.linalg.eig(np.linalg.lstsq(lhs, rhs, rcond=None)[0])
-    return [np.real(basis @ vecs[:, i]) for i in range(k)
-            if abs(vals[i].imag) <= G6_SHIFT_REAL_TOL * (1.0 + abs(vals[i]))]
+    return [np.real(basis @ vecs[:, i]) for i in range(k) if abs(vals[i].imag) <= real_tol * (1.0 + abs(vals[i]))]
 
 
 def _g6_complete_many(angles, links, P, Q):

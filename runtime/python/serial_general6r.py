@@ -12,6 +12,8 @@ tested as it is (tests/test_derived_robot.py)."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from general6r import g6_frames_of, g6_solve
 from serial_fk import _spectrum
@@ -36,10 +38,38 @@ G6_SAME = 1e-9
 G6_ORDER_TOL = 1e-6
 
 
-def _g6_singular(q, dp, joints):
-    """Whether sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out) is at most
-    SINGULAR_EPS (serial_fk's _spectrum)."""
-    return _spectrum(np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)[:, list(joints)])[1] <= SINGULAR_EPS
+# sigma_min / sigma_max of a kept set's Jacobian up to this: the pose is near a singularity, where solutions come
+# and go in pairs and a reading can miss a pair (the KR 6 1e-5 from special with its wrist 1e-5 from singular: one
+# reading's 8 verified sets, another's 10); every reading is then solved and their sets joined
+G6_NEAR_SINGULAR = 1e-3
+
+
+# two verified sets are one solution when they are within G6_SAME_COND times the distance their pose residuals
+# allow at their conditioning: (err_a + err_b) / sigma_min to first order, sqrt(err_a + err_b) where the second order
+# bounds it (sigma_min ~ 0; joints in rad, lengths in the model's units). The residual is the largest entry of
+# [R | p], and the scale of sigma_min (_g6_conditioning) is within sqrt(6) of it: the factor covers both. Near a
+# singularity a residual of 1e-13 leaves a set 1e-8 from the solution (C and numpy then kept one each, or both), and
+# a set whose polish stopped at its step cap a residual of 3e-10 (1.2e-9 from its twin at sigma_min / sigma_max
+# 2.5e-2). Two distinct solutions d apart near a double root have sigma_min ~ d and residuals at rounding, so only
+# pairs within ~sqrt(eps) of one another, which no residual resolves, merge.
+G6_SAME_COND = 4.0
+
+
+def _g6_conditioning(q, dp, joints):
+    """(sigma_min / sigma_max of the solved joints' Jacobian J (a held joint's column left out; serial_fk's
+    _spectrum), a scale of its sigma_min: that ratio times |J|_F where it is within G6_NEAR_SINGULAR, else
+    G6_NEAR_SINGULAR |J|_F / sqrt(6), below sigma_min: the C runtime proves most sets above that ratio and does not
+    compute it; over-rating such a set's allowance is harmless, two regular solutions lie far further apart)."""
+    jac = np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)[:, list(joints)]
+    ratio, fro = _spectrum(jac)[1], math.sqrt(float(np.sum(jac * jac)))
+    return ratio, (ratio * fro if ratio <= G6_NEAR_SINGULAR else G6_NEAR_SINGULAR * fro / math.sqrt(6.0))
+
+
+def _g6_same(a, b, err, scale):
+    """Whether sets a and b (joint values) are one solution: within G6_SAME, or within G6_SAME_COND times both
+    err / scale and sqrt(err) (err: their residuals' sum, scale: the smaller of their sigma_min bounds)."""
+    d = max(abs(_wrap(x - y)) for x, y in zip(a, b, strict=True))
+    return d <= G6_SAME or (d * scale <= G6_SAME_COND * err and d <= G6_SAME_COND * math.sqrt(err))
 
 
 def _g6_candidates(out, readings, joints, q, pose, dp):
@@ -49,11 +79,13 @@ def _g6_candidates(out, readings, joints, q, pose, dp):
     number (real coefficients, even degree), so an odd count is a double root the pose cannot split or a solution
     this reading missed (a near-special arm near its singularities: the KR 6 1e-5 from special), which another
     reading, hiding another joint, finds. Not where two of the reading's candidates met in one set (a double root:
-    its two eigenvalues, one solution), and once at most: such a pose costs one reading, any other two at most."""
-    kept, errs, tried_odd = [], [], False
+    its two eigenvalues, one solution), and once at most: such a pose costs one reading, any other two at most.
+    Near a singularity (a kept set's sigma_min / sigma_max within G6_NEAR_SINGULAR) every reading is solved."""
+    kept, errs, scales, tried_odd, near = [], [], [], False, False
     for labelling in readings:
-        merged = _g6_reading(out, labelling, joints, q, pose, dp, kept, errs)
-        if kept and (len(kept) % 2 == 0 or tried_odd or merged):
+        merged, near_here = _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales)
+        near = near or near_here
+        if kept and not near and (len(kept) % 2 == 0 or tried_odd or merged):
             break
         tried_odd = bool(kept)
     for i in range(1, len(kept)):  # insertion sort by _g6_order, as the C runtime's (stable)
@@ -65,19 +97,19 @@ def _g6_candidates(out, readings, joints, q, pose, dp):
     return kept
 
 
-def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs):
+def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales):
     """The verified candidates of one reading of the loop appended to kept ((joint values of `joints`, flags), at
-    most MAX_IK; their residuals to errs), each unless it is a kept one within G6_SAME (then the better fit stands
-    for it); returns how many of its candidates met one of its own within G6_SAME: out = the stage kernel's axes
-    (18), points (18) and target [R | p] (12); q carries the joints solved before the stage (a held joint's
-    value)."""
+    most MAX_IK; their residuals to errs, their sigma_min bounds to scales), each unless it is one solution with a
+    kept one (_g6_same; then the better fit stands for it); returns how many of its candidates met one of its own
+    and whether a kept one is within G6_NEAR_SINGULAR of singular: out = the stage kernel's axes (18), points (18)
+    and target [R | p] (12); q carries the joints solved before the stage (a held joint's value)."""
     axes = np.array(out[:18], dtype=float).reshape(6, 3)
     frames = g6_frames_of(axes, np.array(out[18:36], dtype=float).reshape(6, 3))
     g4 = np.vstack([np.array(out[36:48], dtype=float).reshape(3, 4), [0.0, 0.0, 0.0, 1.0]])
     shift, reverse, hidden = labelling
     size = max(abs(pose[3]), abs(pose[7]), abs(pose[11]))
     target = DOUBLE_ROOT_POLISH_TOL * max(1.0, size)
-    first, merged = len(kept), 0
+    first, merged, near = len(kept), 0, False
     for cand in g6_solve(frames, np.eye(4), g4, shift, bool(reverse), hidden):
         x = list(q)
         for j, v in zip(joints, cand, strict=True):
@@ -88,8 +120,9 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs):
         if not err <= IK_VERIFY_TOL:
             continue
         vals = [_wrap(x[j]) for j in joints]
+        ratio, scale = _g6_conditioning(x, dp, joints)
         dup = next((m for m, (other, _) in enumerate(kept)
-                    if all(abs(_wrap(a - b)) <= G6_SAME for a, b in zip(vals, other, strict=True))), -1)
+                    if _g6_same(vals, other, err + errs[m], min(scale, scales[m]))), -1)
         if dup >= 0:  # one solution found twice: the better fit stands for it
             merged += dup >= first
             if err < errs[dup]:
@@ -97,9 +130,11 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs):
             continue
         if len(kept) == MAX_IK:  # more than 16: a degenerate pose's family, the first 16 kept
             continue
-        kept.append((vals, FLAG_SINGULAR_INVERSE if _g6_singular(x, dp, joints) else 0))
+        near = near or ratio <= G6_NEAR_SINGULAR
+        kept.append((vals, FLAG_SINGULAR_INVERSE if ratio <= SINGULAR_EPS else 0))
         errs.append(err)
-    return merged
+        scales.append(scale)
+    return merged, near
 
 
 def _g6_order(a, b):

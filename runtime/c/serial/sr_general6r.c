@@ -39,26 +39,61 @@ static void sr_g6_sort(sr_ws *ws, int n)
     }
 }
 
-/* sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out) at or below SR_SINGULAR_EPS
- * (sr_fk.c's sr_spectrum) */
-static int sr_g6_singular(const double *q, const double *dp, const int *joints)
+/* sigma_min / sigma_max of a kept set's Jacobian up to this: the pose is near a singularity, where a reading can miss
+ * a pair of solutions; every reading is then solved and their sets joined (Python's G6_NEAR_SINGULAR) */
+#define SR_G6_NEAR_SINGULAR 1e-3
+
+/* two verified sets are one solution when they are within SR_G6_SAME_COND times both
+ * (err_a + err_b) / sigma_min and sqrt(err_a + err_b): what their residuals allow at that conditioning to first and
+ * second order (Python's G6_SAME_COND says why) */
+#define SR_G6_SAME_COND 4.0
+
+/* sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out; a Cholesky bound proves most
+ * sets above SR_G6_NEAR_SINGULAR, the Jacobi eigenvalues of J^T J decide the rest: Python's eigvalsh through
+ * serial_fk's _spectrum), 1 where proven above; *scale, of its sigma_min: that ratio times |J|_F where it is within
+ * SR_G6_NEAR_SINGULAR, else SR_G6_NEAR_SINGULAR |J|_F / sqrt(6) (Python's _g6_conditioning) */
+static double sr_g6_conditioning(const double *q, const double *dp, const int *joints, double *scale)
 {
-    double full[6 * SR_N], jac[36];
-    int i, j, singular;
+    double full[6 * SR_N], jac[36], g[36], man, ratio, fro = 0.0;
+    int i, j, k;
     sr_k_jacobian(q, dp, full);
     for (i = 0; i < 6; ++i)
         for (j = 0; j < 6; ++j) jac[6 * i + j] = full[SR_N * i + joints[j]];
-    (void)sr_spectrum(jac, 6, &singular);
-    return singular;
+    for (i = 0; i < 36; ++i) fro += jac[i] * jac[i];
+    fro = sqrt(fro);
+    *scale = SR_G6_NEAR_SINGULAR * fro / sqrt(6.0);
+    if (wk_conditioning_bound(jac, 6, SR_G6_NEAR_SINGULAR, &man) == 1) return 1.0;
+    for (i = 0; i < 6; ++i)
+        for (j = 0; j < 6; ++j) {
+            g[i * 6 + j] = 0.0;
+            for (k = 0; k < 6; ++k) g[i * 6 + j] += jac[k * 6 + i] * jac[k * 6 + j];
+        }
+    (void)wk_jacobi_spectrum(g, 6, &ratio);
+    if (ratio <= SR_G6_NEAR_SINGULAR) *scale = ratio * fro;
+    return ratio;
+}
+
+/* whether sets a and b are one solution: within SR_G6_SAME, or within SR_G6_SAME_COND times both err / scale and
+ * sqrt(err) (err: their residuals' sum, scale: the smaller of their sigma_min bounds; Python's _g6_same) */
+static int sr_g6_same(const double *a, const double *b, double err, double scale)
+{
+    double d = 0.0;
+    int j;
+    for (j = 0; j < 6; ++j) {
+        const double e = fabs(wk_wrap(a[j] - b[j]));
+        if (e > d) d = e;
+    }
+    return d <= SR_G6_SAME || (d * scale <= SR_G6_SAME_COND * err && d <= SR_G6_SAME_COND * sqrt(err));
 }
 
 /* The verified candidates of one reading of the loop appended to ws's first n (at most SR_MAX_IK; their residuals
- * to errs), each unless it is a kept one within SR_G6_SAME (then the better fit stands for it); returns the new
- * count, and in *merged how many of its candidates met one of its own: out = the stage kernel's axes (18),
- * points (18) and target [R | p] (12); q carries the joints solved before the stage (a held joint's value) */
+ * to errs, their sigma_min bounds to scales), each unless it is one solution with a kept one (sr_g6_same; then the
+ * better fit stands for it); returns the new count, in *merged how many of its candidates met one of its own and in
+ * *near whether a kept one is within SR_G6_NEAR_SINGULAR of singular: out = the stage kernel's axes (18), points
+ * (18) and target [R | p] (12); q carries the joints solved before the stage (a held joint's value) */
 static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, const int *joints,
-                         const double *q, const double *pose, const double *dp, sr_ws *ws, double *errs, int n,
-                         int *merged)
+                         const double *q, const double *pose, const double *dp, sr_ws *ws, double *errs,
+                         double *scales, int n, int *merged, int *near)
 {
     static const double id4[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     double frames[96], g4[16], cand[WK_G6_MAX_CANDIDATES * 6];
@@ -73,7 +108,7 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
     g4[15] = 1.0;
     nr = wk_g6_solve(frames, id4, g4, shift, reverse, hidden, cand, WK_G6_MAX_CANDIDATES);
     for (i = 0; i < nr; ++i) {
-        double x[SR_N], t[12], err;
+        double x[SR_N], t[12], vals[6], err, ratio, scale;
         int dup = -1;
         for (j = 0; j < SR_N; ++j) x[j] = q[j];
         for (j = 0; j < 6; ++j) x[joints[j]] = cand[6 * i + j];
@@ -85,12 +120,13 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
         }
         if (!(err <= target)) err = sr_polish(x, pose, dp, target);
         if (!(err <= SR_IK_VERIFY_TOL)) continue;
-        for (j = 0; j < 6; ++j) x[joints[j]] = wk_wrap(x[joints[j]]);
-        for (m = 0; m < n && dup < 0; ++m) {
-            int same = 1;
-            for (j = 0; j < 6 && same; ++j) same = fabs(wk_wrap(x[joints[j]] - ws->q[m][j])) <= SR_G6_SAME;
-            if (same) dup = m;
+        for (j = 0; j < 6; ++j) {
+            x[joints[j]] = wk_wrap(x[joints[j]]);
+            vals[j] = x[joints[j]];
         }
+        ratio = sr_g6_conditioning(x, dp, joints, &scale);
+        for (m = 0; m < n && dup < 0; ++m)
+            if (sr_g6_same(vals, ws->q[m], err + errs[m], fmin(scale, scales[m]))) dup = m;
         if (dup >= 0) { /* one solution found twice: the better fit stands for it */
             if (dup >= first) ++*merged;
             if (err < errs[dup]) {
@@ -100,9 +136,11 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
             continue;
         }
         if (n == SR_MAX_IK) continue; /* more than 16: a degenerate pose's family, the first 16 kept */
-        for (j = 0; j < 6; ++j) ws->q[n][j] = x[joints[j]];
+        for (j = 0; j < 6; ++j) ws->q[n][j] = vals[j];
         errs[n] = err;
-        ws->f[n] = sr_g6_singular(x, dp, joints) ? WK_FLAG_SINGULAR_INVERSE : 0u;
+        scales[n] = scale;
+        ws->f[n] = ratio <= SR_SINGULAR_EPS ? WK_FLAG_SINGULAR_INVERSE : 0u;
+        *near |= ratio <= SR_G6_NEAR_SINGULAR;
         ++n;
     }
     return n;
@@ -113,16 +151,17 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
  * Real solutions come in pairs (the determinant's real roots, counted with multiplicity, are even in number), so an
  * odd count is a double root the pose cannot split or a solution this reading missed (a near-special arm near its
  * singularities), which another reading finds; not where two of the reading's candidates met in one set (a double
- * root), and once at most (Python's _g6_candidates) */
+ * root), and once at most; near a singularity (a kept set within SR_G6_NEAR_SINGULAR) every reading is solved
+ * (Python's _g6_candidates) */
 static int sr_g6_candidates(const double *out, const int (*readings)[3], int n, const int *joints, const double *q,
                             const double *pose, const double *dp, sr_ws *ws)
 {
-    double errs[SR_MAX_IK];
-    int i, found = 0, tried_odd = 0, merged = 0;
+    double errs[SR_MAX_IK], scales[SR_MAX_IK];
+    int i, found = 0, tried_odd = 0, merged = 0, near = 0;
     for (i = 0; i < n; ++i) {
         found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], joints, q, pose, dp, ws, errs,
-                              found, &merged);
-        if (found > 0 && (found % 2 == 0 || tried_odd || merged)) break;
+                              scales, found, &merged, &near);
+        if (found > 0 && !near && (found % 2 == 0 || tried_odd || merged)) break;
         tried_odd = found > 0;
     }
     sr_g6_sort(ws, found);
