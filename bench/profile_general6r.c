@@ -116,8 +116,10 @@ int main(void)
                     }
                 t1 = now(); tsec[S_QR] += t1 - t0; t0 = t1;
                 {
-                    double t6r[6][27], xr[16], phi = 0.0, M[144], m[G6_MAXK][12], angles[3], tq[6];
+                    double t6r[6][27], xr[16], phi = 0.0, M[144], m[G6_MAXV][12], angles[3], tq[6];
                     int nr = g6_deflated_roots(t6, N, &phi, xr), count;
+                    g6_clusters clusters;
+                    clusters.n = 0;
                     t1 = now(); tsec[S_QEP] += t1 - t0; t0 = t1;
                     if (nr < 0) continue;
                     if (rep == 0) real_roots += nr;
@@ -127,7 +129,7 @@ int main(void)
                     for (root = 0; root < nr; ++root) {
                         const double x = xr[root];
                         for (i = 0; i < 144; ++i) M[i] = (A[i] * x + B[i]) * x + C[i];
-                        count = g6_monomial_vectors(M, m);
+                        count = g6_monomial_vectors(M, m, &clusters);
                         t1 = now(); tsec[S_NULL] += t1 - t0; t0 = t1;
                         for (c = 0; c < count; ++c) {
                             angles[0] = phi + 2.0 * atan(x);

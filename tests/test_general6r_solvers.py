@@ -110,7 +110,10 @@ def test_a_near_special_arm_near_its_wrist_singularity():
     singularity, so near one every reading is solved (G6_NEAR_SINGULAR); and two copies of one solution are one set
     within what their residuals allow at their conditioning (G6_SAME_COND). Measured with test seeds 0..29: none
     differs at 1e-5. At 1e-6 and closer, clusters of distinct solutions 1e-5 .. 5e-4 apart with sigma_min ~1e-7 still
-    differ (10 and 9 of 120 poses): not swept."""
+    differ (10 and 9 of 120 poses): not swept.
+    C = numpy means every set of each within its allowance of a set of the other, not equal counts: where a random
+    pose also nears another singularity (sigma_min / sigma_max 4e-8 at test seed 10, q5 1e-3 off) distinct solutions
+    lie 2e-6 apart, within that allowance, and whether an eigensolver resolves one set there or two is rounding."""
     m = solver("kr6_near_special")
     reference = ref.load(_source("kr6_near_special")[0])
     rng = case_rng(705)
@@ -121,14 +124,16 @@ def test_a_near_special_arm_near_its_wrist_singularity():
             T = reference(q)
             sol = m.ik(T)
             numpy_sol = m._ik_numpy(T, m._design(None), None)
-            assert sol.count == numpy_sol.count, (delta, q)
-            for v in sol:
-                assert min(_distance(v, w) for w in numpy_sol) < 1e-9
-                assert ref.pose_error(reference(v), T) < 1e-9
-            smin = np.linalg.svd(reference.jacobian(q), compute_uv=False)[-1]
             model = ref.pose_error(m.fk_matrix(q), T)
             assert model < 1e-10  # the table's rounding over a sine of 1e-5, not a wrong chain
-            assert min(_distance(q, v) for v in sol) < 1e-6 + (1e-13 + model) / smin, (delta, q, model, smin)
+
+            def allowance(v, model=model):
+                return 1e-6 + (1e-13 + model) / np.linalg.svd(reference.jacobian(v), compute_uv=False)[-1]
+            for a, b in ((sol, numpy_sol), (numpy_sol, sol)):  # C = numpy, each set to its own allowance
+                for v in a:
+                    assert ref.pose_error(reference(v), T) < 1e-9
+                    assert min(_distance(v, w) for w in b) < allowance(v), (delta, q, list(a), list(b))
+            assert min(_distance(q, v) for v in sol) < allowance(q), (delta, q, model)
 
 
 def test_the_audit_states_the_elimination_and_its_checks():

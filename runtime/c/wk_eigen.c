@@ -681,22 +681,26 @@ int wk_generalized_quadratic_eig(int m, const double *A, const double *B, const 
  * columns and sig the singular values of M / 2^e (unordered; e an exact power-of-two scaling, the same for all). */
 static int wk_jacobi_right(int m, const double *M, double *V, double *sig)
 {
-    double W[WK_NULL_MAXM * WK_NULL_MAXM];
+    /* columns stored contiguously (wt + p m is column p of W, vt + p m of V): the pair loops run down two
+     * contiguous arrays, which the compiler can vectorise, instead of striding through rows */
+    double wt[WK_NULL_MAXM * WK_NULL_MAXM], vt[WK_NULL_MAXM * WK_NULL_MAXM];
     int i, j, p, q, sweep, rotated = 1, e;
     e = wk_eig_exponent(m * m, M);
-    for (i = 0; i < m * m; ++i) {
-        W[i] = ldexp(M[i], -e);
-        V[i] = (i % (m + 1) == 0) ? 1.0 : 0.0;
-    }
+    for (i = 0; i < m; ++i)
+        for (j = 0; j < m; ++j) {
+            wt[j * m + i] = ldexp(M[i * m + j], -e);
+            vt[j * m + i] = (i == j) ? 1.0 : 0.0;
+        }
     for (sweep = 0; sweep < WK_NULL_SWEEPS && rotated; ++sweep) {
         rotated = 0;
         for (p = 0; p < m - 1; ++p)
             for (q = p + 1; q < m; ++q) {
+                double *wp = wt + p * m, *wq = wt + q * m, *vp = vt + p * m, *vq = vt + q * m;
                 double al = 0.0, be = 0.0, ga = 0.0, zeta, t, cs, sn;
                 for (i = 0; i < m; ++i) {
-                    al += W[i * m + p] * W[i * m + p];
-                    be += W[i * m + q] * W[i * m + q];
-                    ga += W[i * m + p] * W[i * m + q];
+                    al += wp[i] * wp[i];
+                    be += wq[i] * wq[i];
+                    ga += wp[i] * wq[i];
                 }
                 /* orthogonal to m eps, not eps: at eps a pair whose rotation angle is below one ulp of 1
                  * (cos rounds to 1, sin ~ eps) changes nothing and is "rotated" again every sweep until the cap
@@ -714,25 +718,28 @@ static int wk_jacobi_right(int m, const double *M, double *V, double *sig)
                 cs = 1.0 / sqrt(1.0 + t * t);
                 sn = cs * t;
                 for (i = 0; i < m; ++i) {
-                    double wp = W[i * m + p], wq = W[i * m + q], vp = V[i * m + p], vq = V[i * m + q];
-                    W[i * m + p] = cs * wp - sn * wq;
-                    W[i * m + q] = sn * wp + cs * wq;
-                    V[i * m + p] = cs * vp - sn * vq;
-                    V[i * m + q] = sn * vp + cs * vq;
+                    const double a = wp[i], b = wq[i], c = vp[i], d = vq[i];
+                    wp[i] = cs * a - sn * b;
+                    wq[i] = sn * a + cs * b;
+                    vp[i] = cs * c - sn * d;
+                    vq[i] = sn * c + cs * d;
                 }
             }
     }
     if (rotated)
         return WK_EIG_ERR_NOCONV;
     for (j = 0; j < m; ++j) {
+        const double *w = wt + j * m;
         double amax = 0.0, ss = 0.0;
         for (i = 0; i < m; ++i)
-            if (fabs(W[i * m + j]) > amax)
-                amax = fabs(W[i * m + j]);
+            if (fabs(w[i]) > amax)
+                amax = fabs(w[i]);
         if (amax > 0.0)
             for (i = 0; i < m; ++i)
-                ss += (W[i * m + j] / amax) * (W[i * m + j] / amax);
+                ss += (w[i] / amax) * (w[i] / amax);
         sig[j] = amax * sqrt(ss); /* scaled sum: a tiny column's norm does not underflow */
+        for (i = 0; i < m; ++i)
+            V[i * m + j] = vt[j * m + i];
     }
     return WK_EIG_OK;
 }

@@ -442,21 +442,53 @@ static int g6_shift_vectors(double basis[G6_MAXK][12], int k, double real_tol, d
 #define G6_CLUSTER_TOL 1e-4
 #define G6_CLUSTER_REAL_TOL 1e-3 /* the shift pencil's |Im u| / (1 + |u|) up to this on a cluster's subspace */
 #define G6_SHIFT_REAL_TOL 1e-6   /* the same on an exact null space */
-/* the LU's second-smallest pivot over its first above this: no cluster (the SVD is not run). Complete pivoting's
- * pivots track the singular values within a modest factor at m = 12; 100 leaves room for it */
-#define G6_CLUSTER_SCREEN 1e-2
+/* the LU's second-smallest pivot over its first above this: no cluster (the SVD, ~30 us, is not run). Complete
+ * pivoting's pivots track the singular values: that ratio over sigma_2 / sigma_max was 1.25 to 11.6 at the real
+ * roots of the near-special KR 6 and the tilted UR5e (852 roots), at most 6.2 where sigma_2 <= G6_CLUSTER_TOL */
+#define G6_CLUSTER_SCREEN 2e-3
+
+/* a root whose null vector lies within this of a cluster subspace already read (|v - B B^T v|, v a unit vector) is
+ * that cluster's member: its solutions were offered with the subspace, the SVD is not run again */
+#define G6_CLUSTER_COVER 1e-2
+#define G6_MAXCL 12 /* cluster subspaces remembered per solve (24 roots, two each at least) */
+
+/* the cluster subspaces read so far in one solve (orthonormal rows) */
+typedef struct {
+    int off; /* clusters not read at all (the caller's cheap first pass) */
+    int n, k[G6_MAXCL];
+    double basis[G6_MAXCL][G6_MAXK][12];
+} g6_clusters;
+
+/* whether the unit vector v lies within G6_CLUSTER_COVER of one of the subspaces in cl */
+static int g6_covered(const g6_clusters *cl, const double *v)
+{
+    int c, j, i;
+    for (c = 0; c < cl->n; ++c) {
+        double r[12], rr = 0.0;
+        memcpy(r, v, sizeof r);
+        for (j = 0; j < cl->k[c]; ++j) {
+            double d = 0.0;
+            for (i = 0; i < 12; ++i) d += cl->basis[c][j][i] * v[i];
+            for (i = 0; i < 12; ++i) r[i] -= d * cl->basis[c][j][i];
+        }
+        for (i = 0; i < 12; ++i) rr += r[i] * r[i];
+        if (rr <= G6_CLUSTER_COVER * G6_CLUSTER_COVER) return 1;
+    }
+    return 0;
+}
 
 /* The monomial vectors of the root x with M = M(x) (12 x 12), as general6r.py's _g6_monomial_vectors: its null
  * vector; where k > 1 solutions share the hidden angle (a null space of dimension k) the k vectors of that space
- * with the shift structure instead; and where they share it only nearly (a cluster), the null vector and the
- * cluster subspace's vectors. Returns how many were written to m (rows of 12). */
-static int g6_monomial_vectors(const double *M, double m[G6_MAXV][12])
+ * with the shift structure instead; and where they share it only nearly (a cluster), the null vector and, unless
+ * an earlier member of the cluster gave them (cl), the cluster subspace's vectors. Returns how many were written to
+ * m (rows of 12). */
+static int g6_monomial_vectors(const double *M, double m[G6_MAXV][12], g6_clusters *cl)
 {
     double basis[G6_MAXK][12], rel[12], second = 0.0;
     int n = 0, k = 0;
     if (g6_lu_null(M, m[0], &second)) {
         n = 1; /* a simple root: the LU's null vector (the SVD below is 20x slower) */
-        if (second > G6_CLUSTER_SCREEN) return 1;
+        if (cl->off || second > G6_CLUSTER_SCREEN || g6_covered(cl, m[0])) return 1;
     }
     if (wk_small_singular_vectors(12, M, G6_MAXK, basis[0], rel) != WK_EIG_OK) return n;
     while (k < 12 && rel[k] <= WK_G6_NULL_TOL) ++k;
@@ -466,9 +498,15 @@ static int g6_monomial_vectors(const double *M, double m[G6_MAXV][12])
         memcpy(m[0], basis[0], sizeof m[0]);
         n = 1;
     }
+    if (cl->off || g6_covered(cl, m[0])) return n;
     k = 0;
     while (k < G6_MAXK && rel[k] <= G6_CLUSTER_TOL) ++k;
-    return k > 1 ? n + g6_shift_vectors(basis, k, G6_CLUSTER_REAL_TOL, m + n) : n;
+    if (k < 2) return n;
+    if (cl->n < G6_MAXCL) {
+        cl->k[cl->n] = k;
+        memcpy(cl->basis[cl->n++], basis, sizeof basis);
+    }
+    return n + g6_shift_vectors(basis, k, G6_CLUSTER_REAL_TOL, m + n);
 }
 
 /* ------------------------------------------------------------------ hidden t3: the (1 + x^2)^4 deflated
@@ -1188,13 +1226,14 @@ static void g6_refine(const double *frames, const double *home, const double *po
  * q (up to max_out). Returns the new count. */
 static int g6_emit(const double *A, const double *B, const double *C, double x, int infinite, double phi, int hidden,
                    double links[6][16], double P[G6_NEQ][27], const g6_qr *f, const int *joints, double sign,
-                   const double *frames, const double *home, const double *pose, double *q, int n, int max_out)
+                   const double *frames, const double *home, const double *pose, double *q, int n, int max_out,
+                   g6_clusters *cl)
 {
     double M[144], m[G6_MAXV][12], angles[3];
     const int a = hidden == 0 ? 1 : 0, b = hidden == 2 ? 1 : 2;
     int i, c, count;
     for (i = 0; i < 144; ++i) M[i] = infinite ? A[i] : (A[i] * x + B[i]) * x + C[i];
-    count = g6_monomial_vectors(M, m);
+    count = g6_monomial_vectors(M, m, cl);
     for (c = 0; c < count && n < max_out; ++c) {
         double t[6];
         angles[hidden] = phi + (infinite ? G6_PI : 2.0 * atan(x));
@@ -1211,12 +1250,21 @@ static int g6_emit(const double *A, const double *B, const double *C, double x, 
 int wk_g6_solve(const double *frames, const double *home, const double *pose, int shift, int reverse, int hidden,
                 double *q, int max_out)
 {
+    return wk_g6_solve_clusters(frames, home, pose, shift, reverse, hidden, 1, q, max_out);
+}
+
+int wk_g6_solve_clusters(const double *frames, const double *home, const double *pose, int shift, int reverse,
+                         int hidden, int clusters, double *q, int max_out)
+{
     double loop[6][16], links[6][16], P[G6_NEQ][27], Q[G6_NEQ][G6_NY], r[G6_NEQ], t6[6][27], N[6][G6_NEQ];
     double A[144], B[144], C[144], zinv[16], pinv[16];
     int joints[6], i, e, n = 0, k, root;
     double sign;
     g6_qr f;
+    g6_clusters cl;
     wk_qep_result qep;
+    cl.n = 0;
+    cl.off = !clusters;
     if (!frames || !home || !pose || !q || shift < 0 || shift > 5 || hidden < 0 || hidden > 2 || max_out < 0) return -1;
     for (i = 0; i < 5; ++i) {
         g6_inverse(frames + 16 * i, zinv);
@@ -1257,7 +1305,7 @@ int wk_g6_solve(const double *frames, const double *home, const double *pose, in
             g6_quadratic(t6r, 0, A, B, C);
             for (root = 0; root < nr; ++root)
                 n = g6_emit(A, B, C, xr[root], 0, phi, hidden, links, P, &f, joints, sign, frames, home, pose, q,
-                            n, max_out);
+                            n, max_out, &cl);
             return n;
         }
     }
@@ -1266,7 +1314,7 @@ int wk_g6_solve(const double *frames, const double *home, const double *pose, in
     for (root = 0; root < qep.n_real + qep.n_infinite; ++root) {
         const int infinite = root >= qep.n_real;
         n = g6_emit(A, B, C, infinite ? 0.0 : qep.real[root], infinite, 0.0, hidden, links, P, &f, joints, sign,
-                    frames, home, pose, q, n, max_out);
+                    frames, home, pose, q, n, max_out, &cl);
     }
     return n;
 }

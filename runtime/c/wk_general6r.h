@@ -31,6 +31,12 @@ void wk_g6_z_frames(const double *axes, const double *points, double *frames);
 int wk_g6_solve(const double *frames, const double *home, const double *pose, int shift, int reverse, int hidden,
                 double *q, int max_out);
 
+/* The same with clusters = 0: a root whose M(x) has a nearly shared null space (a cluster of nearly equal roots,
+ * general6r.py's G6_CLUSTER_TOL) gives only its own null vector, not the cluster subspace's (each costs a Jacobi
+ * SVD): a caller's first pass away from singularities. wk_g6_solve is clusters = 1. */
+int wk_g6_solve_clusters(const double *frames, const double *home, const double *pose, int shift, int reverse,
+                         int hidden, int clusters, double *q, int max_out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -85,6 +85,9 @@ G6_SHIFT_REAL_TOL = 1e-6  # the same for the k x k shift pencil's eigenvalues u 
 G6_CLUSTER_TOL = 1e-4
 G6_CLUSTER_REAL_TOL = 1e-3  # the shift pencil's |Im u| / (1 + |u|) up to this on a cluster's approximate subspace
 G6_MAXK = 4  # the most solutions a cluster's subspace gives (the C runtime's fixed arrays)
+# a root whose null vector lies within this of a cluster subspace already read (|v - B B^T v|) is that cluster's member:
+# its solutions were offered with the subspace (the C runtime then saves an SVD)
+G6_CLUSTER_COVER = 1e-2
 _G6_PHIS = (0.0, 2.0 * math.pi / 3.0, -2.0 * math.pi / 3.0, math.pi / 2.0)
 _G6_BLOCKS = (0, 3, 8, 11)  # the x rows of the 14's vectors l, p, p x l, (p.p) l - 2 (p.l) p (y follows)
 G6_RCOND_GOOD = 1e-4  # the deflated K this well conditioned (equilibrated rows): no further origin phi tried
@@ -332,15 +335,16 @@ def _g6_real_roots(links, hidden):
     return pc, qpinv, phi, xs, ms, svs, vts
 
 
-def g6_candidates(links, hidden=0):
-    """Loop angles (t1..t6) of every real root of the eliminated system for the loop's links."""
+def g6_candidates(links, hidden=0, clusters=True):
+    """Loop angles (t1..t6) of every real root of the eliminated system for the loop's links (without `clusters`,
+    a root in a cluster of nearly equal roots gives only its own null vector: _g6_monomial_vectors)."""
     pc, qpinv, phi, xs, _, svs, vts = _g6_real_roots(links, hidden)
     others = [k for k in range(3) if k != hidden]
     if len(xs) == 0:
         return []
-    angles = []
+    angles, read = [], [] if clusters else None
     for x, sv, vt in zip(xs, svs, vts, strict=True):
-        vs = _g6_monomial_vectors(sv, vt)
+        vs = _g6_monomial_vectors(sv, vt, read)
         for v in vs:
             row = [0.0, 0.0, 0.0]
             row[hidden] = phi + 2.0 * math.atan(x)
@@ -349,16 +353,22 @@ def g6_candidates(links, hidden=0):
     return _g6_complete_many(np.array(angles), links, pc, qpinv) if angles else []
 
 
-def _g6_monomial_vectors(sv, vt):
+def _g6_monomial_vectors(sv, vt, clusters):
     """The monomial vectors u^i v^j in the null space of M(x) (its singular values sv, descending, and right singular
     vectors vt): its null vector; where several solutions share the hidden angle (a null space of dimension k > 1,
     e.g. a wrist's two flips) the k vectors of that space with the shift structure (_g6_shift_vectors) instead; and
-    where they share it only nearly (G6_CLUSTER_TOL), the null vector and the cluster subspace's vectors."""
+    where they share it only nearly (G6_CLUSTER_TOL), the null vector and, unless an earlier member of the cluster
+    gave them (its subspace in `clusters`, appended to here; None: clusters are not read), the cluster subspace's
+    vectors."""
     k = int(np.sum(sv <= G6_NULL_TOL * sv[0]))
     if k > 1:
         return _g6_shift_vectors(vt[-min(k, G6_MAXK):].T, G6_SHIFT_REAL_TOL)
     k = min(G6_MAXK, int(np.sum(sv <= G6_CLUSTER_TOL * sv[0])))
-    return [vt[-1]] + (_g6_shift_vectors(vt[-k:].T, G6_CLUSTER_REAL_TOL) if k > 1 else [])
+    if clusters is None or k < 2 or any(np.linalg.norm(vt[-1] - b @ (b.T @ vt[-1])) <= G6_CLUSTER_COVER
+                                        for b in clusters):
+        return [vt[-1]]
+    clusters.append(vt[-k:].T)
+    return [vt[-1]] + _g6_shift_vectors(vt[-k:].T, G6_CLUSTER_REAL_TOL)
 
 
 def _g6_shift_vectors(basis, real_tol):
@@ -528,10 +538,10 @@ def g6_refine(frames, home, pose, q, steps=G6_REFINE_STEPS):
     return [float(v) for v in g6_refine_many(frames, home, pose, q, steps)[0]]
 
 
-def g6_solve(frames, home, pose, shift=0, reverse=False, hidden=0):
+def g6_solve(frames, home, pose, shift=0, reverse=False, hidden=0, clusters=True):
     """Joint candidates q (length 6, refined by Newton on the chain) of prod Z_i Rz(q_i) Z_i^-1 home = pose."""
     links, joints, sign = g6_labelled(g6_loop_links(frames, home, pose), shift, reverse)
-    cands = g6_candidates(links, hidden)
+    cands = g6_candidates(links, hidden, clusters)
     if not cands:
         return []
     q = np.zeros((len(cands), 6))

@@ -80,14 +80,18 @@ def _g6_candidates(out, readings, joints, q, pose, dp):
     this reading missed (a near-special arm near its singularities: the KR 6 1e-5 from special), which another
     reading, hiding another joint, finds. Not where two of the reading's candidates met in one set (a double root:
     its two eigenvalues, one solution), and once at most: such a pose costs one reading, any other two at most.
-    Near a singularity (a kept set's sigma_min / sigma_max within G6_NEAR_SINGULAR) every reading is solved."""
+    The first pass reads no cluster subspaces (each costs an SVD in C); near a singularity (a kept set's sigma_min /
+    sigma_max within G6_NEAR_SINGULAR), where a reading's clusters may hide solutions and a reading can miss a pair,
+    every reading is solved again with them."""
     kept, errs, scales, tried_odd, near = [], [], [], False, False
     for labelling in readings:
-        merged, near_here = _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales)
-        near = near or near_here
-        if kept and not near and (len(kept) % 2 == 0 or tried_odd or merged):
+        merged, near = _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, False)
+        if near or kept and (len(kept) % 2 == 0 or tried_odd or merged):
             break
         tried_odd = bool(kept)
+    if near:  # every reading, with its clusters' subspaces (a set kept already is kept once)
+        for labelling in readings:
+            _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, True)
     for i in range(1, len(kept)):  # insertion sort by _g6_order, as the C runtime's (stable)
         item, j = kept[i], i
         while j > 0 and _g6_order(kept[j - 1], item) > 0:
@@ -97,12 +101,13 @@ def _g6_candidates(out, readings, joints, q, pose, dp):
     return kept
 
 
-def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales):
+def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, clusters):
     """The verified candidates of one reading of the loop appended to kept ((joint values of `joints`, flags), at
     most MAX_IK; their residuals to errs, their sigma_min bounds to scales), each unless it is one solution with a
     kept one (_g6_same; then the better fit stands for it); returns how many of its candidates met one of its own
     and whether a kept one is within G6_NEAR_SINGULAR of singular: out = the stage kernel's axes (18), points (18)
-    and target [R | p] (12); q carries the joints solved before the stage (a held joint's value)."""
+    and target [R | p] (12); q carries the joints solved before the stage (a held joint's value); `clusters`: the
+    elimination reads its clusters' subspaces (general6r.py's g6_solve)."""
     axes = np.array(out[:18], dtype=float).reshape(6, 3)
     frames = g6_frames_of(axes, np.array(out[18:36], dtype=float).reshape(6, 3))
     g4 = np.vstack([np.array(out[36:48], dtype=float).reshape(3, 4), [0.0, 0.0, 0.0, 1.0]])
@@ -110,7 +115,7 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales):
     size = max(abs(pose[3]), abs(pose[7]), abs(pose[11]))
     target = DOUBLE_ROOT_POLISH_TOL * max(1.0, size)
     first, merged, near = len(kept), 0, False
-    for cand in g6_solve(frames, np.eye(4), g4, shift, bool(reverse), hidden):
+    for cand in g6_solve(frames, np.eye(4), g4, shift, bool(reverse), hidden, clusters):
         x = list(q)
         for j, v in zip(joints, cand, strict=True):
             x[j] = v

@@ -86,12 +86,13 @@ static int sr_g6_same(const double *a, const double *b, double err, double scale
     return d <= SR_G6_SAME || (d * scale <= SR_G6_SAME_COND * err && d <= SR_G6_SAME_COND * sqrt(err));
 }
 
-/* The verified candidates of one reading of the loop appended to ws's first n (at most SR_MAX_IK; their residuals
+/* The verified candidates of one reading of the loop (`clusters`: reading its clusters' subspaces,
+ * wk_g6_solve_clusters) appended to ws's first n (at most SR_MAX_IK; their residuals
  * to errs, their sigma_min bounds to scales), each unless it is one solution with a kept one (sr_g6_same; then the
  * better fit stands for it); returns the new count, in *merged how many of its candidates met one of its own and in
  * *near whether a kept one is within SR_G6_NEAR_SINGULAR of singular: out = the stage kernel's axes (18), points
  * (18) and target [R | p] (12); q carries the joints solved before the stage (a held joint's value) */
-static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, const int *joints,
+static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, int clusters, const int *joints,
                          const double *q, const double *pose, const double *dp, sr_ws *ws, double *errs,
                          double *scales, int n, int *merged, int *near)
 {
@@ -106,7 +107,7 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
     for (i = 0; i < 12; ++i) g4[i] = out[36 + i];
     g4[12] = g4[13] = g4[14] = 0.0;
     g4[15] = 1.0;
-    nr = wk_g6_solve(frames, id4, g4, shift, reverse, hidden, cand, WK_G6_MAX_CANDIDATES);
+    nr = wk_g6_solve_clusters(frames, id4, g4, shift, reverse, hidden, clusters, cand, WK_G6_MAX_CANDIDATES);
     for (i = 0; i < nr; ++i) {
         double x[SR_N], t[12], vals[6], err, ratio, scale;
         int dup = -1;
@@ -151,19 +152,23 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
  * Real solutions come in pairs (the determinant's real roots, counted with multiplicity, are even in number), so an
  * odd count is a double root the pose cannot split or a solution this reading missed (a near-special arm near its
  * singularities), which another reading finds; not where two of the reading's candidates met in one set (a double
- * root), and once at most; near a singularity (a kept set within SR_G6_NEAR_SINGULAR) every reading is solved
- * (Python's _g6_candidates) */
+ * root), and once at most. That first pass reads no cluster subspaces (an SVD each); near a singularity (a kept set
+ * within SR_G6_NEAR_SINGULAR) every reading is solved again with them (Python's _g6_candidates) */
 static int sr_g6_candidates(const double *out, const int (*readings)[3], int n, const int *joints, const double *q,
                             const double *pose, const double *dp, sr_ws *ws)
 {
     double errs[SR_MAX_IK], scales[SR_MAX_IK];
     int i, found = 0, tried_odd = 0, merged = 0, near = 0;
     for (i = 0; i < n; ++i) {
-        found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], joints, q, pose, dp, ws, errs,
+        found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], 0, joints, q, pose, dp, ws, errs,
                               scales, found, &merged, &near);
-        if (found > 0 && !near && (found % 2 == 0 || tried_odd || merged)) break;
+        if (near || (found > 0 && (found % 2 == 0 || tried_odd || merged))) break;
         tried_odd = found > 0;
     }
+    if (near) /* every reading, with its clusters' subspaces (a set kept already is kept once) */
+        for (i = 0; i < n; ++i)
+            found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], 1, joints, q, pose, dp, ws,
+                                  errs, scales, found, &merged, &near);
     sr_g6_sort(ws, found);
     return found;
 }
