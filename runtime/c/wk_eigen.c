@@ -746,32 +746,16 @@ static int wk_jacobi_right(int m, const double *M, double *V, double *sig)
 
 int wk_null_vector(int m, const double *M, double *v, double *rel)
 {
-    double V[WK_NULL_MAXM * WK_NULL_MAXM], sig[WK_NULL_MAXM];
-    double smax = 0.0;
-    int i, j, jmin = 0, j2 = -1, rc;
+    double all[WK_NULL_MAXM];
+    int rc;
     if (!M || !v || m < 1 || m > WK_NULL_MAXM)
         return WK_EIG_ERR_INPUT;
-    if (!wk_eig_finite(m * m, M))
-        return WK_EIG_ERR_INPUT;
-    rc = wk_jacobi_right(m, M, V, sig);
-    if (rc != WK_EIG_OK)
-        return rc;
-    for (j = 0; j < m; ++j) {
-        if (sig[j] > smax)
-            smax = sig[j];
-        if (sig[j] < sig[jmin])
-            jmin = j;
+    rc = wk_small_singular_vectors(m, M, 1, v, all);
+    if (rc == WK_EIG_OK && rel) {
+        rel[0] = all[0];
+        rel[1] = m > 1 ? all[1] : 1.0;
     }
-    for (j = 0; j < m; ++j)
-        if (j != jmin && (j2 < 0 || sig[j] < sig[j2]))
-            j2 = j;
-    for (i = 0; i < m; ++i)
-        v[i] = V[i * m + jmin];
-    if (rel) {
-        rel[0] = smax > 0.0 ? sig[jmin] / smax : 0.0;
-        rel[1] = j2 < 0 ? 1.0 : (smax > 0.0 ? sig[j2] / smax : 0.0);
-    }
-    return WK_EIG_OK;
+    return rc;
 }
 
 int wk_small_singular_vectors(int m, const double *M, int k, double *v, double *rel)
