@@ -117,7 +117,8 @@ int main(void)
                 t1 = now(); tsec[S_QR] += t1 - t0; t0 = t1;
                 {
                     double t6r[6][27], xr[16], phi = 0.0, M[144], m[G6_MAXV][12], angles[3], tq[6];
-                    int nr = g6_deflated_roots(t6, N, &phi, xr), count;
+                    int near_pair = 0;
+                    int nr = g6_deflated_roots(t6, N, &phi, xr, 0, &near_pair), count;
                     g6_clusters clusters;
                     clusters.n = 0;
                     t1 = now(); tsec[S_QEP] += t1 - t0; t0 = t1;

@@ -520,6 +520,9 @@ static int g6_monomial_vectors(const double *M, double m[G6_MAXV][12], g6_cluste
 /* |Im x| / (1 + |x|) up to this: a real root moved off the axis by rounding (Python's G6_REAL_TOL: a double root
  * splits by ~sqrt(c n eps / rcond(K)) into a complex pair, 6.6e-6 seen at rcond ~1e-4; verification decides) */
 #define G6_REAL_TOL 1e-4
+/* |Im x| / (1 + |x|) of a pair up to this (beyond G6_REAL_TOL): a nearly defective cluster's members can come out
+ * this far off the axis (general6r.py's G6_CLUSTER_IM_TOL); reported, and read as a root when clusters are read */
+#define G6_CLUSTER_IM_TOL 1e-2
 #define G6_RCOND_GOOD 1e-4 /* the leading coefficient this well conditioned: no further origin phi tried */
 #define G6_NPHI 4
 static const double g6_phis[G6_NPHI] = {0.0, 2.0 * G6_PI / 3.0, -2.0 * G6_PI / 3.0, G6_PI / 2.0};
@@ -884,7 +887,8 @@ static double g6_rcond(int n, const double *k, const double *lu, const int *piv)
  * eigenproblem, phi chosen as the Python does (the first of g6_phis whose K has rcond > G6_RCOND_GOOD, else the
  * best). Returns the number of real roots, or -1 when the structure is not met (the caller takes the 24 x 24 path)
  * or the eigenvalues fail. */
-static int g6_deflated_roots(double t6[6][27], double N[6][G6_NEQ], double *phi_out, double *xr)
+static int g6_deflated_roots(double t6[6][27], double N[6][G6_NEQ], double *phi_out, double *xr, int wide,
+                             int *near_pair)
 {
     static const int blocks[4] = {0, 3, 8, 11};
     double z[12 * 8], xy[6 * 8], qz[144], qr0[36], ab[12 * 4], r0[6 * 2], span[6 * 8], qs[36], comp[6 * 4];
@@ -982,8 +986,11 @@ static int g6_deflated_roots(double t6[6][27], double N[6][G6_NEQ], double *phi_
             S[16 * (nm + i) + j] = s;
         }
     if (wk_eig_real(16, S, wr, wi, work) != WK_EIG_OK) return -1;
-    for (k = 0; k < 16; ++k) /* a near-real pair once, at its real part */
-        if (wi[k] >= 0.0 && fabs(wi[k]) <= G6_REAL_TOL * (1.0 + fabs(wr[k]))) xr[n++] = wr[k];
+    for (k = 0; k < 16; ++k) { /* a near-real pair once, at its real part */
+        const double off = fabs(wi[k]) / (1.0 + hypot(wr[k], wi[k]));
+        if (off > G6_REAL_TOL && off <= G6_CLUSTER_IM_TOL) *near_pair = 1;
+        if (wi[k] >= 0.0 && off <= (wide ? G6_CLUSTER_IM_TOL : G6_REAL_TOL)) xr[n++] = wr[k];
+    }
     return n;
 }
 
@@ -1250,12 +1257,13 @@ static int g6_emit(const double *A, const double *B, const double *C, double x, 
 int wk_g6_solve(const double *frames, const double *home, const double *pose, int shift, int reverse, int hidden,
                 double *q, int max_out)
 {
-    return wk_g6_solve_clusters(frames, home, pose, shift, reverse, hidden, 1, q, max_out);
+    return wk_g6_solve_clusters(frames, home, pose, shift, reverse, hidden, 1, NULL, q, max_out);
 }
 
 int wk_g6_solve_clusters(const double *frames, const double *home, const double *pose, int shift, int reverse,
-                         int hidden, int clusters, double *q, int max_out)
+                         int hidden, int clusters, int *near_pair, double *q, int max_out)
 {
+    int unused = 0;
     double loop[6][16], links[6][16], P[G6_NEQ][27], Q[G6_NEQ][G6_NY], r[G6_NEQ], t6[6][27], N[6][G6_NEQ];
     double A[144], B[144], C[144], zinv[16], pinv[16];
     int joints[6], i, e, n = 0, k, root;
@@ -1265,6 +1273,8 @@ int wk_g6_solve_clusters(const double *frames, const double *home, const double 
     wk_qep_result qep;
     cl.n = 0;
     cl.off = !clusters;
+    if (!near_pair) near_pair = &unused;
+    *near_pair = 0;
     if (!frames || !home || !pose || !q || shift < 0 || shift > 5 || hidden < 0 || hidden > 2 || max_out < 0) return -1;
     for (i = 0; i < 5; ++i) {
         g6_inverse(frames + 16 * i, zinv);
@@ -1299,7 +1309,7 @@ int wk_g6_solve_clusters(const double *frames, const double *home, const double 
         }
     if (hidden == 0) { /* the (1 + x^2)^4 deflated: a 16 x 16 eigenproblem */
         double t6r[6][27], xr[16], phi = 0.0;
-        const int nr = g6_deflated_roots(t6, N, &phi, xr);
+        const int nr = g6_deflated_roots(t6, N, &phi, xr, clusters, near_pair);
         if (nr >= 0) {
             g6_rotate_hidden(t6, phi, t6r);
             g6_quadratic(t6r, 0, A, B, C);
@@ -1311,6 +1321,13 @@ int wk_g6_solve_clusters(const double *frames, const double *home, const double 
     }
     g6_quadratic(t6, hidden, A, B, C);
     if (wk_generalized_quadratic_eig(12, A, B, C, 0.0, &qep) != WK_EIG_OK) return -1;
+    for (root = 0; root < qep.n_complex; ++root) { /* a pair near the real axis, read as Python reads it */
+        const double off = qep.complex_im[root] / (1.0 + hypot(qep.complex_re[root], qep.complex_im[root]));
+        if (off > G6_REAL_TOL && off <= G6_CLUSTER_IM_TOL) *near_pair = 1;
+        if (off <= (clusters ? G6_CLUSTER_IM_TOL : G6_REAL_TOL))
+            n = g6_emit(A, B, C, qep.complex_re[root], 0, 0.0, hidden, links, P, &f, joints, sign, frames, home, pose,
+                        q, n, max_out, &cl);
+    }
     for (root = 0; root < qep.n_real + qep.n_infinite; ++root) {
         const int infinite = root >= qep.n_real;
         n = g6_emit(A, B, C, infinite ? 0.0 : qep.real[root], infinite, 0.0, hidden, links, P, &f, joints, sign,

@@ -33,9 +33,11 @@ int wk_g6_solve(const double *frames, const double *home, const double *pose, in
 
 /* The same with clusters = 0: a root whose M(x) has a nearly shared null space (a cluster of nearly equal roots,
  * general6r.py's G6_CLUSTER_TOL) gives only its own null vector, not the cluster subspace's (each costs a Jacobi
- * SVD): a caller's first pass away from singularities. wk_g6_solve is clusters = 1. */
+ * SVD), and an eigenvalue pair off the real axis by more than the rounding allows is not read: a caller's first pass
+ * away from singularities. *near_pair (may be NULL): such a pair was seen (a nearly defective cluster's members can
+ * all come out complex). wk_g6_solve is clusters = 1. */
 int wk_g6_solve_clusters(const double *frames, const double *home, const double *pose, int shift, int reverse,
-                         int hidden, int clusters, double *q, int max_out);
+                         int hidden, int clusters, int *near_pair, double *q, int max_out);
 
 #ifdef __cplusplus
 }

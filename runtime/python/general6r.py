@@ -84,6 +84,10 @@ G6_SHIFT_REAL_TOL = 1e-6  # the same for the k x k shift pencil's eigenvalues u 
 # as for an exact multiple root, from any member near the cluster; offered besides the root's own null vector.
 G6_CLUSTER_TOL = 1e-4
 G6_CLUSTER_REAL_TOL = 1e-3  # the shift pencil's |Im u| / (1 + |u|) up to this on a cluster's approximate subspace
+# |Im x| / (1 + |x|) of an eigenvalue pair up to this (beyond G6_REAL_TOL): a nearly defective cluster's members can
+# come out this far off the axis (5e-3 seen), all of them in one eigensolver and none in another; such a pair makes the
+# caller solve every reading with clusters, which reads it as a root
+G6_CLUSTER_IM_TOL = 1e-2
 G6_MAXK = 4  # the most solutions a cluster's subspace gives (the C runtime's fixed arrays)
 # a root whose null vector lies within this of a cluster subspace already read (|v - B B^T v|) is that cluster's member:
 # its solutions were offered with the subspace (the C runtime then saves an SVD)
@@ -319,29 +323,35 @@ def _g6_roots(t6, n, hidden):
     return np.linalg.eigvals(mat), phi, a, b, c
 
 
-def _g6_real_roots(links, hidden):
+def _g6_real_roots(links, hidden, wide=False):
     """(P with its constant, the pseudo-inverse of Q, phi, the real eigenvalues x, M(x) of each, their singular values
-    and right singular vectors) of the loop's links read with `hidden` the eigenvalue's angle."""
+    and right singular vectors, whether a pair lies off the real axis by more than G6_REAL_TOL but within
+    G6_CLUSTER_IM_TOL) of the loop's links read with `hidden` the eigenvalue's angle; `wide`: such pairs are taken
+    as real roots too (at their real part)."""
     P, Q, r = g6_equations(links)
     u, sq, vt = np.linalg.svd(Q)
     n, pc = u[:, 8:].T, _g6_with_constant(P, r)
     t6 = np.einsum("fe,eabc->fabc", n, pc)
     qpinv = (vt.T / sq) @ u[:, :8].T
     roots, phi, a, b, c = _g6_roots(t6, n, hidden)
-    xs = np.array([x.real for x in roots  # a near-real pair once, at its real part
-                   if x.imag >= 0.0 and abs(x.imag) <= G6_REAL_TOL * (1.0 + abs(x))])
+    off = [abs(x.imag) / (1.0 + abs(x)) for x in roots]
+    tol = G6_CLUSTER_IM_TOL if wide else G6_REAL_TOL
+    xs = np.array([x.real for x, o in zip(roots, off, strict=True)  # a near-real pair once, at its real part
+                   if x.imag >= 0.0 and o <= tol])
+    near_pair = any(G6_REAL_TOL < o <= G6_CLUSTER_IM_TOL for o in off)
     ms = (a * xs[:, None, None] + b) * xs[:, None, None] + c  # M(x) of every real root at once
     svs, vts = np.linalg.svd(ms)[1:] if len(xs) else (np.zeros((0, 12)), np.zeros((0, 12, 12)))
-    return pc, qpinv, phi, xs, ms, svs, vts
+    return pc, qpinv, phi, xs, ms, svs, vts, near_pair
 
 
 def g6_candidates(links, hidden=0, clusters=True):
     """Loop angles (t1..t6) of every real root of the eliminated system for the loop's links (without `clusters`,
-    a root in a cluster of nearly equal roots gives only its own null vector: _g6_monomial_vectors)."""
-    pc, qpinv, phi, xs, _, svs, vts = _g6_real_roots(links, hidden)
+    a root in a cluster of nearly equal roots gives only its own null vector: _g6_monomial_vectors; with them, a
+    pair within G6_CLUSTER_IM_TOL of the real axis is read as a root too), and whether such a pair was seen."""
+    pc, qpinv, phi, xs, _, svs, vts, near_pair = _g6_real_roots(links, hidden, clusters)
     others = [k for k in range(3) if k != hidden]
     if len(xs) == 0:
-        return []
+        return [], near_pair
     angles, read = [], [] if clusters else None
     for x, sv, vt in zip(xs, svs, vts, strict=True):
         vs = _g6_monomial_vectors(sv, vt, read)
@@ -350,7 +360,7 @@ def g6_candidates(links, hidden=0, clusters=True):
             row[hidden] = phi + 2.0 * math.atan(x)
             row[others[0]], row[others[1]] = _g6_half_angle(v, 0), _g6_half_angle(v, 1)
             angles.append(row)
-    return _g6_complete_many(np.array(angles), links, pc, qpinv) if angles else []
+    return (_g6_complete_many(np.array(angles), links, pc, qpinv) if angles else []), near_pair
 
 
 def _g6_monomial_vectors(sv, vt, clusters):
@@ -539,11 +549,17 @@ def g6_refine(frames, home, pose, q, steps=G6_REFINE_STEPS):
 
 
 def g6_solve(frames, home, pose, shift=0, reverse=False, hidden=0, clusters=True):
-    """Joint candidates q (length 6, refined by Newton on the chain) of prod Z_i Rz(q_i) Z_i^-1 home = pose."""
+    """g6_solve_flagged's candidates."""
+    return g6_solve_flagged(frames, home, pose, shift, reverse, hidden, clusters)[0]
+
+
+def g6_solve_flagged(frames, home, pose, shift=0, reverse=False, hidden=0, clusters=True):
+    """Joint candidates q (length 6, refined by Newton on the chain) of prod Z_i Rz(q_i) Z_i^-1 home = pose, and
+    whether an eigenvalue pair lay near the real axis (g6_candidates)."""
     links, joints, sign = g6_labelled(g6_loop_links(frames, home, pose), shift, reverse)
-    cands = g6_candidates(links, hidden, clusters)
+    cands, near_pair = g6_candidates(links, hidden, clusters)
     if not cands:
-        return []
+        return [], near_pair
     q = np.zeros((len(cands), 6))
     q[:, joints] = sign * np.array(cands)
-    return [[float(v) for v in row] for row in g6_refine_many(frames, home, pose, q)]
+    return [[float(v) for v in row] for row in g6_refine_many(frames, home, pose, q)], near_pair

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from general6r import g6_frames_of, g6_solve
+from general6r import g6_frames_of, g6_solve_flagged
 from serial_fk import _spectrum
 from serial_stages import _ws_take
 from serial_stand_in import (
@@ -44,15 +44,17 @@ G6_ORDER_TOL = 1e-6
 G6_NEAR_SINGULAR = 1e-3
 
 
-# two verified sets are one solution when they are within G6_SAME_COND times the distance their pose residuals
-# allow at their conditioning: (err_a + err_b) / sigma_min to first order, sqrt(err_a + err_b) where the second order
-# bounds it (sigma_min ~ 0; joints in rad, lengths in the model's units). The residual is the largest entry of
-# [R | p], and the scale of sigma_min (_g6_conditioning) is within sqrt(6) of it: the factor covers both. Near a
-# singularity a residual of 1e-13 leaves a set 1e-8 from the solution (C and numpy then kept one each, or both), and
-# a set whose polish stopped at its step cap a residual of 3e-10 (1.2e-9 from its twin at sigma_min / sigma_max
-# 2.5e-2). Two distinct solutions d apart near a double root have sigma_min ~ d and residuals at rounding, so only
-# pairs within ~sqrt(eps) of one another, which no residual resolves, merge.
+# two verified sets are one solution when they are within G6_SAME_COND (err_a + err_b) / sigma_min, what their pose
+# residuals allow at their conditioning (joints in rad, lengths in the model's units), and G6_SAME_MAX. The residual
+# is the largest entry of [R | p], and the scale of sigma_min (_g6_conditioning) is within sqrt(6) of it: the factor
+# covers both. Near a singularity a residual of 1e-13 leaves a set 1e-8 from the solution (C and numpy then kept one
+# each, or both); a set whose polish stopped at its step cap, a residual of 3e-10, 1.2e-9 from its twin at sigma_min
+# / sigma_max 2.5e-2; near a wrist's self-motion (sigma_min / sigma_max 1e-7) residuals of 1e-10 leave copies 5e-4
+# apart along it. Two distinct solutions d apart near a double root have sigma_min ~ d and residuals at rounding, so
+# only pairs within ~sqrt(eps) of one another, which no residual resolves, merge; G6_SAME_MAX keeps a residual near
+# IK_VERIFY_TOL at sigma_min ~ 0 from merging sets radians apart.
 G6_SAME_COND = 4.0
+G6_SAME_MAX = 1e-3
 
 
 def _g6_conditioning(q, dp, joints):
@@ -66,10 +68,10 @@ def _g6_conditioning(q, dp, joints):
 
 
 def _g6_same(a, b, err, scale):
-    """Whether sets a and b (joint values) are one solution: within G6_SAME, or within G6_SAME_COND times both
-    err / scale and sqrt(err) (err: their residuals' sum, scale: the smaller of their sigma_min bounds)."""
+    """Whether sets a and b (joint values) are one solution: within G6_SAME, or within both G6_SAME_COND err / scale
+    and G6_SAME_MAX (err: their residuals' sum, scale: the smaller of their sigma_min bounds)."""
     d = max(abs(_wrap(x - y)) for x, y in zip(a, b, strict=True))
-    return d <= G6_SAME or (d * scale <= G6_SAME_COND * err and d <= G6_SAME_COND * math.sqrt(err))
+    return d <= G6_SAME or (d * scale <= G6_SAME_COND * err and d <= G6_SAME_MAX)
 
 
 def _g6_candidates(out, readings, joints, q, pose, dp):
@@ -82,7 +84,9 @@ def _g6_candidates(out, readings, joints, q, pose, dp):
     its two eigenvalues, one solution), and once at most: such a pose costs one reading, any other two at most.
     The first pass reads no cluster subspaces (each costs an SVD in C); near a singularity (a kept set's sigma_min /
     sigma_max within G6_NEAR_SINGULAR), where a reading's clusters may hide solutions and a reading can miss a pair,
-    every reading is solved again with them."""
+    or where the reading shows a cluster (a pair near the real axis, a root whose candidate is no solution or meets
+    another's: the near-special KR 6's far members; numpy lost four of its solutions so, C none), every reading is
+    solved again with them."""
     kept, errs, scales, tried_odd, near = [], [], [], False, False
     for labelling in readings:
         merged, near = _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, False)
@@ -105,17 +109,20 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, cluster
     """The verified candidates of one reading of the loop appended to kept ((joint values of `joints`, flags), at
     most MAX_IK; their residuals to errs, their sigma_min bounds to scales), each unless it is one solution with a
     kept one (_g6_same; then the better fit stands for it); returns how many of its candidates met one of its own
-    and whether a kept one is within G6_NEAR_SINGULAR of singular: out = the stage kernel's axes (18), points (18)
-    and target [R | p] (12); q carries the joints solved before the stage (a held joint's value); `clusters`: the
-    elimination reads its clusters' subspaces (general6r.py's g6_solve)."""
+    and whether the reading needs the others (a kept set within G6_NEAR_SINGULAR of singular, an eigenvalue pair
+    near the real axis: general6r.py's G6_CLUSTER_IM_TOL, a candidate that is no solution, two on one solution):
+    out = the stage kernel's axes (18), points (18) and target [R | p] (12); q carries the joints solved before the
+    stage (a held joint's value); `clusters`: the elimination reads its clusters' subspaces (general6r.py's
+    g6_solve)."""
     axes = np.array(out[:18], dtype=float).reshape(6, 3)
     frames = g6_frames_of(axes, np.array(out[18:36], dtype=float).reshape(6, 3))
     g4 = np.vstack([np.array(out[36:48], dtype=float).reshape(3, 4), [0.0, 0.0, 0.0, 1.0]])
     shift, reverse, hidden = labelling
     size = max(abs(pose[3]), abs(pose[7]), abs(pose[11]))
     target = DOUBLE_ROOT_POLISH_TOL * max(1.0, size)
-    first, merged, near = len(kept), 0, False
-    for cand in g6_solve(frames, np.eye(4), g4, shift, bool(reverse), hidden, clusters):
+    first, merged = len(kept), 0
+    cands, near = g6_solve_flagged(frames, np.eye(4), g4, shift, bool(reverse), hidden, clusters)
+    for cand in cands:
         x = list(q)
         for j, v in zip(joints, cand, strict=True):
             x[j] = v
@@ -123,6 +130,7 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, cluster
         if not err <= target:
             x, err = _polish(x, pose, dp, target=target)
         if not err <= IK_VERIFY_TOL:
+            near = True  # a root that is no solution: a cluster's far member, or a reading degenerating here
             continue
         vals = [_wrap(x[j]) for j in joints]
         ratio, scale = _g6_conditioning(x, dp, joints)
@@ -130,6 +138,7 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, cluster
                     if _g6_same(vals, other, err + errs[m], min(scale, scales[m]))), -1)
         if dup >= 0:  # one solution found twice: the better fit stands for it
             merged += dup >= first
+            near = near or dup >= first  # two of its roots on one solution: a double root, or a cluster's
             if err < errs[dup]:
                 kept[dup], errs[dup] = (vals, kept[dup][1]), err
             continue

@@ -43,10 +43,10 @@ static void sr_g6_sort(sr_ws *ws, int n)
  * a pair of solutions; every reading is then solved and their sets joined (Python's G6_NEAR_SINGULAR) */
 #define SR_G6_NEAR_SINGULAR 1e-3
 
-/* two verified sets are one solution when they are within SR_G6_SAME_COND times both
- * (err_a + err_b) / sigma_min and sqrt(err_a + err_b): what their residuals allow at that conditioning to first and
- * second order (Python's G6_SAME_COND says why) */
+/* two verified sets are one solution when they are within SR_G6_SAME_COND (err_a + err_b) / sigma_min, what their
+ * residuals allow at that conditioning, and SR_G6_SAME_MAX (Python's G6_SAME_COND says why) */
 #define SR_G6_SAME_COND 4.0
+#define SR_G6_SAME_MAX 1e-3
 
 /* sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out; a Cholesky bound proves most
  * sets above SR_G6_NEAR_SINGULAR, the Jacobi eigenvalues of J^T J decide the rest: Python's eigvalsh through
@@ -73,8 +73,8 @@ static double sr_g6_conditioning(const double *q, const double *dp, const int *j
     return ratio;
 }
 
-/* whether sets a and b are one solution: within SR_G6_SAME, or within SR_G6_SAME_COND times both err / scale and
- * sqrt(err) (err: their residuals' sum, scale: the smaller of their sigma_min bounds; Python's _g6_same) */
+/* whether sets a and b are one solution: within SR_G6_SAME, or within both SR_G6_SAME_COND err / scale and
+ * SR_G6_SAME_MAX (err: their residuals' sum, scale: the smaller of their sigma_min bounds; Python's _g6_same) */
 static int sr_g6_same(const double *a, const double *b, double err, double scale)
 {
     double d = 0.0;
@@ -83,14 +83,15 @@ static int sr_g6_same(const double *a, const double *b, double err, double scale
         const double e = fabs(wk_wrap(a[j] - b[j]));
         if (e > d) d = e;
     }
-    return d <= SR_G6_SAME || (d * scale <= SR_G6_SAME_COND * err && d <= SR_G6_SAME_COND * sqrt(err));
+    return d <= SR_G6_SAME || (d * scale <= SR_G6_SAME_COND * err && d <= SR_G6_SAME_MAX);
 }
 
 /* The verified candidates of one reading of the loop (`clusters`: reading its clusters' subspaces,
  * wk_g6_solve_clusters) appended to ws's first n (at most SR_MAX_IK; their residuals
  * to errs, their sigma_min bounds to scales), each unless it is one solution with a kept one (sr_g6_same; then the
  * better fit stands for it); returns the new count, in *merged how many of its candidates met one of its own and in
- * *near whether a kept one is within SR_G6_NEAR_SINGULAR of singular: out = the stage kernel's axes (18), points
+ * *near whether the reading needs the others (a kept set within SR_G6_NEAR_SINGULAR of singular, an eigenvalue pair
+ * near the real axis, a candidate that is no solution, two on one solution; Python's _g6_reading): out = the stage kernel's axes (18), points
  * (18) and target [R | p] (12); q carries the joints solved before the stage (a held joint's value) */
 static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, int clusters, const int *joints,
                          const double *q, const double *pose, const double *dp, sr_ws *ws, double *errs,
@@ -101,13 +102,15 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
     const double size = fmax(fabs(pose[3]), fmax(fabs(pose[7]), fabs(pose[11])));
     const double target = SR_DOUBLE_ROOT_POLISH_TOL * fmax(1.0, size);
     const int first = n;
-    int i, j, m, nr;
+    int i, j, m, nr, near_pair = 0;
     *merged = 0;
     wk_g6_z_frames(out, out + 18, frames);
     for (i = 0; i < 12; ++i) g4[i] = out[36 + i];
     g4[12] = g4[13] = g4[14] = 0.0;
     g4[15] = 1.0;
-    nr = wk_g6_solve_clusters(frames, id4, g4, shift, reverse, hidden, clusters, cand, WK_G6_MAX_CANDIDATES);
+    nr = wk_g6_solve_clusters(frames, id4, g4, shift, reverse, hidden, clusters, &near_pair, cand,
+                              WK_G6_MAX_CANDIDATES);
+    *near |= near_pair;
     for (i = 0; i < nr; ++i) {
         double x[SR_N], t[12], vals[6], err, ratio, scale;
         int dup = -1;
@@ -120,7 +123,10 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
             if (!(d <= err)) err = d; /* a NaN fails the check */
         }
         if (!(err <= target)) err = sr_polish(x, pose, dp, target);
-        if (!(err <= SR_IK_VERIFY_TOL)) continue;
+        if (!(err <= SR_IK_VERIFY_TOL)) { /* a root that is no solution: a cluster's far member, or a degeneracy */
+            *near = 1;
+            continue;
+        }
         for (j = 0; j < 6; ++j) {
             x[joints[j]] = wk_wrap(x[joints[j]]);
             vals[j] = x[joints[j]];
@@ -129,7 +135,10 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
         for (m = 0; m < n && dup < 0; ++m)
             if (sr_g6_same(vals, ws->q[m], err + errs[m], fmin(scale, scales[m]))) dup = m;
         if (dup >= 0) { /* one solution found twice: the better fit stands for it */
-            if (dup >= first) ++*merged;
+            if (dup >= first) { /* two of its roots on one solution: a double root, or a cluster's */
+                ++*merged;
+                *near = 1;
+            }
             if (err < errs[dup]) {
                 for (j = 0; j < 6; ++j) ws->q[dup][j] = x[joints[j]];
                 errs[dup] = err;
