@@ -1257,7 +1257,7 @@ static int g6_emit(const double *A, const double *B, const double *C, double x, 
 int wk_g6_solve(const double *frames, const double *home, const double *pose, int shift, int reverse, int hidden,
                 double *q, int max_out)
 {
-    return wk_g6_solve_clusters(frames, home, pose, shift, reverse, hidden, 1, NULL, q, max_out);
+    return wk_g6_solve_clusters(frames, home, pose, shift, reverse, hidden, 0, NULL, q, max_out);
 }
 
 int wk_g6_solve_clusters(const double *frames, const double *home, const double *pose, int shift, int reverse,

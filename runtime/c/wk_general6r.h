@@ -31,11 +31,12 @@ void wk_g6_z_frames(const double *axes, const double *points, double *frames);
 int wk_g6_solve(const double *frames, const double *home, const double *pose, int shift, int reverse, int hidden,
                 double *q, int max_out);
 
-/* The same with clusters = 0: a root whose M(x) has a nearly shared null space (a cluster of nearly equal roots,
- * general6r.py's G6_CLUSTER_TOL) gives only its own null vector, not the cluster subspace's (each costs a Jacobi
- * SVD), and an eigenvalue pair off the real axis by more than the rounding allows is not read: a caller's first pass
- * away from singularities. *near_pair (may be NULL): such a pair was seen (a nearly defective cluster's members can
- * all come out complex). wk_g6_solve is clusters = 1. */
+/* wk_g6_solve with a choice. clusters = 0 (wk_g6_solve's): a root whose M(x) has a nearly shared null space (a
+ * cluster of nearly equal roots, general6r.py's G6_CLUSTER_TOL) gives only its own null vector, and an eigenvalue
+ * pair off the real axis by more than the rounding allows is not read. clusters = 1: such a root also gives the
+ * cluster subspace's candidates (a Jacobi SVD each; approximate, refined but not polished, so for a caller that
+ * polishes and merges them: the general 6R stage's second pass), and such a pair is read as a root. *near_pair (may
+ * be NULL): such a pair was seen (a nearly defective cluster's members can all come out complex). */
 int wk_g6_solve_clusters(const double *frames, const double *home, const double *pose, int shift, int reverse,
                          int hidden, int clusters, int *near_pair, double *q, int max_out);
 

@@ -344,7 +344,7 @@ def _g6_real_roots(links, hidden, wide=False):
     return pc, qpinv, phi, xs, ms, svs, vts, near_pair
 
 
-def g6_candidates(links, hidden=0, clusters=True):
+def g6_candidates(links, hidden=0, clusters=False):
     """Loop angles (t1..t6) of every real root of the eliminated system for the loop's links (without `clusters`,
     a root in a cluster of nearly equal roots gives only its own null vector: _g6_monomial_vectors; with them, a
     pair within G6_CLUSTER_IM_TOL of the real axis is read as a root too), and whether such a pair was seen."""
@@ -548,12 +548,12 @@ def g6_refine(frames, home, pose, q, steps=G6_REFINE_STEPS):
     return [float(v) for v in g6_refine_many(frames, home, pose, q, steps)[0]]
 
 
-def g6_solve(frames, home, pose, shift=0, reverse=False, hidden=0, clusters=True):
+def g6_solve(frames, home, pose, shift=0, reverse=False, hidden=0, clusters=False):
     """g6_solve_flagged's candidates."""
     return g6_solve_flagged(frames, home, pose, shift, reverse, hidden, clusters)[0]
 
 
-def g6_solve_flagged(frames, home, pose, shift=0, reverse=False, hidden=0, clusters=True):
+def g6_solve_flagged(frames, home, pose, shift=0, reverse=False, hidden=0, clusters=False):
     """Joint candidates q (length 6, refined by Newton on the chain) of prod Z_i Rz(q_i) Z_i^-1 home = pose, and
     whether an eigenvalue pair lay near the real axis (g6_candidates)."""
     links, joints, sign = g6_labelled(g6_loop_links(frames, home, pose), shift, reverse)
