@@ -687,7 +687,7 @@ def test_at_the_ur_wrist_singularity_the_family_is_returned():
         sol, ref_sol = m.ik(T), py.ik(T)
         assert sol.count >= 1 and sol.status == m.STATUS_INDETERMINATE, q
         assert sol.count == ref_sol.count, q
-        for a, b in zip(sol.values[sol.valid], ref_sol.values[ref_sol.valid]):
+        for a, b in zip(sol.values[sol.valid], ref_sol.values[ref_sol.valid], strict=True):
             sigma_5 = np.linalg.svd(reference.jacobian(a), compute_uv=False)[-2]
             assert np.max(np.abs(a - b)) <= 1e-12 + 64 * eps / sigma_5, (q, a, b, sigma_5)
         assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
