@@ -497,8 +497,8 @@ static int g6_monomial_vectors(const double *M, double m[G6_MAXV][12], g6_cluste
     if (n == 0) { /* the LU's pivots said a null space of dimension > 1, the singular values one */
         memcpy(m[0], basis[0], sizeof m[0]);
         n = 1;
+        if (cl->off || g6_covered(cl, m[0])) return n; /* the LU's vector passed these above */
     }
-    if (cl->off || g6_covered(cl, m[0])) return n;
     k = 0;
     while (k < G6_MAXK && rel[k] <= G6_CLUSTER_TOL) ++k;
     if (k < 2) return n;

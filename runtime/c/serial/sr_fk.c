@@ -21,33 +21,39 @@ static void sr_jacobian_in_frames(const double *q, const sr_design *d, const dou
     }
 }
 
-/* The manipulability and whether sigma_min / sigma_max <= SR_SINGULAR_EPS of a 6 x cols Jacobian (row-major): a
- * Cholesky bound proves most regular, the Jacobi eigenvalues of J^T J (J J^T past 6 columns) decide the rest; the
- * FK's conditioning and the general 6R stage's singular flag */
-static double sr_spectrum(const double *jac, int cols, int *singular)
+/* The manipulability of a 6 x cols Jacobian (row-major) and *ratio = sigma_min / sigma_max, from the Jacobi
+ * eigenvalues of J^T J (J J^T past 6 columns: a held joint's 7, whose nonzero sigma^2 it holds); the FK's and the
+ * general 6R stage's conditioning where no Cholesky bound proved them regular */
+static double sr_gram_spectrum(const double *jac, int cols, double *ratio)
 {
-    double g[36], man, ratio;
+    double g[36];
     int i, j, k;
-    if (wk_conditioning_bound(jac, cols, SR_SINGULAR_EPS, &man) == 1) {
-        *singular = 0;
-        return man;
-    }
     if (cols <= 6) {
         for (i = 0; i < cols; ++i)
             for (j = 0; j < cols; ++j) {
                 g[i * cols + j] = 0.0;
                 for (k = 0; k < 6; ++k) g[i * cols + j] += jac[k * cols + i] * jac[k * cols + j];
             }
-        man = wk_jacobi_spectrum(g, cols, &ratio);
-    } else {
-        /* a redundant arm (a held joint's 7): J J^T, the 6 x 6 whose eigenvalues are J's nonzero sigma^2 */
-        for (i = 0; i < 6; ++i)
-            for (j = 0; j < 6; ++j) {
-                g[i * 6 + j] = 0.0;
-                for (k = 0; k < cols; ++k) g[i * 6 + j] += jac[i * cols + k] * jac[j * cols + k];
-            }
-        man = wk_jacobi_spectrum(g, 6, &ratio);
+        return wk_jacobi_spectrum(g, cols, ratio);
     }
+    for (i = 0; i < 6; ++i)
+        for (j = 0; j < 6; ++j) {
+            g[i * 6 + j] = 0.0;
+            for (k = 0; k < cols; ++k) g[i * 6 + j] += jac[i * cols + k] * jac[j * cols + k];
+        }
+    return wk_jacobi_spectrum(g, 6, ratio);
+}
+
+/* The manipulability and whether sigma_min / sigma_max <= SR_SINGULAR_EPS of a 6 x cols Jacobian (row-major): a
+ * Cholesky bound proves most regular, sr_gram_spectrum decides the rest */
+static double sr_spectrum(const double *jac, int cols, int *singular)
+{
+    double man, ratio;
+    if (wk_conditioning_bound(jac, cols, SR_SINGULAR_EPS, &man) == 1) {
+        *singular = 0;
+        return man;
+    }
+    man = sr_gram_spectrum(jac, cols, &ratio);
     *singular = ratio <= SR_SINGULAR_EPS;
     return man;
 }

@@ -49,13 +49,13 @@ static void sr_g6_sort(sr_ws *ws, int n)
 #define SR_G6_SAME_MAX 1e-3
 
 /* sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out; a Cholesky bound proves most
- * sets above SR_G6_NEAR_SINGULAR, the Jacobi eigenvalues of J^T J decide the rest: Python's eigvalsh through
+ * sets above SR_G6_NEAR_SINGULAR, sr_gram_spectrum decides the rest: Python's eigvalsh through
  * serial_fk's _spectrum), 1 where proven above; *scale, of its sigma_min: that ratio times |J|_F where it is within
  * SR_G6_NEAR_SINGULAR, else SR_G6_NEAR_SINGULAR |J|_F / sqrt(6) (Python's _g6_conditioning) */
 static double sr_g6_conditioning(const double *q, const double *dp, const int *joints, double *scale)
 {
-    double full[6 * SR_N], jac[36], g[36], man, ratio, fro = 0.0;
-    int i, j, k;
+    double full[6 * SR_N], jac[36], man, ratio, fro = 0.0;
+    int i, j;
     sr_k_jacobian(q, dp, full);
     for (i = 0; i < 6; ++i)
         for (j = 0; j < 6; ++j) jac[6 * i + j] = full[SR_N * i + joints[j]];
@@ -63,12 +63,7 @@ static double sr_g6_conditioning(const double *q, const double *dp, const int *j
     fro = sqrt(fro);
     *scale = SR_G6_NEAR_SINGULAR * fro / sqrt(6.0);
     if (wk_conditioning_bound(jac, 6, SR_G6_NEAR_SINGULAR, &man) == 1) return 1.0;
-    for (i = 0; i < 6; ++i)
-        for (j = 0; j < 6; ++j) {
-            g[i * 6 + j] = 0.0;
-            for (k = 0; k < 6; ++k) g[i * 6 + j] += jac[k * 6 + i] * jac[k * 6 + j];
-        }
-    (void)wk_jacobi_spectrum(g, 6, &ratio);
+    (void)sr_gram_spectrum(jac, 6, &ratio);
     if (ratio <= SR_G6_NEAR_SINGULAR) *scale = ratio * fro;
     return ratio;
 }
