@@ -605,3 +605,34 @@ def test_the_stages_of_a_plan_set_every_joint_and_print_ck_op_rows(name, tmp_pat
             depth += (ch == "{") - (ch == "}")
             fields += ch == "," and depth == 0
         assert depth == 0 and fields == 15, row
+
+
+def test_the_jacobi_smallest_eigenpair_is_lapack_s(lib):
+    """wk_jacobi_smallest (a calibrated arm's near-null direction: sr_along_null) against LAPACK's eigh on Gram
+    matrices J^T J of 6 x n Jacobians, n = 1 .. 6, with sigma_min / sigma_max from 1 down to 1e-10 (J^T J's smallest
+    eigenvalue then below its rounding): the eigenvalue to eps |G| n, the eigenvector to eps |G| n / gap (the gap to
+    the next eigenvalue; its sign free), unit length; a bad n gives -1 and leaves v alone."""
+    lib.wk_jacobi_smallest.argtypes = [D, ctypes.c_int, D]
+    lib.wk_jacobi_smallest.restype = ctypes.c_double
+    rng = case_rng(2341)
+    eps = np.finfo(float).eps
+    for n in range(1, 7):
+        for ratio in (1.0, 1e-3, 1e-6, 1e-10):
+            u, _ = np.linalg.qr(rng.normal(size=(6, 6)))
+            w, _ = np.linalg.qr(rng.normal(size=(n, n)))
+            sigma = np.sort(rng.uniform(0.2, 2.0, n))[::-1]
+            sigma[-1] = sigma[0] * ratio if n > 1 else sigma[-1]
+            jac = u[:, :n] @ np.diag(sigma) @ w.T
+            g = jac.T @ jac
+            vals, vecs = np.linalg.eigh(g)
+            v = np.zeros(n)
+            low = lib.wk_jacobi_smallest(_p(g.copy()), n, _p(v))
+            scale = np.linalg.norm(g, 2) * n
+            assert abs(low - vals[0]) <= 8 * eps * scale, (n, ratio)
+            assert abs(np.linalg.norm(v) - 1.0) <= 8 * eps * n
+            if n > 1:
+                assert 1.0 - abs(float(v @ vecs[:, 0])) <= 8 * eps * scale / (vals[1] - vals[0]), (n, ratio)
+    v = np.full(2, 7.0)
+    assert lib.wk_jacobi_smallest(_p(np.eye(9)), 9, _p(v)) == -1.0 and lib.wk_jacobi_smallest(_p(np.eye(2)), 0,
+                                                                                                _p(v)) == -1.0
+    assert list(v) == [7.0, 7.0]

@@ -258,6 +258,34 @@ def test_a_calibrated_robot_is_solved_on_its_ideal_geometry_and_polished_on_its_
             assert _gap(va, vb) <= 1e-12 + 4 * m.DOUBLE_ROOT_POLISH_TOL * max(1.0, m.SCALE) / sigma
 
 
+def test_a_calibrated_robot_near_its_singularities_is_never_told_a_reachable_pose_is_unreachable(tmp_path):
+    """The calibrated KR 6 (`--stages derived`) 1e-10 .. 1e-6 rad from each singular joint (det J = 0 bisected from
+    random joints): near a shoulder singularity its ideal stages' q1 is the ideal geometry's 1e-7 over the wrist
+    centre's 1e-10 from axis 1, radians off, outside Gauss-Newton's and the compensated pose's reach; every set
+    failed the FK check and the pose was reported unreachable (24 of the near-singular sweep's 168 poses). The
+    search along the near-null direction (serial_verify._along_null, sr_along_null) finds the true chain's solution:
+    every pose gets a set, C and numpy, each on the independent reference's pose to what the module's check
+    (max |entry| of [R | p] <= IK_VERIFY_TOL) implies for the reference's measure: |dp| <= sqrt(3) IK_VERIFY_TOL, the
+    angle <= |dR|_F / sqrt(2) <= 3 / sqrt(2) IK_VERIFY_TOL (sets this close to singular can pass with 9e-10)."""
+    path = _file("kr6_calibrated", "urdf")
+    derived_cache.derive(path, tmp_path / "d", name="kr6c", stages="derived", native=True)
+    m, py = own_robot.import_solver(tmp_path / "d", "kr6c"), own_robot.import_solver(tmp_path / "d", "kr6c", "numpy")
+    reference = ref.load(path)
+    rng = case_rng(2340)
+    tested = 0
+    for j, qs in singular_configurations(m.jacobian, 6, rng, bases=2, per_base=2):
+        for delta in (1e-10, 1e-8, 1e-6):
+            q = qs.copy()
+            q[j] += delta * rng.choice([-1.0, 1.0])
+            T = reference(q)
+            for sol in (m.ik(T), py.ik(T)):
+                assert sol.count >= 1, (j, delta, list(q), sol.reason)
+                assert all(ref.pose_error(reference(np.asarray(v)), T) <= 3 / math.sqrt(2) * m.IK_VERIFY_TOL
+                           for v in sol)
+            tested += 1
+    assert tested >= 18
+
+
 # ------------------------------------------------------------------------------------------------ a held joint
 # None: the command's choice (the iiwa's a1, the Panda's joint4); the Panda and the iiwa's a6 are solved from the tool,
 # the Panda's joint6 with axes 5 and 7 meeting across it

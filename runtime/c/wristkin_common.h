@@ -69,6 +69,9 @@ int wk_input_frame(const double *in, double out[12]);
  * rotations: returns sqrt of their product (the manipulability when g = J^T J) and sets *ratio =
  * sqrt(lambda_min / lambda_max) (sigma_min / sigma_max of J; 0 at a singular configuration, up to rounding). */
 double wk_jacobi_spectrum(double *g, int n, double *ratio);
+/* The smallest eigenvalue of the symmetric n x n g (row-major, overwritten; n <= WK_MAX_DIM) and its unit
+ * eigenvector in v (cyclic Jacobi, as wk_jacobi_spectrum); -1 for a bad n. */
+double wk_jacobi_smallest(double *g, int n, double *v);
 
 /* Whether sigma_min / sigma_max of the 6 x n matrix jac (row-major, n <= WK_MAX_DIM) is above eps, proven from
  * Cholesky factorisations of its Gram matrix G (J^T J for n <= 6, J J^T above) at a fraction of a spectrum's cost

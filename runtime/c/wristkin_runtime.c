@@ -206,14 +206,14 @@ int wk_input_frame(const double *in, double out[12])
     return WK_OK;
 }
 
-double wk_jacobi_spectrum(double *g, int n, double *ratio)
+/* Cyclic Jacobi on the symmetric n x n g (row-major, overwritten: its eigenvalues on the diagonal); v (n x n,
+ * row-major, or NULL) receives the eigenvectors as columns. */
+static void wk_jacobi_sweeps(double *g, int n, double *v)
 {
-    double prod = 1.0, lo = HUGE_VAL, hi = 0.0, scale = 0.0;
+    double scale = 0.0;
     int i, j, k, sweep;
-    if (n < 1 || n > WK_MAX_DIM) {
-        *ratio = 0.0;
-        return 0.0;
-    }
+    if (v)
+        for (i = 0; i < n * n; ++i) v[i] = i % (n + 1) == 0 ? 1.0 : 0.0;
     for (i = 0; i < n; ++i) scale += g[i * n + i];
     for (sweep = 0; sweep < 50; ++sweep) {
         double off = 0.0;
@@ -240,8 +240,25 @@ double wk_jacobi_spectrum(double *g, int n, double *ratio)
                         g[k * n + j] = g[j * n + k] = gkj + s * (gki - tau * gkj);
                     }
                 }
+                if (v)
+                    for (k = 0; k < n; ++k) {
+                        const double vki = v[k * n + i], vkj = v[k * n + j];
+                        v[k * n + i] = vki - s * (vkj + tau * vki);
+                        v[k * n + j] = vkj + s * (vki - tau * vkj);
+                    }
             }
     }
+}
+
+double wk_jacobi_spectrum(double *g, int n, double *ratio)
+{
+    double prod = 1.0, lo = HUGE_VAL, hi = 0.0;
+    int i;
+    if (n < 1 || n > WK_MAX_DIM) {
+        *ratio = 0.0;
+        return 0.0;
+    }
+    wk_jacobi_sweeps(g, n, NULL);
     for (i = 0; i < n; ++i) {
         const double l = g[i * n + i] > 0.0 ? g[i * n + i] : 0.0;
         prod *= l;
@@ -250,6 +267,18 @@ double wk_jacobi_spectrum(double *g, int n, double *ratio)
     }
     *ratio = hi > 0.0 ? sqrt(lo / hi) : 0.0;
     return sqrt(prod);
+}
+
+double wk_jacobi_smallest(double *g, int n, double *v)
+{
+    double vecs[WK_MAX_DIM * WK_MAX_DIM];
+    int i, lo = 0;
+    if (n < 1 || n > WK_MAX_DIM) return -1.0;
+    wk_jacobi_sweeps(g, n, vecs);
+    for (i = 1; i < n; ++i)
+        if (g[i * n + i] < g[lo * n + lo]) lo = i;
+    for (i = 0; i < n; ++i) v[i] = vecs[i * n + lo];
+    return g[lo * n + lo];
 }
 
 /* 1 when g - shift I (m x m, row-major, symmetric) is positive definite: its Cholesky factorisation has positive

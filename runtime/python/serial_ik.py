@@ -57,7 +57,7 @@ from serial_stand_in import (
     _projected_note,
     _stack,
 )
-from serial_verify import _nearest_member, _polish, _refit
+from serial_verify import _along_null, _nearest_member, _polish, _refit
 
 
 # wristkin: inlined from here
@@ -131,7 +131,16 @@ def _ik_numpy(pose, d, previous):
         if not err <= IK_VERIFY_TOL and CALIBRATED:
             # the ideal stages' answer outside Gauss-Newton's basin on the true chain (near a singularity the ideal
             # geometry's 1e-7 moves it by 1e-7 / sigma_min): solved again for the compensated pose
-            qk, err = _compensated(k, p, qk, d.params, prev, polish_double)
+            qc, err_c = _compensated(k, p, qk, d.params, prev, polish_double)
+            if err_c < err:  # kept only where it helps (as C's sr_compensated)
+                qk, err = qc, err_c
+            if not err <= IK_VERIFY_TOL:
+                # still off: the solution lies along the near-null direction, beyond Gauss-Newton's steps (a shoulder
+                # 1e-10 from singular: 0 sets before). Searched there to the FK's rounding (the conditioning
+                # allowance's residual: at sigma_min 1e-10 a residual of 1e-12 leaves the set 1e-2 off)
+                qn, err_n = _along_null(qk, p, d.params, rounding)
+                if err_n < err:
+                    qk, err = qn, err_n
         if not err <= IK_VERIFY_TOL:
             continue
         if _HAS_PRISMATIC and not all(abs(x) <= LENGTH_MAX

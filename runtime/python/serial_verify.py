@@ -1,5 +1,6 @@
-"""A serial arm's checks of an IK set on its FK: the pose error, the damped Gauss-Newton polish and refit, and
-the member of the wrist's singular family nearest a previous set.
+"""A serial arm's checks of an IK set on its FK: the pose error, the damped Gauss-Newton polish and refit, a
+calibrated arm's search along its near-singular direction, and the member of the wrist's singular family nearest a
+previous set.
 
 A wristkin runtime source: every serial arm's generated module (the catalogue's DH chains, the finite-screw chains'
 serial view) inlines it from the marker line on (derive/runtime_files.py), after its constants, derived kernels
@@ -69,6 +70,70 @@ def _polish(q, pose, dp, iters=POLISH_STEPS, target=IK_VERIFY_TOL):
             break
         err = err2
     return [_wrap(x) if k == "R" else x for x, k in zip(q, JOINT_KINDS, strict=True)], err
+
+
+# a calibrated arm's search along its near-null direction (_along_null): steps of the held-joint fit, secant steps,
+# and the longest secant step (rad, or length for a slide)
+HELD_FIT_STEPS = 8
+NULL_SEARCH_STEPS = 20
+NULL_SEARCH_MAX_STEP = 0.5
+
+
+def _held_fit(q, pose, dp, hold):
+    """Damped Gauss-Newton on the other joints with joint `hold` fixed, until a step no longer helps: (q, e, err)."""
+    q = list(q)
+    err, e = _pose_error(q, pose, dp)
+    for _ in range(HELD_FIT_STEPS):
+        j = np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)
+        j[:, hold] = 0.0
+        if _HELD >= 0:
+            j[:, _HELD] = 0.0
+        try:
+            step = np.linalg.solve(j.T @ j + 1e-12 * np.eye(N_JOINTS), j.T @ e)
+        except np.linalg.LinAlgError:
+            break
+        trial = [x + dx for x, dx in zip(q, step, strict=True)]
+        err2, e2 = _pose_error(trial, pose, dp)
+        if not err2 < err:
+            break
+        q, e, err = trial, e2, err2
+    return q, e, err
+
+
+def _along_null(q, pose, dp, target):
+    """A calibrated arm's set that Gauss-Newton could not bring onto the pose: near a singularity of the ideal
+    geometry the true chain's solution lies along the near-null direction n of J, up to 1e-7 / sigma_min away (a
+    shoulder's q1 by radians), where Gauss-Newton's steps overshoot. The joint carrying most of n is held and the
+    others fitted (well conditioned); the residual left is along J n, and its component g = (J n) . e is a function
+    of the held joint's value whose zero is the solution: secant steps on it, each at most NULL_SEARCH_MAX_STEP, the
+    first from g' = -|J n|^2 / n_j. Then polished: (q, residual)."""
+    def null(qq):
+        jac = np.array(_k_jacobian(qq, dp), dtype=float).reshape(6, N_JOINTS)
+        if _HELD >= 0:
+            jac[:, _HELD] = 0.0
+        n = np.linalg.eigh(jac.T @ jac)[1][:, 0]
+        return n, jac @ n
+
+    n, _ = null(q)
+    if _HELD >= 0:
+        n[_HELD] = 0.0
+    hold = int(np.argmax(np.abs(n)))
+    q, e, err = _held_fit(q, pose, dp, hold)
+    n, jn = null(q)
+    s2 = float(jn @ jn)
+    g = float(jn @ e)
+    step = g * n[hold] / s2 if s2 > 0.0 else 0.0
+    for _ in range(NULL_SEARCH_STEPS):
+        step = min(max(step, -NULL_SEARCH_MAX_STEP), NULL_SEARCH_MAX_STEP)
+        if err <= target or not step != 0.0:
+            break
+        trial = list(q)
+        trial[hold] += step
+        trial, e2, err2 = _held_fit(trial, pose, dp, hold)
+        g2 = float(jn @ e2)
+        step = -g2 * step / (g2 - g) if g2 != g else 0.0
+        q, err, g = trial, err2, g2
+    return _polish(q, pose, dp, target=target)
 
 
 def _refit(q, pose, dp, max_step, accept):

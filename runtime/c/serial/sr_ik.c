@@ -190,6 +190,8 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
 #if SR_CALIBRATED
         if (!(err <= SR_IK_VERIFY_TOL))
             err = sr_compensated(k, pose, out->values[k], d->params, prev, polish_double, err);
+        if (!(err <= SR_IK_VERIFY_TOL)) /* along the near-null direction, to the FK's rounding (Python's reasons) */
+            err = sr_along_null(out->values[k], pose, d->params, rounding, err);
 #endif
 #if SR_HAS_PRISMATIC
         if (!(err <= SR_IK_VERIFY_TOL) || !sr_prismatic_in_range(out->values[k])) {

@@ -84,6 +84,102 @@ static double sr_polish(double *q, const double *pose, const double *dp, double 
     return err;
 }
 
+#if SR_CALIBRATED
+/* a calibrated arm's search along its near-null direction (Python's HELD_FIT_STEPS, NULL_SEARCH_STEPS,
+ * NULL_SEARCH_MAX_STEP) */
+#define SR_HELD_FIT_STEPS 8
+#define SR_NULL_SEARCH_STEPS 20
+#define SR_NULL_SEARCH_MAX_STEP 0.5
+
+/* Damped Gauss-Newton on the other joints with joint `hold` fixed, until a step no longer helps: the residual, q
+ * and e moved (Python's _held_fit) */
+static double sr_held_fit(double *q, const double *pose, const double *dp, int hold, double *e)
+{
+    double jac[6 * SR_N], dq[SR_N], trial[SR_N], e2[6], err = sr_pose_error(q, pose, dp, e), err2;
+    int it, j;
+    for (it = 0; it < SR_HELD_FIT_STEPS; ++it) {
+        sr_k_jacobian(q, dp, jac);
+        for (j = 0; j < 6; ++j) {
+            jac[j * SR_N + hold] = 0.0;
+#if SR_HELD >= 0
+            jac[j * SR_N + SR_HELD] = 0.0;
+#endif
+        }
+        if (!wk_normal_solve(jac, SR_N, e, 1e-12, dq)) break;
+        for (j = 0; j < SR_N; ++j) trial[j] = q[j] + dq[j];
+        err2 = sr_pose_error(trial, pose, dp, e2);
+        if (!(err2 < err)) break;
+        for (j = 0; j < SR_N; ++j) q[j] = trial[j];
+        for (j = 0; j < 6; ++j) e[j] = e2[j];
+        err = err2;
+    }
+    return err;
+}
+
+/* The near-null direction n of J at q (a held joint's column left out; the eigenvector of J^T J's smallest
+ * eigenvalue) and jn = J n */
+static void sr_null_direction(const double *q, const double *dp, double *n, double *jn)
+{
+    double jac[6 * SR_N], g[SR_N * SR_N];
+    int i, j, k;
+    sr_k_jacobian(q, dp, jac);
+#if SR_HELD >= 0
+    for (j = 0; j < 6; ++j) jac[j * SR_N + SR_HELD] = 0.0;
+#endif
+    for (i = 0; i < SR_N; ++i)
+        for (j = 0; j < SR_N; ++j) {
+            g[i * SR_N + j] = 0.0;
+            for (k = 0; k < 6; ++k) g[i * SR_N + j] += jac[k * SR_N + i] * jac[k * SR_N + j];
+        }
+    (void)wk_jacobi_smallest(g, SR_N, n);
+    for (i = 0; i < 6; ++i) {
+        jn[i] = 0.0;
+        for (j = 0; j < SR_N; ++j) jn[i] += jac[i * SR_N + j] * n[j];
+    }
+}
+
+/* A calibrated arm's set that Gauss-Newton could not bring onto the pose (residual err): the joint carrying most of
+ * the near-null direction held, the others fitted, then secant steps on g = (J n) . e over the held joint's value
+ * (Python's _along_null says why), polished to target: the residual, qk replaced when it improves on err. */
+static double sr_along_null(double *qk, const double *pose, const double *dp, double target, double err)
+{
+    double q[SR_N], trial[SR_N], n[SR_N], jn[6], e[6], e2[6], s2 = 0.0, g = 0.0, step, err1, err2;
+    int it, j, hold = 0;
+    for (j = 0; j < SR_N; ++j) q[j] = qk[j];
+    sr_null_direction(q, dp, n, jn);
+#if SR_HELD >= 0
+    n[SR_HELD] = 0.0;
+#endif
+    for (j = 1; j < SR_N; ++j)
+        if (fabs(n[j]) > fabs(n[hold])) hold = j;
+    err1 = sr_held_fit(q, pose, dp, hold, e);
+    sr_null_direction(q, dp, n, jn);
+    for (j = 0; j < 6; ++j) {
+        s2 += jn[j] * jn[j];
+        g += jn[j] * e[j];
+    }
+    step = s2 > 0.0 ? g * n[hold] / s2 : 0.0;
+    for (it = 0; it < SR_NULL_SEARCH_STEPS; ++it) {
+        double g2 = 0.0;
+        step = step < -SR_NULL_SEARCH_MAX_STEP ? -SR_NULL_SEARCH_MAX_STEP :
+               (step > SR_NULL_SEARCH_MAX_STEP ? SR_NULL_SEARCH_MAX_STEP : step);
+        if (err1 <= target || !(step != 0.0)) break;
+        for (j = 0; j < SR_N; ++j) trial[j] = q[j];
+        trial[hold] += step;
+        err2 = sr_held_fit(trial, pose, dp, hold, e2);
+        for (j = 0; j < 6; ++j) g2 += jn[j] * e2[j];
+        step = g2 != g ? -g2 * step / (g2 - g) : 0.0;
+        for (j = 0; j < SR_N; ++j) q[j] = trial[j];
+        err1 = err2;
+        g = g2;
+    }
+    err2 = sr_polish(q, pose, dp, target);
+    if (!(err2 < err)) return err;
+    for (j = 0; j < SR_N; ++j) qk[j] = sr_revolute[j] ? wk_wrap(q[j]) : q[j];
+    return err2;
+}
+#endif
+
 /* (cos, sin) of a Gauss-Newton step's angle: their series where it is small (the polish's steps: 1e-7 on a
  * calibrated arm; the terms left are below 1e-22 at 1e-2), else libm's */
 static void sr_step_cs(double x, double *cx, double *sx)
