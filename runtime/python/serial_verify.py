@@ -72,8 +72,8 @@ def _polish(q, pose, dp, iters=POLISH_STEPS, target=IK_VERIFY_TOL):
     return [_wrap(x) if k == "R" else x for x, k in zip(q, JOINT_KINDS, strict=True)], err
 
 
-# a calibrated arm's search along its near-null direction (_along_null): steps of the held-joint fit, secant steps,
-# and the longest secant step (rad, or length for a slide)
+# a calibrated arm's search along its near-null direction (_along_null): steps of the held-joint fit, the held
+# joint's Newton steps, and the longest of those (rad, or length for a slide)
 HELD_FIT_STEPS = 8
 NULL_SEARCH_STEPS = 20
 NULL_SEARCH_MAX_STEP = 0.5
@@ -104,9 +104,11 @@ def _along_null(q, pose, dp, target):
     """A calibrated arm's set that Gauss-Newton could not bring onto the pose: near a singularity of the ideal
     geometry the true chain's solution lies along the near-null direction n of J, up to 1e-7 / sigma_min away (a
     shoulder's q1 by radians), where Gauss-Newton's steps overshoot. The joint carrying most of n is held and the
-    others fitted (well conditioned); the residual left is along J n, and its component g = (J n) . e is a function
-    of the held joint's value whose zero is the solution: secant steps on it, each at most NULL_SEARCH_MAX_STEP, the
-    first from g' = -|J n|^2 / n_j. Then polished: (q, residual)."""
+    others fitted (well conditioned): what is left of the residual e lies along J n, and the held joint's Newton step
+    is (J n) . e n_j / |J n|^2 (n and J n read again at each point), taken along n, at most NULL_SEARCH_MAX_STEP
+    in the held joint, while it helps and
+    the residual is above `target` (the plain polish cannot finish: its damping holds a step along n still below
+    sigma_min ~ 1e-6); then polished: (q, residual)."""
     def null(qq):
         jac = np.array(_k_jacobian(qq, dp), dtype=float).reshape(6, N_JOINTS)
         if _HELD >= 0:
@@ -119,20 +121,21 @@ def _along_null(q, pose, dp, target):
         n[_HELD] = 0.0
     hold = int(np.argmax(np.abs(n)))
     q, e, err = _held_fit(q, pose, dp, hold)
-    n, jn = null(q)
-    s2 = float(jn @ jn)
-    g = float(jn @ e)
-    step = g * n[hold] / s2 if s2 > 0.0 else 0.0
     for _ in range(NULL_SEARCH_STEPS):
-        step = min(max(step, -NULL_SEARCH_MAX_STEP), NULL_SEARCH_MAX_STEP)
-        if err <= target or not step != 0.0:
+        if err <= target:
             break
-        trial = list(q)
-        trial[hold] += step
+        n, jn = null(q)
+        s2 = float(jn @ jn)
+        step = float(jn @ e) * n[hold] / s2 if s2 > 0.0 else 0.0
+        step = min(max(step, -NULL_SEARCH_MAX_STEP), NULL_SEARCH_MAX_STEP)
+        if not step != 0.0:
+            break
+        # along n (the held fit then corrects a second-order error only: one or two steps, not five)
+        trial = [x + step * v / n[hold] for x, v in zip(q, n, strict=True)]
         trial, e2, err2 = _held_fit(trial, pose, dp, hold)
-        g2 = float(jn @ e2)
-        step = -g2 * step / (g2 - g) if g2 != g else 0.0
-        q, err, g = trial, err2, g2
+        if not err2 < err:
+            break
+        q, e, err = trial, e2, err2
     return _polish(q, pose, dp, target=target)
 
 

@@ -85,8 +85,8 @@ static double sr_polish(double *q, const double *pose, const double *dp, double 
 }
 
 #if SR_CALIBRATED
-/* a calibrated arm's search along its near-null direction (Python's HELD_FIT_STEPS, NULL_SEARCH_STEPS,
- * NULL_SEARCH_MAX_STEP) */
+/* a calibrated arm's search along its near-null direction: the held fit's steps, the held joint's Newton steps and
+ * their longest (Python's HELD_FIT_STEPS, NULL_SEARCH_STEPS, NULL_SEARCH_MAX_STEP) */
 #define SR_HELD_FIT_STEPS 8
 #define SR_NULL_SEARCH_STEPS 20
 #define SR_NULL_SEARCH_MAX_STEP 0.5
@@ -139,11 +139,12 @@ static void sr_null_direction(const double *q, const double *dp, double *n, doub
 }
 
 /* A calibrated arm's set that Gauss-Newton could not bring onto the pose (residual err): the joint carrying most of
- * the near-null direction held, the others fitted, then secant steps on g = (J n) . e over the held joint's value
- * (Python's _along_null says why), polished to target: the residual, qk replaced when it improves on err. */
+ * the near-null direction n held and the others fitted, then Newton steps (J n) . e n_j / |J n|^2 on the held joint
+ * taken along n (n read again at each point) while they help and the residual is above `target`; then polished (Python's
+ * _along_null says why): the residual, qk replaced when it improves on err. */
 static double sr_along_null(double *qk, const double *pose, const double *dp, double target, double err)
 {
-    double q[SR_N], trial[SR_N], n[SR_N], jn[6], e[6], e2[6], s2 = 0.0, g = 0.0, step, err1, err2;
+    double q[SR_N], trial[SR_N], n[SR_N], jn[6], e[6], e2[6], err1, err2;
     int it, j, hold = 0;
     for (j = 0; j < SR_N; ++j) q[j] = qk[j];
     sr_null_direction(q, dp, n, jn);
@@ -153,25 +154,23 @@ static double sr_along_null(double *qk, const double *pose, const double *dp, do
     for (j = 1; j < SR_N; ++j)
         if (fabs(n[j]) > fabs(n[hold])) hold = j;
     err1 = sr_held_fit(q, pose, dp, hold, e);
-    sr_null_direction(q, dp, n, jn);
-    for (j = 0; j < 6; ++j) {
-        s2 += jn[j] * jn[j];
-        g += jn[j] * e[j];
-    }
-    step = s2 > 0.0 ? g * n[hold] / s2 : 0.0;
-    for (it = 0; it < SR_NULL_SEARCH_STEPS; ++it) {
-        double g2 = 0.0;
+    for (it = 0; it < SR_NULL_SEARCH_STEPS && !(err1 <= target); ++it) {
+        double s2 = 0.0, g = 0.0, step;
+        sr_null_direction(q, dp, n, jn);
+        for (j = 0; j < 6; ++j) {
+            s2 += jn[j] * jn[j];
+            g += jn[j] * e[j];
+        }
+        step = s2 > 0.0 ? g * n[hold] / s2 : 0.0;
         step = step < -SR_NULL_SEARCH_MAX_STEP ? -SR_NULL_SEARCH_MAX_STEP :
                (step > SR_NULL_SEARCH_MAX_STEP ? SR_NULL_SEARCH_MAX_STEP : step);
-        if (err1 <= target || !(step != 0.0)) break;
-        for (j = 0; j < SR_N; ++j) trial[j] = q[j];
-        trial[hold] += step;
+        if (!(step != 0.0)) break;
+        for (j = 0; j < SR_N; ++j) trial[j] = q[j] + step * n[j] / n[hold]; /* along n: the fit corrects less */
         err2 = sr_held_fit(trial, pose, dp, hold, e2);
-        for (j = 0; j < 6; ++j) g2 += jn[j] * e2[j];
-        step = g2 != g ? -g2 * step / (g2 - g) : 0.0;
+        if (!(err2 < err1)) break;
         for (j = 0; j < SR_N; ++j) q[j] = trial[j];
+        for (j = 0; j < 6; ++j) e[j] = e2[j];
         err1 = err2;
-        g = g2;
     }
     err2 = sr_polish(q, pose, dp, target);
     if (!(err2 < err)) return err;
