@@ -79,7 +79,7 @@ def with_stages(mech, choice: str):
         return mech, "IK: the plan interpreter (--stages interpreted)"
     emitter = next(f for f in FAMILIES.values() if f.from_table is not None)
     try:
-        return emitter.from_table(mech.robot_table(), auto=choice == "auto"), "IK: derived straight-line stages"
+        return emitter.from_table(mech.robot_table()), "IK: derived straight-line stages"
     except NotDerivable as exc:
         if choice == "derived":
             raise

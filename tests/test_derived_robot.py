@@ -210,8 +210,7 @@ def test_a_five_joint_arm_answers_what_it_cannot_reach_with_what_it_controls(tmp
 # ------------------------------------------------------------------------------------------------ a calibrated robot
 @pytest.mark.parametrize("fmt", ["urdf", "poe"])
 def test_a_calibrated_robot_is_solved_on_its_ideal_geometry_and_polished_on_its_own(fmt, tmp_path):
-    """The calibrated KR 6 (axes 1e-7 off meeting and parallel; `--stages derived`, auto leaves it to the
-    interpreter): its stages solve the ideal table (twists within the geometry tolerance made exact), its FK and
+    """The calibrated KR 6 (axes 1e-7 off meeting and parallel; `--stages derived`, as auto chooses): its stages solve the ideal table (twists within the geometry tolerance made exact), its FK and
     Jacobian are the description's true chain (a derivation step checks them against its 4 x 4 product), every set
     polished on it, and a set whose polish fails (outside Gauss-Newton's basin: near a singularity the ideal answer is
     ~1e-7 / sigma_min off) solved again for the compensated pose. Random poses, and poses 1e-2 from each singular
@@ -984,7 +983,7 @@ def test_a_twist_off_the_5_degree_grid_is_derived_with_the_interpreter_s_sets(tm
 
 @pytest.mark.parametrize("robot,fmt,derived", [("kr6", "urdf", True), ("ur5e", "urdf", True), ("youbot", "urdf", True),
                                                ("scara", "urdf", True),
-                                               ("iiwa14", "urdf", True), ("kr6_calibrated", "urdf", False),
+                                               ("iiwa14", "urdf", True), ("kr6_calibrated", "urdf", True),
                                                ("iiwa14_psi", "urdf", True),
                                                ("ur5e_offset", "dh", True), ("ur5e_tilted", "poe", True)])
 def test_by_default_a_robot_gets_the_derived_stages_where_they_cover_it_and_is_told_which(robot, fmt, derived,

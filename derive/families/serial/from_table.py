@@ -5,7 +5,7 @@ robot's), its angles are made exact, and a derivation step proves the table is t
 
 The robot's family refuses what the table cannot hold (more than six solved joints, the arm angle standing for a
 seventh); here the planner's decomposition must fit the stage kinds planned.py emits, else the robot is refused with
-the reason (a calibrated robot: under --stages auto, left to the interpreter). A 7-joint arm's held joint stays a
+the reason. A 7-joint arm's held joint stays a
 joint of the table, its value the design (the lengths folded, so the design is the interpreted module's); its stage
 reads it, and the others are planned with it held. A slide's row adds q to d (its DH frame on the previous
 frame's origin: kinematics/dh_table.py)."""
@@ -98,18 +98,15 @@ def _identifier(name: str, taken: set[str]) -> str:
     return s
 
 
-def from_table(robot: RobotTable, auto: bool = False) -> SerialMechanism:
-    """The robot as a serial-family mechanism with derived stages, or NotDerivable with the reason; `auto`: the
-    default choice, which leaves a calibrated robot to the plan interpreter (near its singularities the interpreter's
-    sets miss fewer generating joints: 62 of 168 against 100 on the calibrated KR 6's sweep, bench/near_singular.py)."""
+def from_table(robot: RobotTable) -> SerialMechanism:
+    """The robot as a serial-family mechanism with derived stages, or NotDerivable with the reason. A calibrated
+    robot too, under --stages auto: with the search along the near-null direction its derived sets miss fewer
+    generating joints near its singularities than the interpreter's (34 of 168 against 56 on the calibrated KR 6's
+    sweep, bench/near_singular.py; the interpreter returned no set 1e-8 from its shoulder singularity)."""
     name, table = robot.name, robot.table
     # a calibrated robot (axes off the ideal ones beyond rounding): the stages solve the ideal table, the emitted FK is
     # the description's true chain, and every candidate is polished on it (the serial runtime's Gauss-Newton)
     calibrated = robot.deviation > ROUNDING_DEVIATION
-    if calibrated and auto:
-        raise NotDerivable.because(name, f"a calibrated robot (axes {robot.deviation:.2g} off the ideal ones) is left "
-                                         "to the interpreter, which misses fewer sets near its singularities; "
-                                         "--stages derived derives it")
     # its twists and offsets within the geometry tolerance of the grid are the grid's (its ideal geometry: the
     # polish on the true chain takes the difference)
     snap = max(ANGLE_SNAP, robot.api.geometry_tol) if calibrated else ANGLE_SNAP
