@@ -212,13 +212,13 @@ def test_a_five_joint_arm_answers_what_it_cannot_reach_with_what_it_controls(tmp
 def test_a_calibrated_robot_is_solved_on_its_ideal_geometry_and_polished_on_its_own(fmt, tmp_path):
     """The calibrated KR 6 (axes 1e-7 off meeting and parallel; `--stages derived`, as auto chooses): its stages
     solve the ideal table (twists within the geometry tolerance made exact), its FK and Jacobian are the
-    description's true chain (a derivation step checks them against its 4 x 4 product), every set polished on it, and a set whose polish fails (outside Gauss-Newton's basin: near a singularity the ideal answer is
-    ~1e-7 / sigma_min off) solved again for the compensated pose. Random poses, and poses 1e-2 from each singular
-    joint (det J = 0 bisected from random joints): the generating joints among the sets (1e-9 rad, or the nearest
-    set's residual over sigma_min where a random pose is near a singularity; near a singularity 1e-6 + 1e-13 /
-    delta, the conditioning allowance), every set on the independent reference's pose
-    (1e-9), as many sets as the interpreted module on the random poses, C and numpy within their polish's reach
-    (DOUBLE_ROOT_POLISH_TOL / sigma_min of J)."""
+    description's true chain (a derivation step checks them against its 4 x 4 product), every set polished on it,
+    and a set whose polish fails (outside Gauss-Newton's basin: near a singularity the ideal answer is ~1e-7 /
+    sigma_min off) solved again for the compensated pose. Random poses, and poses 1e-2 from each singular joint (det
+    J = 0 bisected from random joints): the generating joints among the sets (1e-9 rad, or the nearest set's
+    residual over sigma_min where a random pose is near a singularity; near a singularity 1e-6 + 1e-13 / delta, the
+    conditioning allowance), every set on the independent reference's pose (1e-9), as many sets as the interpreted
+    module on the random poses, C and numpy within their polish's reach (DOUBLE_ROOT_POLISH_TOL / sigma_min of J)."""
     path = _file("kr6_calibrated", fmt)
     derived_cache.derive(path, tmp_path / "d", name="kr6c", stages="derived", native=fmt == "urdf")
     derived_cache.derive(path, tmp_path / "i", name="kr6c_interp", stages="interpreted", native=False)
