@@ -21,6 +21,17 @@ static void sr_jacobian_in_frames(const double *q, const sr_design *d, const dou
     }
 }
 
+/* g = J^T J (cols x cols) of a 6 x cols Jacobian (row-major) */
+static void sr_gram(const double *jac, int cols, double *g)
+{
+    int i, j, k;
+    for (i = 0; i < cols; ++i)
+        for (j = 0; j < cols; ++j) {
+            g[i * cols + j] = 0.0;
+            for (k = 0; k < 6; ++k) g[i * cols + j] += jac[k * cols + i] * jac[k * cols + j];
+        }
+}
+
 /* The manipulability of a 6 x cols Jacobian (row-major) and *ratio = sigma_min / sigma_max, from the Jacobi
  * eigenvalues of J^T J (J J^T past 6 columns: a held joint's 7, whose nonzero sigma^2 it holds); the FK's and the
  * general 6R stage's conditioning where no Cholesky bound proved them regular */
@@ -29,11 +40,7 @@ static double sr_gram_spectrum(const double *jac, int cols, double *ratio)
     double g[36];
     int i, j, k;
     if (cols <= 6) {
-        for (i = 0; i < cols; ++i)
-            for (j = 0; j < cols; ++j) {
-                g[i * cols + j] = 0.0;
-                for (k = 0; k < 6; ++k) g[i * cols + j] += jac[k * cols + i] * jac[k * cols + j];
-            }
+        sr_gram(jac, cols, g);
         return wk_jacobi_spectrum(g, cols, ratio);
     }
     for (i = 0; i < 6; ++i)
@@ -141,7 +148,7 @@ static int sr_api_atlas_conditioning(size_t n, const double *joints, const sr_de
 {
     const sr_design *d = sr_design_or_default(design);
     size_t s;
-    int i, j, k;
+    int k;
     if ((n && !joints) || !sums || !li_min) return WK_ERR_NULL;
     if (!(length > 0.0) || !isfinite(length)) return WK_ERR_RANGE;
     for (s = 0; s < n; ++s) {
@@ -150,11 +157,7 @@ static int sr_api_atlas_conditioning(size_t n, const double *joints, const sr_de
         if (rc != WK_OK) return rc;
         sr_k_jacobian(q, d->params, jac);
         for (k = 0; k < 3 * SR_N; ++k) jac[k] /= length; /* the linear rows, in lengths per rad (or per length) */
-        for (i = 0; i < SR_N; ++i)
-            for (j = 0; j < SR_N; ++j) {
-                g[i * SR_N + j] = 0.0;
-                for (k = 0; k < 6; ++k) g[i * SR_N + j] += jac[k * SR_N + i] * jac[k * SR_N + j];
-            }
+        sr_gram(jac, SR_N, g);
         (void)wk_jacobi_spectrum(g, SR_N, &ratio);
         /* sigma_min / sigma_max from the eigenvalues of J^T J: within ~sqrt(eps) of 0 at a singularity (the Gram
          * matrix squares the condition number); rounding can give NaN there (a tiny negative lambda_min) or a few

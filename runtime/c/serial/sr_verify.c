@@ -121,16 +121,12 @@ static double sr_held_fit(double *q, const double *pose, const double *dp, int h
 static void sr_null_direction(const double *q, const double *dp, double *n, double *jn)
 {
     double jac[6 * SR_N], g[SR_N * SR_N];
-    int i, j, k;
+    int i, j;
     sr_k_jacobian(q, dp, jac);
 #if SR_HELD >= 0
     for (j = 0; j < 6; ++j) jac[j * SR_N + SR_HELD] = 0.0;
 #endif
-    for (i = 0; i < SR_N; ++i)
-        for (j = 0; j < SR_N; ++j) {
-            g[i * SR_N + j] = 0.0;
-            for (k = 0; k < 6; ++k) g[i * SR_N + j] += jac[k * SR_N + i] * jac[k * SR_N + j];
-        }
+    sr_gram(jac, SR_N, g);
     (void)wk_jacobi_smallest(g, SR_N, n);
     for (i = 0; i < 6; ++i) {
         jn[i] = 0.0;
