@@ -232,6 +232,7 @@ def serial_views(ctx: dict) -> dict:
         # a calibrated robot: the stages solve its ideal geometry, its FK is the true chain's, every set polished
         "SR_CALIBRATED": int(bool(ctx.get("calibrated"))),
         "SR_POLISH_STEPS": 12 if ctx.get("calibrated") else 6,  # Python's POLISH_STEPS says why
+        "SR_TANGENT_CALIBRATED": repr(float(ctx.get("tangent_calibrated", 0.0))),  # Python's TANGENT_CALIBRATED
         "SR_N_DESIGN_CHECKS": len(design_checks) if has_design_kernel else 0,
         "SR_N_IMAGE_CHECKS": len(image_checks) if has_image_kernel else 0,
     }
@@ -270,6 +271,7 @@ def serial_views(ctx: dict) -> dict:
             "lengths_floor": bool(ctx.get("lengths_floor")),
             "n_lengths": ctx.get("n_lengths", len(ctx["design_values"])), "held": ctx.get("held", -1),
             "calibrated": bool(ctx.get("calibrated")),
+            "tangent_calibrated": repr(float(ctx.get("tangent_calibrated", 0.0))),
             "design_check_kernel": "_k_design_check" if has_design_kernel else "None",
             "fk_ideal_kernel": "_k_fk_ideal" if ctx.get("calibrated") else "None",
             "image_check_kernel": "_k_image_check" if has_image_kernel else "None",

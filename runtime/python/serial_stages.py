@@ -25,6 +25,7 @@ from serial_stand_in import (
     ROOT_GAP_TOL,
     SINGULAR_EPS,
     STAGE_NOISE,
+    TANGENT_CALIBRATED,
     TANGENT_MAX,
     TANGENT_TOL,
     WRIST_EXACT_TOL,
@@ -97,8 +98,9 @@ def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=ROOT_G
         amp[j] = 1.0
         return True, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE
     u = -cc / r
-    # the band grows with the rounding the stages before amplified into u (TANGENT_MAX says why it may)
-    if not abs(u) <= 1.0 + max(TANGENT_TOL, min(TANGENT_MAX, STAGE_NOISE * amp_before)):
+    # the band grows with the rounding the stages before amplified into u (TANGENT_MAX says why it may), and with a
+    # calibrated robot's geometry (TANGENT_CALIBRATED)
+    if not abs(u) <= 1.0 + max(TANGENT_TOL, min(TANGENT_MAX, STAGE_NOISE * amp_before), TANGENT_CALIBRATED):
         return False, 0
     u = max(-1.0, min(1.0, u))
     sg, scale = _root_gap(out, r, u, amp_before)

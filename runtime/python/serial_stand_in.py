@@ -63,6 +63,7 @@ LENGTH_MIN = 1e-5
 SINGULAR_EPS = 1e-6
 LENGTHS_FLOOR = True  # DH lengths: each 0 or at least LENGTH_MIN
 CALIBRATED = False  # the stages solve an ideal geometry, FK is the true chain's: every set polished on it
+TANGENT_CALIBRATED = 0.0  # a calibrated robot's band on u past 1 (the PUMA: none)
 POLISH_STEPS = 6  # Gauss-Newton steps at most per polish
 N_LENGTHS = 6  # the design's first N_LENGTHS values are lengths (a held joint's angle follows them)
 _HELD = -1  # a joint held at the design's last value (-1: none): Gauss-Newton steps leave it alone

@@ -236,7 +236,9 @@ class _DerivedRobot(SerialMechanism):
         n = len(api.lower)
         held = self.spec.held
         # the description's joint names (the kernels' identifiers may differ: "c" or "shoulder-lift" are renamed there)
-        extra = {"calibrated": self.true_chain is not None, "joint_names": list(self.joint_names)}
+        extra = {"calibrated": self.true_chain is not None, "joint_names": list(self.joint_names),
+                 # what the ideal stages' u may lie past 1 by on the true robot's pose (serial.py.jinja says why)
+                 "tangent_calibrated": 16.0 * api.deviation if self.true_chain is not None else 0.0}
         if held:  # the held joint's value: the design, named as the joint (as the interpreted module's)
             extra.update(held=held[0], n_lengths=0, design_names=[self.joint_names[held[0]]])
             checks = self._held_checks()

@@ -149,8 +149,11 @@ static inline int sr_trig_linear(const double *out, int factored, double gap_tol
         return 1;
     }
     u = -out[2] / r;
-    /* the band grows with the rounding the stages before amplified into u (Python's TANGENT_MAX says why it may) */
-    if (!(fabs(u) <= 1.0 + fmax(SR_TANGENT_TOL, fmin(SR_TANGENT_MAX, SR_STAGE_NOISE * amp_before)))) return 0;
+    /* the band grows with the rounding the stages before amplified into u (Python's TANGENT_MAX says why it may),
+     * and with a calibrated robot's geometry (Python's TANGENT_CALIBRATED) */
+    if (!(fabs(u) <= 1.0 + fmax(fmax(SR_TANGENT_TOL, fmin(SR_TANGENT_MAX, SR_STAGE_NOISE * amp_before)),
+                                SR_TANGENT_CALIBRATED)))
+        return 0;
     u = sr_clamp1(u);
     sr_root_gap(out, factored, r, u, amp_before, &sg, &scale);
     band = factored ? sqrt((floor_tol > 0.0 ? floor_tol : gap_tol) * scale) : sqrt(SR_ROOT_GAP_TOL);
