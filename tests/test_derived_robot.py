@@ -265,9 +265,11 @@ def test_a_calibrated_robot_near_its_singularities_is_never_told_a_reachable_pos
     search along the near-null direction (serial_verify._along_null, sr_along_null) finds the true chain's solution.
     Near a stretched elbow the ideal stage's u read from the true pose lay past 1 by more than its bands, no root
     (test seeds 1, 6, 9, 10, 13, 77: three poses each); TANGENT_CALIBRATED (16x the geometry's deviation) clamps it.
-    Every pose gets a set, C and numpy, each on the independent reference's pose to what the module's check
-    (max |entry| of [R | p] <= IK_VERIFY_TOL) implies for the reference's measure: |dp| <= sqrt(3) IK_VERIFY_TOL, the
-    angle <= |dR|_F / sqrt(2) <= 3 / sqrt(2) IK_VERIFY_TOL (sets this close to singular can pass with 9e-10)."""
+    And a wrist centre 1.4e-9 m from axis 1, where the ideal table's 3.5e-9 m lateral offset allows none (seed 7),
+    is read as the shoulder's family within that band. Every pose gets a set, C and numpy, each on the independent
+    reference's pose to what the module's check (max |entry| of [R | p] <= IK_VERIFY_TOL) implies for the
+    reference's measure: |dp| <= sqrt(3) IK_VERIFY_TOL, the angle <= |dR|_F / sqrt(2) <= 3 / sqrt(2) IK_VERIFY_TOL
+    (sets this close to singular can pass with 9e-10)."""
     path = _file("kr6_calibrated", "urdf")
     derived_cache.derive(path, tmp_path / "d", name="kr6c", stages="derived", native=True)
     m, py = own_robot.import_solver(tmp_path / "d", "kr6c"), own_robot.import_solver(tmp_path / "d", "kr6c", "numpy")

@@ -88,7 +88,19 @@ def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=ROOT_G
     r = math.hypot(a, b)
     # (A, B) at the rounding of the design's lengths: a family (a KR 6's wrist centre 1e-12 m off its shoulder axis,
     # DEGENERATE_EPS, came back as the family's member 2 rad off; the pose fixes the joint to eps / r)
-    if r <= ON_AXIS_TOL * size:
+    family = r <= ON_AXIS_TOL * size
+    if not family:
+        u = -cc / r
+        # the band grows with the rounding the stages before amplified into u (TANGENT_MAX says why it may), and with a
+        # calibrated robot's geometry (TANGENT_CALIBRATED)
+        if not abs(u) <= 1.0 + max(TANGENT_TOL, min(TANGENT_MAX, STAGE_NOISE * amp_before), TANGENT_CALIBRATED):
+            # a calibrated robot's (A, B) within its geometry's deviation: its ideal table's 3.5e-9 m lateral offset
+            # kept the wrist centre from axis 1, where the true robot's was 1.4e-9 m off it (u - 1 = 1.5, test seed
+            # 7): the family's representative, which the polish and the near-null search take to the true chain's set
+            if not r <= TANGENT_CALIBRATED * size:
+                return False, 0
+            family = True
+    if family:
         # |C| within sqrt(DOUBLE_ROOT_TOL): a double root upstream (resolved to sqrt(eps)) can leave this stage a
         # residue of that size where it is really a family (PUMA with a3 = 0, a2 = d4, the arm folded onto the
         # shoulder); the representative is kept only if the set then passes the FK check
@@ -97,11 +109,6 @@ def _trig_linear(out, j, sgn, q, c, s, prev, amp, amp_before=1.0, gap_tol=ROOT_G
         _family_member(j, q, c, s, prev)  # one-parameter family: its representative
         amp[j] = 1.0
         return True, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE
-    u = -cc / r
-    # the band grows with the rounding the stages before amplified into u (TANGENT_MAX says why it may), and with a
-    # calibrated robot's geometry (TANGENT_CALIBRATED)
-    if not abs(u) <= 1.0 + max(TANGENT_TOL, min(TANGENT_MAX, STAGE_NOISE * amp_before), TANGENT_CALIBRATED):
-        return False, 0
     u = max(-1.0, min(1.0, u))
     sg, scale = _root_gap(out, r, u, amp_before)
     band = math.sqrt((floor_tol or gap_tol) * scale) if len(out) > 3 else math.sqrt(ROOT_GAP_TOL)

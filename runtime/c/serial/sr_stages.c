@@ -139,8 +139,19 @@ static inline int sr_trig_linear(const double *out, int factored, double gap_tol
                                  double amp_before, double size, unsigned *f)
 {
     const double r = sqrt(out[0] * out[0] + out[1] * out[1]);
-    double u, sg, scale, band, ca, sa;
-    if (r <= SR_ON_AXIS_TOL * size) { /* (A, B) at the rounding of the design's lengths (Python's _trig_linear) */
+    double u = 0.0, sg, scale, band, ca, sa;
+    int family = r <= SR_ON_AXIS_TOL * size; /* (A, B) at the rounding of the design's lengths (Python's _trig_linear) */
+    if (!family) {
+        u = -out[2] / r;
+        /* the band grows with the rounding the stages before amplified into u (Python's TANGENT_MAX says why it
+         * may), and with a calibrated robot's geometry (Python's TANGENT_CALIBRATED) */
+        if (!(fabs(u) <= 1.0 + fmax(fmax(SR_TANGENT_TOL, fmin(SR_TANGENT_MAX, SR_STAGE_NOISE * amp_before)),
+                                    SR_TANGENT_CALIBRATED))) {
+            if (!(r <= SR_TANGENT_CALIBRATED * size)) return 0;
+            family = 1; /* a calibrated robot's (A, B) within its geometry's deviation (Python's reasons) */
+        }
+    }
+    if (family) {
         /* |C| within sqrt(SR_DOUBLE_ROOT_TOL): an upstream double root's residue (see Python); the FK check decides */
         if (fabs(out[2]) > sqrt(SR_DOUBLE_ROOT_TOL) || sgn < 0.0) return 0;
         sr_family_member(j, q, c, s, prev); /* one-parameter family: its representative */
@@ -148,12 +159,6 @@ static inline int sr_trig_linear(const double *out, int factored, double gap_tol
         amp[j] = 1.0;
         return 1;
     }
-    u = -out[2] / r;
-    /* the band grows with the rounding the stages before amplified into u (Python's TANGENT_MAX says why it may),
-     * and with a calibrated robot's geometry (Python's TANGENT_CALIBRATED) */
-    if (!(fabs(u) <= 1.0 + fmax(fmax(SR_TANGENT_TOL, fmin(SR_TANGENT_MAX, SR_STAGE_NOISE * amp_before)),
-                                SR_TANGENT_CALIBRATED)))
-        return 0;
     u = sr_clamp1(u);
     sr_root_gap(out, factored, r, u, amp_before, &sg, &scale);
     band = factored ? sqrt((floor_tol > 0.0 ? floor_tol : gap_tol) * scale) : sqrt(SR_ROOT_GAP_TOL);
