@@ -26,6 +26,8 @@ class Kernel:
     # floats and integers only (a robot's product of exponentials) skips the walk, which on its deep products
     # costs seconds
     irrational: bool = True
+    # whether the Python module prints it too (False: a kernel only the C runtime calls)
+    python: bool = True
 
     @property
     def n_out(self) -> int:

@@ -35,7 +35,7 @@ def _context(mod, ks) -> dict:
     ctx = {
         "header": "\n".join(header_lines()),
         "header_lines": header_lines(),
-        "kernels": [lower(k, "python") for k in ks],
+        "kernels": [lower(k, "python") for k in ks if k.python],
         "vkernels": [lower(k, "numpy") for k in ks if k.name in mod.VECTORISED_KERNELS],
         "ckernels": [lower(k, "c") for k in ks],
         "tol": TOLERANCES,

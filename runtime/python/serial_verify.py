@@ -36,12 +36,14 @@ def _pose_error(q, pose, dp):
     return err, np.concatenate([rt[:, 3] - r[:, 3], w])
 
 
-def _gn_step(q, e, err, pose, dp, max_step=math.inf):
-    """One damped Gauss-Newton step from q (pose error e, residual err), no longer than max_step in any joint:
-    (q, e, err) moved, or as given when the step is refused (singular, too long) or does not help."""
+def _gn_step(q, e, err, pose, dp, max_step=math.inf, hold=-1):
+    """One damped Gauss-Newton step from q (pose error e, residual err), no longer than max_step in any joint, joint
+    `hold` fixed unless -1: (q, e, err) moved, or as given when the step is refused (singular, too long) or does not
+    help."""
     j = np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)
-    if _HELD >= 0:  # the held joint keeps its value (the damping then leaves its step 0)
-        j[:, _HELD] = 0.0
+    for fixed in (_HELD, hold):  # the held joint keeps its value, and `hold` (the damping then leaves their steps 0)
+        if fixed >= 0:
+            j[:, fixed] = 0.0
     # a regular square J: its LU (the normal equations square its conditioning); near singular (a pivot at or below
     # 1e-6 of its largest entry, where the damping 1e-12 on J^T J starts to matter) or a zeroed column: damped
     step = _runtime.solve_square(j, e, 1e-6) if N_JOINTS == 6 else None
@@ -84,19 +86,10 @@ def _held_fit(q, pose, dp, hold):
     q = list(q)
     err, e = _pose_error(q, pose, dp)
     for _ in range(HELD_FIT_STEPS):
-        j = np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)
-        j[:, hold] = 0.0
-        if _HELD >= 0:
-            j[:, _HELD] = 0.0
-        try:
-            step = np.linalg.solve(j.T @ j + 1e-12 * np.eye(N_JOINTS), j.T @ e)
-        except np.linalg.LinAlgError:
-            break
-        trial = [x + dx for x, dx in zip(q, step, strict=True)]
-        err2, e2 = _pose_error(trial, pose, dp)
+        q, e, err2 = _gn_step(q, e, err, pose, dp, hold=hold)
         if not err2 < err:
             break
-        q, e, err = trial, e2, err2
+        err = err2
     return q, e, err
 
 

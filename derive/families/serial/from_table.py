@@ -222,6 +222,13 @@ class _DerivedRobot(SerialMechanism):
                              "joints: the geometry the stages solve.", (("q", spec.joints), ("c", cs), ("s", ss),
                                                                 ("dp", spec.design)),
                              tuple((str(s), on_cs(t[i // 4, i % 4], spec)) for i, s in enumerate(POSE_SYMBOLS))))
+            # the true chain's Jacobian from the (cos, sin) a set carries: the polish's first step on every set
+            # (sr_polish_cs) then calls no trigonometry (12 of its calls per set, a tenth of a calibrated IK)
+            jac = dv.exports["jacobian"]
+            ks.append(Kernel("jacobian_cs", "The geometric Jacobian (6 x n) from (cos, sin) of the joints.",
+                             (("q", spec.joints), ("c", cs), ("s", ss), ("dp", spec.design)),
+                             tuple((f"j{r}{c}", on_cs(jac[r, c], spec)) for r in range(6)
+                                   for c in range(len(spec.joints))), python=False))
         checks = self._held_checks()
         if checks:
             ks.append(Kernel("design_check", "Design conditions (see DESIGN_CHECKS): the held values refused.",

@@ -35,30 +35,33 @@ static double sr_pose_error(const double *q, const double *pose, const double *d
 
 /* The Gauss-Newton step dq from J and the twist error e: J's LU where it is square and regular (the normal
  * equations square its conditioning and cost several times as much); near singular (a pivot at or below 1e-6 of J's
- * largest entry, where the damping 1e-12 on J^T J starts to matter) or a held joint's zeroed column: the damped normal
- * equations. 0 when both refuse. */
-static int sr_gn_solve(double *jac, const double *e, double *dq)
+ * largest entry, where the damping 1e-12 on J^T J starts to matter) or a zeroed column (the held joint's, and `hold`
+ * unless -1: those joints keep their values, their steps 0): the damped normal equations. 0 when both refuse. */
+static int sr_gn_solve(double *jac, const double *e, double *dq, int hold)
 {
-#if SR_HELD >= 0
     int j;
-    for (j = 0; j < 6; ++j) jac[j * SR_N + SR_HELD] = 0.0; /* the held joint keeps its value (its step: 0) */
+    for (j = 0; j < 6; ++j) {
+#if SR_HELD >= 0
+        jac[j * SR_N + SR_HELD] = 0.0;
 #endif
+        if (hold >= 0) jac[j * SR_N + hold] = 0.0;
+    }
 #if SR_N == 6
     if (wk_square_solve(jac, 6, e, 1e-6, dq)) return 1;
 #endif
     return wk_normal_solve(jac, SR_N, e, 1e-12, dq);
 }
 
-/* Damped Gauss-Newton on the pose error: removes the sqrt(eps) error a tangent root passes downstream. */
-/* One damped Gauss-Newton step from q (pose error e, residual err), no longer than max_step in any joint: the new
- * residual with q and e moved, or err with both unchanged when the step is refused (singular, too long) or does not
- * help */
-static double sr_gn_step(double *q, const double *pose, const double *dp, double *e, double err, double max_step)
+/* One damped Gauss-Newton step from q (pose error e, residual err), no longer than max_step in any joint, joint
+ * `hold` fixed unless -1: the new residual with q and e moved, or err with both unchanged when the step is refused
+ * (singular, too long) or does not help */
+static double sr_gn_step(double *q, const double *pose, const double *dp, double *e, double err, double max_step,
+                         int hold)
 {
     double jac[6 * SR_N], dq[SR_N], trial[SR_N], e2[6], err2;
     int j;
     sr_k_jacobian(q, dp, jac);
-    if (!sr_gn_solve(jac, e, dq)) return err;
+    if (!sr_gn_solve(jac, e, dq, hold)) return err;
     for (j = 0; j < SR_N; ++j) {
         if (!(fabs(dq[j]) <= max_step)) return err;
         trial[j] = q[j] + dq[j];
@@ -70,14 +73,14 @@ static double sr_gn_step(double *q, const double *pose, const double *dp, double
     return err2;
 }
 
-/* At most SR_POLISH_STEPS damped Gauss-Newton steps, until the residual is at most `target` or a step no longer
- * helps */
+/* Damped Gauss-Newton on the pose error (removes the sqrt(eps) error a tangent root passes downstream): at most
+ * SR_POLISH_STEPS steps, until the residual is at most `target` or a step no longer helps */
 static double sr_polish(double *q, const double *pose, const double *dp, double target)
 {
     double e[6], err = sr_pose_error(q, pose, dp, e);
     int it;
     for (it = 0; it < SR_POLISH_STEPS && err > target; ++it) {
-        const double err2 = sr_gn_step(q, pose, dp, e, err, HUGE_VAL);
+        const double err2 = sr_gn_step(q, pose, dp, e, err, HUGE_VAL, -1);
         if (!(err2 < err)) break;
         err = err2;
     }
@@ -95,22 +98,11 @@ static double sr_polish(double *q, const double *pose, const double *dp, double 
  * and e moved (Python's _held_fit) */
 static double sr_held_fit(double *q, const double *pose, const double *dp, int hold, double *e)
 {
-    double jac[6 * SR_N], dq[SR_N], trial[SR_N], e2[6], err = sr_pose_error(q, pose, dp, e), err2;
-    int it, j;
+    double err = sr_pose_error(q, pose, dp, e);
+    int it;
     for (it = 0; it < SR_HELD_FIT_STEPS; ++it) {
-        sr_k_jacobian(q, dp, jac);
-        for (j = 0; j < 6; ++j) {
-            jac[j * SR_N + hold] = 0.0;
-#if SR_HELD >= 0
-            jac[j * SR_N + SR_HELD] = 0.0;
-#endif
-        }
-        if (!wk_normal_solve(jac, SR_N, e, 1e-12, dq)) break;
-        for (j = 0; j < SR_N; ++j) trial[j] = q[j] + dq[j];
-        err2 = sr_pose_error(trial, pose, dp, e2);
+        const double err2 = sr_gn_step(q, pose, dp, e, err, HUGE_VAL, hold);
         if (!(err2 < err)) break;
-        for (j = 0; j < SR_N; ++j) q[j] = trial[j];
-        for (j = 0; j < 6; ++j) e[j] = e2[j];
         err = err2;
     }
     return err;
@@ -200,8 +192,12 @@ static double sr_polish_cs(double *q, double *c, double *s, const double *t, dou
     int j;
     if (err <= target) return err;
     (void)sr_twist_error(t, pose, e);
+#if SR_CALIBRATED
+    sr_k_jacobian_cs(q, c, s, dp, jac); /* every set of a calibrated arm comes here: no trigonometry */
+#else
     sr_k_jacobian(q, dp, jac);
-    if (!sr_gn_solve(jac, e, dq)) return sr_polish(q, pose, dp, target);
+#endif
+    if (!sr_gn_solve(jac, e, dq, -1)) return sr_polish(q, pose, dp, target);
     for (j = 0; j < SR_N; ++j) {
         if (dq[j] != dq[j]) return sr_polish(q, pose, dp, target); /* a NaN step: the plain polish decides */
         trial[j] = q[j] + dq[j];
@@ -241,7 +237,7 @@ static double sr_refit(double *q, double max_step, double accept, const void *ct
     const double err = sr_pose_error(q, fit->pose, fit->dp, e);
     int j;
     if (err <= accept) return err;
-    err2 = sr_gn_step(q, fit->pose, fit->dp, e, err, max_step);
+    err2 = sr_gn_step(q, fit->pose, fit->dp, e, err, max_step, -1);
     if (err2 < err)
         for (j = 0; j < SR_N; ++j)
             if (sr_revolute[j]) q[j] = wk_wrap(q[j]);
