@@ -107,6 +107,36 @@ def test_random_lines_give_the_generating_joints_and_at_most_four_positions(lib,
         assert all(_gap(a, b) <= 1e-12 + 1e-14 / smin and fa == fb for (a, fa), (b, fb) in zip(c, p, strict=True))
 
 
+@pytest.mark.parametrize("sense", [1.0, -1.0])
+def test_first_and_last_axes_parallel_give_every_solution(lib, py, sense):
+    """Axes a and c parallel (a 5R arm's j5 and j3 read from the tool): the distance and component equations are
+    one equation in q_c at every q_b, and the general polynomial (nc^2 + ns^2 - det^2 with det = 0) has only double
+    roots, from which the candidates were never read (every reachable pose reported unreachable). 60 random
+    instances, each against a 24-start least-squares reference (scipy, on numpy's rotation matrices): no solution
+    missed, every candidate on the point (1e-9 m), at most four distinct, C equal to Python."""
+    from scipy.optimize import least_squares
+
+    rng = case_rng(2322)
+    for _ in range(60):
+        h = np.array([v / np.linalg.norm(v) for v in rng.normal(size=(3, 3))])
+        h[2] = sense * h[0]
+        r, x = rng.normal(size=(3, 3)) * 0.4, rng.normal(size=3) * 0.4
+        q = rng.uniform(-math.pi, math.pi, 3)
+        y = _place(h, r, q, x)
+        c = _c(lib, h, r, x, y)
+        p = py._spatial3_lines([tuple(v) for v in h], [tuple(v) for v in r], tuple(x), tuple(y), 1.0, 1e-12, ON_AXIS)
+        assert 1 <= len(c) <= 4 and len(c) == len(p)
+        assert all(np.max(np.abs(_place(h, r, cand, x) - y)) <= 1e-9 for cand, _ in c)
+        smin = _smin(h, r, q, x)
+        assert all(_gap(a, b) <= 1e-12 + 1e-14 / smin and fa == fb for (a, fa), (b, fb) in zip(c, p, strict=True))
+        for _start in range(24):
+            fit = least_squares(lambda v, h=h, r=r, x=x, y=y: _place(h, r, v, x) - y,
+                                rng.uniform(-math.pi, math.pi, 3), xtol=1e-15, ftol=1e-15, gtol=1e-15)
+            res = float(np.max(np.abs(fit.fun)))
+            if res <= 1e-11:  # a solution: among the candidates, within both residuals over sigma_min
+                assert min(_gap(cand, fit.x) for cand, _ in c) <= 1e-9 + (1e-13 + res) / _smin(h, r, fit.x, x)
+
+
 def test_a_point_on_the_first_axis_leaves_that_joint_undetermined(lib, py):
     """y on axis a (and x placed there by b and c): every turn of a keeps it, so q_a is flagged indeterminate (0)
     and q_b, q_c still place the point."""

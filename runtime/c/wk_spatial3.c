@@ -274,6 +274,45 @@ static int wk_s3_qc(double f[3][3], double g[3][3], double dtarget, double htarg
     return 1;
 }
 
+/* Axes a and c parallel: the distance and component equations at a root q_b (rows f, g at q_b's (1, cos, sin)) are
+ * one equation in q_c, their (cos, sin) parts parallel. The better conditioned of them, A cos + B sin = C, gives
+ * q_c = atan2(B, A) +- acos(C / |(A, B)|): the count of roots into qc (one at a tangency) where the other equation
+ * holds too, 0 where none does, the point is on axis c (A = B = 0) or C / |(A, B)| is past 1 beyond the circle's
+ * tolerance (Python's _s3_qc_dependent) */
+static int wk_s3_qc_dependent(double f[3][3], double g[3][3], double dtarget, double htarget, double scale,
+                              double eps, double qb, double qc[2])
+{
+    const double cb = cos(qb), sb = sin(qb);
+    double pv[3], qv[3], dist[3], comp[3], norm, u, phi, gap, size;
+    const double *use, *other;
+    int j, n = 0;
+    for (j = 0; j < 3; ++j) {
+        pv[j] = f[0][j] + cb * f[1][j] + sb * f[2][j];
+        qv[j] = g[0][j] + cb * g[1][j] + sb * g[2][j];
+    }
+    dist[0] = pv[1];
+    dist[1] = pv[2];
+    dist[2] = dtarget - pv[0];
+    comp[0] = qv[1];
+    comp[1] = qv[2];
+    comp[2] = htarget - qv[0];
+    use = hypot(pv[1], pv[2]) >= scale * hypot(qv[1], qv[2]) ? dist : comp;
+    other = use == dist ? comp : dist;
+    norm = hypot(use[0], use[1]);
+    if (!(norm > eps * scale * scale)) return 0;
+    u = use[2] / norm;
+    if (!(fabs(u) <= 1.0 + WK_S3_CIRCLE_TOL)) return 0;
+    phi = atan2(use[1], use[0]);
+    gap = acos(u > 1.0 ? 1.0 : (u < -1.0 ? -1.0 : u));
+    /* the other equation holds too where q_b is the eliminant's root (not at the q_b = pi tried beside them) */
+    size = fabs(other[0]) + fabs(other[1]) + fabs(other[2]);
+    for (j = 0; j < (gap > 0.0 ? 2 : 1); ++j) {
+        const double t = j == 0 ? phi + gap : phi - gap;
+        if (fabs(other[0] * cos(t) + other[1] * sin(t) - other[2]) <= WK_S3_CIRCLE_TOL * size) qc[n++] = t;
+    }
+    return n;
+}
+
 /* A split pair into the candidates from row `out` on, flagged singular (the pair meets where J is): the next row */
 static int wk_s3_put_pair(double pair[2][3], double q[WK_S3_MAX][3], unsigned *fl, int out)
 {
@@ -300,7 +339,7 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
     double v[3], vb[3][3], u[3], f[3][3], g[3][3], hv, dtarget, htarget, yr[3], yr_perp[3], rho;
     double p[3][3], pq[3][3], dt[3], ht[3], det[5], nc[5], ns[5], a5[5], poly[9], roots[8], ang[9];
     unsigned rf[8], af[9];
-    int i, j, nroot, status = 0, na = 0, out = 0, near_axis;
+    int i, j, nroot, status = 0, na = 0, out = 0, near_axis, dependent;
     wk_g3_axpy(x, -1.0, r3, v);
     hv = wk_g3_dot(h3, v);
     wk_g3_axpy(r3, hv, h3, vb[0]); /* z - r2 over (1, cos q_c, sin q_c) */
@@ -338,15 +377,28 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
     wk_poly_mul(p[1], 3, ht, 3, ns);
     wk_poly_mul(pq[1], 3, dt, 3, a5);
     wk_poly_axpy(ns, a5, 5, -1.0);
-    wk_poly_mul(nc, 5, nc, 5, poly);
-    {
-        double sq[9];
-        wk_poly_mul(ns, 5, ns, 5, sq);
-        wk_poly_axpy(poly, sq, 9, 1.0);
-        wk_poly_mul(det, 5, det, 5, sq);
-        wk_poly_axpy(poly, sq, 9, -1.0);
+    /* axes a and c parallel: det vanishes identically, the degree-8 polynomial is nc^2 + ns^2 (every root double,
+     * q_c not read from the singular system); the eliminant is Q_2 nc - Q_1 ns, degree 6 (spatial3.py says why) */
+    for (i = 0; i < 5; ++i)
+        if (fabs(det[i]) > eps3) break;
+    dependent = i == 5;
+    if (dependent) {
+        double part[7];
+        wk_poly_mul(pq[2], 3, nc, 5, poly);
+        wk_poly_mul(pq[1], 3, ns, 5, part);
+        wk_poly_axpy(poly, part, 7, -1.0);
+        nroot = wk_poly_real_roots(poly, 6, roots, rf, &status);
+    } else {
+        wk_poly_mul(nc, 5, nc, 5, poly);
+        {
+            double sq[9];
+            wk_poly_mul(ns, 5, ns, 5, sq);
+            wk_poly_axpy(poly, sq, 9, 1.0);
+            wk_poly_mul(det, 5, det, 5, sq);
+            wk_poly_axpy(poly, sq, 9, -1.0);
+        }
+        nroot = wk_poly_real_roots(poly, 8, roots, rf, &status);
     }
-    nroot = wk_poly_real_roots(poly, 8, roots, rf, &status);
     for (i = 0; i < nroot; ++i) {
         ang[na] = 2.0 * atan(roots[i]);
         af[na++] = (rf[i] & WK_POLY_FLAG_DOUBLE) ? (WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE) : 0u;
@@ -358,7 +410,7 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
     near_axis = on_axis * scale < rho && rho <= WK_S3_SPLIT_NEAR * scale;
     for (i = 0; i < na && out < WK_S3_MAX; ++i) {
         double w[3], qb = ang[i], qc = 0.0, t1 = 0.0;
-        if (near_axis && !(af[i] & WK_FLAG_DOUBLE_ROOT) && i + 2 < na && !(af[i + 1] & WK_FLAG_DOUBLE_ROOT)) {
+        if (near_axis && !dependent && !(af[i] & WK_FLAG_DOUBLE_ROOT) && i + 2 < na && !(af[i + 1] & WK_FLAG_DOUBLE_ROOT)) {
             /* two simple roots a hair apart near axis a: a pair the polynomial resolved only to its sqrt(eps), whose
              * images sit near the axis, where q_a is noise: split from their midpoint */
             const double gap = wk_wrap(ang[i + 1] - qb), mid = qb + 0.5 * gap;
@@ -370,6 +422,27 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
                 ++i;
                 continue;
             }
+        }
+        if (dependent) { /* a and c parallel: no merged pairs to split (the eliminant's roots are simple) */
+            double qcs[2];
+            const int nqc = wk_s3_qc_dependent(f, g, dtarget, htarget, scale, eps, qb, qcs);
+            for (j = 0; j < nqc && out < WK_S3_MAX; ++j) {
+                q[out][1] = qb;
+                q[out][2] = qcs[j];
+                wk_g3_turn(h3, r3, qcs[j], x, w);
+                wk_g3_turn(h2, r2, qb, w, w);
+                wk_g3_axpy(w, -1.0, r1, w);
+                fl[out] = af[i];
+                if (wk_g3_sp1(h1, w, yr, on_axis * scale, &t1)) {
+                    q[out][0] = t1;
+                    (void)wk_s3_refine(h, r, x, y, eps3, q[out], WK_S3_REFINE_STEPS, 0);
+                } else {
+                    q[out][0] = 0.0;
+                    fl[out] |= WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
+                }
+                ++out;
+            }
+            continue;
         }
         if (!wk_s3_qc(f, g, dtarget, htarget, eps3, qb, &qc)) continue;
         q[out][1] = qb;

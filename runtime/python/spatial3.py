@@ -174,6 +174,27 @@ def _s3_pair(h, r, x, y, scale, q0):
     return _s3_pair_converges(h, r, x, y, scale, starts, q0[1], q0[2])
 
 
+def _s3_qc_dependent(pv, qv, d_target, h_target, scale, eps):
+    """Axes a and c parallel: the distance and component equations at a root q_b, pv and qv over (1, cos q_c,
+    sin q_c), are one equation in q_c (their (cos, sin) parts parallel). The better conditioned of them, A cos + B sin
+    = C, gives q_c = atan2(B, A) +- acos(C / |(A, B)|): both roots (one at a tangency) where the other equation holds
+    too, None where none does, the point is on axis c (A = B = 0: the joint does not move it) or C / |(A, B)| is past
+    1 beyond the circle's tolerance."""
+    dist, comp = (pv[1], pv[2], d_target - pv[0]), (qv[1], qv[2], h_target - qv[0])
+    (a, b, c), other = (dist, comp) if math.hypot(pv[1], pv[2]) >= scale * math.hypot(qv[1], qv[2]) else (comp, dist)
+    norm = math.hypot(a, b)
+    if not norm > eps * scale * scale:
+        return None
+    u = c / norm
+    if not abs(u) <= 1.0 + S3_CIRCLE_TOL:
+        return None
+    phi, gap = math.atan2(b, a), math.acos(max(-1.0, min(1.0, u)))
+    # the other equation holds too where q_b is the eliminant's root (not at the q_b = pi tried beside them)
+    size = abs(other[0]) + abs(other[1]) + abs(other[2])
+    return [t for t in ([phi + gap, phi - gap] if gap > 0.0 else [phi])
+            if abs(other[0] * math.cos(t) + other[1] * math.sin(t) - other[2]) <= S3_CIRCLE_TOL * size] or None
+
+
 def _spatial3_lines(h, r, x, y, scale, eps, on_axis):
     """The candidates [(q_a, q_b, q_c), flags] of rot_a rot_b rot_c x = y, h[i] / r[i] the lines of a, b, c at the
     joints' zero (flags: a double root of the polynomial, FLAG_DOUBLE_ROOT; the point on axis a, FLAG_INDETERMINATE
@@ -205,7 +226,17 @@ def _spatial3_lines(h, r, x, y, scale, eps, on_axis):
     det = _poly_add(_poly_mul(p[1], pq[2]), _poly_mul(p[2], pq[1]), -1.0)
     nc = _poly_add(_poly_mul(dt, pq[2]), _poly_mul(p[2], ht), -1.0)
     ns = _poly_add(_poly_mul(p[1], ht), _poly_mul(pq[1], dt), -1.0)
-    poly = _poly_add(_poly_add(_poly_mul(nc, nc), _poly_mul(ns, ns), 1.0), _poly_mul(det, det), -1.0)
+    # axes a and c parallel: the two equations' (cos q_c, sin q_c) parts (P, Q at q_b) are parallel at every q_b (det
+    # vanishes identically) and the degree-8 polynomial is nc^2 + ns^2, whose roots are all double (resolved to
+    # sqrt(eps) only, and q_c not read from the singular system). The equations agree where the distance's right side
+    # is the component's times |P| / |Q|: (d - P_0) |Q|^2 = (h - Q_0) P.Q, which is Q_2 nc - Q_1 ns (degree 6, simple
+    # roots; nc alone has Q_2's roots too). q_c then comes from one of the two equations (two roots, those the other
+    # equation holds at kept)
+    dependent = max(abs(e) for e in det) <= eps3
+    if dependent:
+        poly = _poly_add(_poly_mul(pq[2], nc), _poly_mul(pq[1], ns), -1.0)
+    else:
+        poly = _poly_add(_poly_add(_poly_mul(nc, nc), _poly_mul(ns, ns), 1.0), _poly_mul(det, det), -1.0)
     roots, rflags, _status = _poly_real_roots(poly)
     angles = [(2.0 * math.atan(t), FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE if fl & _POLY_FLAG_DOUBLE else 0)
               for t, fl in zip(roots, rflags, strict=True)]
@@ -218,6 +249,8 @@ def _spatial3_lines(h, r, x, y, scale, eps, on_axis):
         cb, sb = math.cos(qb), math.sin(qb)
         pv = [f[0][j] + cb * f[1][j] + sb * f[2][j] for j in range(3)]
         qv = [g[0][j] + cb * g[1][j] + sb * g[2][j] for j in range(3)]
+        if dependent:
+            return _s3_qc_dependent(pv, qv, d_target, h_target, scale, eps)
         dd = pv[1] * qv[2] - pv[2] * qv[1]
         if abs(dd) <= eps3:
             return None
@@ -230,8 +263,8 @@ def _spatial3_lines(h, r, x, y, scale, eps, on_axis):
     while i < len(angles) and len(out) < S3_MAX:
         qb, fl = angles[i]
         i += 1
-        if (near_axis and not fl & FLAG_DOUBLE_ROOT and i < len(angles) - 1 and not angles[i][1] & FLAG_DOUBLE_ROOT
-                and len(out) + 2 <= S3_MAX):
+        if (near_axis and not dependent and not fl & FLAG_DOUBLE_ROOT and i < len(angles) - 1
+                and not angles[i][1] & FLAG_DOUBLE_ROOT and len(out) + 2 <= S3_MAX):
             # two simple roots a hair apart near axis a: a pair the polynomial resolved only to its sqrt(eps), whose
             # images sit near the axis, where q_a is noise: split from their midpoint
             gap = math.remainder(angles[i][0] - qb, 2.0 * math.pi)
@@ -244,6 +277,16 @@ def _spatial3_lines(h, r, x, y, scale, eps, on_axis):
                 continue
         qc = q_c(qb)
         if qc is None:
+            continue
+        if dependent:  # a and c parallel: no merged pairs to split (the eliminant's roots are simple)
+            for qcv in qc:
+                w = _g3_axpy(_g3_turn(h2, r2, qb, _g3_turn(h3, r3, qcv, x)), -1.0, r1)
+                qa = _g3_sp1(h1, w, yr, on_axis * scale)
+                if qa is None:
+                    out.append(((0.0, qb, qcv), fl | FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE))
+                    continue
+                q, _err = _s3_refine(h, r, x, y, eps3, [qa, qb, qcv])
+                out.append((tuple(q), fl))
             continue
         if fl & FLAG_DOUBLE_ROOT and rho > on_axis * scale and len(out) + 2 <= S3_MAX:
             # a merged pair: near axis a its two roots differ by ~rho, below the polynomial's resolution
