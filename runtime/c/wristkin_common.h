@@ -111,6 +111,16 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bit
                         int *valid, unsigned *flags, double *aux, int aux_stride, wk_refit_fn refit, const void *ctx,
                         double scale, int candidates_only);
 
+/* A set its checks carried far from its stages' answer (the polish on a 5-joint arm's inconsistent candidate, a
+ * calibrated arm's search along the near-null direction) may have reached another branch's solution: one flagged in
+ * `carried` is dropped (values NaN, invalid, flags 0, its aux NaN) where it is within WK_SAME_SET in every joint
+ * (revolute differences wrapped) of another valid set, an uncarried one or a carried one before it. Returns the count
+ * dropped. */
+#define WK_SAME_SET 1e-9
+#define WK_CARRIED_MOVE 1e-6
+int wk_drop_carried(int max_sets, int n, const int *revolute, double *values, int *valid, unsigned *flags,
+                    double *aux, int aux_stride, const unsigned char *carried);
+
 /* The selection rule of every mechanism (docs/API.md, `select`): among valid sets (values: max_sets x n,
  * row-major) within [lower, upper] (either may be NULL), with `previous` the nearest by weighted distance
  * (revolute differences wrapped; weights NULL = 1; ties by plain distance, then index), whatever the flags;

@@ -561,6 +561,32 @@ double wk_fk_rounding(double scale)
     return WK_MERGE_ULPS * DBL_EPSILON * (scale > 1.0 ? scale : 1.0);
 }
 
+int wk_drop_carried(int max_sets, int n, const int *revolute, double *values, int *valid, unsigned *flags,
+                    double *aux, int aux_stride, const unsigned char *carried)
+{
+    int k, j, i, dropped = 0;
+    for (k = 0; k < max_sets; ++k) {
+        if (!valid[k] || !carried[k]) continue;
+        for (j = 0; j < max_sets; ++j) {
+            int same = 1;
+            if (j == k || !valid[j] || (carried[j] && j > k)) continue;
+            for (i = 0; i < n && same; ++i) {
+                const double d = values[k * n + i] - values[j * n + i];
+                same = fabs(revolute[i] ? wk_wrap(d) : d) <= WK_SAME_SET;
+            }
+            if (same) {
+                valid[k] = 0;
+                flags[k] = 0u;
+                for (i = 0; i < n; ++i) values[k * n + i] = NAN;
+                for (i = 0; i < aux_stride; ++i) aux[k * aux_stride + i] = NAN;
+                ++dropped;
+                break;
+            }
+        }
+    }
+    return dropped;
+}
+
 int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bits, int n_bits, double *values,
                         int *valid, unsigned *flags, double *aux, int aux_stride, wk_refit_fn refit, const void *ctx,
                         double scale, int candidates_only)

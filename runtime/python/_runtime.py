@@ -400,6 +400,32 @@ def fk_rounding(scale):
     return MERGE_ULPS * 2.220446049250313e-16 * max(1.0, scale)
 
 
+SAME_SET = 1e-9  # two valid sets within this in every joint are one (wristkin_common.h's WK_SAME_SET)
+CARRIED_MOVE = 1e-6  # a set its checks moved further than this from its stages' answer was carried (WK_CARRIED_MOVE)
+
+
+def drop_carried(values, valid, flags, aux, carried, revolute):
+    """A set its checks carried far from its stages' answer (the polish on a 5-joint arm's inconsistent candidate, a
+    calibrated arm's search along the near-null direction) may have reached another branch's solution: one flagged in
+    `carried` is dropped where it is within SAME_SET in every joint (revolute differences wrapped) of another valid
+    set, an uncarried one or a carried one before it (the C runtime's wk_drop_carried). Returns the count dropped."""
+    dropped = 0
+    for k in range(len(valid)):
+        if not (valid[k] and carried[k]):
+            continue
+        for j in range(len(valid)):
+            if j == k or not valid[j] or (carried[j] and j > k):
+                continue
+            if all(abs(math.remainder(a - b, 2.0 * math.pi) if rev else a - b) <= SAME_SET
+                   for a, b, rev in zip(values[k], values[j], revolute, strict=True)):
+                valid[k], flags[k] = False, 0
+                values[k] = np.nan
+                aux[k] = np.nan
+                dropped += 1
+                break
+    return dropped
+
+
 def merge_indistinct(values, valid, flags, aux, bits, revolute, refit, scale, candidates_only=True):
     """Two valid sets that differ only in the branch of one two-root stage (k and k | 1 << bit) are one solution, a
     double root, when the pose cannot tell them apart: a point between them fits the pose as well as they do. At a

@@ -106,6 +106,7 @@ def _ik_numpy(pose, d, previous):
     size = max(abs(p[3]), abs(p[7]), abs(p[11]))
     rounding = _runtime.fk_rounding(size)  # the FK's own rounding of this pose (the merge's floor)
     polish_double = DOUBLE_ROOT_POLISH_TOL * max(1.0, size)
+    carried = [False] * MAX_IK  # sets the checks moved beyond CARRIED_MOVE (drop_carried)
     for k in range(MAX_IK):
         f, alive = 0, True
         for i, (solve, shift) in enumerate(_STAGES):
@@ -143,6 +144,10 @@ def _ik_numpy(pose, d, previous):
                     qk, err = qn, err_n
         if not err <= IK_VERIFY_TOL:
             continue
+        carried[k] = any(abs(math.remainder(a - b, 2.0 * math.pi) if rev else a - b) > _runtime.CARRIED_MOVE
+                         for a, b, rev in zip(qk, q, _REVOLUTE, strict=True))
+        if carried[k] and err > rounding:  # to rounding: drop_carried then knows the solution it reached
+            qk, err = _polish(qk, p, d.params, target=rounding)
         if _HAS_PRISMATIC and not all(abs(x) <= LENGTH_MAX
                                       for x, kind in zip(qk, JOINT_KINDS, strict=True) if kind == "P"):
             beyond += 1  # a set fk would reject: IK returns only what FK accepts
@@ -157,6 +162,9 @@ def _ik_numpy(pose, d, previous):
                 qk, err = moved, err_moved
         values[k], aux[k], valid[k], flags[k] = qk, err, True, (f & ~_runtime.FLAG_READ_MEMBER) | (
             FLAG_PROJECTED if dev else 0)
+    # a set the polish carried to another branch's solution (a 5-joint arm's candidate that no orientation fits) is
+    # that solution twice
+    _runtime.drop_carried(values, valid, flags, aux, carried, _REVOLUTE)
     if _FOLD_BITS:
         # a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when)
         _runtime.merge_indistinct(values, valid, flags, aux, _FOLD_BITS, _REVOLUTE,

@@ -57,12 +57,14 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
     const double *prev = NULL;
     sr_ws ws; /* the multi-candidate stages' scratch (sr_stages.c) */
     int k, j, indeterminate = 0;
+    unsigned char carried[SR_MAX_IK]; /* sets the checks moved beyond WK_CARRIED_MOVE (wk_drop_carried) */
 #if SR_REUSE_MIRROR_CHECK
     double base_err = -1.0; /* the FK check of the last even set, when it passed unpolished */
 #endif
     if (!out) return WK_ERR_NULL;
     out->count = 0;
     for (k = 0; k < SR_MAX_IK; ++k) {
+        carried[k] = 0;
         out->valid[k] = 0;
         out->flags[k] = 0u;
         out->aux[k][0] = NAN;
@@ -193,6 +195,17 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         if (!(err <= SR_IK_VERIFY_TOL)) /* along the near-null direction, to the FK's rounding (Python's reasons) */
             err = sr_along_null(out->values[k], pose, d->params, rounding, err);
 #endif
+        if (err <= SR_IK_VERIFY_TOL) {
+            for (j = 0; j < SR_N; ++j) {
+                const double moved = out->values[k][j] - q[j];
+                if (fabs(sr_revolute[j] ? wk_wrap(moved) : moved) > WK_CARRIED_MOVE) carried[k] = 1;
+            }
+            if (carried[k] && err > rounding) { /* to rounding: wk_drop_carried then knows the solution it reached */
+                err = sr_polish(out->values[k], pose, d->params, rounding);
+                for (j = 0; j < SR_N; ++j)
+                    if (sr_revolute[j]) out->values[k][j] = wk_wrap(out->values[k][j]);
+            }
+        }
 #if SR_HAS_PRISMATIC
         if (!(err <= SR_IK_VERIFY_TOL) || !sr_prismatic_in_range(out->values[k])) {
 #else
@@ -221,9 +234,12 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         out->aux[k][0] = err;
         out->valid[k] = 1;
         out->flags[k] = (f & ~WK_FLAG_READ_MEMBER) | projected;
-        if (f & WK_FLAG_INDETERMINATE) indeterminate = 1;
         ++out->count;
     }
+    /* a set the polish carried to another branch's solution (a 5-joint arm's candidate that no orientation fits) is
+       that solution twice */
+    out->count -= wk_drop_carried(SR_MAX_IK, SR_N, sr_revolute, &out->values[0][0], out->valid, out->flags,
+                                  &out->aux[0][0], SR_N_IK_AUX, carried);
 #if SR_N_FOLD_BITS > 0
     {
         /* a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when) */
@@ -236,6 +252,8 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
                                           sr_refit, &fit, size, SR_N >= 6);
     }
 #endif
+    for (k = 0; k < SR_MAX_IK; ++k) /* of the sets kept (as Python's flags read after the merge) */
+        if (out->valid[k] && (out->flags[k] & WK_FLAG_INDETERMINATE)) indeterminate = 1;
     out->status = out->count == 0 ? WK_STATUS_UNREACHABLE : (indeterminate ? WK_STATUS_INDETERMINATE : WK_STATUS_OK);
     return WK_OK;
 }
