@@ -245,7 +245,22 @@ class ChainMechanism(MechanismDefaults):
         shoulder turns the arm about the shoulder-wrist line and its spherical wrist undoes the turn): the held
         chain's Jacobian has rank < 6 at every configuration, every reachable pose has infinitely many solutions,
         and a decomposition that reads it as six joints finds none (the solver said "unreachable" for every pose).
-        Refused here, so that a 7-joint arm without --free never picks it and lists the choices that work."""
+        Refused here, so that a 7-joint arm without --free never picks it and lists the choices that work. A chain of
+        at most six joints singular at every configuration is refused too: its joints' twists span fewer directions
+        than there are joints (two axes on one line; axes 1-3 meeting in one point and 4-6 in another, whose turns
+        about the line through both repeat), and its decomposition read every pose it reaches as unreachable."""
+        if self.desc.free < 0 and self.chain.n <= 6:
+            ratio = self._self_motion_ratio((0.0,), 8)
+            if ratio <= SELF_MOTION_RATIO:
+                s = np.linalg.svd(self.chain.jacobian(_random_joints(self.chain, np.random.default_rng(5))),
+                                  compute_uv=False)
+                rank = int(np.sum(s > SELF_MOTION_RATIO * s[0]))
+                raise NoClosedForm(f"the {self.chain.n}-joint chain is singular at every configuration: its Jacobian "
+                                   f"has rank {rank} < {self.chain.n} (sigma_min / sigma_max <= {ratio:.1e} at 8 "
+                                   "random configurations), so its joints repeat a motion (two axes on one line, or "
+                                   "two triples of axes each meeting in a point) and every pose it reaches has "
+                                   "infinitely many solutions; check the description's axes")
+            return
         if self.desc.free < 0 or self.chain.n != 7:
             return
         ratio = self._everywhere_ratio()
