@@ -32,6 +32,18 @@ def poe_spec(name: str, title: str, axes, points, position, rpy=None, joint_name
     return text + ("" if rpy is None else f"rpy = {[float(x) for x in rpy]}\n")
 
 
+def dh_spec(name: str, title: str, rows, kinds) -> str:
+    """The text of a `chain` spec in standard DH: one [[joint]] per (a, alpha, d) row (alpha a number or a string
+    such as "pi/2", theta 0), "R" or "P" per joint (a slide's range +-0.5 m)."""
+    text = f'family = "chain"\nname = "{name}"\ntitle = "{title}"\nconvention = "standard"\n'
+    for i, ((a, alpha, d), kind) in enumerate(zip(rows, kinds, strict=True)):
+        text += (f'[[joint]]\nname = "j{i + 1}"\ntype = "{"revolute" if kind == "R" else "prismatic"}"\n'
+                 f'a = {a}\nalpha = "{alpha}"\nd = {d}\ntheta = 0.0\n')
+        if kind == "P":
+            text += "lower = -0.5\nupper = 0.5\n"
+    return text
+
+
 # The calibrated KR 6's URDF with its calibration 1e-5 (axis 3 tilted 1e-5 rad, axis 5 moved 1e-5 m) instead of
 # 2e-7 rad / 3e-8 m: beyond the 1e-6 geometry tolerance, so a general 6R, yet 1e-5 from parallel axes 2, 3 and a
 # spherical wrist. Its elimination's readings share eigenvalues (the wrist's flips share the arm's angles to 1e-5,
