@@ -26,7 +26,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
 
-from chain_specs import dh_spec  # noqa: E402
+from chain_specs import dh_spec, poe_spec  # noqa: E402
 from reference import chain as ref  # noqa: E402
 
 from derive import own_robot  # noqa: E402
@@ -41,6 +41,24 @@ def draw(rng: random.Random):
     return rows, kinds
 
 
+AXES = [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0), (-1.0, 0.0, 0.0), (0.0, -1.0, 0.0), (0.0, 0.0, -1.0)]
+
+
+def draw_poe(rng: random.Random):
+    """A random revolute arm in POE form: axes along +-x, +-y, +-z (one in eight tilted 45 degrees), points on a 0.1 m
+    grid with few values, so that axes meet, lie parallel, coincide or are skew; its tool 0.1 m past the last point."""
+    n = rng.choice([5, 6, 6, 6])
+    axes, points = [], []
+    for _ in range(n):
+        a = rng.choice(AXES)
+        if rng.random() < 0.125:
+            b = rng.choice([v for v in AXES if abs(sum(x * y for x, y in zip(a, v, strict=True))) < 0.5])
+            a = tuple((x + y) / math.sqrt(2.0) for x, y in zip(a, b, strict=True))
+        axes.append(a)
+        points.append(tuple(rng.choice([0.0, 0.0, 0.1, 0.3]) for _ in range(3)))
+    return axes, points
+
+
 def gap(a, b, kinds) -> float:
     d = np.asarray(a, dtype=float) - np.asarray(b, dtype=float)
     rev = np.array([k == "R" for k in kinds])
@@ -53,14 +71,23 @@ def main() -> None:
     ap.add_argument("--count", type=int, default=200)
     ap.add_argument("--seed", type=int, default=2)
     ap.add_argument("--poses", type=int, default=20)
+    ap.add_argument("--poe", action="store_true", help="random POE arms (axes along the frame's axes) instead of DH")
+    ap.add_argument("--native", action="store_true", help="also compile the C and compare its sets with numpy's")
     args = ap.parse_args()
     rng, nrng = random.Random(args.seed), np.random.default_rng(args.seed)
-    solved = derived = fallback = missed = off_pose = poses = degenerate = 0
+    solved = derived = fallback = missed = off_pose = poses = degenerate = c_differs = failed = 0
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "arm_dh.toml"
         for trial in range(args.count):
-            rows, kinds = draw(rng)
-            path.write_text(dh_spec("arm", "random DH arm", rows, kinds))
+            if args.poe:
+                axes, points = draw_poe(rng)
+                kinds = ["R"] * len(axes)
+                rows = list(zip(axes, points, strict=True))  # printed as the arm's description
+                last = points[-1]
+                path.write_text(poe_spec("arm", "random POE arm", axes, points, (last[0], last[1], last[2] + 0.1)))
+            else:
+                rows, kinds = draw(rng)
+                path.write_text(dh_spec("arm", "random DH arm", rows, kinds))
             try:
                 own_robot.load(path, stages="interpreted").plan()
             except NoDecomposition as exc:
@@ -69,13 +96,19 @@ def main() -> None:
             solved += 1
             said: list[str] = []
             out = Path(tmp) / f"out{trial}"
-            own_robot.derive(path, out, name="arm", native=False, progress=said.append)
+            try:
+                own_robot.derive(path, out, name="arm", native=args.native, progress=said.append)
+            except Exception as exc:  # noqa: BLE001 (a derivation that fails its own checks: reported, counted)
+                failed += 1
+                print(f"arm {trial} {''.join(kinds)} {rows}: derive failed: {type(exc).__name__}: {exc}")
+                continue
             if "interpreter" in said[1]:
                 fallback += 1
                 print(f"arm {trial} {''.join(kinds)} {rows}: {said[1].strip()}")
                 continue
             derived += 1
             m = own_robot.import_solver(out, "arm", backend="numpy")
+            mc = own_robot.import_solver(out, "arm") if args.native else None
             reference = ref.load(path)
             for _ in range(args.poses):
                 q = np.array([nrng.uniform(-math.pi, math.pi) if k == "R" else nrng.uniform(-0.5, 0.5)
@@ -91,10 +124,16 @@ def main() -> None:
                 if any(ref.pose_error(reference(np.asarray(v)), T) > 1e-9 for v in sol):
                     off_pose += 1
                     print(f"arm {trial} {''.join(kinds)} {rows}: a set off the pose at q = {q.tolist()}")
-    print(f"{args.count} random DH arms (seed {args.seed}): {degenerate} refused as singular at every configuration, "
-          f"{solved} solved by the interpreter's planner, {derived} "
-          f"derived, {fallback} fell back to the interpreter; {poses} poses on the derived ones: {missed} missed "
-          f"the generating joints, {off_pose} returned a set off the pose")
+                if mc is not None and mc.ik(T).count != sol.count:
+                    c_differs += 1
+                    print(f"arm {trial} {''.join(kinds)} {rows}: C {mc.ik(T).count} sets, numpy {sol.count} at "
+                          f"q = {q.tolist()}")
+    print(f"{args.count} random {'POE' if args.poe else 'DH'} arms (seed {args.seed}): {degenerate} refused as "
+          f"singular at every configuration, {solved} solved by the interpreter's planner, {failed} failed to derive, {derived} "
+          f"derived, {fallback} fell "
+          f"back to the interpreter; {poses} poses on the derived ones: {missed} missed the generating joints, "
+          f"{off_pose} returned a set off the pose" + (f", C's set count differed from numpy's on {c_differs}"
+                                                      if args.native else ""))
 
 
 if __name__ == "__main__":

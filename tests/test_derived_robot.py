@@ -1076,6 +1076,32 @@ def test_five_joint_arms_with_special_spatial_3r_axes_are_solved(arm, tmp_path):
             assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in s)
 
 
+def test_a_meeting_point_is_the_frame_origin_that_stays_on_its_axes(tmp_path):
+    """A random POE arm (bench/derived_coverage.py --poe, seed 3) whose DH origins o_1 and o_4 both sit at (0, 0, 0.3)
+    at its own lengths: the wrist point (axes 4 and 5 meet at o_4) was read as o_1, so the derived stage held at the
+    default lengths only and `wristkin derive` failed its check. The point is the origin that lies on the axes at
+    other lengths too: derived by default, the generating joints among the sets, every set on the reference."""
+    from chain_specs import poe_spec
+
+    axes = [(-1, 0, 0), (-1, 0, 0), (0, 0, -1), (0.5 ** 0.5, 0, 0.5 ** 0.5), (0, 0, 1)]
+    points = [(0, 0.1, 0.3), (0, 0, 0.3), (0.1, 0, 0), (0, 0, 0.3), (0, 0, 0.1)]
+    path = tmp_path / "origins_poe.toml"
+    path.write_text(poe_spec("origins", "two DH origins on one point", axes, points, (0, 0, 0.2)))
+    said = []
+    own_robot.derive(path, tmp_path / "out", name="origins", progress=said.append)
+    assert said[1].strip() == "IK: derived straight-line stages"
+    m = own_robot.import_solver(tmp_path / "out", "origins")
+    reference = ref.load(path)
+    rng = case_rng(2344)
+    for _ in range(20):
+        q = rng.uniform(-math.pi, math.pi, 5)
+        T = reference(q)
+        smin = np.linalg.svd(reference.jacobian(q), compute_uv=False)[-1]
+        sol = m.ik(T)
+        assert min(_gap(v, q) for v in sol) <= 1e-9 + 1e-13 / smin
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+
+
 def test_a_chain_singular_at_every_configuration_is_refused_with_the_reason(tmp_path):
     """Axes 1 and 2 on one line (a 4R arm's twist 0 and no offset between them): every pose the chain reaches has a
     self-motion, and its decomposition read them all as unreachable. `wristkin derive` refuses it, naming the rank,

@@ -26,6 +26,7 @@ base-side rows'.
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -266,6 +267,23 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         home, pose, numeric = minv, pose.inv(), reverse(numeric)
     target = pose * home.inv()  # the product of the joints' exponentials
 
+    varied_rng = np.random.default_rng(17)
+
+    def on_axes_at_any_design(o, js):
+        """Whether the point o lies on every axis js at other designs too (two drawn as the derivation's checks draw
+        them): a frame origin can sit on the meeting point at the defaults by coincidence (a random POE arm's o_1 and
+        o_4 both at (0, 0, 0.3)), and a stage built on it failed its check at every other design."""
+        for _ in range(2):
+            vals = at | {sym: (varied_rng.uniform(-math.pi, math.pi) if held is not None and sym == held[1]
+                               or sym == arm_angle else v * varied_rng.uniform(0.5, 1.5) if v != 0
+                               else varied_rng.uniform(0.0, 0.2)) for sym, v in zip(design, defaults, strict=True)}
+            p = num(o, vals)
+            for j in js:
+                h, r = num(axes[j], vals), num(points[j], vals)
+                if np.linalg.norm(np.cross(p - r, h)) > 1e-9 * max(1.0, float(np.linalg.norm(p))):
+                    return False
+        return True
+
     def point(spec):
         if spec[0] == "home":
             return home.t
@@ -273,7 +291,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
             return points[spec[1]]
         w = numeric_point(numeric, spec[1:])
         for o in origins:  # the meeting point as the frame origin it is (exact, design-symbolic)
-            if np.allclose(num(o), w, atol=1e-9):
+            if np.allclose(num(o), w, atol=1e-9) and on_axes_at_any_design(o, spec[1:]):
                 return o
         # axes that meet across a held joint (the Panda's 5 and 7 with joint6 held): the foot on the first of the
         # common normal to the second, p_i + t u_i (their common point, wherever the held joint is)
