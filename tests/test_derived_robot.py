@@ -1102,6 +1102,39 @@ def test_a_meeting_point_is_the_frame_origin_that_stays_on_its_axes(tmp_path):
         assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
 
 
+# Two random POE arms (bench/derived_coverage.py --poe, seed 3): three parallel axes j2-j4 and the last two axes
+# parallel, which the offset-wrist plan (subproblem 6) took and solved no pose of
+PARALLEL_TAIL_ARMS = {
+    "tail_along_j1": ([(0, 1, 0), (-1, 0, 0), (-1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0)],
+                      [(0.1, 0, 0.3), (0.3, 0.3, 0), (0.1, 0.1, 0.1), (0.3, 0, 0), (0.1, 0, 0.3), (0, 0, 0)]),
+    "tail_vertical": ([(-0.5 ** 0.5, 0.5 ** 0.5, 0), (-1, 0, 0), (-1, 0, 0), (1, 0, 0), (0, 0, 1), (0, 0, 1)],
+                      [(0.3, 0.1, 0), (0, 0.3, 0), (0.1, 0.1, 0), (0, 0.3, 0), (0.3, 0, 0.3), (0, 0.3, 0.1)]),
+}
+
+
+@pytest.mark.parametrize("arm", sorted(PARALLEL_TAIL_ARMS))
+def test_an_offset_wrist_whose_last_axes_are_parallel_is_not_read_as_one(arm, tmp_path):
+    """Subproblem 6's second equation reads how joint 5 turns joint 6's axis about the group's: with the two parallel
+    it reads nothing. The planner no longer offers it there; these arms fall to the general 6R, whose sets (numpy
+    path) hold the generating joints on 20 random poses, each set on the reference product of exponentials."""
+    from chain_specs import poe_spec
+
+    axes, points = PARALLEL_TAIL_ARMS[arm]
+    path = tmp_path / f"{arm}_poe.toml"
+    path.write_text(poe_spec(arm, arm, axes, points, (points[-1][0], points[-1][1], points[-1][2] + 0.1)))
+    own_robot.derive(path, tmp_path / "out", name=arm, native=False, progress=lambda _: None)
+    m = own_robot.import_solver(tmp_path / "out", arm, backend="numpy")
+    reference = ref.load(path)
+    rng = case_rng(2345)
+    for _ in range(20):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        T = reference(q)
+        smin = np.linalg.svd(reference.jacobian(q), compute_uv=False)[-1]
+        sol = m.ik(T)
+        assert min(_gap(v, q) for v in sol) <= 1e-9 + 1e-13 / smin
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+
+
 def test_a_chain_singular_at_every_configuration_is_refused_with_the_reason(tmp_path):
     """Axes 1 and 2 on one line (a 4R arm's twist 0 and no offset between them): every pose the chain reaches has a
     self-motion, and its decomposition read them all as unreachable. `wristkin derive` refuses it, naming the rank,

@@ -307,7 +307,11 @@ def _three_parallel(g: Geometry) -> list[Plan]:
             # the two joints after the group do not meet (a UR-type arm with an offset wrist): joints 1 and 5 from
             # two equations, each linear in the cosines and sines of both (subproblem 6), joint 6 from the
             # group's axis, then the group's sum and the planar pair
-            if i != 1 or len(tail) != 2 or not _plane_ok(g, 0, ("dir", grp[0])):
+            # (the second equation reads how joint k turns joint l's axis about the group's: none where joint l's
+            # axis or the group's is parallel to joint k's, and every pose was then unreachable)
+            if i != 1 or len(tail) != 2 or not _plane_ok(g, 0, ("dir", grp[0])) or \
+                    not g.not_parallel(g.c.axes[tail[0]], g.c.axes[tail[1]]) or \
+                    not g.not_parallel(g.c.axes[tail[0]], g.c.axes[grp[0]]):
                 continue
             ops = [{"op": "begin", "x": ("on", tail[1]), "lo": 0, "hi": n - 1},
                    {"op": "sp6", "j": 0, "k": tail[0], "l": tail[1], "n": ("dir", grp[0])},
