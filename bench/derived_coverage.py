@@ -129,11 +129,10 @@ def main() -> None:
                     print(f"arm {trial} {''.join(kinds)} {rows}: C {mc.ik(T).count} sets, numpy {sol.count} at "
                           f"q = {q.tolist()}")
     print(f"{args.count} random {'POE' if args.poe else 'DH'} arms (seed {args.seed}): {degenerate} refused as "
-          f"singular at every configuration, {solved} solved by the interpreter's planner, {failed} failed to derive, {derived} "
-          f"derived, {fallback} fell "
-          f"back to the interpreter; {poses} poses on the derived ones: {missed} missed the generating joints, "
-          f"{off_pose} returned a set off the pose" + (f", C's set count differed from numpy's on {c_differs}"
-                                                      if args.native else ""))
+          f"singular at every configuration, {solved} solved by the interpreter's planner, {failed} failed to "
+          f"derive, {derived} derived, {fallback} fell back to the interpreter; {poses} poses on the derived ones: "
+          f"{missed} missed the generating joints, {off_pose} returned a set off the pose"
+          + (f", C's set count differed from numpy's on {c_differs}" if args.native else ""))
 
 
 if __name__ == "__main__":
