@@ -1076,6 +1076,18 @@ def test_five_joint_arms_with_special_spatial_3r_axes_are_solved(arm, tmp_path):
             assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in s)
 
 
+def _solves_random_poses(m, reference, n, rng, poses=20):
+    """On `poses` FK poses of uniform revolute joints: the generating joints among m's sets (1e-9 + 1e-13 / sigma_min,
+    the rounding amplified by the conditioning) and every set on the reference's product (1e-9)."""
+    for _ in range(poses):
+        q = rng.uniform(-math.pi, math.pi, n)
+        T = reference(q)
+        smin = np.linalg.svd(reference.jacobian(q), compute_uv=False)[-1]
+        sol = m.ik(T)
+        assert min(_gap(v, q) for v in sol) <= 1e-9 + 1e-13 / smin
+        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+
+
 def test_a_meeting_point_is_the_frame_origin_that_stays_on_its_axes(tmp_path):
     """A random POE arm (bench/derived_coverage.py --poe, seed 3) whose DH origins o_1 and o_4 both sit at (0, 0, 0.3)
     at its own lengths: the wrist point (axes 4 and 5 meet at o_4) was read as o_1, so the derived stage held at the
@@ -1092,14 +1104,7 @@ def test_a_meeting_point_is_the_frame_origin_that_stays_on_its_axes(tmp_path):
     assert said[1].strip() == "IK: derived straight-line stages"
     m = own_robot.import_solver(tmp_path / "out", "origins")
     reference = ref.load(path)
-    rng = case_rng(2344)
-    for _ in range(20):
-        q = rng.uniform(-math.pi, math.pi, 5)
-        T = reference(q)
-        smin = np.linalg.svd(reference.jacobian(q), compute_uv=False)[-1]
-        sol = m.ik(T)
-        assert min(_gap(v, q) for v in sol) <= 1e-9 + 1e-13 / smin
-        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+    _solves_random_poses(m, reference, 5, case_rng(2344))
 
 
 # Two random POE arms (bench/derived_coverage.py --poe, seed 3): three parallel axes j2-j4 and the last two axes
@@ -1125,14 +1130,7 @@ def test_an_offset_wrist_whose_last_axes_are_parallel_is_not_read_as_one(arm, tm
     own_robot.derive(path, tmp_path / "out", name=arm, native=False, progress=lambda _: None)
     m = own_robot.import_solver(tmp_path / "out", arm, backend="numpy")
     reference = ref.load(path)
-    rng = case_rng(2345)
-    for _ in range(20):
-        q = rng.uniform(-math.pi, math.pi, 6)
-        T = reference(q)
-        smin = np.linalg.svd(reference.jacobian(q), compute_uv=False)[-1]
-        sol = m.ik(T)
-        assert min(_gap(v, q) for v in sol) <= 1e-9 + 1e-13 / smin
-        assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in sol)
+    _solves_random_poses(m, reference, 6, case_rng(2345))
 
 
 def test_a_chain_singular_at_every_configuration_is_refused_with_the_reason(tmp_path):
