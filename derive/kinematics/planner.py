@@ -112,14 +112,16 @@ class Geometry:
     def not_parallel(self, a, b) -> bool:
         return parallel_deviation(a, b) > 10 * self.tol
 
-    def meet(self, js) -> np.ndarray | None:
+    def meet(self, js, record: bool = True) -> np.ndarray | None:
+        """Their common point within the tolerance, else None; `record`: as a relation the plan relies on."""
         js = tuple(js)
         dirs = [self.c.axes[j] for j in js]
         if all(parallel_deviation(dirs[0], d) <= self.tol for d in dirs[1:]):
             return None  # parallel axes do not meet in one point
         w, dev = common_point([self.c.points[j] for j in js], dirs)
         if dev <= self.tol:
-            self.used[("meet", js)] = Relation("meet", js, dev)
+            if record:
+                self.used[("meet", js)] = Relation("meet", js, dev)
             return w
         return None
 
@@ -221,22 +223,13 @@ def plan_point(g: Geometry, js: list[int], x: np.ndarray) -> list[list[dict]]:
         out += [[{"op": "last_plane", "j": c, "kind": g.c.kinds[c], "n": nspec}] + rest
                 for rest in plan_point(g, js[:-1], x)]
     if not out and len(js) == 3 and all(g.rev(j) for j in js) and g.not_parallel(g.c.axes[a], g.c.axes[js[1]]) \
-            and not g.on_axis(x, c) and not _concurrent(g, js):
+            and not g.on_axis(x, c) and g.meet(js, record=False) is None:
         # no invariant applies: the general 3R positioning problem, a polynomial with every real root. Not where x
         # lies on the last axis (that joint does not move it) or the three axes meet in one point (they keep x on a
         # sphere about it): two constraints on three joints, a self-motion, where the polynomial vanishes
         # identically and the solver read every reachable pose as unreachable
         out.append([{"op": "spatial3", "js": list(js)}])
     return sorted(out, key=_cost)
-
-
-def _concurrent(g: Geometry, js) -> bool:
-    """Whether the revolute axes js all pass through one point (within the tolerance), not recorded as a relation
-    the plan relies on."""
-    dirs = [g.c.axes[j] for j in js]
-    if all(parallel_deviation(dirs[0], d) <= g.tol for d in dirs[1:]):
-        return False
-    return common_point([g.c.points[j] for j in js], dirs)[1] <= g.tol
 
 
 def _cost(ops) -> tuple:

@@ -121,7 +121,7 @@ def _ik_numpy(pose, d, previous):
             unreachable += 1
             continue
         err = max(abs(x - y) for x, y in zip(_k_fk_cs(q, c, s, d.params), p, strict=True))
-        qk = list(q)
+        qk = q
         if err > IK_VERIFY_TOL or ((f & FLAG_DOUBLE_ROOT or CALIBRATED) and err > polish_double):
             # a tangent root leaves a sqrt(eps) error downstream, and a double root's centre its stage's noise (a
             # UR's folded elbow behind a wrist 1e-5 from singular: the pose within 3e-12): polish a copy, a double
@@ -144,8 +144,9 @@ def _ik_numpy(pose, d, previous):
                     qk, err = qn, err_n
         if not err <= IK_VERIFY_TOL:
             continue
-        carried[k] = any(abs(math.remainder(a - b, 2.0 * math.pi) if rev else a - b) > _runtime.CARRIED_MOVE
-                         for a, b, rev in zip(qk, q, _REVOLUTE, strict=True))
+        carried[k] = qk is not q and any(  # only a polished or searched set (a new list) can be carried
+            abs(math.remainder(a - b, 2.0 * math.pi) if rev else a - b) > _runtime.CARRIED_MOVE
+            for a, b, rev in zip(qk, q, _REVOLUTE, strict=True))
         if carried[k] and err > rounding:  # to rounding: drop_carried then knows the solution it reached
             qk, err = _polish(qk, p, d.params, target=rounding)
         if _HAS_PRISMATIC and not all(abs(x) <= LENGTH_MAX

@@ -142,7 +142,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
     for (k = 0; k < SR_MAX_IK; ++k) {
         double t[12], err = 0.0;
         unsigned f = 0u;
-        int alive = 1, have_t = 1;
+        int alive = 1, have_t = 1, moved_by_checks;
         /* the stages (sr_run_stages, printed per chain): each recomputed only when its branch prefix changes */
         alive = sr_run_stages(k, pose, q, c, s, d->params, prev, amp, &ws, key, stage_ok, stage_flags, &f);
 #if SR_REUSE_MIRROR_CHECK
@@ -172,7 +172,9 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         }
 #endif
         for (j = 0; j < SR_N; ++j) out->values[k][j] = q[j];
-        if (!(err <= SR_IK_VERIFY_TOL) || (((f & WK_FLAG_DOUBLE_ROOT) || SR_CALIBRATED) && err > polish_double)) {
+        moved_by_checks = !(err <= SR_IK_VERIFY_TOL) || (((f & WK_FLAG_DOUBLE_ROOT) || SR_CALIBRATED) &&
+                                                         err > polish_double);
+        if (moved_by_checks) {
             /* a tangent root leaves a sqrt(eps) error downstream, and a double root's centre its stage's noise (a
                UR's folded elbow behind a wrist 1e-5 from singular: the pose within 3e-12): polish a copy of the
                set, a double root's to rounding (Python's DOUBLE_ROOT_POLISH_TOL says when); a calibrated robot's
@@ -195,7 +197,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         if (!(err <= SR_IK_VERIFY_TOL)) /* along the near-null direction, to the FK's rounding (Python's reasons) */
             err = sr_along_null(out->values[k], pose, d->params, rounding, err);
 #endif
-        if (err <= SR_IK_VERIFY_TOL) {
+        if (err <= SR_IK_VERIFY_TOL && moved_by_checks) { /* only a polished or searched set can be carried */
             for (j = 0; j < SR_N; ++j) {
                 const double moved = out->values[k][j] - q[j];
                 if (fabs(sr_revolute[j] ? wk_wrap(moved) : moved) > WK_CARRIED_MOVE) carried[k] = 1;
