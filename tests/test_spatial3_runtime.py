@@ -178,3 +178,60 @@ def test_a_target_near_the_first_axis_splits_the_merged_pair(lib, py, rho):
                                                                tuple(x), tuple(y), 1.0, 1e-12, ON_AXIS)):
             assert len(cands) <= 4 and min(_gap(cand, q) for cand, _ in cands) <= allowance
             assert all(np.max(np.abs(_place(h, r, cand, x) - y)) <= 1e-9 for cand, _ in cands)
+
+
+def test_the_polynomials_rounding_is_within_the_touch_bound(py, monkeypatch):
+    """The touch tolerance's contract: every coefficient of the polynomial as computed in doubles is within S3_ROUNDING
+    eps of its terms' sizes of the same polynomial computed exactly (mpmath at 40 digits, from the same double inputs),
+    on 80 random instances: general lines with the target from 1e-13 to 1 off axis a, and axes a and c parallel."""
+    import mpmath
+
+    mpmath.mp.dps = 40
+    seen = {}
+    monkeypatch.setattr(py, "_s3_touch_tol", lambda poly, terms: seen.update(poly=poly, terms=terms) or 1e-12)
+    monkeypatch.setattr(py, "_poly_real_roots", lambda poly, tol=None: ([], [], 0))  # the polynomial only
+    rng = case_rng(2323)
+    for k in range(80):
+        h = np.array([v / np.linalg.norm(v) for v in rng.normal(size=(3, 3))])
+        r, x = rng.normal(size=(3, 3)) * 0.4, rng.normal(size=3) * 0.4
+        q = rng.uniform(-math.pi, math.pi, 3)
+        if k % 4 == 3:
+            h[2] = h[0] * (1.0 if k % 8 == 3 else -1.0)
+        else:
+            w = r[1] + _rot(h[1], q[1]) @ (r[2] + _rot(h[2], q[2]) @ (x - r[2]) - r[1])
+            e = np.cross(h[0], rng.normal(size=3))
+            r[0] = w - 10.0 ** rng.uniform(-13, 0) * e / np.linalg.norm(e) + rng.normal() * h[0]
+        y = _place(h, r, q, x)
+        polys = []
+        for num in (float, mpmath.mpf):
+            py._spatial3_lines([tuple(num(c) for c in v) for v in h], [tuple(num(c) for c in v) for v in r],
+                               tuple(num(c) for c in x), tuple(num(c) for c in y), 1.0, 1e-12, ON_AXIS)
+            polys.append((seen["poly"], seen["terms"]))
+        (double, terms), (exact, _) = polys
+        bound = [py.S3_ROUNDING * py.S3_EPS * t for t in terms]
+        assert all(abs(float(a - b)) <= e for a, b, e in zip(double, exact, bound, strict=True))
+
+
+def test_a_pair_merged_under_the_polynomials_rounding_is_found(lib, py):
+    """A target 1e-11 from axis a (from seed 327992 under OpenBLAS's Haswell kernels, the inputs to the bit): the two
+    roots the target makes merge, and the exact polynomial of these doubles has a complex pair (Im 1.9e-7, min
+    6e-18); as computed, cancellation in nc^2 + ns^2 - det^2 left its coefficients 7e-12 off (relative), its minimum
+    1.3e-12 of its norm, over the root finder's default 1e-12, so no root was reported and the pose came back
+    unreachable. With the touch tolerance from the polynomial's own rounding it is a touching root, split: the
+    generating joints among the candidates (1e-9 + 1e-13 / sigma_min), in C and Python."""
+    v = [float.fromhex(c) for c in (
+        "0x1.c7ca11334e80ep-3", "0x1.6c4097a56efdbp-3", "0x1.eac855de4235bp-1", "-0x1.408c1e8e1b633p-4",
+        "0x1.780f153369fa6p-1", "0x1.5922939444226p-1", "0x1.f19a096ac6afcp-2", "-0x1.692faf5c96e0fp-4",
+        "-0x1.bd3368c7fd3cep-1", "-0x1.75f7ae4617f92p-3", "0x1.e43e8a42a4b5cp-3", "-0x1.19696547dd96ap+1",
+        "0x1.56b2a556be3e6p-2", "0x1.23f7f07c689b7p-1", "-0x1.e8db90824535dp-4", "0x1.2de87ae034cf8p-3",
+        "0x1.a8c174f754cefp-3", "-0x1.daa4c2221106dp-3", "0x1.f2a0ef8110b04p-2", "0x1.4422d98c35351p-5",
+        "0x1.a83b7e3d035dfp-4", "0x1.45750e9cd4c95p-2", "0x1.45d308008f75dp-1", "-0x1.61457464572c0p-5",
+        "0x1.c6a75172116d0p+0", "-0x1.46bc287ca53fcp+0", "-0x1.64e72d154cafdp+0")]
+    h, r = np.array(v[:9]).reshape(3, 3), np.array(v[9:18]).reshape(3, 3)
+    x, y, q = np.array(v[18:21]), np.array(v[21:24]), np.array(v[24:27])
+    assert np.max(np.abs(_place(h, r, q, x) - y)) <= 1e-15  # the pose is the joints' (to rounding)
+    allowance = 1e-9 + 1e-13 / _smin(h, r, q, x)
+    for cands in (_c(lib, h, r, x, y), py._spatial3_lines([tuple(v) for v in h], [tuple(v) for v in r], tuple(x),
+                                                          tuple(y), 1.0, 1e-12, ON_AXIS)):
+        assert cands and min(_gap(cand, q) for cand, _ in cands) <= allowance
+        assert all(np.max(np.abs(_place(h, r, cand, x) - y)) <= 1e-9 for cand, _ in cands)

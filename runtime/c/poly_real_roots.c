@@ -352,8 +352,11 @@ static int wk_poly_level(const double *a, const double *da, const double *dda, i
     return cnt;
 }
 
-static int wk_poly_real_roots_tol(const double *coef, int n, double *roots, unsigned *flags, int *status,
-                                  double tol_touch)
+/* Main entry: coef[0..n] ascending (k0..kn), n <= 8; roots/flags hold 8. tol_touch: WK_POLY_TOL_TOUCH, or the
+ * caller's bound on its coefficients' rounding (relative to the largest) where it knows a larger one. One entry (no
+ * default-argument wrapper): a module that includes this file uses every static function in it. */
+static int wk_poly_real_roots(const double *coef, int n, double *roots, unsigned *flags, int *status,
+                              double tol_touch)
 {
     double d[WK_POLY_MAXDEG + 1][WK_POLY_MAXDEG + 1];
     double part[WK_POLY_MAXDEG], curv[WK_POLY_MAXDEG];
@@ -442,12 +445,6 @@ static int wk_poly_real_roots_tol(const double *coef, int n, double *roots, unsi
     }
     *status = st;
     return k;
-}
-
-/* Main entry: coef[0..n] ascending (k0..kn), n <= 8; roots/flags hold 8. */
-static int wk_poly_real_roots(const double *coef, int n, double *roots, unsigned *flags, int *status)
-{
-    return wk_poly_real_roots_tol(coef, n, roots, flags, status, WK_POLY_TOL_TOUCH);
 }
 
 #endif /* WK_POLY_REAL_ROOTS_INCLUDED */

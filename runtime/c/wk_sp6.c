@@ -296,7 +296,7 @@ static int wk_sp6(const double *n, const double *h0, const double *p0, const dou
     wk_poly_axpy(poly, sq, 5, 1.0);
     wk_poly_mul(pd, 3, pd, 3, sq);
     wk_poly_axpy(poly, sq, 5, -1.0);
-    nroot = wk_poly_real_roots(poly, 4, roots, rf, &status);
+    nroot = wk_poly_real_roots(poly, 4, roots, rf, &status, WK_POLY_TOL_TOUCH);
     for (i = 0; i < nroot && na < 4; ++i) {
         ang[na] = 2.0 * atan(roots[i]);
         atol[na] = 1e-6;

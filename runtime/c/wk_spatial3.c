@@ -22,6 +22,7 @@
 #define WK_S3_SPLIT_STEP_MAX 0.5 /* rad: a split's Newton step at most this in any joint before it is halved */
 #define WK_S3_SPLIT_NEAR 1e-3   /* rad: a split root keeps the merged root's q_b, q_c to this */
 #define WK_S3_CURVATURE_STEP 1e-3 /* rad: the central difference of the point's second derivative */
+#define WK_S3_ROUNDING 32.0     /* the polynomial's rounding: at most this many eps of its terms' sizes (spatial3.py) */
 #define WK_S3_CIRCLE_TOL 1e-6   /* |(cos, sin)| of q_c off 1 by more: the root at infinity, or a poorly resolved one */
 
 /* Rows of u . R(h2, q2) v_j over (1, cos q2, sin q2), for each v_j: (h.u)(h.v), u.v - (h.u)(h.v), u.(h x v) */
@@ -313,6 +314,29 @@ static int wk_s3_qc_dependent(double f[3][3], double g[3][3], double dtarget, do
     return n;
 }
 
+/* out += |a| |b| coefficientwise: the size of the terms of a b, which bounds its rounding */
+static void wk_s3_mul_abs(const double *a, int na, const double *b, int nb, double *out)
+{
+    int i, j;
+    for (i = 0; i < na; ++i)
+        for (j = 0; j < nb; ++j) out[i + j] += fabs(a[i]) * fabs(b[j]);
+}
+
+/* The root finder's touch tolerance for `poly` (n coefficients) whose coefficients sum terms of sizes `terms`: its
+ * rounding relative to its largest coefficient, at least the finder's own (Python's _s3_touch_tol says why) */
+static double wk_s3_touch_tol(const double *poly, const double *terms, int n)
+{
+    double big = 0.0, size = 0.0, tol;
+    int i;
+    for (i = 0; i < n; ++i) {
+        if (fabs(poly[i]) > big) big = fabs(poly[i]);
+        if (terms[i] > size) size = terms[i];
+    }
+    if (!(big > 0.0)) return WK_POLY_TOL_TOUCH;
+    tol = WK_S3_ROUNDING * 2.220446049250313e-16 * size / big;
+    return tol > WK_POLY_TOL_TOUCH ? tol : WK_POLY_TOL_TOUCH;
+}
+
 /* A split pair into the candidates from row `out` on, flagged singular (the pair meets where J is): the next row */
 static int wk_s3_put_pair(double pair[2][3], double q[WK_S3_MAX][3], unsigned *fl, int out)
 {
@@ -338,6 +362,7 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
     const double eps3 = eps * scale * scale * scale;
     double v[3], vb[3][3], u[3], f[3][3], g[3][3], hv, dtarget, htarget, yr[3], yr_perp[3], rho;
     double p[3][3], pq[3][3], dt[3], ht[3], det[5], nc[5], ns[5], a5[5], poly[9], roots[8], ang[9];
+    double sdt[3], sht[3], snc[5] = {0.0}, sns[5] = {0.0}, terms[9] = {0.0};
     unsigned rf[8], af[9];
     int i, j, nroot, status = 0, na = 0, out = 0, near_axis, dependent;
     wk_g3_axpy(x, -1.0, r3, v);
@@ -382,13 +407,30 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
     for (i = 0; i < 5; ++i)
         if (fabs(det[i]) > eps3) break;
     dependent = i == 5;
+    /* the sizes of nc's, ns's and det's terms (dt's and ht's before their cancellation): their rounding's scale */
+    for (i = 0; i < 3; ++i) {
+        sdt[i] = fabs(apoly[0][i]) * dtarget + fabs(p[0][i]);
+        sht[i] = fabs(apoly[0][i] * htarget) + fabs(pq[0][i]);
+    }
+    wk_s3_mul_abs(sdt, 3, pq[2], 3, snc);
+    wk_s3_mul_abs(p[2], 3, sht, 3, snc);
+    wk_s3_mul_abs(p[1], 3, sht, 3, sns);
+    wk_s3_mul_abs(pq[1], 3, sdt, 3, sns);
     if (dependent) {
         double part[7];
         wk_poly_mul(pq[2], 3, nc, 5, poly);
         wk_poly_mul(pq[1], 3, ns, 5, part);
         wk_poly_axpy(poly, part, 7, -1.0);
-        nroot = wk_poly_real_roots(poly, 6, roots, rf, &status);
+        wk_s3_mul_abs(pq[2], 3, snc, 5, terms);
+        wk_s3_mul_abs(pq[1], 3, sns, 5, terms);
+        nroot = wk_poly_real_roots(poly, 6, roots, rf, &status, wk_s3_touch_tol(poly, terms, 7));
     } else {
+        double sdet[5] = {0.0};
+        wk_s3_mul_abs(p[1], 3, pq[2], 3, sdet);
+        wk_s3_mul_abs(p[2], 3, pq[1], 3, sdet);
+        wk_s3_mul_abs(nc, 5, snc, 5, terms);
+        wk_s3_mul_abs(ns, 5, sns, 5, terms);
+        wk_s3_mul_abs(det, 5, sdet, 5, terms);
         wk_poly_mul(nc, 5, nc, 5, poly);
         {
             double sq[9];
@@ -397,7 +439,7 @@ static int wk_spatial3(const double (*h)[3], const double (*r)[3], const double 
             wk_poly_mul(det, 5, det, 5, sq);
             wk_poly_axpy(poly, sq, 9, -1.0);
         }
-        nroot = wk_poly_real_roots(poly, 8, roots, rf, &status);
+        nroot = wk_poly_real_roots(poly, 8, roots, rf, &status, wk_s3_touch_tol(poly, terms, 9));
     }
     for (i = 0; i < nroot; ++i) {
         ang[na] = 2.0 * atan(roots[i]);

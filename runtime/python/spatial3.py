@@ -21,7 +21,7 @@ import math
 from _runtime import FLAG_DOUBLE_ROOT, FLAG_INDETERMINATE, FLAG_SINGULAR_INVERSE
 from chain_poly import _poly_add, _poly_mul
 from geom3 import _g3_axpy, _g3_cross, _g3_dot, _g3_sp1, _g3_turn, _g3_turn_dir
-from poly_real_roots import _POLY_FLAG_DOUBLE, _poly_real_roots
+from poly_real_roots import _POLY_FLAG_DOUBLE, _POLY_TOL_TOUCH, _poly_real_roots
 
 # wristkin: inlined from here
 S3_REFINE_STEPS = 8  # Newton steps at most (a simple root: 1-2 to rounding, then a step stops lowering it; near a
@@ -35,6 +35,29 @@ S3_SPLIT_HALVINGS = 10  # a split's Newton step halved up to this many times unt
 S3_SPLIT_STEP_MAX = 0.5  # rad: a split's Newton step at most this in any joint before it is halved
 S3_SPLIT_NEAR = 1e-3  # rad: a split root keeps the merged root's q_b, q_c to this (a merged pair is closer)
 S3_CURVATURE_STEP = 1e-3  # rad: the central difference of the point's second derivative (its error ~ step^2)
+S3_ROUNDING = 32.0  # the polynomial's rounding: at most this many eps of its terms' sizes, coefficientwise (about
+# 30 roundings on the longest path from the lines to a coefficient; measured against mpmath on the same doubles: at most
+# 8.8 eps on 1,900 random instances, tests/test_spatial3_runtime.py)
+S3_EPS = 2.220446049250313e-16
+
+
+def _s3_mul_abs(a, b, out):
+    """out += |a| |b| coefficientwise: the size of the terms of a b, which bounds its rounding. Returns out."""
+    for i, x in enumerate(a):
+        for j, y in enumerate(b):
+            out[i + j] += abs(x) * abs(y)
+    return out
+
+
+def _s3_touch_tol(poly, terms):
+    """The root finder's touch tolerance for `poly` whose coefficients sum terms of sizes `terms`: its rounding
+    relative to its largest coefficient (S3_ROUNDING eps of the terms), at least the finder's own. A pair that the
+    target near axis a merges leaves a minimum of |poly| at this rounding, which must count as a touching root: the
+    finder's default assumes coefficients exact to 1e-12, and cancellation in nc^2 + ns^2 - det^2 left 7e-12."""
+    big = max(abs(c) for c in poly)
+    if not big > 0.0:
+        return _POLY_TOL_TOUCH
+    return max(_POLY_TOL_TOUCH, S3_ROUNDING * S3_EPS * max(terms) / big)
 
 
 def _s3_bilinear(h2, u, vs):
@@ -233,11 +256,19 @@ def _spatial3_lines(h, r, x, y, scale, eps, on_axis):
     # roots; nc alone has Q_2's roots too). q_c then comes from one of the two equations (two roots, those the other
     # equation holds at kept)
     dependent = max(abs(e) for e in det) <= eps3
+    # the sizes of nc's, ns's and det's terms (dt's and ht's before their cancellation): their rounding's scale
+    sdt = [abs(apoly[0][i]) * d_target + abs(p[0][i]) for i in range(3)]
+    sht = [abs(apoly[0][i] * h_target) + abs(pq[0][i]) for i in range(3)]
+    snc = _s3_mul_abs(p[2], sht, _s3_mul_abs(sdt, pq[2], [0.0] * 5))
+    sns = _s3_mul_abs(pq[1], sdt, _s3_mul_abs(p[1], sht, [0.0] * 5))
     if dependent:
         poly = _poly_add(_poly_mul(pq[2], nc), _poly_mul(pq[1], ns), -1.0)
+        terms = _s3_mul_abs(pq[1], sns, _s3_mul_abs(pq[2], snc, [0.0] * 7))
     else:
         poly = _poly_add(_poly_add(_poly_mul(nc, nc), _poly_mul(ns, ns), 1.0), _poly_mul(det, det), -1.0)
-    roots, rflags, _status = _poly_real_roots(poly)
+        sdet = _s3_mul_abs(p[2], pq[1], _s3_mul_abs(p[1], pq[2], [0.0] * 5))
+        terms = _s3_mul_abs(det, sdet, _s3_mul_abs(ns, sns, _s3_mul_abs(nc, snc, [0.0] * 9)))
+    roots, rflags, _status = _poly_real_roots(poly, _s3_touch_tol(poly, terms))
     angles = [(2.0 * math.atan(t), FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE if fl & _POLY_FLAG_DOUBLE else 0)
               for t, fl in zip(roots, rflags, strict=True)]
     angles.append((math.pi, 0))  # tan(q_b / 2) = infinity is no root of the polynomial: tried directly

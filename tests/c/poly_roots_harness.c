@@ -21,13 +21,13 @@ int wk_test_poly_real_roots_tol(const double *coef, int n, double *roots, unsign
 
 int wk_test_poly_real_roots(const double *coef, int n, double *roots, unsigned *flags, int *status)
 {
-    return wk_poly_real_roots(coef, n, roots, flags, status);
+    return wk_poly_real_roots(coef, n, roots, flags, status, WK_POLY_TOL_TOUCH);
 }
 
 int wk_test_poly_real_roots_tol(const double *coef, int n, double *roots, unsigned *flags, int *status,
                                 double tol_touch)
 {
-    return wk_poly_real_roots_tol(coef, n, roots, flags, status, tol_touch);
+    return wk_poly_real_roots(coef, n, roots, flags, status, tol_touch);
 }
 
 #ifdef WK_POLY_HARNESS_MAIN
@@ -102,7 +102,7 @@ static int check_case(const double *c, int n, int verbose)
         roots[i] = -12345.0;
         flags[i] = 77u;
     }
-    cnt = wk_poly_real_roots(c, n, roots, flags, &status);
+    cnt = wk_poly_real_roots(c, n, roots, flags, &status, WK_POLY_TOL_TOUCH);
     if (cnt < 0 || (n >= 0 && n <= WK_POLY_MAXDEG && cnt > n) || cnt > WK_POLY_MAXDEG) bad = 1;
     if (status < 0 || status > 15) bad = 1;
     for (i = 0; i < cnt && i < WK_POLY_MAXDEG; ++i) {

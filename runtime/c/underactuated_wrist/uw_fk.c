@@ -146,7 +146,7 @@ static int uw_api_fk(const double joints[3], const uw_design *design,
     /* eta_c = sample angle - pi: its cos, sin are the sample's negated */
     eta_c = UW_TWO_PI * kbest / 16.0 - UW_PI;
     uw_k_polynomial(&cf, -uw_ring[kbest][0], -uw_ring[kbest][1], kpoly);
-    nroots = wk_poly_real_roots(kpoly, 8, roots, rflags, &pstatus);
+    nroots = wk_poly_real_roots(kpoly, 8, roots, rflags, &pstatus, WK_POLY_TOL_TOUCH);
     if (pstatus & WK_POLY_STATUS_ZERO) {
         out->status = WK_STATUS_INDETERMINATE;
         return WK_OK;
