@@ -91,6 +91,13 @@ int wk_normal_solve(const double *jac, int n, const double *e, double damping, d
  * column: the caller's least squares decide). Python's _runtime.solve_square step for step. */
 int wk_square_solve(const double *a, int n, const double *b, double rel_pivot, double *x);
 
+/* wk_square_solve in two parts, for several right-hand sides on one matrix (a chord iteration): a's LU with partial
+ * pivoting into lu (n x n row-major, rows in the pivots' order perm: U on and above the diagonal, the multipliers
+ * below), 0 when a pivot is at or below rel_pivot of a's largest entry; then x = a^-1 b from it. The same operations
+ * in the same order as wk_square_solve's. */
+int wk_lu_factor(const double *a, int n, double rel_pivot, double *lu, int *perm);
+void wk_lu_solve(const double *lu, const int *perm, int n, const double *b, double *x);
+
 /* Merge two valid sets that differ only in the branch of one two-root stage (k and k | 1 << bits[b]) when the pose
  * cannot tell them apart: their midpoint, refitted by one Gauss-Newton step no longer than an eighth of their span,
  * fits the pose within WK_MERGE_ULPS eps max(1, scale) of their residuals (scale: the pose's size, max |p|;

@@ -434,40 +434,63 @@ int wk_conditioning_bound(const double *jac, int n, double eps, double *man)
     return k == 1 ? (!man || wk_cholesky(g, m, 0.0, man) ? 1 : 0) : k;
 }
 
-int wk_square_solve(const double *a_in, int n, const double *b, double rel_pivot, double *x)
+int wk_lu_factor(const double *a, int n, double rel_pivot, double *lu, int *perm)
 {
-    double a[WK_MAX_DIM][WK_MAX_DIM + 1], *row[WK_MAX_DIM], big = 0.0;
+    double big = 0.0;
     int i, j, k;
     if (n < 1 || n > WK_MAX_DIM) return 0;
-    for (i = 0; i < n; ++i) {
-        for (j = 0; j < n; ++j) {
-            a[i][j] = a_in[i * n + j];
-            if (fabs(a[i][j]) > big) big = fabs(a[i][j]);
-        }
-        a[i][n] = b[i];
-        row[i] = a[i];
+    for (i = 0; i < n * n; ++i) {
+        lu[i] = a[i];
+        if (fabs(a[i]) > big) big = fabs(a[i]);
     }
+    for (i = 0; i < n; ++i) perm[i] = i;
     for (k = 0; k < n; ++k) {
         double *pk;
         int p = k;
         for (i = k + 1; i < n; ++i)
-            if (fabs(row[i][k]) > fabs(row[p][k])) p = i;
-        if (!(fabs(row[p][k]) > rel_pivot * big)) return 0; /* a NaN fails too */
-        pk = row[p]; /* rows swap as pointers */
-        row[p] = row[k];
-        row[k] = pk;
+            if (fabs(lu[i * n + k]) > fabs(lu[p * n + k])) p = i;
+        if (!(fabs(lu[p * n + k]) > rel_pivot * big)) return 0; /* a NaN fails too */
+        if (p != k) {
+            const int t = perm[p];
+            perm[p] = perm[k];
+            perm[k] = t;
+            for (j = 0; j < n; ++j) {
+                const double v = lu[p * n + j];
+                lu[p * n + j] = lu[k * n + j];
+                lu[k * n + j] = v;
+            }
+        }
+        pk = lu + k * n;
         for (i = k + 1; i < n; ++i) {
-            double *r = row[i];
+            double *r = lu + i * n;
             const double m = r[k] / pk[k];
-            for (j = k + 1; j <= n; ++j) r[j] -= m * pk[j];
+            r[k] = m;
+            for (j = k + 1; j < n; ++j) r[j] -= m * pk[j];
         }
     }
+    return 1;
+}
+
+void wk_lu_solve(const double *lu, const int *perm, int n, const double *b, double *x)
+{
+    double y[WK_MAX_DIM];
+    int i, j;
+    for (i = 0; i < n; ++i) y[i] = b[perm[i]];
+    for (j = 0; j < n; ++j)
+        for (i = j + 1; i < n; ++i) y[i] -= lu[i * n + j] * y[j];
     for (i = n - 1; i >= 0; --i) {
-        const double *r = row[i];
-        double acc = r[n];
-        for (j = i + 1; j < n; ++j) acc -= r[j] * x[j];
-        x[i] = acc / r[i];
+        double acc = y[i];
+        for (j = i + 1; j < n; ++j) acc -= lu[i * n + j] * x[j];
+        x[i] = acc / lu[i * n + i];
     }
+}
+
+int wk_square_solve(const double *a, int n, const double *b, double rel_pivot, double *x)
+{
+    double lu[WK_MAX_DIM * WK_MAX_DIM];
+    int perm[WK_MAX_DIM];
+    if (!wk_lu_factor(a, n, rel_pivot, lu, perm)) return 0;
+    wk_lu_solve(lu, perm, n, b, x);
     return 1;
 }
 

@@ -58,11 +58,13 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
     sr_ws ws; /* the multi-candidate stages' scratch (sr_stages.c) */
     int k, j, indeterminate = 0;
     unsigned char carried[SR_MAX_IK]; /* sets the checks moved beyond WK_CARRIED_MOVE (wk_drop_carried) */
+    sr_chord chord; /* the LU an even set's polish factored, for its wrist mirror (sr_polish_cs) */
 #if SR_REUSE_MIRROR_CHECK
     double base_err = -1.0; /* the FK check of the last even set, when it passed unpolished */
 #endif
     if (!out) return WK_ERR_NULL;
     out->count = 0;
+    chord.ok = 0;
     for (k = 0; k < SR_MAX_IK; ++k) {
         carried[k] = 0;
         out->valid[k] = 0;
@@ -145,6 +147,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
         int alive = 1, have_t = 1, moved_by_checks;
         /* the stages (sr_run_stages, printed per chain): each recomputed only when its branch prefix changes */
         alive = sr_run_stages(k, pose, q, c, s, d->params, prev, amp, &ws, key, stage_ok, stage_flags, &f);
+        if ((k & 1) == 0) chord.ok = 0; /* an odd set reuses its even neighbour's LU only */
 #if SR_REUSE_MIRROR_CHECK
         if ((k & 1) == 0) base_err = -1.0;
 #endif
@@ -187,7 +190,8 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
             }
             if (!have_t) sr_k_fk_cs(q, c, s, d->params, t); /* the check was the even set's: this set's own t */
             err = sr_polish_cs(out->values[k], cc, sc, t, err, pose, d->params, (f & WK_FLAG_DOUBLE_ROOT) ? rounding :
-                               (SR_CALIBRATED ? polish_double : SR_IK_VERIFY_TOL));
+                               (SR_CALIBRATED ? polish_double : SR_IK_VERIFY_TOL), &chord,
+                               SR_HAS_WRIST_MIRROR && (k & 1));
             for (j = 0; j < SR_N; ++j)
                 if (sr_revolute[j]) out->values[k][j] = wk_wrap(out->values[k][j]);
         }

@@ -181,44 +181,83 @@ static void sr_step_cs(double x, double *cx, double *sx)
     }
 }
 
+#define SR_CHORD_STEPS 4 /* chord steps on one LU at most before the full polish decides */
+
+/* The LU of the Jacobian a set's polish factored (sr_polish_cs), kept for its wrist mirror: at the mirrored set (q4 + pi,
+ * -q5, q6 + pi) every column of J is the base set's but q5's, negated (the wrist centre and the axes of q4 and q6 stay;
+ * q5's turns over), exactly on the ideal geometry and to the calibration's size on the true chain */
+typedef struct {
+    double lu[36];
+    int perm[6];
+    int ok;
+} sr_chord;
+
 /* sr_polish from a set the stages solved, whose (cos, sin) c, s and check t = fk_cs(q, c, s) with residual err the
- * caller has: the first step's twist error is read from t, and its trial's (cos, sin) follow from the angle-sum rule,
- * checked by fk_cs (no FK with trigonometry: a calibrated arm polishes every set, and this halved the cost); the
- * steps after it, rare, are sr_polish's. c and s are the caller's copies, moved with q. */
+ * caller has. Chord steps: J (from c, s: no trigonometry) factored once, or the base set's LU reused with q5's step
+ * negated where `mirror` says this set is its wrist mirror; each step's trial has its (cos, sin) from the angle-sum
+ * rule, checked by fk_cs. A calibrated arm polishes every set, its stages' error the calibration's (~1e-7), so the
+ * chord contracts it by ~1e-7 a step: one or two steps, one LU per mirror pair. A step that does not lower the
+ * residual, a singular J (a pivot at or below 1e-6 of its largest entry) or steps left above `target`: sr_polish's
+ * full Gauss-Newton decides from there. c and s are the caller's copies, moved with q. Without a square J (a held
+ * joint, not six joints): one step by sr_gn_solve. */
 static double sr_polish_cs(double *q, double *c, double *s, const double *t, double err, const double *pose,
-                           const double *dp, double target)
+                           const double *dp, double target, sr_chord *chord, int mirror)
 {
     double e[6], jac[6 * SR_N], dq[SR_N], trial[SR_N], tc[SR_N], ts[SR_N], t2[12], e2[6], err2;
-    int j;
+    int j, it, steps = 1, have_lu = 0;
     if (err <= target) return err;
     (void)sr_twist_error(t, pose, e);
+    if (!(SR_CALIBRATED && mirror && chord->ok)) {
 #if SR_CALIBRATED
-    sr_k_jacobian_cs(q, c, s, dp, jac); /* every set of a calibrated arm comes here: no trigonometry */
+        sr_k_jacobian_cs(q, c, s, dp, jac); /* every set of a calibrated arm comes here: no trigonometry */
 #else
-    sr_k_jacobian(q, dp, jac);
+        sr_k_jacobian(q, dp, jac);
 #endif
-    if (!sr_gn_solve(jac, e, dq, -1)) return sr_polish(q, pose, dp, target);
-    for (j = 0; j < SR_N; ++j) {
-        if (dq[j] != dq[j]) return sr_polish(q, pose, dp, target); /* a NaN step: the plain polish decides */
-        trial[j] = q[j] + dq[j];
-        tc[j] = c[j];
-        ts[j] = s[j];
-        if (sr_revolute[j]) {
-            double cd, sd;
-            sr_step_cs(dq[j], &cd, &sd);
-            tc[j] = c[j] * cd - s[j] * sd;
-            ts[j] = s[j] * cd + c[j] * sd;
+#if SR_N == 6 && SR_HELD < 0
+        chord->ok = wk_lu_factor(jac, 6, 1e-6, chord->lu, chord->perm);
+#endif
+        mirror = 0;
+    }
+#if SR_N == 6 && SR_HELD < 0
+    have_lu = chord->ok;
+#endif
+    if (have_lu && SR_CALIBRATED) steps = SR_CHORD_STEPS;
+    for (it = 0; it < steps; ++it) {
+#if SR_N == 6 && SR_HELD < 0
+        if (have_lu) {
+            wk_lu_solve(chord->lu, chord->perm, 6, e, dq);
+#if SR_WRIST_J5 >= 0
+            if (mirror) dq[SR_WRIST_J5] = -dq[SR_WRIST_J5];
+#endif
+        } else
+#endif
+        if (!sr_gn_solve(jac, e, dq, -1)) break;
+        for (j = 0; j < SR_N; ++j) {
+            if (dq[j] != dq[j]) break; /* a NaN step: the plain polish decides */
+            trial[j] = q[j] + dq[j];
+            tc[j] = c[j];
+            ts[j] = s[j];
+            if (sr_revolute[j]) {
+                double cd, sd;
+                sr_step_cs(dq[j], &cd, &sd);
+                tc[j] = c[j] * cd - s[j] * sd;
+                ts[j] = s[j] * cd + c[j] * sd;
+            }
         }
+        if (j < SR_N) break;
+        sr_k_fk_cs(trial, tc, ts, dp, t2);
+        err2 = sr_twist_error(t2, pose, e2);
+        if (!(err2 < err)) break;
+        for (j = 0; j < SR_N; ++j) {
+            q[j] = trial[j];
+            c[j] = tc[j];
+            s[j] = ts[j];
+        }
+        for (j = 0; j < 6; ++j) e[j] = e2[j];
+        err = err2;
+        if (err <= target) return err;
     }
-    sr_k_fk_cs(trial, tc, ts, dp, t2);
-    err2 = sr_twist_error(t2, pose, e2);
-    if (!(err2 < err)) return sr_polish(q, pose, dp, target);
-    for (j = 0; j < SR_N; ++j) {
-        q[j] = trial[j];
-        c[j] = tc[j];
-        s[j] = ts[j];
-    }
-    return err2 <= target ? err2 : sr_polish(q, pose, dp, target);
+    return sr_polish(q, pose, dp, target);
 }
 
 #if SR_N_FOLD_BITS > 0
