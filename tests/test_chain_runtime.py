@@ -68,6 +68,7 @@ def lib():
     L.wkt_sp6_split.argtypes = [D, D, D, D, D, ctypes.c_double, D, D, ctypes.c_double, ctypes.c_double, D, D]
     L.wkt_lstsq.argtypes = [D, ctypes.c_int, ctypes.c_int, D, D]
     L.wkt_solve_square.argtypes = [D, ctypes.c_int, D, D]
+    L.wkt_lu_solve_many.argtypes = [D, ctypes.c_int, D, ctypes.c_int, D]
     L.wkt_spectrum.argtypes = [D, ctypes.c_int, D]
     L.wkt_spectrum.restype = ctypes.c_double
     L.wkt_conditioning.argtypes = [D, ctypes.c_int, D]
@@ -465,6 +466,25 @@ def test_the_python_square_step_is_the_c_one_to_the_bit(py, lib):
     assert lib.wkt_solve_square(_p(a), 6, _p(b), _p(x)) == 0 and solve(a, b, 1e-8) is None
     a[:, 5] = 0.0  # a held joint's zeroed column
     assert solve(a, b, 1e-6) is None
+
+
+def test_one_lu_solves_each_right_hand_side_as_the_square_step_does(lib):
+    """wk_lu_factor once, then wk_lu_solve per right-hand side (a calibrated arm's chord steps, and its wrist mirror's
+    step on the same LU): each solution the bits of wk_square_solve's on that side (the same operations in the same
+    order), and a solution of the system (numpy's, to the conditioning: 1e-13 * cond relative); both refuse the same
+    near-singular matrix."""
+    rng = case_rng(2216)
+    x1, xs = np.zeros(6), np.zeros((4, 6))
+    for _ in range(50):
+        a, b = rng.normal(size=(6, 6)) * rng.uniform(1e-3, 1e3), rng.normal(size=(4, 6))
+        assert lib.wkt_lu_solve_many(_p(a), 6, _p(b), 4, _p(xs)) == 1
+        for i in range(4):
+            assert lib.wkt_solve_square(_p(a), 6, _p(b[i]), _p(x1)) == 1 and list(xs[i]) == list(x1)
+            ref = np.linalg.solve(a, b[i])
+            assert np.max(np.abs(xs[i] - ref)) <= 1e-13 * np.linalg.cond(a) * np.max(np.abs(ref))
+    a[:, 5] = a[:, 4] * (1.0 + 1e-12)
+    assert lib.wkt_lu_solve_many(_p(a), 6, _p(b), 4, _p(xs)) == 0 and lib.wkt_solve_square(_p(a), 6, _p(b[0]),
+                                                                                          _p(x1)) == 0
 
 
 def test_python_subproblems_return_the_generating_angles_and_c_s_roots(py, lib):

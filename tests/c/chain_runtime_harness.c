@@ -139,6 +139,16 @@ int wkt_solve_square(const double *a, int n, const double *b, double *x)
     return wk_square_solve(a, n, b, 1e-8, x);
 }
 
+/* one factorization, then each of the m right-hand sides b (rows of n) solved from it into the rows of x */
+int wkt_lu_solve_many(const double *a, int n, const double *b, int m, double *x)
+{
+    double lu[WK_MAX_DIM * WK_MAX_DIM];
+    int perm[WK_MAX_DIM], i;
+    if (!wk_lu_factor(a, n, 1e-8, lu, perm)) return 0;
+    for (i = 0; i < m; ++i) wk_lu_solve(lu, perm, n, b + i * n, x + i * n);
+    return 1;
+}
+
 double wkt_spectrum(const double *jac, int n, double *ratio)
 {
     return ck_spectrum(jac, n, ratio);
