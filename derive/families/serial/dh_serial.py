@@ -56,11 +56,16 @@ class SerialSpec:
 
 
 # ------------------------------------------------------------------------------------------- checks
+def draw_design(design, defaults, rng, angles=()) -> dict:
+    """A design as the derivation's checks draw one: lengths around their defaults (never zero, so no accidental
+    degeneracy), the symbols in `angles` (a held joint's value, an arm angle) uniform in [-pi, pi]; one draw each,
+    in the design's order."""
+    return {s: rng.uniform(-math.pi, math.pi) if s in angles else v * rng.uniform(0.5, 1.5) if v != 0 else
+            rng.uniform(0.0, 0.2) for s, v in zip(design, defaults, strict=True)}
+
+
 def _sample_design(spec: SerialSpec, rng) -> dict:
-    # lengths drawn around the defaults (never zero, so no accidental degeneracy); a held joint's value at random
-    held = spec.held[1] if spec.held else None
-    return {s: rng.uniform(-math.pi, math.pi) if s == held else v * rng.uniform(0.5, 1.5) if v != 0 else
-            rng.uniform(0.0, 0.2) for s, v in zip(spec.design, spec.design_default, strict=True)}
+    return draw_design(spec.design, spec.design_default, rng, (spec.held[1],) if spec.held else ())
 
 
 def _design_at(spec: SerialSpec, q: dict, dsn: dict) -> dict:

@@ -26,7 +26,6 @@ base-side rows'.
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 
 import numpy as np
@@ -39,7 +38,7 @@ from ...kinematics.planner import NoClosedForm, arm_angle_plan, find_plan, held_
 from ...kinematics.poe import Chain, reverse
 from ...model import NoDecomposition
 from ...serial_core.stages import P_POSE, POSE_SYMBOLS, R_POSE, Stage
-from .dh_serial import wrist_stage
+from .dh_serial import draw_design, wrist_stage
 
 # the held joint's value the decomposition is planned at (any value where no two axes line up by accident)
 HELD_PLAN_VALUE = 0.7
@@ -274,9 +273,8 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         them): a frame origin can sit on the meeting point at the defaults by coincidence (a random POE arm's o_1 and
         o_4 both at (0, 0, 0.3)), and a stage built on it failed its check at every other design."""
         for _ in range(2):
-            vals = at | {sym: (varied_rng.uniform(-math.pi, math.pi) if held is not None and sym == held[1]
-                               or sym == arm_angle else v * varied_rng.uniform(0.5, 1.5) if v != 0
-                               else varied_rng.uniform(0.0, 0.2)) for sym, v in zip(design, defaults, strict=True)}
+            vals = at | draw_design(design, defaults, varied_rng,
+                                    tuple(v for v in (held[1] if held else None, arm_angle) if v is not None))
             p = num(o, vals)
             for j in js:
                 h, r = num(axes[j], vals), num(points[j], vals)
