@@ -47,6 +47,10 @@ ANGLE_GRID = 36
 ROUNDING_DEVIATION = 1e-8
 # a length below this (relative to the robot's size) is zero: two axes that meet, a wrist without offset
 LENGTH_ZERO = 1e-12
+# a calibrated robot's angles within this many geometry tolerances of the grid (and lengths as close to 0) are ideal:
+# the planner's own slack (it reads a point on an axis within 10 tolerances), and a 4-decimal description's grid
+# angles (1.5708, 0.7854, 3.1416: within 7.3e-6) at the default tolerance
+CALIBRATED_SNAP = 10.0
 # a DH table's rows carry a few eps of the size each, divided by |sin alpha| of a twist near 0 or pi (below)
 DH_ROUNDING = 8 * 2.0**-52
 # entries of a constant rotation (the base's, the tool's) within this of 0, +-1/2, +-sqrt(2)/2, +-sqrt(3)/2, +-1 are
@@ -107,9 +111,12 @@ def from_table(robot: RobotTable) -> SerialMechanism:
     # a calibrated robot (axes off the ideal ones beyond rounding): the stages solve the ideal table, the emitted FK is
     # the description's true chain, and every candidate is polished on it (the serial runtime's Gauss-Newton)
     calibrated = robot.deviation > ROUNDING_DEVIATION
-    # its twists and offsets within the geometry tolerance of the grid are the grid's (its ideal geometry: the
-    # polish on the true chain takes the difference)
-    snap = max(ANGLE_SNAP, robot.api.geometry_tol) if calibrated else ANGLE_SNAP
+    # its twists and offsets within CALIBRATED_SNAP geometry tolerances of the grid are the grid's, its lengths as
+    # close to 0 are 0 (its ideal geometry: the polish on the true chain takes the difference). Off the grid they stay
+    # numbers that every stage expression carries: a shipped xArm7's twists 1.5708 (3.7e-6 from pi / 2, beyond the
+    # default tolerance) grew its stages to 1.5e5 operations and its derivation to 78 s
+    snap = max(ANGLE_SNAP, CALIBRATED_SNAP * robot.api.geometry_tol) if calibrated else ANGLE_SNAP
+    length_zero = max(LENGTH_ZERO * robot.size, snap) if calibrated else LENGTH_ZERO * robot.size
     n = len(robot.joint_names)
     kinds = table.kinds or ("R",) * n
     general = "general6r" in robot.ops  # the interpreter's plan: the general 6R by elimination
@@ -126,7 +133,7 @@ def from_table(robot: RobotTable) -> SerialMechanism:
         snapped += abs(alpha - float(angles[0])) + abs(theta - float(angles[1]))
         lengths = []
         for label, v in (("a", a), ("d", d)):
-            if abs(v) <= LENGTH_ZERO * robot.size:
+            if abs(v) <= length_zero:
                 lengths.append(sp.Integer(0))
                 continue
             # the design: a held joint's value alone (the interpreted module's); a calibrated robot's FK is its true
