@@ -146,3 +146,25 @@ def test_mirrored_wrist_set_has_its_base_sets_fk_bit_for_bit():
             a = np.array(mod._k_fk_cs(q, c, s, dp), dtype=float)
             b = np.array(mod._k_fk_cs(q, cm, sm, dp), dtype=float)
             assert np.array_equal(a, b), (name, q)
+
+
+def test_the_cs_form_of_a_chain_is_its_angle_sum_expansion():
+    """stages.on_cs_all (a kernel's outputs in c_i, s_i: one walk over their distinct nodes) equals the plain
+    expand_trig-and-substitute form, exactly (sympy's difference expands to 0), on the catalogue's PUMA-560 FK and
+    Jacobian and on a chain whose offsets and twists are numbers off the grid (a calibrated arm's true chain: theta
+    offsets 1e-20, twists 1.5708), where the joint trig is cos(q + c) with c a Float."""
+    mech = registry()["puma560"]
+    spec = mech.spec
+    dv = mech.derive()
+    cs, ss = stages.cs_symbols(spec)
+    rep = {f(q): v for q, c, s in zip(spec.joints, cs, ss, strict=True) for f, v in ((sp.cos, c), (sp.sin, s))}
+    puma = [dv.exports["jacobian"][r, c] for r in range(6) for c in range(6)][:18]
+    rows = [DHRow(sp.Float(0.05 * k), sp.Float(1.5708) * (-1) ** k, sp.Float(0.3), q + sp.Float(1.4e-20 * k), q, "R")
+            for k, q in enumerate(spec.joints)]
+    numeric = list(chain(rows)[-1][:3, :])
+    assert stages._shifted_trig(numeric, spec, cs, ss) is not None  # the one-walk path (the PUMA's q2 + q3 is not)
+    for exprs in (puma, numeric):
+        expected = [sp.expand_trig(e).xreplace(rep) for e in exprs]
+        got = stages.on_cs_all(exprs, spec)
+        assert all(sp.expand(a - b) == 0 for a, b in zip(got, expected, strict=True))
+        assert not any(e.atoms(sp.cos, sp.sin) & {f(q) for q in spec.joints for f in (sp.cos, sp.sin)} for e in got)

@@ -102,18 +102,81 @@ def cs_symbols(spec):
     return cs, ss
 
 
-def on_cs(expr, spec):
-    """cos/sin of revolute joints -> c_i, s_i symbols (the IK carries them algebraically, no trig)."""
+def on_cs_all(exprs, spec) -> list:
+    """The expressions with cos/sin of revolute joints as c_i, s_i symbols (the IK carries them algebraically, no
+    trig): a kernel's outputs at once, since the entries of a matrix product share their subtrees, which one walk over
+    the distinct nodes visits once (a calibrated arm's true-chain Jacobian took 9 s entry by entry, in expand_trig and
+    xreplace, which walk the whole tree)."""
     cs, ss = cs_symbols(spec)
-    rep = {}
-    for i, (q, k) in enumerate(zip(spec.joints, spec.kinds, strict=True)):
-        if k == "R":
-            rep[sp.cos(q)] = cs[i]
-            rep[sp.sin(q)] = ss[i]
-    out = sp.expand_trig(sp.sympify(expr)).xreplace(rep)
-    left = {f for f in out.atoms(sp.cos, sp.sin) if f.free_symbols & set(spec.joints)}
+    es = [sp.sympify(e) for e in exprs]
+    shifted = _shifted_trig(es, spec, cs, ss)
+    if shifted is None:  # a form the angle-sum map does not cover: expand_trig, entry by entry
+        rep = {}
+        for i, (q, k) in enumerate(zip(spec.joints, spec.kinds, strict=True)):
+            if k == "R":
+                rep[sp.cos(q)] = cs[i]
+                rep[sp.sin(q)] = ss[i]
+        out = [sp.expand_trig(e).xreplace(rep) for e in es]
+    else:
+        memo: dict = {}
+        out = [_replace(e, shifted, memo) for e in es]
+    left = {f for f in _distinct_nodes(out) if isinstance(f, (sp.cos, sp.sin)) and f.free_symbols & set(spec.joints)}
     if left:
         raise ValueError(f"{spec.name}: joint trig left after substitution: {left}")
+    return out
+
+
+def _distinct_nodes(es):
+    """Every distinct node of the expressions, each once (by identity: shared subtrees are walked once)."""
+    seen, stack = set(), list(es)
+    while stack:
+        a = stack.pop()
+        if id(a) in seen:
+            continue
+        seen.add(id(a))
+        yield a
+        stack.extend(a.args)
+
+
+def _replace(e, rule, memo):
+    """e.xreplace(rule) over e's distinct nodes (memo: node -> its replacement, shared across expressions)."""
+    hit = memo.get(e)
+    if hit is not None:
+        return hit
+    if e in rule:
+        out = rule[e]
+    elif not e.args:
+        out = e
+    else:
+        args = [_replace(a, rule, memo) for a in e.args]
+        out = e.func(*args) if any(x is not y for x, y in zip(args, e.args, strict=True)) else e
+    memo[e] = out
+    return out
+
+
+def _shifted_trig(es, spec, cs, ss):
+    """{cos(+-q_i + c): its angle-sum expansion in c_i, s_i} for every joint trig of the expressions, each of one
+    revolute joint with a unit coefficient (a DH or POE product's); None where some other form is there (expand_trig's
+    case)."""
+    index = {q: i for i, (q, k) in enumerate(zip(spec.joints, spec.kinds, strict=True)) if k == "R"}
+    out = {}
+    for f in _distinct_nodes(es):
+        if not isinstance(f, (sp.cos, sp.sin)) or f in out:
+            continue
+        arg = f.args[0]
+        js = arg.free_symbols & set(index)
+        if not js:
+            continue
+        if len(js) > 1:
+            return None
+        q = js.pop()
+        c, a = arg.as_independent(q, as_Add=True)
+        sign = 1 if a == q else -1 if a == -q else 0
+        if not sign:
+            return None
+        ci, si = cs[index[q]], sign * ss[index[q]]  # cos(sign q), sin(sign q)
+        cc, sc = sp.cos(c), sp.sin(c)
+        out[f] = ci * cc - si * sc if isinstance(f, sp.cos) else si * cc + ci * sc
     return out
 
 
@@ -131,12 +194,13 @@ def serial_kernels(spec, dv: Derivation):
                  tuple((str(s), T[i // 4, i % 4]) for i, s in enumerate(POSE_SYMBOLS))),
           Kernel("fk_cs", "The same pose from (cos, sin) of the revolute joints (used to verify IK sets).",
                  (q, ("c", cs), ("s", ss), dp),
-                 tuple((str(s), on_cs(T_raw[i // 4, i % 4], spec)) for i, s in enumerate(POSE_SYMBOLS))),
+                 tuple(zip((str(s) for s in POSE_SYMBOLS), on_cs_all([T_raw[i // 4, i % 4] for i in range(12)], spec),
+                                    strict=True))),
           Kernel("jacobian", "Geometric Jacobian (6 x n, row-major; linear velocity rows first).", (q, dp),
                  tuple((f"j{r}{c}", J[r, c]) for r in range(6) for c in range(len(spec.joints))))]
     for k, st in enumerate(spec.stages, start=1):
         ks.append(Kernel(f"stage{k}", f"IK stage {k} ({st.kind}): {st.title}", (pose, q, ("c", cs), ("s", ss), dp),
-                         tuple(zip(stage_output_names(st), (on_cs(e, spec) for e in st.exprs), strict=True))))
+                         tuple(zip(stage_output_names(st), on_cs_all(st.exprs, spec), strict=True))))
         if st.reader:  # the arm angle of joint values: what the module's arm_angle() reads (serial_arm_angle.py)
             ks.append(Kernel("arm_angle_parts", "The first axis, the shoulder centre, the elbow point, the wrist "
                              "centre and the elbow axis's direction the joints place (5 x 3).", (q, dp),

@@ -26,7 +26,7 @@ from ...kinematics.dh_table import OwnRobotApi, RobotTable
 from ...kinematics.poe_symbolic import joint_symbols, number, symbolic_chain
 from ...literals import c_num, own_api_literals, text_literal
 from ...model import NotDerivable, Step
-from ...serial_core.stages import POSE_SYMBOLS, cs_symbols, on_cs
+from ...serial_core.stages import POSE_SYMBOLS, cs_symbols, on_cs_all
 from .dh_serial import SerialSpec
 from .mechanism import SerialMechanism
 from .planned import SUPPORTED, PlanError
@@ -228,14 +228,16 @@ class _DerivedRobot(SerialMechanism):
             ks.append(Kernel("fk_ideal", "The ideal table's pose [R | p] (row-major 3x4) from (cos, sin) of the "
                              "joints: the geometry the stages solve.", (("q", spec.joints), ("c", cs), ("s", ss),
                                                                 ("dp", spec.design)),
-                             tuple((str(s), on_cs(t[i // 4, i % 4], spec)) for i, s in enumerate(POSE_SYMBOLS))))
+                             tuple(zip((str(s) for s in POSE_SYMBOLS),
+                                       on_cs_all([t[i // 4, i % 4] for i in range(12)], spec), strict=True))))
             # the true chain's Jacobian from the (cos, sin) a set carries: the polish's first step on every set
             # (sr_polish_cs) then calls no trigonometry (12 of its calls per set, a tenth of a calibrated IK)
             jac = dv.exports["jacobian"]
             ks.append(Kernel("jacobian_cs", "The geometric Jacobian (6 x n) from (cos, sin) of the joints.",
                              (("q", spec.joints), ("c", cs), ("s", ss), ("dp", spec.design)),
-                             tuple((f"j{r}{c}", on_cs(jac[r, c], spec)) for r in range(6)
-                                   for c in range(len(spec.joints))), python=False))
+                             tuple(zip((f"j{r}{c}" for r in range(6) for c in range(len(spec.joints))),
+                                       on_cs_all([jac[r, c] for r in range(6) for c in range(len(spec.joints))], spec),
+                                       strict=True)), python=False))
         checks = self._held_checks()
         if checks:
             ks.append(Kernel("design_check", "Design conditions (see DESIGN_CHECKS): the held values refused.",
