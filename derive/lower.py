@@ -49,7 +49,7 @@ class Lowered:
 def _has_irrational(e: sp.Expr) -> bool:
     """Whether e holds an exact irrational constant: a named one (pi), a number's non-integer power (sqrt(2)) or a
     function of a number (cos(pi / 36)). Floats and rationals are what the printers print as they are. One walk over
-    the expression's distinct nodes, stopping at the first (a calibrated arm's true-chain FK, a tree of 1e6 nodes
+    the expression's distinct nodes, stopping at the first (a calibrated arm's FK on its true axes, a tree of 1e6 nodes
     over a few thousand distinct ones, took 6 s in three atoms() walks)."""
     seen, stack = set(), [e]
     while stack:
