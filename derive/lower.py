@@ -46,25 +46,27 @@ class Lowered:
     ops: int  # operation count after CSE, for the audit
 
 
-def _has_irrational(e: sp.Expr) -> bool:
-    """Whether e holds an exact irrational constant: a named one (pi), a number's non-integer power (sqrt(2)) or a
-    function of a number (cos(pi / 36)). Floats and rationals are what the printers print as they are. One walk over
-    the expression's distinct nodes, stopping at the first (a calibrated arm's FK on its true axes, a tree of 1e6 nodes
-    over a few thousand distinct ones, took 6 s in three atoms() walks)."""
-    seen, stack = set(), [e]
+def distinct_nodes(exprs):
+    """Every distinct node of the expressions, each once: shared subtrees (a matrix product's entries share most of
+    theirs) are walked once, by identity, where atoms() and preorder_traversal walk the whole tree."""
+    seen, stack = set(), list(exprs)
     while stack:
         a = stack.pop()
         if id(a) in seen:
             continue
         seen.add(id(a))
-        if isinstance(a, sp.NumberSymbol):
-            return True
-        if a.is_Pow and a.base.is_number and not a.exp.is_Integer:
-            return True
-        if isinstance(a, sp.Function) and a.args and all(x.is_number for x in a.args):
-            return True
+        yield a
         stack.extend(a.args)
-    return False
+
+
+def _has_irrational(e: sp.Expr) -> bool:
+    """Whether e holds an exact irrational constant: a named one (pi), a number's non-integer power (sqrt(2)) or a
+    function of a number (cos(pi / 36)). Floats and rationals are what the printers print as they are. One walk over
+    the distinct nodes, stopping at the first (a calibrated arm's FK on its true axes, a tree of 1e6 nodes over a few
+    thousand distinct ones, took 6 s in three atoms() walks)."""
+    return any(isinstance(a, sp.NumberSymbol) or (a.is_Pow and a.base.is_number and not a.exp.is_Integer)
+               or (isinstance(a, sp.Function) and a.args and all(x.is_number for x in a.args))
+               for a in distinct_nodes([e]))
 
 
 def _fold_constants(e: sp.Expr) -> sp.Expr:

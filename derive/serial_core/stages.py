@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from ..lower import distinct_nodes
 from ..model import Derivation
 
 POSE = sp.Matrix(3, 4, sp.symbols("r00 r01 r02 px r10 r11 r12 py r20 r21 r22 pz", real=True))
@@ -120,22 +121,10 @@ def on_cs_all(exprs, spec) -> list:
     else:
         memo: dict = {}
         out = [_replace(e, shifted, memo) for e in es]
-    left = {f for f in _distinct_nodes(out) if isinstance(f, (sp.cos, sp.sin)) and f.free_symbols & set(spec.joints)}
+    left = {f for f in distinct_nodes(out) if isinstance(f, (sp.cos, sp.sin)) and f.free_symbols & set(spec.joints)}
     if left:
         raise ValueError(f"{spec.name}: joint trig left after substitution: {left}")
     return out
-
-
-def _distinct_nodes(es):
-    """Every distinct node of the expressions, each once (by identity: shared subtrees are walked once)."""
-    seen, stack = set(), list(es)
-    while stack:
-        a = stack.pop()
-        if id(a) in seen:
-            continue
-        seen.add(id(a))
-        yield a
-        stack.extend(a.args)
 
 
 def _replace(e, rule, memo):
@@ -160,7 +149,7 @@ def _shifted_trig(es, spec, cs, ss):
     case)."""
     index = {q: i for i, (q, k) in enumerate(zip(spec.joints, spec.kinds, strict=True)) if k == "R"}
     out = {}
-    for f in _distinct_nodes(es):
+    for f in distinct_nodes(es):
         if not isinstance(f, (sp.cos, sp.sin)) or f in out:
             continue
         arg = f.args[0]
