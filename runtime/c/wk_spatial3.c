@@ -333,7 +333,7 @@ static double wk_s3_touch_tol(const double *poly, const double *terms, int n)
         if (terms[i] > size) size = terms[i];
     }
     if (!(big > 0.0)) return WK_POLY_TOL_TOUCH;
-    tol = WK_S3_ROUNDING * 2.220446049250313e-16 * size / big;
+    tol = WK_S3_ROUNDING * WK_POLY_EPS * size / big;
     return tol > WK_POLY_TOL_TOUCH ? tol : WK_POLY_TOL_TOUCH;
 }
 

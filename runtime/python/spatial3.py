@@ -21,7 +21,7 @@ import math
 from _runtime import FLAG_DOUBLE_ROOT, FLAG_INDETERMINATE, FLAG_SINGULAR_INVERSE
 from chain_poly import _poly_add, _poly_mul
 from geom3 import _g3_axpy, _g3_cross, _g3_dot, _g3_sp1, _g3_turn, _g3_turn_dir
-from poly_real_roots import _POLY_FLAG_DOUBLE, _POLY_TOL_TOUCH, _poly_real_roots
+from poly_real_roots import _POLY_EPS, _POLY_FLAG_DOUBLE, _POLY_TOL_TOUCH, _poly_real_roots
 
 # wristkin: inlined from here
 S3_REFINE_STEPS = 8  # Newton steps at most (a simple root: 1-2 to rounding, then a step stops lowering it; near a
@@ -38,7 +38,6 @@ S3_CURVATURE_STEP = 1e-3  # rad: the central difference of the point's second de
 S3_ROUNDING = 32.0  # the polynomial's rounding: at most this many eps of its terms' sizes, coefficientwise (about
 # 30 roundings on the longest path from the lines to a coefficient; measured against mpmath on the same doubles: at most
 # 8.8 eps on 1,900 random instances, tests/test_spatial3_runtime.py)
-S3_EPS = 2.220446049250313e-16
 
 
 def _s3_mul_abs(a, b, out):
@@ -57,7 +56,7 @@ def _s3_touch_tol(poly, terms):
     big = max(abs(c) for c in poly)
     if not big > 0.0:
         return _POLY_TOL_TOUCH
-    return max(_POLY_TOL_TOUCH, S3_ROUNDING * S3_EPS * max(terms) / big)
+    return max(_POLY_TOL_TOUCH, S3_ROUNDING * _POLY_EPS * max(terms) / big)
 
 
 def _s3_bilinear(h2, u, vs):
