@@ -151,8 +151,7 @@ def cmd_derive(args) -> int:
     try:
         own_robot.derive(args.source, Path(args.out), args.name, args.base, args.tip, args.free, args.geometry_tol,
                          native=not args.no_native, xacro_args=_pairs(args.xacro_args, "--xacro-arg", "VALUE"),
-                         packages=_pairs(args.packages, "--package", "DIR"), redundancy=args.redundancy,
-                         stages=args.stages)
+                         packages=_pairs(args.packages, "--package", "DIR"), redundancy=args.redundancy)
     except NoDecomposition as exc:
         raise _Error(str(exc), EXIT_FAILED) from None
     except CheckFailed as exc:  # the robot's derivation did not prove out: no solver is written for it

@@ -32,12 +32,6 @@ COMMANDS = (
       (("--redundancy",), {"choices": ["joint", "arm-angle"],
                            "help": "a 7-joint arm's run-time parameter: a held joint (joint, the default: --free) or "
                                    "the arm angle of an arm with a spherical shoulder and wrist (arm-angle)"}),
-      (("--stages",), {"choices": ["auto", "derived", "interpreted"],
-                       "help": "the IK as straight-line code derived for this robot like the catalogue's PUMA-560 "
-                               "where the derived stages cover it, else the plan interpreter (auto, the default: "
-                               "the command says which and why); derived: that or a refusal with the reason (six "
-                               "or fewer revolute joints, axes exact to 1e-8, a spherical wrist or the UR type); "
-                               "interpreted: the plan interpreter (every robot wristkin solves)"}),
       (("--xacro-arg",), {"action": "append", "metavar": "NAME=VALUE", "dest": "xacro_args",
                           "help": "a .xacro file's $(arg NAME) (repeat for more)"}),
       (("--package",), {"action": "append", "metavar": "NAME=DIR", "dest": "packages",

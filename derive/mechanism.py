@@ -54,7 +54,6 @@ class Mechanism(Protocol):
     CASADI_DESIGN_NAMES: tuple[str, ...] | None  # the CasADi functions' design inputs (None: the solver's)
     CASADI_DOCS: dict[str, str] | None  # the CasADi index's function texts
     C_API: CApi  # the optional C verbs its templates emit
-    ROBOT_DESCRIPTION: bool  # a user's robot description (its IK's stages are chosen: `wristkin derive --stages`)
 
     def derive(self) -> Derivation: ...
 
@@ -63,8 +62,6 @@ class Mechanism(Protocol):
     def extra_context(self, kernels: Sequence) -> dict: ...
 
     def casadi_functions(self, dv: Derivation, kernels: Sequence) -> dict: ...
-
-    def robot_table(self) -> Any: ...  # the robot as a RobotTable for `--stages derived`, else NotDerivable
 
     def audit_numbers(self, dv: Derivation, solver: Any, audit_dir: Path) -> dict: ...
 
@@ -80,15 +77,6 @@ class MechanismDefaults:
     CASADI_DESIGN_NAMES: ClassVar[tuple[str, ...] | None] = None
     CASADI_DOCS: ClassVar[dict[str, str] | None] = None
     C_API: ClassVar[CApi] = CApi()
-    ROBOT_DESCRIPTION: ClassVar[bool] = False
-
-    def robot_table(self) -> Any:
-        """The mechanism as a DH table for `--stages derived` (kinematics/dh_table.RobotTable); a mechanism that
-        is no user's robot description refuses."""
-        from .model import NotDerivable
-
-        raise NotDerivable(f"{self.NAME}: --stages derived takes a robot description (URDF, DH or POE); a catalogue "
-                           "mechanism's stages are derived already")
 
     def audit_numbers(self, dv: Derivation, solver: Any, audit_dir: Path) -> dict:
         """Numeric findings for the audit beyond the derivation's own records (none by default)."""
@@ -101,15 +89,25 @@ class MechanismDefaults:
 
 
 @runtime_checkable
+class RobotDescription(Protocol):
+    """A user's robot as a family reads it (a URDF, DH table or POE chain): no solver of its own. `wristkin derive`
+    hands its robot_table() to the family with from_table, which derives the robot's stages."""
+
+    NAME: str
+
+    def robot_table(self) -> Any: ...  # kinematics/dh_table.RobotTable, or NotDerivable naming why not
+
+
+@runtime_checkable
 class Family(Protocol):
     """A family package (derive/families/NAME/__init__.py)."""
 
     SPEC_FIELDS: tuple[str, ...]  # the spec fields it reads beside the common ones (documentation)
     SOURCE_SUFFIXES: tuple[str, ...]  # description files `wristkin derive` hands to it as they are (".urdf")
 
-    def from_spec(self, spec: Any) -> Mechanism: ...  # reads and validates its fields, SpecError naming them
+    # reads and validates its fields (SpecError naming them): a catalogue mechanism, or a user's robot description
+    def from_spec(self, spec: Any) -> Mechanism | RobotDescription: ...
 
-    # a robot's DH table (kinematics/dh_table.RobotTable), auto -> a Mechanism with derived stages, or None: the
-    # family that emits `--stages derived` (one does); with auto (`--stages auto`) it may decline a robot the
-    # interpreter serves better, saying why (NotDerivable)
+    # a robot's DH table (kinematics/dh_table.RobotTable) -> a Mechanism with derived stages (NotDerivable naming
+    # why where they do not cover it), or None: the family that derives every robot description's IK (one does)
     from_table: Any

@@ -24,8 +24,7 @@ class NoDecomposition(ValueError):
 
 
 class NotDerivable(NoDecomposition):
-    """`--stages derived` does not cover the robot (the message says why, and that the plan interpreter solves it);
-    `why` is the reason alone (what `--stages auto` reports when it falls back to the interpreter)."""
+    """The derived stages do not cover the robot (the message says why); `why` is the reason alone."""
 
     def __init__(self, message: str, why: str | None = None):
         super().__init__(message)
@@ -34,8 +33,7 @@ class NotDerivable(NoDecomposition):
     @classmethod
     def because(cls, name: str, why: str, short: str | None = None) -> NotDerivable:
         """`short`: the reason in a few words where `why` is long (a planner's full refusal)."""
-        return cls(f"{name}: --stages derived does not cover this robot ({why}); --stages interpreted (the plan "
-                   "interpreter) solves it", short or why)
+        return cls(f"{name}: the derived stages do not cover this robot ({why})", short or why)
 
 
 class CheckFailed(AssertionError):

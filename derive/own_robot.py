@@ -21,35 +21,32 @@ from pathlib import Path
 
 from . import runtime_files
 from .families import FAMILIES
-from .model import NotDerivable
+from .mechanism import Mechanism
 from .render import header_lines
 from .spec import Spec, SpecError
 
-STAGES = ("auto", "derived", "interpreted")
-
 
 def load(source: str | Path, name=None, base=None, tip=None, free=None, geometry_tol=None, xacro_args=None,
-         packages=None, redundancy=None, stages=None):
-    """The mechanism of a URDF / xacro or a spec file (command-line options override the spec's own fields), its IK
-    as `stages` (or the spec's `stages` field) says: "auto" (the default) derived as straight-line code where the
-    derived stages cover the robot, else the plan interpreter; "derived" that or a refusal (NotDerivable);
-    "interpreted" the plan interpreter."""
-    return with_stages(*_read(source, name, base, tip, free, geometry_tol, xacro_args, packages, redundancy,
-                              stages))[0]
+         packages=None, redundancy=None):
+    """The mechanism of a URDF / xacro or a spec file (command-line options override the spec's own fields): a
+    catalogue mechanism as its family builds it, a robot description with its IK derived as straight-line stages
+    (a robot the stages do not cover is refused: NotDerivable, naming why)."""
+    return to_mechanism(description(source, name, base, tip, free, geometry_tol, xacro_args, packages, redundancy))
 
 
-def _read(source, name, base, tip, free, geometry_tol, xacro_args, packages, redundancy, stages):
-    """The family's mechanism of the description and the stages asked for."""
+def description(source: str | Path, name=None, base=None, tip=None, free=None, geometry_tol=None, xacro_args=None,
+                packages=None, redundancy=None):
+    """What the family reads from the source before anything is derived: a robot description (its chain, its
+    planned decomposition, its robot_table) or a catalogue mechanism."""
     path = Path(source)
     readers = [f for f in FAMILIES.values() if path.suffix.lower() in f.SOURCE_SUFFIXES]
     if readers:  # a description file a family reads itself (a URDF, a xacro file)
         spec = readers[0].spec_for_file(path, name=name, base=base, tip=tip, free=free, geometry_tol=geometry_tol,
-                                        xacro_args=xacro_args, packages=packages, redundancy=redundancy,
-                                        stages=stages)
+                                        xacro_args=xacro_args, packages=packages, redundancy=redundancy)
     else:
         spec = Spec.load(path)
         for key, option, value in (("name", "--name", name), ("free", "--free", free),
-                                   ("redundancy", "--redundancy", redundancy), ("stages", "--stages", stages),
+                                   ("redundancy", "--redundancy", redundancy),
                                    ("geometry_tol", "--geometry-tol", geometry_tol)):
             if value is not None:
                 spec.given(key, value, option)
@@ -65,25 +62,16 @@ def _read(source, name, base, tip, free, geometry_tol, xacro_args, packages, red
     family = FAMILIES.get(spec.data.get("family"))
     if family is None:
         raise spec.error("family", f"one of the families {', '.join(sorted(FAMILIES))}", spec.data.get("family"))
-    choice = spec.choice("stages", STAGES) if spec.has("stages") else "auto"
-    return family.from_spec(spec), choice
+    return family.from_spec(spec)
 
 
-def with_stages(mech, choice: str):
-    """(mechanism, note): a robot description's mechanism with derived straight-line stages (its robot_table
-    handed to the family with from_table) where `choice` allows and they cover it; the note says which IK the
-    solver has and, where auto fell back to the plan interpreter, why (None for a catalogue mechanism)."""
-    if not mech.ROBOT_DESCRIPTION:  # a catalogue mechanism: its stages are derived already (its spec has no `stages`)
-        return mech, None
-    if choice == "interpreted":
-        return mech, "IK: the plan interpreter (--stages interpreted)"
+def to_mechanism(read):
+    """A robot description's mechanism with derived straight-line stages (its robot_table handed to the family
+    with from_table); a catalogue mechanism as it is (its stages are derived already)."""
+    if isinstance(read, Mechanism):
+        return read
     emitter = next(f for f in FAMILIES.values() if f.from_table is not None)
-    try:
-        return emitter.from_table(mech.robot_table()), "IK: derived straight-line stages"
-    except NotDerivable as exc:
-        if choice == "derived":
-            raise
-        return mech, f"IK: the plan interpreter (the derived stages do not cover this robot: {exc.why})"
+    return emitter.from_table(read.robot_table())
 
 
 def import_solver(out: Path, name: str, backend: str | None = None):
@@ -137,7 +125,7 @@ def _extension(out: Path, mech, progress) -> list[Path]:
 
 
 def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=None, progress=print,
-           native: bool = True, xacro_args=None, packages=None, redundancy=None, stages=None) -> list[Path]:
+           native: bool = True, xacro_args=None, packages=None, redundancy=None) -> list[Path]:
     """Derive, emit and audit one description into `out`; returns the files written. `native`: also compile the
     folder's C into the Python extension the solvers call (skipped with native=False: they run on numpy)."""
     from . import audit
@@ -151,13 +139,10 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
         progress(f"  {text} ({now - last[0]:.1f} s)")
         last[0] = now
 
-    mech, note = with_stages(*_read(source, name, base, tip, free, geometry_tol, xacro_args, packages, redundancy,
-                                    stages))
+    mech = load(source, name, base, tip, free, geometry_tol, xacro_args, packages, redundancy)
     out = Path(out)
     nm = mech.NAME
     progress(f"wristkin derive: {nm} from {source}")
-    if note:
-        progress(f"  {note}")
     stage("read the description")
     dv = mech.derive()
     stage(f"derived {len(dv.steps)} steps, {sum(len(s.checks) for s in dv.steps)} checks passed")

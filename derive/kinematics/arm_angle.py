@@ -14,7 +14,7 @@ so psi = 0 puts the elbow in the plane of the first axis and the line S-W, on th
 upright: the elbow up), and psi turns it about u. Every configuration with the elbow at E(psi) solves the pose at
 psi: the elbow joint bent either way (subproblem 3), the shoulder's rotation about S fixed by the two directions
 S -> W and S-W -> E (subproblem 2 and 1: two sets), the wrist's orientation (two sets): 8 sets. The definition is
-the runtime's (runtime/python/chain_arm_angle.py, runtime/c/chain/ck_arm_angle.c); the derivation checks it on the
+the runtime's (runtime/python/arm_angle.py, runtime/c/wk_arm_angle.c); the derivation checks it on the
 robot (replay below: the elbow point of sampled joints equals E(psi) at their own psi) and the audit states it.
 
 Where W lies on the first axis the plane is undefined (u parallel to h1): the runtime takes any normal and flags

@@ -147,14 +147,14 @@ class OwnRobotApi:
     ideal_axes: np.ndarray
     ideal_points: np.ndarray
     ideal_home: np.ndarray
-    strategy: str  # the interpreter's decomposition, in words
+    strategy: str  # the planner's decomposition, in words
     controls: str
     base: np.ndarray  # 4x4: the description's base and tool frames (make_design(base=, tool=) replaces them)
     tool: np.ndarray
     scale: float  # metres: the robot's size
     geometry_tol: float  # the planner's tolerance on parallel / meeting axes
     deviation: float  # largest deviation of the description's axes from the ideal ones the stages solve
-    calibrated: bool  # that deviation beyond rounding (the interpreter polishes on the true axes)
+    calibrated: bool  # that deviation beyond rounding (every set polished on the true chain)
     # the module's FK off the description's own product by at most this (metres and rotation entries): rounding on
     # the true axes; the derived stages' exact geometry adds the description's rounding (from_table)
     description_tol: float

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 PY_RUNTIME_FILES = ("python/pose_forms.py", "python/serial_frames.py",
                     *(f"python/serial_{part}.py" for part in ("input", "fk", "stages", "verify", "ik")))
-# a user robot's module (derived stages): its branches, limits and command line, as the interpreted module's
+# a user robot's module (derived stages): its branches, limits and command line
 # (own_api.py, last: it ends with the command line's entry point), on the ideal chain's products (chain_rigid, _poe)
 PY_OWN_RUNTIME_FILES = ("python/chain_rigid.py", "python/chain_poe.py", "python/serial_own.py", "python/own_api.py")
 PY_SELECT_FILE = "python/select_plain.py"  # select without named branches (a user robot's: own_api.py's)
@@ -164,8 +164,7 @@ def c_stage_body(st: dict) -> list[str]:
 
 
 def _arm_angle_verb(name: str) -> dict:
-    """The C header's and source's wk_NAME_arm_angle (sr_arm_angle.c's sr_api_arm_angle), as the interpreted
-    module's."""
+    """The C header's and source's wk_NAME_arm_angle (sr_arm_angle.c's sr_api_arm_angle)."""
     sig = f"int wk_{name}_arm_angle(const double *joints, const wk_{name}_design *design, double *psi)"
     return {"declaration": "/* The arm angle of joint values (the design parameter at which ik returns them): where "
                            "they put the elbow on its\n * circle about the shoulder-wrist line. */\n" + sig + ";",
@@ -254,10 +253,10 @@ def serial_views(ctx: dict) -> dict:
     base0, tool0 = (own["base0"], own["tool0"]) if own else ([repr(float(v)) for v in IDENTITY_3X4],) * 2
     c_tables += [f"static const double sr_base0[12] = {{ {', '.join(base0)} }};",
                  f"static const double sr_tool0[12] = {{ {', '.join(tool0)} }};"]
-    if aa_core:  # the core's bands scale with the robot's size (sr_arm_angle.c), as the interpreted chain's
+    if aa_core:  # the core's bands scale with the robot's size (sr_arm_angle.c)
         c_tables.append(f"static const double sr_scale = {own['scale']};")
     if own:
-        # a user robot's limits as select_ik's defaults (NULL limits: the description's), as the interpreted C's
+        # a user robot's limits as select_ik's defaults (NULL limits: the description's)
         c_flags["SR_HAS_LIMITS"] = 1
         c_tables += [f"static const double sr_lower[SR_N] = {{ {', '.join(own['c_lower'])} }};",
                      f"static const double sr_upper[SR_N] = {{ {', '.join(own['c_upper'])} }};"]

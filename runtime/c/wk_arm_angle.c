@@ -9,19 +9,18 @@
  * to the elbow point) onto the target's (s -> w, the side psi gives); subproblem 2 then 1 read the three shoulder
  * joints from it (two sets; q_b = 0 lines up a and c: a family, q_a from previous else 0). Python's twin:
  * runtime/python/arm_angle.py, step for step.
- * Needs wk_geom3.c and wristkin_runtime's flags before it. The interpreted chain's arm_angle op (chain/ck_arm_angle.c)
- * and the serial arm's arm_angle stage (serial/sr_arm_angle.c) call it with their tolerances; tests/test_arm_angle.py
- * tests it through both. */
+ * Needs wk_geom3.c and wristkin_runtime's flags before it. The serial arm's arm_angle
+ * stage (serial/sr_arm_angle.c) calls it with its tolerances; tests/test_arm_angle.py tests it through it. */
 
-/* The bands (double_root, tangent, on_axis, family) on the closed-form stages' inputs: the interpreted chain's for an
- * S-R-S arm (derive/families/chain/views.py's stage_tolerances), which the serial stage runs the core at (arm_angle.py's
+/* The bands (double_root, tangent, on_axis, family) on the closed-form stages' inputs of an S-R-S arm, which the serial
+ * stage runs the core at (arm_angle.py's
  * AA_BANDS) */
 #define WK_AA_DOUBLE_ROOT (32.0 * DBL_EPSILON)
 #define WK_AA_TANGENT 1e-9
 #define WK_AA_ON_AXIS (64.0 * DBL_EPSILON)
 #define WK_AA_FAMILY 1e-12
 
-/* the caller's tolerances (the interpreted chain's CK_* of an S-R-S arm; the serial stage takes the same) */
+/* the caller's tolerances (the serial stage's) */
 typedef struct {
     double scale;       /* the chain's size: the distance equation's and the elbow's offset bands scale with it */
     double degenerate;  /* subproblem 1's band on a unit vector's part normal to its axis */

@@ -8,12 +8,11 @@
  * the wrist singularity (rot(h4, q4) h5 = +-n: the second equation holds for every q0) a merged pair is split and
  * refined on the second equation's parts normal to n (its roots to eps / delta, not sqrt(eps)), and the singular
  * configurations are tried directly. Python's twin: runtime/python/sp6.py, step for step.
- * Needs poly_real_roots.c, wk_poly_ops.c, wk_geom3.c and wristkin_runtime's flags before it. The interpreted chain's
- * sp6 op (chain/ck_sp6.c) and the serial arm's sp6 stage (serial/sr_sp6.c) call it with their tolerances;
- * tests/test_chain_runtime.py tests it as it is (tests/c/chain_runtime_harness.c). */
+ * Needs poly_real_roots.c, wk_poly_ops.c, wk_geom3.c and wristkin_runtime's flags before it. The serial arm's sp6
+ * stage (serial/sr_sp6.c) calls it with its tolerances; tests/test_runtime_sources.py tests it as it is
+ * (tests/c/shared_runtime_harness.c). */
 
-/* the caller's tolerances (the interpreted chain's CK_* of a robot with a polynomial stage, derive/families/chain
- * /views.stage_tolerances; the serial stage takes the same) */
+/* the caller's tolerances (the serial stage's SR_SP6_*) */
 typedef struct {
     double scale;       /* the lengths' size: p0, p4 and d0's rounding scales with it */
     double degenerate;  /* a coefficient norm (relative to scale) at or below this: degenerate (DEGENERATE_EPS) */
@@ -246,7 +245,7 @@ static int wk_sp6_taken(double q0, double q4, const double *aq0, const double *a
 }
 
 /* t with n . rot(h0, t) p0 = d (subproblem 4): A cos t + B sin t = C, a double root once (flagged), a vanishing
- * equation one representative t = 0 (flagged indeterminate); the interpreted chain's ck_sp4 with its tolerances */
+ * equation one representative t = 0 (flagged indeterminate) */
 static int wk_sp6_sp4(const double *n, const double *h0, const double *p0, double d, const wk_sp6_tols *tol, double *t,
                       unsigned *f)
 {

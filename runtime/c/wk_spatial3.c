@@ -10,8 +10,8 @@
  * on the point bring a simple root to rounding. A double root of the polynomial with the target off axis a is
  * split into the pair it merged (wk_s3_split): near that axis the pair differs by ~ the distance, below the
  * polynomial's sqrt(eps). Python's twin: runtime/python/spatial3.py, step for step.
- * Needs poly_real_roots.c, wk_poly_ops.c, wk_geom3.c and wristkin_runtime's flags before it. The interpreted chain's
- * ck_spatial3 and the serial arm's spatial3 stage (sr_spatial3.c) call it; tests/test_spatial3_runtime.py tests it
+ * Needs poly_real_roots.c, wk_poly_ops.c, wk_geom3.c and wristkin_runtime's flags before it. The serial arm's
+ * spatial3 stage (sr_spatial3.c) calls it; tests/test_spatial3_runtime.py tests it
  * as it is (tests/c/spatial3_harness.c). */
 #define WK_S3_MAX 12            /* candidates: eight roots, q_b = pi, and the pairs split from merged ones */
 #define WK_S3_REFINE_STEPS 8    /* Newton steps at most (spatial3.py's S3_REFINE_STEPS says why) */

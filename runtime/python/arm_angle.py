@@ -9,9 +9,9 @@ the shoulder's rotation about s maps the home side's frame (s -> the turned wris
 the elbow point) onto the target's (s -> w, the side psi gives); subproblem 2 then 1 read the three shoulder joints
 from it (two sets; q_b = 0 lines up a and c: a family, q_a from previous else 0).
 
-A wristkin runtime source: the interpreted chain's module (chain_arm_angle.py) and a serial arm's with an arm_angle
-stage (serial_arm_angle.py) inline it from the marker line on (derive/runtime_files.py), after geom3.py; above the
-marker, what it reads from the runtime, so that it is linted and tested as it is (tests/test_arm_angle.py)."""
+A wristkin runtime source: a serial arm's module with an arm_angle stage (serial_arm_angle.py) inlines it from the
+marker line on (derive/runtime_files.py), after geom3.py; above the marker, what it reads from the runtime, so that it
+is linted and tested as it is (tests/test_arm_angle.py)."""
 
 from __future__ import annotations
 
@@ -23,9 +23,9 @@ from geom3 import _g3_axpy, _g3_cross, _g3_dot, _g3_norm, _g3_sp1, _g3_trig, _g3
 # wristkin: inlined from here
 # The core's tolerances, the caller's (wk_arm_angle.c's wk_aa_tols says what each is):
 # (scale, degenerate, double_root, tangent, on_axis, family)
-# The bands (double_root, tangent, on_axis, family) on the closed-form stages' inputs: the interpreted chain's for an
-# S-R-S arm (derive/families/chain/views.py's stage_tolerances, the templates' TANGENT_TOL and FAMILY_TOL), which the
-# serial stage and the audit's check run it at (wk_arm_angle.c's WK_AA_* twins)
+# The bands (double_root, tangent, on_axis, family) on the closed-form stages' inputs of an S-R-S arm (the stages'
+# DOUBLE_ROOT_TOL, TANGENT_TOL, ON_AXIS_TOL and FAMILY_TOL), which the serial stage and the audit's check run it at
+# (wk_arm_angle.c's WK_AA_* twins)
 AA_BANDS = (32 * 2.220446049250313e-16, 1e-9, 64 * 2.220446049250313e-16, 1e-12)
 
 

@@ -2,8 +2,8 @@
 
 A wristkin runtime source: every user robot's generated module inlines it from the marker line on
 (derive/runtime_files.py), after the robot's constants; above the marker, what it reads from them and from the
-other sources (chain_stand_in.py: a stand-in robot), so that it is linted and tested as it is
-(tests/test_chain_runtime.py)."""
+other sources (own_stand_in.py: a stand-in robot), so that it is linted and tested as it is
+(tests/test_own_runtime.py)."""
 
 from __future__ import annotations
 

@@ -431,7 +431,7 @@ def g6_z_frames(axes, points) -> list[np.ndarray]:
 
 def g6_frames_of(axes, points) -> list[np.ndarray]:
     """g6_z_frames of the last axes and points asked for, kept: a chain's frames move only with its design (a held
-    joint's value), so the interpreted and the derived stage compute them once per design, not per call."""
+    joint's value), so the stage computes them once per design, not per call."""
     global _G6_FRAMES
     key, cached = (tuple(np.ravel(axes).tolist()), tuple(np.ravel(points).tolist())), _G6_FRAMES
     if cached[0] != key:  # read once above: another thread may replace the pair meanwhile, never half of it

@@ -1,11 +1,11 @@
-"""A user robot's named branches, joint limits and command line: what its module offers beyond the verbs, the same
-whether its IK is interpreted (chain_api.py) or derived as straight-line stages (serial_own.py).
+"""A user robot's named branches, joint limits and command line: what its module offers beyond the serial family's
+verbs (its IK derived as straight-line stages; serial_own.py the chain its branches are read on).
 
 A wristkin runtime source: every user robot's generated module inlines it from the marker line on
-(derive/runtime_files.py), after the robot's constants and verbs; above the marker, what it reads from them (the
-interpreted module's: chain_stand_in.py, a stand-in robot), so that it is linted and tested as it is
-(tests/test_chain_runtime.py). A module provides _branch_chain(design) (the ideal chain the branches are read
-on, with its joints' index) and _fk_design(q) (the design fk takes with the command line's full joints)."""
+(derive/runtime_files.py), after the robot's constants and verbs; above the marker, what it reads from them
+(own_stand_in.py and serial_stand_in.py: stand-in robots), so that it is linted and tested as it is
+(tests/test_own_runtime.py). A module provides _branch_chain(design) (the ideal chain the branches are read on, with
+its joints' index) and _fk_design(q) (the design fk takes with the command line's full joints)."""
 
 from __future__ import annotations
 
@@ -13,11 +13,9 @@ import math
 
 import _runtime
 import numpy as np
-from chain_api import _branch_chain, _fk_design, _joints, fk, ik
-from chain_design import _design
 from chain_poe import _product
 from chain_rigid import _apply, _dot, _mv, _rot, _scale, _sub
-from chain_stand_in import (
+from own_stand_in import (
     _ARM_ANGLE,
     _FREE,
     _ROLES,
@@ -34,6 +32,10 @@ from chain_stand_in import (
     Solutions,
     WristkinError,
 )
+from serial_fk import fk
+from serial_ik import ik
+from serial_input import _design, _joints
+from serial_own import _branch_chain, _fk_design
 
 
 # wristkin: inlined from here

@@ -52,7 +52,7 @@ def _conditioning(q, d, v0=None):
 def _spectrum(j):
     """(manipulability, sigma_min / sigma_max) of a 6 x n Jacobian from its eigenvalues: the FK's conditioning and
     the general 6R stage's singular flag. A redundant arm (a held joint's 7 joints): J J^T, whose eigenvalues are J's
-    nonzero sigma^2 (as the interpreted module's: the arm's conditioning, whichever joint its IK holds)."""
+    nonzero sigma^2 (the arm's conditioning, whichever joint its IK holds)."""
     lam = np.maximum(np.linalg.eigvalsh(j.T @ j if j.shape[1] <= 6 else j @ j.T), 0.0)
     return math.sqrt(float(np.prod(lam))), (math.sqrt(lam[0] / lam[-1]) if lam[-1] > 0.0 else 0.0)
 

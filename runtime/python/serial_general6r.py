@@ -32,7 +32,7 @@ from serial_stand_in import (
 from serial_verify import _polish
 
 # wristkin: inlined from here
-# two verified candidates within this in every joint are one solution (the interpreted module's _same)
+# two verified candidates within this in every joint are one solution (a solution's identity, as the spatial 3R's)
 G6_SAME = 1e-9
 # the sets are ordered by their first joint that differs by more than this (_g6_order)
 G6_ORDER_TOL = 1e-6

@@ -117,7 +117,7 @@ def _built(vals, base, tool):
 
 _FRAME_VALUES0 = tuple(v for m in (_BASE, _TOOL) for row in m[:3] for v in row)  # the chain's own frames' 24
 # a held joint's values the IK refuses (the iiwa's a2 at 0: the others a self-motion), its default among them: ik
-# refuses them, not make_design (fk takes them), as the interpreted module's
+# refuses them, not make_design (fk takes them)
 _HELD_CHECKS = any(kind == "held" for kind, _, _ in DESIGN_CHECKS)
 _DEFAULT_DESIGN = make_design()
 _JOINT_SHAPE = ((N_JOINTS,),)

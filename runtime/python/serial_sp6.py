@@ -21,8 +21,8 @@ from sp6 import _sp6_core
 
 # wristkin: inlined from here
 SP6_KEEP = 4  # the quartic's real roots
-# the core's bands: the interpreted chain's for a robot with a polynomial stage (derive/families/chain/views.py's
-# stage_tolerances: its roots carry ~1e-12), with subproblem 4's tangent band as the chain's
+# the core's bands: a polynomial stage's roots carry ~1e-12 (the degree-4 eliminant's rounding), and subproblem 4's
+# tangent band is the stages' (TANGENT_TOL)
 SP6_DOUBLE_ROOT_TOL = 1e-12
 SP6_ON_AXIS_TOL = 1e-12
 SP6_TANGENT_TOL = 1e-9

@@ -20,7 +20,7 @@ from serial_stand_in import DEGENERATE_EPS, FLAG_INDETERMINATE, ON_AXIS_TOL, _wr
 from spatial3 import _spatial3_lines
 
 # wristkin: inlined from here
-S3_SAME = 1e-9  # two candidates within this in every joint are one (the interpreted module's _same)
+S3_SAME = 1e-9  # two candidates within this in every joint are one (a solution's identity, as the general 6R's)
 S3_KEEP = 4  # Pieper's bound on a 3R's positions
 
 

@@ -7,10 +7,9 @@ sin q4) is affine in (cos q0, sin q0) by Cramer's rule, and cos^2 + sin^2 = 1 a 
 wrist singularity a merged pair is split and refined on the second equation's parts normal to n, and the singular
 configurations are tried directly.
 
-A wristkin runtime source: the interpreted chain's module (chain_sp6.py) and a serial arm's with an sp6 stage
-(serial_sp6.py) inline it from the marker line on (derive/runtime_files.py), after poly_real_roots.py, chain_poly.py
-and geom3.py; above the marker, what it reads from them, so that it is linted and tested as it is
-(tests/test_chain_runtime.py)."""
+A wristkin runtime source: a serial arm's module with an sp6 stage (serial_sp6.py) inlines it from the marker line on
+(derive/runtime_files.py), after poly_real_roots.py, chain_poly.py and geom3.py; above the marker, what it reads from
+them, so that it is linted and tested as it is (tests/test_runtime_sources.py)."""
 
 from __future__ import annotations
 

@@ -9,10 +9,9 @@ then by subproblem 1, and Newton steps on the point bring a simple root to round
 (a pair it merged below its sqrt(eps)) is split into that pair: along the surface's line through the target's small
 circle about axis a (_s3_split), else along the point Jacobian's null vector (_s3_pair), then damped Newton steps.
 
-A wristkin runtime source: the interpreted chain's module (chain_spatial3.py) and a serial arm's with a spatial3
-stage (serial_spatial3.py) inline it from the marker line on (derive/runtime_files.py), after poly_real_roots.py and
-chain_poly.py; above the marker, what it reads from the runtime, so that it is linted and tested as it is
-(tests/test_spatial3_runtime.py)."""
+A wristkin runtime source: a serial arm's module with a spatial3 stage (serial_spatial3.py) inlines it from the marker
+line on (derive/runtime_files.py), after poly_real_roots.py and chain_poly.py; above the marker, what it reads from the
+runtime, so that it is linted and tested as it is (tests/test_spatial3_runtime.py)."""
 
 from __future__ import annotations
 

@@ -4,8 +4,9 @@ templates/{python,c}/chain.*.jinja.
 
 Spec fields (docs/specs.md, "chain"): `convention` (standard | modified | poe | urdf), `[[joint]]` rows (DH:
 name, type, a, alpha, d, theta, direction, lower, upper; POE: name, type, axis, point, lower, upper), `[home]`
-(POE), `urdf`, `base_link`, `tip_link` (URDF), `[base]`, `[tool]`, `free`, `redundancy`, `geometry_tol`, `stages`
-(read by own_robot.load: "derived" hands ChainMechanism.robot_table to the family with from_table)."""
+(POE), `urdf`, `base_link`, `tip_link` (URDF), `[base]`, `[tool]`, `free`, `redundancy`, `geometry_tol`.
+The chain family reads and plans; it emits nothing itself: own_robot.load hands ChainMechanism.robot_table to the
+family with from_table (the serial family), which derives the robot's stages."""
 
 from dataclasses import replace
 from pathlib import Path
@@ -18,7 +19,7 @@ from .mechanism import ChainMechanism
 __all__ = ["SOURCE_SUFFIXES", "SPEC_FIELDS", "from_spec", "spec_for_file"]
 
 SOURCE_SUFFIXES = (".urdf", ".xacro")  # description files `wristkin derive` hands to this family as they are
-from_table = None  # `--stages derived` is the serial family's (Family.from_table)
+from_table = None  # a robot's stages are derived by the serial family (Family.from_table)
 
 
 def solver_name(path: Path) -> str:
@@ -32,7 +33,7 @@ def solver_name(path: Path) -> str:
 
 
 def spec_for_file(path: Path, name=None, base=None, tip=None, free=None, geometry_tol=None, xacro_args=None,
-                  packages=None, redundancy=None, stages=None) -> Spec:
+                  packages=None, redundancy=None) -> Spec:
     """The spec of a URDF (or xacro) file given on the command line (its links and options as the spec's fields)."""
     path = Path(path)
     kind = "xacro" if path.suffix.lower() == ".xacro" else "URDF"
@@ -41,10 +42,10 @@ def spec_for_file(path: Path, name=None, base=None, tip=None, free=None, geometr
             "source": f"{kind} {path.name}", "convention": "urdf", "urdf": str(path.resolve())}
     # every field of this spec stands for a command-line option: its errors name the option
     spec = Spec(data, path, options={"base_link": "--base", "tip_link": "--tip", "free": "--free",
-                                     "redundancy": "--redundancy", "stages": "--stages",
+                                     "redundancy": "--redundancy",
                                      "geometry_tol": "--geometry-tol", "name": "--name"})
     for key, option, value in (("base_link", "--base", base), ("tip_link", "--tip", tip), ("free", "--free", free),
-                               ("redundancy", "--redundancy", redundancy), ("stages", "--stages", stages),
+                               ("redundancy", "--redundancy", redundancy),
                                ("geometry_tol", "--geometry-tol", geometry_tol),
                                ("xacro_args", "--xacro-arg", xacro_args or None),
                                ("packages", "--package", packages or None)):

@@ -17,7 +17,7 @@ from ...spec import COMMON_FIELDS, Spec, common
 from . import urdf
 from .description_names import JOINT_NAME
 
-SPEC_FIELDS = ("convention", "unit", "joint", "home", "base", "tool", "free", "redundancy", "stages", "geometry_tol",
+SPEC_FIELDS = ("convention", "unit", "joint", "home", "base", "tool", "free", "redundancy", "geometry_tol",
                "urdf", "base_link", "tip_link", "xacro_args", "packages")
 DH_FIELDS = ("name", "type", "a", "alpha", "d", "theta", "direction", "lower", "upper")
 POE_FIELDS = ("name", "type", "axis", "point", "lower", "upper")

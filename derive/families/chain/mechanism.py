@@ -1,5 +1,5 @@
-"""The chain family's mechanism: a description -> the planner's decomposition -> derivation records, template
-context, CasADi functions and audit numbers."""
+"""The chain family's robot description: a description's chain -> the planner's decomposition -> the robot's
+DH table on its ideal axes (robot_table), which the serial family derives and emits."""
 
 from __future__ import annotations
 
@@ -8,7 +8,6 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...checks import jacobian_fd_error, numeric_predicate
 from ...kinematics import general6r
 from ...kinematics.arm_angle import ELBOW
 from ...kinematics.dh_table import NoDHTable, OwnRobotApi, RobotTable, standard_dh
@@ -25,19 +24,12 @@ from ...kinematics.planner import (
 )
 from ...kinematics.poe import Chain, normalised, reduce_free, reverse
 from ...kinematics.same_bits import dot, norm
-from ...kinematics.subproblems import subproblem_checks
-from ...literals import c_num, floats, own_api_literals, vectors
-from ...mechanism import CApi, MechanismDefaults
-from ...model import Check, Derivation, Finding, NoDecomposition, NotDerivable, Step
-from ...tolerances import TOLERANCES
-from . import views
+from ...model import NoDecomposition, NotDerivable
 from .description import Description
-from .kernels import chain_kernels, kernel_check
-from .stages import stage
 
 FREE_SAMPLES = (0.0, 0.7, -1.9, 2.6)  # values of a free joint the decomposition must hold at
 # true axes off the ideal ones by more than this (rounding of a description's angles is ~1e-16): a calibrated robot,
-# whose candidates the emitted solver compensates when their polish fails (chain_api._compensated)
+# whose derived stages solve the ideal table and polish on the true chain (derive/families/serial/from_table.py)
 CALIBRATED_DEVIATION = 1e-13
 # the arm angle is read on the ideal S-R-S geometry: an arm whose axes are farther from it than this (metres and sines;
 # a description's rounded angles are ~1e-12 off, pybullet's iiwa 5e-13) would see its arm angle off by as much
@@ -47,15 +39,9 @@ ARM_ANGLE_DEVIATION = 1e-9
 SELF_MOTION_RATIO = 1e-9
 
 
-class ChainMechanism(MechanismDefaults):
-    """A serial chain from a description (DH, POE, URDF), solved by the planner's decomposition."""
-
-    ROBOT_DESCRIPTION = True
-    C_API = CApi(pose12=True, ik_near=True, jacobian=True, fk_matrix=True, frames=True)
-
-    TEMPLATES = ("python/chain.py.jinja", "c/chain.h.jinja", "c/chain.c.jinja")
-    VECTORISED_KERNELS = ()
-    DERIVE_SECONDS = 3
+class ChainMechanism:
+    """A serial chain from a description (DH, POE, URDF) and the planner's decomposition of it: a
+    derive.mechanism.RobotDescription, whose robot_table the serial family derives as straight-line stages."""
 
     def __init__(self, name: str, title: str, desc: Description):
         self.NAME, self.title, self.desc = name, title, desc
@@ -66,7 +52,6 @@ class ChainMechanism(MechanismDefaults):
         self._samples: tuple[float, ...] | None = None  # _held_samples, computed once
         self._held_elbow: bool | None = None  # held_elbow, computed once
         self._everywhere: float | None = None  # _everywhere_ratio, computed once
-        self._kernels: list | None = None  # derive's FK / Jacobian kernels, emitted as they were checked
         self.free_note = ""  # how the free joint was chosen when the user gave none
 
     # ------------------------------------------------------------------------------------------ planning
@@ -320,7 +305,7 @@ class ChainMechanism(MechanismDefaults):
         return normalised(replace(c, axes=axes, points=points))
 
     def robot_table(self):
-        """The robot as a DH table for `--stages derived` (kinematics/dh_table.RobotTable) on its ideal axes, with
+        """The robot as a DH table for its derived stages (kinematics/dh_table.RobotTable) on its ideal axes, with
         its held joint, the held values the IK refuses and its true chain; the arm angle or more than six solved
         joints refused with the reason (the deviation of the true axes from the ideal ones goes with it: the
         deriving family decides what it takes). An S-R-S arm whose run-time parameter is its arm angle goes with
@@ -341,7 +326,7 @@ class ChainMechanism(MechanismDefaults):
                           self.deviation(), api, desc.free, self.degenerate_held_reasons(), c, arm_angle)
 
     def _own_api(self, plan, ideal) -> OwnRobotApi:
-        """The module's constants beyond the verbs: the interpreted module's, and the derived one's (robot_table)."""
+        """The module's constants beyond the verbs (robot_table)."""
         c = self.chain
         roles, labels = _roles(plan, self.solver_chain(c, 0.0, plan.reversed))
         deviation = self.deviation()
@@ -359,87 +344,6 @@ class ChainMechanism(MechanismDefaults):
         return float(max(np.max(np.abs(ideal.axes - self.chain.axes)),
                          np.max(np.abs(ideal.points - self.chain.points))))
 
-    # ------------------------------------------------------------------------------------------ derivation
-    def derive(self) -> Derivation:
-        if self.held_elbow:
-            raise NoClosedForm(f"holding the elbow {self.chain.joint_names[ELBOW]} leaves a self-motion, which the "
-                               "derived stages solve (--stages auto or derived) and the plan interpreter does not")
-        c, desc = self.chain, self.desc
-        dv = Derivation(self.NAME, self.title, "user description", {})
-        scale = self.scale()
-
-        def poe_err(rng):
-            q = _random_joints(c, rng)
-            return float(np.max(np.abs(c.fk_full(q) - desc.fk(q))))
-        dv.add(Step("chain", "Product-of-exponentials form of the description", desc.rule + "; then T(q) = base "
-                    "exp(S_1 q_1) ... exp(S_n q_n) M tool with S_i the joint's axis and a point on it at q = 0", (),
-                    _chain_table(c), (numeric_predicate(poe_err, "the POE form equals the description's own "
-                                                        "product of transforms", samples=100, tol=1e-12 * scale),)))
-        try:
-            plan, ideal = self.plan()
-        except NoClosedForm:
-            raise
-        names = self.solver_chain(c, 0.0, plan.reversed).joint_names
-        rel_checks = tuple(Check("numeric", r.text(names), r.deviation <= desc.geometry_tol, r.deviation,
-                                 desc.geometry_tol, 1) for r in plan.relations)
-        dv.add(Step("axes", "Axis relations the decomposition relies on", "axes compared pairwise and in threes: "
-                    "parallel when sin of the angle <= the geometry tolerance, meeting in one point when every axis "
-                    "passes within the tolerance of the least-squares common point", ("chain",),
-                    {"relations": "; ".join(r.text(names) for r in plan.relations) or "none needed",
-                     "geometry tolerance": f"{desc.geometry_tol:g}",
-                     "largest deviation of the true axes from the ideal ones": f"{self.deviation():.2e}"},
-                    rel_checks or (Check("numeric", "no relation needed", True, 0.0, desc.geometry_tol, 1),)))
-        for key, statement, check in subproblem_checks():
-            dv.add(Step(f"proof_{key}", f"Subproblem formula: {key}", "proven for symbolic unit axes and vectors",
-                        (), {"statement": statement}, (check,)))
-        dv.add(Step("decomposition", "Decomposition found from the axes", plan.strategy, ("axes",),
-                    {"ops": " -> ".join(_op_text(op, names) for op in plan.ops), "branches (max IK sets)":
-                     str(plan.branches), "controls": self.controls()}, ()))
-        rng_free = self.plan_samples()
-        chains = {v: self.solver_chain(ideal, v, plan.reversed) for v in rng_free}
-        residuals: dict = {}  # every op's check draws the same seeded samples: each replayed once
-
-        if self._labelling is not None:  # the elimination's own records (its op's equations among them)
-            for st in general6r.steps(self.solver_chain(ideal, rng_free[0]), self._labelling,
-                                      np.random.default_rng(12)):
-                dv.add(replace(st, depends_on=st.depends_on or ("decomposition",)))
-        for k, op in enumerate(plan.ops if self._labelling is None else ()):
-            def err(rng, k=k):
-                v = rng_free[int(rng.integers(len(rng_free)))]
-                q = _random_joints(chains[v], rng)
-                key = (v, *q.tolist())
-                if key not in residuals:
-                    residuals[key] = replay(chains[v], replace(plan, reversed=False), q)
-                return residuals[key][k]
-            dv.add(Step(f"op{k + 1}", f"IK op {k + 1}: {op['op']}", _op_rule(op, names), ("decomposition",),
-                        {"equation": _op_text(op, names)},
-                        (numeric_predicate(err, "the op's equation holds at the true joint values of sampled "
-                                                "configurations of the ideal chain", samples=200,
-                                           tol=1e-9 * scale),)))
-
-        def jac_err(rng):
-            q = _random_joints(c, rng)
-            return jacobian_fd_error(c.fk_full, c.jacobian(q), q)
-        dv.add(Step("jacobian", "Geometric Jacobian", "column i: (w_i x (p - o_i), w_i) for a revolute joint, "
-                    "(w_i, 0) for a prismatic one, with w_i, o_i the joint's axis and point moved by the joints "
-                    "before it; linear velocity first", ("chain",), {"columns": f"{c.n}"},
-                    (numeric_predicate(jac_err, "columns equal central differences of FK (h = 1e-6)", samples=40,
-                                       tol=1e-7 * max(1.0, scale)),)))
-        ks = self._kernels = chain_kernels(c)
-        dv.add(Step("kernels", "The robot's FK and Jacobian as straight-line kernels",
-                    "the product of exponentials and the Jacobian's columns over the joint symbols, each axis and "
-                    "point substituted as numbers (exact 0 and +-1 kept exact, so the terms they zero vanish), then "
-                    "CSE'd per target", ("chain", "jacobian"),
-                    {"kernels": ", ".join(f"{k.name} ({k.n_out} outputs)" for k in ks)},
-                    (numeric_predicate(kernel_check(c, ks), "the kernels equal the chain's product of 4 x 4 "
-                                       "transforms and its Jacobian (kinematics/poe.py; base and tool left out)",
-                                       samples=40, tol=1e-12 * max(1.0, scale)),)))
-        checked = ("every op checked on 200 sampled configurations" if self._labelling is None else
-                   "the 14 equations checked on 40 sampled configurations, the solutions against a multistart count")
-        dv.findings.append(Finding("decomposition", "the description (no IK given)", plan.strategy, "clarified",
-                                   f"{len(plan.relations)} axis relation(s) within {desc.geometry_tol:g}; {checked}"))
-        return dv
-
     def controls(self) -> str:
         n = self.chain.n - (1 if self.desc.free >= 0 else 0)
         if n >= 6:
@@ -456,162 +360,10 @@ class ChainMechanism(MechanismDefaults):
                               "as far as two joints reach", 1: "the turn about the last axis"}[k])
         return f"{n} of the 6 pose components: " + ", ".join(parts)
 
-    # ------------------------------------------------------------------------------------------ emission
-    def kernels(self, dv):
-        return self._kernels if self._kernels is not None else chain_kernels(self.chain)
-
-    def extra_context(self, ks) -> dict:
-        plan, ideal = self.plan()
-        c = self.chain
-        solver = self.solver_chain(c, 0.0, plan.reversed)
-        api = self._own_api(plan, ideal)
-        free = self.desc.free
-        deviation = api.deviation
-        return {"name": self.NAME, "title": self.title, "joint_names": list(c.joint_names),
-                "joint_kinds": list(c.kinds), "n_joints": c.n, "max_ik": plan.branches,
-                "design_names": [c.joint_names[free]] if free >= 0 else (["arm_angle"] if self.arm_angle else []),
-                "design_values": ["0.0"] if free >= 0 or self.arm_angle else [],
-                "arm_angle": self.arm_angle,
-                **own_api_literals(api), "strategy": api.strategy, "controls": api.controls,
-                "degenerate_held": repr(self.degenerate_held_reasons()),
-                "tangent_tol": repr(max(float(TOLERANCES["stage_tangent"]),
-                                        8.0 * deviation / min(1.0, api.scale))),
-                "axes": vectors(c.axes), "points": vectors(c.points), "home": vectors(c.home),
-                "base": vectors(c.base), "tool_frame": vectors(c.tool),
-                "free": free, "reversed": plan.reversed, "plan": _plan_literal(plan),
-                "plan_ops": plan.ops,
-                "has_spatial3": any(op["op"] == "spatial3" for op in plan.ops),
-                "has_sp6": any(op["op"] == "sp6" for op in plan.ops),
-                "has_poly": any(op["op"] in ("spatial3", "sp6") for op in plan.ops),
-                "c_plan_rows": views.c_plan_rows([stage(i, op) for i, op in enumerate(plan.ops)], solver.joint_names),
-                "c_runtime_files": views.c_runtime_files(plan.ops),
-                "c_flags": views.c_flags(plan.ops, free, plan.reversed, api.calibrated, self.degenerate_held(),
-                                         self.desc.geometry_tol),
-                **views.stage_tolerances(plan.ops),
-                "py_runtime_files": views.py_runtime_files(plan.ops),
-                "c_includes": views.c_includes(plan.ops),
-                # the same data as plain numbers, for the C template
-                "c_data": {"axes": floats(c.axes), "points": floats(c.points), "home": floats(c.home),
-                           "ideal_axes": floats(ideal.axes), "ideal_points": floats(ideal.points),
-                           "ideal_home": floats(ideal.home), "base": floats(c.base), "tool": floats(c.tool),
-                           "lower": [c_num(v) for v in c.lower], "upper": [c_num(v) for v in c.upper]}}
-
-    def c_shared_files(self) -> list[str]:
-        """Runtime sources (runtime/c/...) written beside the robot's C: the general 6R's, when it is one."""
-        return views.c_shared_files(self.plan()[0].ops)
-
-    def casadi_functions(self, dv, kernels) -> dict:
-        from .chain_casadi import chain_functions
-        return chain_functions(self.NAME, self.chain)
-
-    CASADI_DESIGN_NAMES = ("none",)
-
-    def audit_numbers(self, dv, solver, audit_dir) -> dict:
-        """Seeded round trips through the generated solver, and the ideal geometry's effect (counts and
-        bucketed errors only: byte-stable across machines)."""
-        from ...report_numbers import error_bucket
-
-        c = self.chain
-        rng = np.random.default_rng(2024)
-        counts: dict[int, int] = {}
-        contains, worst, n = 0, 0.0, 100
-        free = self.desc.free
-        for _ in range(n):
-            q = _random_joints(c, rng)
-            design = [q[free]] if free >= 0 else ([solver.arm_angle(q)] if self.arm_angle else None)
-            sol = solver.ik(solver.fk_matrix(q), design)
-            counts[sol.count] = counts.get(sol.count, 0) + 1
-            for v in sol:
-                worst = max(worst, float(np.max(np.abs(solver.fk_matrix(v) - solver.fk_matrix(q)))))
-            contains += any(_joint_gap(v, q, c.kinds) < 1e-6 for v in sol)
-        _, ideal = self.plan()
-        gap = 0.0
-        for _ in range(100):
-            q = _random_joints(c, rng)
-            gap = max(gap, float(np.max(np.abs(ideal.fk(q) - c.fk(q)))))
-        return {
-            "summary": [("joints", ", ".join(f"{nm} ({'revolute' if k == 'R' else 'prismatic'})"
-                                             for nm, k in zip(c.joint_names, c.kinds, strict=True))),
-                        ("description", c.source_format), ("decomposition", self.plan()[0].strategy),
-                        ("controls", self.controls()),
-                        ("run-time parameter", f"the free joint {c.joint_names[free]}" if free >= 0 else
-                         ("the arm angle psi (derive/kinematics/arm_angle.py)" if self.arm_angle else "none")),
-                        ("IK solution sets per pose (max)", str(solver.MAX_IK))],
-            "sections": [{"title": "Round trips through the generated solver",
-                          "body": f"{n} seeded random joint vectors (revolute in (-pi, pi], prismatic in (-0.5, 0.5) m"
-                                  f"{', the free joint drawn too' if free >= 0 else ''}"
-                                  f"{'; IK at the arm angle of the drawn joints' if self.arm_angle else ''}): IK "
-                                  "solution counts "
-                                  f"{dict(sorted(counts.items()))}; the generating joints were among the solutions "
-                                  f"{contains} of {n} times; largest pose error of a returned solution "
-                                  f"{error_bucket(worst)} (tolerance 1e-9). The comparison with an independent "
-                                  f"numeric multistart reference is in tests/"
-                                  f"{'test_arm_angle.py' if self.arm_angle else 'test_chain_robots.py'}."},
-                         {"title": "Ideal versus true geometry",
-                          "body": f"The decomposition runs on the chain with its relations made exact (largest change "
-                                  f"of an axis or point {error_bucket(self.deviation())}); at the same joint values "
-                                  f"the ideal chain's pose differs from the true one's by at most {error_bucket(gap)} "
-                                  "over 100 samples. Every solution is verified on the true chain and, when needed, "
-                                  "polished there by Gauss-Newton steps to 1e-9."}],
-        }
-
 
 # ---------------------------------------------------------------------------------------------- helpers
 def _random_joints(c: Chain, rng) -> np.ndarray:
     return np.array([rng.uniform(-math.pi, math.pi) if k == "R" else rng.uniform(-0.5, 0.5) for k in c.kinds])
-
-
-def _joint_gap(a, b, kinds) -> float:
-    return max((abs(math.remainder(x - y, 2 * math.pi)) if k == "R" else abs(x - y))
-               for x, y, k in zip(a, b, kinds, strict=True))
-
-
-
-
-def _spec_literal(s) -> str:
-    return "(" + ", ".join(repr(x) for x in s) + ("," if len(s) == 1 else "") + ")"
-
-
-def _plan_literal(plan: Plan) -> str:
-    rows = []
-    for op in plan.ops:
-        k = op["op"]
-        if k == "begin":
-            rows.append(f'("begin", {_spec_literal(op["x"])}, {op["lo"]}, {op["hi"]})')
-        elif k in ("first_plane", "last_plane"):
-            rows.append(f'("{k}", {op["j"]}, "{op["kind"]}", {_spec_literal(op["n"])})')
-        elif k in ("first_dist", "last_dist"):
-            rows.append(f'("{k}", {op["j"]}, "{op["kind"]}", {_spec_literal(op["s"])}, {bool(op.get("planar"))})')
-        elif k == "pair":
-            rows.append(f'("pair", {op["j"]}, {op["k"]}, {_spec_literal(op["s"])})')
-        elif k == "single":
-            rows.append(f'("single", {op["j"]}, "{op["kind"]}")')
-        elif k == "linear":
-            rows.append(f'("linear", {_spec_literal(op["js"])})')
-        elif k == "spatial3":
-            rows.append(f'("spatial3", {op["js"][0]}, {op["js"][1]}, {op["js"][2]})')
-        elif k == "sp6":
-            rows.append(f'("sp6", {op["j"]}, {op["k"]}, {op["l"]}, {_spec_literal(op["n"])})')
-        elif k == "orient":
-            units = ("(" + ", ".join(_spec_literal(u) for u in op["units"]) + ("," if len(op["units"]) == 1 else "")
-                     + ")")
-            rows.append(f'("orient", {units}, {op["lo"]}, {op["hi"]})')
-        elif k == "group_rest":
-            rows.append(f'("group_rest", {op["j"]}, {_spec_literal(op["group"])})')
-        elif k == "general6r":
-            rows.append(f'("general6r", {op["shift"]}, {op["reverse"]}, {op["hidden"]})')
-        elif k == "arm_angle":
-            rows.append(f'("arm_angle", {_spec_literal(op["shoulder"])}, {op["elbow"]}, {_spec_literal(op["s"])})')
-    return "(\n    " + ",\n    ".join(rows) + ",\n)"
-
-
-def _chain_table(c: Chain) -> dict:
-    out = {}
-    for nm, k, a, p in zip(c.joint_names, c.kinds, c.axes, c.points, strict=True):
-        out[nm] = (f"{'revolute' if k == 'R' else 'prismatic'} axis ({', '.join(f'{x:.6g}' for x in a)})"
-                   + (f" through ({', '.join(f'{x:.6g}' for x in p)})" if k == "R" else ""))
-    out["home M"] = "position (" + ", ".join(f"{x:.6g}" for x in c.home[:3, 3]) + ")"
-    return out
 
 
 def _x_words(spec, names) -> str:
@@ -620,79 +372,6 @@ def _x_words(spec, names) -> str:
     if spec[0] == "on":
         return f"a point on axis {names[spec[1]]}"
     return "the end frame's origin"
-
-
-def _op_text(op, names) -> str:
-    k = op["op"]
-
-    def nm(j):
-        return names[j]
-    if k == "begin":
-        return f"place {_x_words(op['x'], names)}: y = G' x"
-    if k == "first_plane":
-        return f"{nm(op['j'])} from n . e_{nm(op['j'])}^-1 y = n . x (n = {_dir_words(op['n'], names)})"
-    if k == "last_plane":
-        return f"{nm(op['j'])} from n . e_{nm(op['j'])} x = n . y (n = {_dir_words(op['n'], names)})"
-    if k == "first_dist":
-        return f"{nm(op['j'])} from |e_{nm(op['j'])}^-1 y - s| = |x - s| (s = {_x_words(op['s'], names)})"
-    if k == "last_dist":
-        return f"{nm(op['j'])} from |e_{nm(op['j'])} x - s| = |y - s| (s = {_x_words(op['s'], names)})"
-    if k == "pair":
-        return f"{nm(op['j'])}, {nm(op['k'])} from R_{nm(op['j'])} R_{nm(op['k'])} (x - s) = y - s"
-    if k == "single":
-        return f"{nm(op['j'])} from e_{nm(op['j'])} x = y"
-    if k == "linear":
-        return ", ".join(nm(j) for j in op["js"]) + " from the slides: x + sum q_i h_i = y"
-    if k == "sp6":
-        return (f"{nm(op['j'])}, {nm(op['k'])} from n . e_{nm(op['j'])}^-1 y = n . e_{nm(op['k'])} x and "
-                f"n . R_{nm(op['j'])}^T R h = n . R_{nm(op['k'])} h (n = {_dir_words(op['n'], names)}, h = axis "
-                f"{nm(op['l'])}, R = the target's rotation), then {nm(op['l'])} from rot(h, -q) R_{nm(op['k'])}^T n = "
-                f"(R_{nm(op['j'])}^T R)^T n; where h lines up with n (the wrist singularity) {nm(op['l'])} is the "
-                f"family's free angle (from previous, else the first of FAMILY_ANGLES with a verified set)")
-    if k == "spatial3":
-        return (", ".join(nm(j) for j in op["js"]) + " from e x = y: the distance to the first axis's point and the "
-                "component along it, a degree-8 polynomial in tan(q/2) of the middle joint")
-    if k == "orient":
-        units = " ".join("R(" + "+".join(nm(j) for j in u) + ")" for u in op["units"])
-        return f"{units} = R_d"
-    if k == "general6r":
-        return "all six joints from the loop's 14 equations: the real eigenvalues of a 24 x 24 companion matrix"
-    if k == "arm_angle":
-        return (f"{nm(op['elbow'])} from |e_{nm(op['elbow'])} x - s| = |y - s| (s = {_x_words(op['s'], names)}); "
-                f"{', '.join(nm(j) for j in op['shoulder'])} from the rotation about s taking the home side's "
-                "directions (s -> the turned wrist centre, that line -> the elbow point) to the target's (s -> y, "
-                "E(psi)): E(psi) = s + d_se (cos a u + sin a (cos psi n1 + sin psi n2)), u = (y - s) / |y - s|, n1 the "
-                f"axis of {nm(op['shoulder'][0])} normal to u, n2 = u x n1")
-    return f"{nm(op['j'])} = the parallel group's sum minus the others"
-
-
-def _dir_words(spec, names) -> str:
-    return f"axis {names[spec[1]]}" if spec[0] == "dir" else f"{names[spec[1]]} x {names[spec[2]]}"
-
-
-def _op_rule(op, names) -> str:
-    return {"begin": "the point x is fixed by every joint after the placing ones, so their product maps it to "
-                     "y = G' x (G' = the target with the solved joints removed)",
-            "first_plane": "subproblem 4 (linear for a slide): the joints after it keep the component along n",
-            "last_plane": "subproblem 4 (linear for a slide): the joints before it keep the component along n",
-            "first_dist": "subproblem 3 (a quadratic for a slide): the joints after it keep the distance to s",
-            "last_dist": "subproblem 3 (a quadratic for a slide): the joints before it keep the distance to s",
-            "pair": "subproblem 2: two rotations about axes through s",
-            "single": "subproblem 1 (the slide's component for a prismatic joint)",
-            "linear": "linear least squares over the slides",
-            "sp6": "subproblem 6: the parallel group keeps the component along its direction n of a point and "
-                   "of a direction, two equations each linear in the cosines and sines of both joints; Cramer's "
-                   "rule and cos^2 + sin^2 = 1 give a quartic in tan(q/2), every real root (the wrist singularity, "
-                   "a double root, tried directly)",
-            "spatial3": "three revolute axes in general position (subproblem 5 in effect): two invariants of the "
-                        "first joint, bilinear in the other two; every real root of the resulting polynomial",
-            "orient": "subproblem 2 on the last unit's axis, then subproblem 1 about it (fewer units: subproblem 1)",
-            "group_rest": "rotations about parallel axes add: the last one is the sum minus the others",
-            "general6r": "Raghavan-Roth elimination, Manocha-Canny eigenproblem (derive/kinematics/general6r.py)",
-            "arm_angle": "the arm angle psi places the elbow on its circle about the shoulder-wrist line "
-                         "(derive/kinematics/arm_angle.py); subproblem 3 for the elbow, the rotation of two "
-                         "directions and subproblems 2 and 1 for the shoulder"}[
-        op["op"]]
 
 
 def _roles(plan: Plan, ch: Chain):

@@ -1,12 +1,12 @@
-"""`wristkin derive --stages derived`: a user's robot, as its family reads it (a RobotTable: its ideal axes as a
+"""`wristkin derive`: a user's robot, as its family reads it (a RobotTable: its ideal axes as a
 standard DH table, kinematics/dh_table.py), derived as this family's straight-line stages and emitted as the
-PUMA-560's are (no plan interpreted at run time). The table's lengths stay design parameters (defaults: the
+PUMA-560's are. The table's lengths stay design parameters (defaults: the
 robot's), its angles are made exact, and a derivation step proves the table is the user's robot.
 
 The robot's family refuses what the table cannot hold (more than six solved joints, the arm angle standing for a
 seventh); here the planner's decomposition must fit the stage kinds planned.py emits, else the robot is refused with
 the reason. A 7-joint arm's held joint stays a
-joint of the table, its value the design (the lengths folded, so the design is the interpreted module's); its stage
+joint of the table, its value the design (the lengths folded); its stage
 reads it, and the others are planned with it held. A slide's row adds q to d (its DH frame on the previous
 frame's origin: kinematics/dh_table.py)."""
 
@@ -36,14 +36,14 @@ from .planned import stages as planned_stages
 # decomposition's structure (parallel, perpendicular axes) must be exact for the stages, and exact offsets keep the
 # derivation symbolic (floating-point offsets made a UR's take 50 s instead of 12). An angle off the grid stays a
 # number: no structure rests on it (the planner's relations are parallel axes, a twist of 0 or pi, and meeting axes,
-# which the lengths make; a KR 6 or a UR5e with a twist of 0.3 or 1.2 rad derives in 4-5 s, its sets the
-# interpreter's). A description's rounded angles (8 decimals: 5e-9) move the end frame
+# which the lengths make; a KR 6 or a UR5e with a twist of 0.3 or 1.2 rad derives in 4-5 s, its sets a
+# multistart reference's). A description's rounded angles (8 decimals: 5e-9) move the end frame
 # by at most their sum times the robot's size, which the description step's tolerance states and checks.
 ANGLE_SNAP = 1e-8
 ANGLE_GRID = 36
 # the description's axes off the ideal ones by at most this (metres and sines): its numbers' rounding (an 8-decimal
 # URDF, the PUMA 560 of ROS-Industrial at 5e-11), derived on the ideal geometry, the end frame's difference stated and
-# checked as for the angles; farther off, a calibrated robot (the plan interpreter polishes it on its own axes)
+# checked as for the angles; farther off, a calibrated robot (its FK the true chain, every set polished on it)
 ROUNDING_DEVIATION = 1e-8
 # a length below this (relative to the robot's size) is zero: two axes that meet, a wrist without offset
 LENGTH_ZERO = 1e-12
@@ -104,9 +104,8 @@ def _identifier(name: str, taken: set[str]) -> str:
 
 def from_table(robot: RobotTable) -> SerialMechanism:
     """The robot as a serial-family mechanism with derived stages, or NotDerivable with the reason. A calibrated
-    robot too, under --stages auto: with the search along the near-null direction its derived sets miss fewer
-    generating joints near its singularities than the interpreter's (34 of 168 against 56 on the calibrated KR 6's
-    sweep, bench/near_singular.py; the interpreter returned no set 1e-8 from its shoulder singularity)."""
+    robot too: the stages solve its ideal table and every set is polished on its true chain (searched along the
+    near-null direction near its singularities: bench/near_singular.py)."""
     name, table = robot.name, robot.table
     # a calibrated robot (axes off the ideal ones beyond rounding): the stages solve the ideal table, the emitted FK is
     # the description's true chain, and every candidate is polished on it (the serial runtime's Gauss-Newton)
@@ -119,7 +118,7 @@ def from_table(robot: RobotTable) -> SerialMechanism:
     length_zero = max(LENGTH_ZERO * robot.size, snap) if calibrated else LENGTH_ZERO * robot.size
     n = len(robot.joint_names)
     kinds = table.kinds or ("R",) * n
-    general = "general6r" in robot.ops  # the interpreter's plan: the general 6R by elimination
+    general = "general6r" in robot.ops  # the planner's: the general 6R by elimination
     taken: set[str] = set()
     joints = [sp.Symbol(_identifier(j, taken), real=True) for j in robot.joint_names]
     design, defaults, rows = [], [], []
@@ -136,7 +135,7 @@ def from_table(robot: RobotTable) -> SerialMechanism:
             if abs(v) <= length_zero:
                 lengths.append(sp.Integer(0))
                 continue
-            # the design: a held joint's value alone (the interpreted module's); a calibrated robot's FK is its true
+            # the design: a held joint's value alone; a calibrated robot's FK is its true
             # chain, which no length moves; a general 6R's lengths carry no structure (a shipped xArm6's 1e-6 m
             # offsets, below LENGTH_MIN as a design's lengths)
             if robot.held >= 0 or robot.arm_angle or calibrated or general:
@@ -156,7 +155,7 @@ def from_table(robot: RobotTable) -> SerialMechanism:
         design.append(held[1])
         defaults.append(0.0)
     psi = None
-    if robot.arm_angle:  # the arm angle: the design (the lengths folded, as the interpreted module's), 0 by default
+    if robot.arm_angle:  # the arm angle: the design (the lengths folded), 0 by default
         psi = sp.Symbol(_identifier("arm_angle", taken), real=True)
         design.append(psi)
         defaults.append(0.0)
@@ -170,7 +169,7 @@ def from_table(robot: RobotTable) -> SerialMechanism:
                                        "held_elbow" in robot.ops)
     except (PlanError, ValueError) as exc:
         missing = sorted(robot.ops - SUPPORTED - {"general6r"})
-        if missing:  # say what the interpreter's decomposition needs, not the search's refusal
+        if missing:  # say what the planner's decomposition needs, not the search's refusal
             why = (f"its decomposition, {robot.api.strategy.split(':')[0]}, needs the ops {', '.join(missing)}, which "
                    "the derived stages do not have yet")
             raise NotDerivable.because(name, why) from None
@@ -198,8 +197,6 @@ class _DerivedRobot(SerialMechanism):
     """The serial family's derivation plus the step that proves the DH table is the user's robot (its description's
     own FK, to `description_tol`)."""
 
-    ROBOT_DESCRIPTION = True
-
     def __init__(self, name: str, build, description_fk, description_tol: float, api: OwnRobotApi,
                  joint_names=(), degenerate_held=(), true_chain=None):
         super().__init__(name, build)
@@ -209,7 +206,7 @@ class _DerivedRobot(SerialMechanism):
 
     def _held_checks(self) -> list:
         """(what, expression, value) per held value the IK refuses: 2 sin((v_held - v) / 2), |.| = the angle's distance
-        to v (0 only there, mod 2 pi), refused within the geometry tolerance as the interpreted module refuses it."""
+        to v (0 only there, mod 2 pi), refused within the geometry tolerance."""
         held = self.spec.held
         if not held:
             return []
@@ -245,8 +242,8 @@ class _DerivedRobot(SerialMechanism):
         return ks
 
     def own_context(self) -> dict:
-        """The interpreted module's limits, named branches and command line (runtime/python/own_api.py): the same
-        constants, read on the same ideal chain."""
+        """A user robot's limits, named branches and command line (runtime/python/own_api.py), read on its ideal
+        chain."""
         api = self.api
         lit = own_api_literals(api)
         n = len(api.lower)
@@ -255,13 +252,13 @@ class _DerivedRobot(SerialMechanism):
         extra = {"calibrated": self.true_chain is not None, "joint_names": list(self.joint_names),
                  # what the ideal stages' u may lie past 1 by on the true robot's pose (serial.py.jinja says why)
                  "tangent_calibrated": 16.0 * api.deviation if self.true_chain is not None else 0.0}
-        if held:  # the held joint's value: the design, named as the joint (as the interpreted module's)
+        if held:  # the held joint's value: the design, named as the joint
             extra.update(held=held[0], n_lengths=0, design_names=[self.joint_names[held[0]]])
             checks = self._held_checks()
             if checks:
                 extra["design_checks"] = [{"kind": "held", "tol": repr(api.geometry_tol), "what": what}
                                           for what, _, _ in checks]
-        if self.spec.arm_angle is not None:  # the arm angle: the design (as the interpreted module's)
+        if self.spec.arm_angle is not None:  # the arm angle: the design
             extra.update(n_lengths=0, design_names=["arm_angle"])
         return {**extra, **{k: lit[k] for k in ("limits_lower", "limits_upper", "strategy_literal",
                                                 "controls_literal", "branch_names", "description_tol")},

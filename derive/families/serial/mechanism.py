@@ -45,7 +45,7 @@ class SerialMechanism(SerialArm):
         counts: dict[int, int] = {}
         worst_ok, contains = True, 0
         spec = self.spec
-        # the elimination takes ~2 ms a pose on numpy: 100, as the interpreted module's audit
+        # the elimination takes ~2 ms a pose on numpy: 100
         n = 100 if any(st.kind == "general6r" for st in spec.stages) else 300
         for _ in range(n):
             q = [rng.uniform(-math.pi, math.pi) if k == "R" else rng.uniform(-0.5, 0.5) for k in solver.JOINT_KINDS]

@@ -43,7 +43,7 @@ from .dh_serial import draw_design, wrist_stage
 # the held joint's value the decomposition is planned at (any value where no two axes line up by accident)
 HELD_PLAN_VALUE = 0.7
 # the held values the general 6R's labelling must stay regular at (the elimination reads the chain the held joint
-# turns; the interpreted module samples its own)
+# turns)
 HELD_LABELLING_VALUES = (0.7, -1.9, 2.6, -0.4)
 # the general 6R's readings tried after the chosen one where none of its candidates verifies (the Panda with joint1
 # held at joint4 = 0, joints 3 and 5 aligned: the chosen reading's eigenproblem fails in C there, 12 of the 36 others

@@ -7,7 +7,7 @@
  * (a wristkin runtime source, inlined whole into a serial arm's generated C that has a general6r stage, after
  * sr_verify.c; Python's serial_general6r.py; derive/families/serial/views.py, tests/test_derived_robot.py) */
 #if SR_HAS_GENERAL6R
-/* two verified candidates within this in every joint are one solution (the interpreted module's _same) */
+/* two verified candidates within this in every joint are one solution (a solution's identity, as the spatial 3R's) */
 #define SR_G6_SAME 1e-9
 /* the sets are ordered by their first joint that differs by more than this (Python's G6_ORDER_TOL: the C and numpy
  * eigensolvers find the roots in different orders; a set's joints agree across them to far less) */

@@ -288,7 +288,7 @@ static int sr_api_select_ik(const sr_ik_solutions *s, const double *previous, co
 {
     /* the contract of every select (the runtime's wk_select): with previous, the nearest valid set within limits
        (a singular flag is information, not a reason to jump); without it the first regular one, else the first.
-       A user robot's NULL limits are its description's (Python LOWER / UPPER), as the interpreted module's */
+       A user robot's NULL limits are its description's (Python LOWER / UPPER), as Python's */
     if (!s) return -1;
 #if SR_HAS_LIMITS
     if (!lower) lower = sr_lower;

@@ -10,8 +10,8 @@
  * (a wristkin runtime source, inlined whole into a serial arm's generated C that has an sp6 stage, after sr_verify.c;
  * Python's serial_sp6.py; derive/serial_core/views.py, tests/test_derived_robot.py) */
 #if SR_HAS_SP6
-/* the core's bands: the interpreted chain's for a robot with a polynomial stage (derive/families/chain/views.py's
- * stage_tolerances: its roots carry ~1e-12), with subproblem 4's tangent band as the chain's */
+/* the core's bands: a polynomial stage's roots carry ~1e-12 (the degree-4 eliminant's rounding), and subproblem 4's
+ * tangent band is the stages' (TANGENT_TOL) */
 #define SR_SP6_DOUBLE_ROOT_TOL 1e-12
 #define SR_SP6_ON_AXIS_TOL 1e-12
 #define SR_SP6_TANGENT_TOL 1e-9

@@ -7,7 +7,7 @@
  * (a wristkin runtime source, inlined whole into a serial arm's generated C that has a spatial3 stage, after
  * sr_verify.c; Python's serial_spatial3.py; derive/serial_core/views.py, tests/test_derived_robot.py) */
 #if SR_HAS_SPATIAL3
-/* two candidates within this in every joint are one (the interpreted module's _same) */
+/* two candidates within this in every joint are one (a solution's identity, as the general 6R's) */
 #define SR_S3_SAME 1e-9
 
 /* the candidates of the stage's outputs (3 axes, 3 points, x, y) into ws: distinct, at most SR_S3_KEEP */
