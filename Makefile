@@ -32,8 +32,8 @@ SENSITIVE_TESTS := tests/test_underactuated_wrist.py tests/test_reference_undera
 	tests/test_poly_real_roots.py tests/test_dh.py tests/test_reference_dh.py tests/test_screw_robots.py \
 	tests/test_rsr_wrist.py tests/test_scara_rsr.py tests/test_reference_rsr_selfcheck.py \
 	tests/test_casadi_functions.py tests/test_fuzz.py tests/test_fuzz_python.py tests/test_generated_fresh.py \
-	tests/test_native.py tests/test_reproducers.py tests/test_chain_robots.py tests/test_chain_c.py \
-	tests/test_robot_descriptions.py tests/test_description_corpus.py tests/test_atlas.py tests/test_chain_runtime.py \
+	tests/test_native.py tests/test_reproducers.py tests/test_chain_robots.py \
+	tests/test_robot_descriptions.py tests/test_description_corpus.py tests/test_atlas.py tests/test_shared_runtime.py \
 	tests/test_derived_robot.py \
 	tests/test_general6r.py tests/test_general6r_solvers.py tests/test_runtime_eigen.py tests/test_uw_runtime.py \
 	tests/test_serial_runtime.py tests/test_rsr_runtime.py tests/test_own_robots_near_singular.py

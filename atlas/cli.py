@@ -79,7 +79,7 @@ def _derived(target: str, out: str, free: str | None) -> str:
         raise _Failed(f"a spec file is derived first, which needs the derivation stack ({exc}): pip install "
                       "'wristkin[derive]'", EXIT_FAILED) from exc
     try:
-        name = own_robot.load(path, free=free, stages="interpreted").NAME  # the name alone: no stages derived
+        name = own_robot.description(path, free=free).NAME  # the name alone: nothing derived
         folder = Path(out) / "derived"
         solver = folder / "python" / f"{name}.py"
         if not solver.is_file():

@@ -102,8 +102,7 @@ def report(n: int = 100) -> str:
            "numpy <= 1 ms": sum(r["np_us"] <= 1000.0 for r in rows)}
     lines += ["", "Goals met (robots of " + str(len(rows)) + "): " + ", ".join(f"{k} {v}" for k, v in met.items())
               + ". The C time is mostly the deflated 16 x 16 eigenproblem (bench/profile_general6r.c). The rows are "
-              "the default modules, derived (one general6r stage): the interpreted ones run the same instruction count "
-              "(callgrind, tilted UR5e: 338.6M against 336.5M for 100 IKs), so these wall times move with the load."]
+              "the derived modules (one general6r stage); these wall times move with the load."]
     return "\n".join(lines)
 
 

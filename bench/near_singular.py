@@ -201,17 +201,15 @@ def missing(q, sets, delta, free):
     return best > allowance, best
 
 
-def bench_robot(spec: Path, derived: bool = False) -> dict:
-    """One robot's sweep; `derived`: its solvers derived with --stages derived (the same singular configurations:
-    the rng and the robot's FK are the same)."""
+def bench_robot(spec: Path) -> dict:
+    """One robot's sweep (its derived solvers; the singular configurations from a fixed rng and the robot's FK)."""
     from derive import own_robot
 
     out = Path(tempfile.mkdtemp(prefix="wk_near_"))
     name = _name(spec)
-    own_robot.derive(spec, out, name=spec.stem, free=FREE.get(name), stages="derived" if derived else "interpreted",
-                     progress=lambda _: None)
+    own_robot.derive(spec, out, name=spec.stem, free=FREE.get(name), progress=lambda _: None)
     m = own_robot.import_solver(out, spec.stem)
-    name = m.NAME + (" (derived)" if derived else "")
+    name = m.NAME
     rng = np.random.default_rng(20261126)
     rows = sweep_joints(m, rng)
     design = _design(m)
@@ -219,7 +217,7 @@ def bench_robot(spec: Path, derived: bool = False) -> dict:
     if _free(m) >= 0:
         random_q[:, _free(m)] = 0.0
     poses = [m.fk_matrix(q, design) for _, _, q in rows] + [m.fk_matrix(q, design) for q in random_q]
-    res = run_c(out, m.NAME, poses, params=not derived or _free(m) >= 0)
+    res = run_c(out, m.NAME, poses, params=_free(m) >= 0)
     c = read_c(res, len(poses), m.MAX_IK, m.N_JOINTS)
     median = float(np.median([r["ns"] for r in c[len(rows):]]))
     sweep_ns = np.array([r["ns"] for r in c[: len(rows)]])
@@ -242,8 +240,7 @@ def bench_robot(spec: Path, derived: bool = False) -> dict:
             d["py_missing"][f"{delta:.0e}"] = d["py_missing"].get(f"{delta:.0e}", 0) + 1
         if math.isfinite(c_err):
             d["worst"] = max(d["worst"], c_err * delta)
-    return {"robot": name, "decomposition": ("derived straight-line stages (--stages derived)" if derived else
-                                             m.DECOMPOSITION.split(":")[0]), "poses": len(rows),
+    return {"robot": name, "decomposition": m.DECOMPOSITION.split(":")[0], "poses": len(rows),
             "median_us": median / 1e3, "p99_over_median": float(np.percentile(sweep_ns, 99)) / median,
             "max_over_median": float(sweep_ns.max()) / median,
             "c_missing": sum(sum(d["c_missing"].values()) for d in by_joint.values()),
@@ -251,15 +248,10 @@ def bench_robot(spec: Path, derived: bool = False) -> dict:
 
 
 def report(names=None, json_path: Path = ROOT / "build" / "bench" / "near_singular.json") -> str:
-    from own_robots import DERIVED_ROBOTS  # bench/own_robots.py: the robots --stages derived covers
-
     chosen = [p for p in specs() if names is None or _name(p) in names]
-    rows = [bench_robot(p) for p in chosen] + [bench_robot(p, derived=True) for p in chosen
-                                               if p.stem in DERIVED_ROBOTS or p in (GENERAL_SPEC, SPATIAL3_SPEC,
-                                                                                    SP6_SPEC)]
-    lines = [f"Near-singular sweeps (the plain rows `--stages interpreted`, the \"(derived)\" rows the derived stages, "
-             "the default where they cover the robot): each joint's singular configurations (det J = 0, found by "
-             "bisection) moved off "
+    rows = [bench_robot(p) for p in chosen]
+    lines = ["Near-singular sweeps (every robot's derived stages): each joint's singular configurations (det J = 0, "
+             "found by bisection) moved off "
              f"by +-delta, delta = {', '.join(f'{d:.0e}' for d in DELTAS)} rad (machine: "
              f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores):", "",
              "| robot | decomposition | poses | generating joints missing C / numpy | "

@@ -10,9 +10,7 @@ arm angle as the parameter, solved at 0.3 rad):
                 with its 100 round trips), one run; IKFast's published generation times (16 s to 950 s per robot,
                 UR5 55 min, some never finish) are quoted, not measured here
 * wristkin py   the emitted Python solver's ik(T) (numpy / math only), best of 3, microseconds per call
-* wristkin C    the emitted C solver called in a C loop (bench/bench_chain.c, -O2), best of 5
-* (derived)     the robots --stages derived covers, derived that way: straight-line stages instead of the plan
-                interpreter, timed on the same poses, against the interpreted row's peers
+* wristkin C    the emitted C solver (its derived straight-line stages) called in a C loop (-O2), best of 5
 * EAIK          eaik.IK_HP.HPRobot(H, P) (its own decomposition from the same axes), ik(T) from Python
 * ik-geo        ik_geo.Robot.<family>(H, P) chosen by the decomposition wristkin found (6R only)
 
@@ -43,8 +41,6 @@ ROBOTS = ROOT / "tests" / "robots"
 FREE = {"iiwa14": "a3"}
 ARM_ANGLE_ROBOTS = ("iiwa14",)  # also benched with --redundancy arm-angle
 ARM_ANGLE = 0.3  # rad: the arm angle every such pose is solved at
-# also benched with --stages derived (the robots it covers; the calibrated KR 6 only with --stages derived)
-DERIVED_ROBOTS = ("irb120", "kr6", "lrmate", "tx2_60", "ur5e", "kr6_calibrated", "iiwa14", "youbot", "scara")
 C_FLAGS = ["-std=c99", "-O2", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 
 
@@ -181,7 +177,7 @@ int main(int argc, char **argv) {
 
 
 def c_loop(out: Path, name: str, poses, free_value, params: bool = True) -> float | None:
-    """`params`: the solver takes the held value as its design (the interpreted chain); else its defaults."""
+    """`params`: the solver takes the held value (or the arm angle) as its design; else its defaults (NULL)."""
     src = out / "c" / "bench_main.c"
     src.write_text(BENCH_C.replace("NAME", name).replace("PARAMS", "free_value" if params else "NULL"))
     exe = out / "c" / "bench"
@@ -198,39 +194,32 @@ def c_loop(out: Path, name: str, poses, free_value, params: bool = True) -> floa
     return float(run.stdout.split()[0]) if run.returncode == 0 else None
 
 
-def bench_robot(urdf: Path, n: int, arm_angle: bool = False, derived: bool = False) -> dict:
-    """One robot's row; `arm_angle`: derived with --redundancy arm-angle and solved at arm angle ARM_ANGLE for every
-    pose (8 sets each; no peer has this IK); `derived`: with --stages derived (straight-line stages, its design the
-    table's lengths at their defaults, a held joint's value), on the same poses as the interpreted row (the peers are
-    timed there)."""
+def bench_robot(urdf: Path, n: int, arm_angle: bool = False) -> dict:
+    """One robot's row (its design the table's lengths at their defaults, or a held joint's value); `arm_angle`:
+    derived with --redundancy arm-angle and solved at arm angle ARM_ANGLE for every pose (8 sets each; no peer has
+    this IK). The peers are timed on the same poses."""
     from derive import own_robot
 
     robot = urdf.stem
     out = Path(tempfile.mkdtemp(prefix=f"wk_bench_{robot}_"))
     t0 = time.perf_counter()
-    stages = "derived" if derived else "interpreted"
     if arm_angle:
-        own_robot.derive(urdf, out, redundancy="arm-angle", stages=stages, progress=lambda _: None)
+        own_robot.derive(urdf, out, redundancy="arm-angle", progress=lambda _: None)
     else:
-        own_robot.derive(urdf, out, free=FREE.get(robot), stages=stages, progress=lambda _: None)
+        own_robot.derive(urdf, out, free=FREE.get(robot), progress=lambda _: None)
     derive_s = time.perf_counter() - t0
     m = own_robot.import_solver(out, robot)
     rng = np.random.default_rng(7)
     joints = rng.uniform(-math.pi, math.pi, (n, m.N_JOINTS))
     free_value = ARM_ANGLE if arm_angle else 0.0
-    held = getattr(m, "_FREE", -1)  # the held joint (both kinds of module take its value as the design)
+    held = m._FREE  # the held joint (its value is the design)
     if held >= 0:
         joints[:, held] = free_value
     design = [free_value] if held >= 0 or arm_angle else None
     poses = [m.fk_matrix(q, design) for q in joints]
     ours = [m.ik(T, design).count for T in poses]
     py_us = per_call(lambda T: m.ik(T, design), poses[: min(n, 100)], 3, warmup=5) * 1e6
-    c_us = c_loop(out, robot, poses, free_value, params=not derived or held >= 0 or arm_angle)
-    if derived:
-        return {"robot": robot + (" (arm angle)" if arm_angle else "") + " (derived)",
-                "decomposition": "derived straight-line stages (--stages derived)",
-                "derive_s": derive_s, "py_us": py_us, "c_us": c_us, "sets": sum(ours) / len(ours),
-                "peers": {}, "n": n}
+    c_us = c_loop(out, robot, poses, free_value, params=held >= 0 or arm_angle)
     if arm_angle:
         peers = {k: {"note": "no arm-angle IK"} for k in ("EAIK", "ik-geo")}
         robot += " (arm angle)"
@@ -253,8 +242,6 @@ def report(n: int = 200, json_path: Path = ROOT / "build" / "bench" / "own_robot
     first); the numbers also go to `json_path`."""
     rows = [bench_robot(p, n) for p in sorted(ROBOTS.glob("*/*.urdf"))]
     rows += [bench_robot(ROBOTS / r / f"{r}.urdf", n, arm_angle=True) for r in ARM_ANGLE_ROBOTS]
-    rows += [bench_robot(ROBOTS / r / f"{r}.urdf", n, derived=True) for r in DERIVED_ROBOTS]
-    rows += [bench_robot(ROBOTS / r / f"{r}.urdf", n, arm_angle=True, derived=True) for r in ARM_ANGLE_ROBOTS]
     versions = {}
     for mod in ("eaik", "ik_geo"):
         try:
@@ -263,33 +250,22 @@ def report(n: int = 200, json_path: Path = ROOT / "build" / "bench" / "own_robot
             versions[mod] = version(mod.replace("_", "-"))
         except Exception:  # noqa: BLE001
             versions[mod] = "not installed"
-    lines = [f"Your own robots: `wristkin derive` on each test robot's URDF, {n} poses each; the plain rows with "
-             "`--stages interpreted` (the plan interpreter), the \"(derived)\" rows with the derived straight-line "
-             "stages, the default for the robots they cover (machine: "
+    lines = [f"Your own robots: `wristkin derive` on each test robot's URDF (its IK derived as straight-line "
+             f"stages), {n} poses each (machine: "
              f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores, Python "
              f"{platform.python_version()}; peers: EAIK {versions['eaik']}, ik-geo {versions['ik_geo']}):", "",
-             "| robot | C loop / EAIK | decomposition | derive s | IK sets/pose | wristkin C loop us | "
+             "| robot | C loop / EAIK | Python / EAIK | decomposition | derive s | IK sets/pose | wristkin C loop us | "
              "EAIK us (Python) | ik-geo us (Python) | wristkin Python us | peers' sets equal / N |",
-             "|---|---:|---|---:|---:|---:|---:|---:|---:|---|"]
-    interpreted = {r["robot"]: r for r in rows}
+             "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|"]
     for r in rows:
-        if r["robot"].endswith(" (derived)"):  # the peers as timed on the interpreted row's same poses
-            twin = interpreted[r["robot"].removesuffix(" (derived)")]
-            e, g = twin["peers"]["EAIK"], twin["peers"]["ik-geo"]
-            ratio = r["c_us"] / e["us"] if r["c_us"] and e.get("us") else None
-            py_ratio = r["py_us"] / e["us"] if e.get("us") else None
-            lines.append(f"| {r['robot']} | {_f(ratio, '{:.2f}x')} | {r['decomposition']}; Python / EAIK "
-                         f"{_f(py_ratio, '{:.2f}x')}; interpreted C loop {_f(twin['c_us'])} us | "
-                         f"{r['derive_s']:.1f} | {r['sets']:.2f} | {_f(r['c_us'])} | {_f(e.get('us'))} | "
-                         f"{_f(g.get('us'))} | {r['py_us']:.1f} | the interpreted row's peers, same poses |")
-            continue
         e, g = r["peers"]["EAIK"], r["peers"]["ik-geo"]
         ratio = r["c_us"] / e["us"] if r["c_us"] and e.get("us") else None
+        py_ratio = r["py_us"] / e["us"] if e.get("us") else None
         same = "; ".join(f"{k} {p['same_counts']}/{r['n']} (err {p['err']:.0e})" if "same_counts" in p else
                          f"{k}: {p['note']}" for k, p in r["peers"].items())
-        lines.append(f"| {r['robot']} | {_f(ratio, '{:.2f}x')} | {r['decomposition']} | {r['derive_s']:.1f} | "
-                     f"{r['sets']:.2f} | {_f(r['c_us'])} | {_f(e.get('us'))} | {_f(g.get('us'))} | "
-                     f"{r['py_us']:.0f} | {same} |")
+        lines.append(f"| {r['robot']} | {_f(ratio, '{:.2f}x')} | {_f(py_ratio, '{:.2f}x')} | {r['decomposition']} | "
+                     f"{r['derive_s']:.1f} | {r['sets']:.2f} | {_f(r['c_us'])} | {_f(e.get('us'))} | "
+                     f"{_f(g.get('us'))} | {r['py_us']:.1f} | {same} |")
     json_path.parent.mkdir(parents=True, exist_ok=True)
     json_path.write_text(json.dumps({"versions": versions, "rows": rows}, indent=2, default=str))
     return "\n".join(lines)

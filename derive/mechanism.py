@@ -90,8 +90,8 @@ class MechanismDefaults:
 
 @runtime_checkable
 class RobotDescription(Protocol):
-    """A user's robot as a family reads it (a URDF, DH table or POE chain): no solver of its own. `wristkin derive`
-    hands its robot_table() to the family with from_table, which derives the robot's stages."""
+    """A user's robot as a family reads it (a URDF, a DH table or a POE description): no solver of its own.
+    `wristkin derive` hands its robot_table() to the family with from_table, which derives the robot's stages."""
 
     NAME: str
 

@@ -36,7 +36,7 @@ def load(source: str | Path, name=None, base=None, tip=None, free=None, geometry
 
 def description(source: str | Path, name=None, base=None, tip=None, free=None, geometry_tol=None, xacro_args=None,
                 packages=None, redundancy=None):
-    """What the family reads from the source before anything is derived: a robot description (its chain, its
+    """What the family reads from the source before anything is derived: a robot description (its joints, its
     planned decomposition, its robot_table) or a catalogue mechanism."""
     path = Path(source)
     readers = [f for f in FAMILIES.values() if path.suffix.lower() in f.SOURCE_SUFFIXES]

@@ -27,6 +27,13 @@ def compiler() -> str:
     return cc
 
 
+def sanitizer_available() -> bool:
+    """The compiler links ASan / UBSan (some toolchains ship without their runtimes)."""
+    probe = subprocess.run([compiler(), "-fsanitize=address,undefined", "-x", "c", "-", "-o", "/dev/null"],
+                           input="int main(void){return 0;}", capture_output=True, text=True)
+    return probe.returncode == 0
+
+
 def compile_shared(sources: list[Path], include_dirs: list[Path] = (), name: str = "lib",
                    extra_flags: list[str] = ()) -> Path:
     """Build a shared library from `sources`; cached by a hash of inputs and flags."""

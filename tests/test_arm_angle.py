@@ -28,19 +28,14 @@ IIWA = ROBOTS / "iiwa14" / "iiwa14.urdf"
 _CACHE: dict = {}
 
 
-def solver(stages="auto"):
-    """(C-backed module, numpy module, folder) of the iiwa14 at its arm angle: `stages` auto (the derived stages: its
-    arm_angle stage, the default) or interpreted (the plan interpreter's arm_angle op); one core serves both."""
-    if stages not in _CACHE:
-        out = Path(tempfile.mkdtemp(prefix=f"wk_arm_angle_{stages}_"))
-        own_robot.derive(IIWA, out, name="iiwa_psi", redundancy="arm-angle", stages=stages, progress=lambda _: None)
-        _CACHE[stages] = (own_robot.import_solver(out, "iiwa_psi"),
+def solver():
+    """(C-backed module, numpy module, folder) of the iiwa14 at its arm angle (its derived arm_angle stage)."""
+    if "iiwa" not in _CACHE:
+        out = Path(tempfile.mkdtemp(prefix="wk_arm_angle_"))
+        own_robot.derive(IIWA, out, name="iiwa_psi", redundancy="arm-angle", progress=lambda _: None)
+        _CACHE["iiwa"] = (own_robot.import_solver(out, "iiwa_psi"),
                           own_robot.import_solver(out, "iiwa_psi", backend="numpy"), out)
-    return _CACHE[stages]
-
-
-# every solver test on both paths: the derived module (the default) and the interpreted one
-PATHS = pytest.mark.parametrize("stages", ("auto", "interpreted"))
+    return _CACHE["iiwa"]
 
 
 def _common_point(points, axes):
@@ -91,10 +86,10 @@ def multistart(chain, T, psi, seed, starts=60):
 def test_an_srs_arm_is_solved_at_its_arm_angle():
     """Random poses of the iiwa14 at the arm angle of the joints that made them: the generating joints among the
     sets, every set reaching the pose on the URDF's own transforms at that arm angle (read geometrically), and the
-    sets equal to the multistart reference's (none missing, none spurious), in C and on numpy, on both paths (one
-    test: the reference's solutions, ~20 s of LM, are the pose's and serve both)."""
+    sets equal to the multistart reference's (none missing, none spurious), in C and on numpy (one test: the
+    reference's solutions, ~10 s of LM, serve both)."""
     chain = ref.load(IIWA)
-    mods = [solver(stages)[:2] for stages in ("auto", "interpreted")]
+    mods = [solver()[:2]]
     for m, _ in mods:
         if os.environ.get("WRISTKIN_BACKEND") != "numpy":  # make test-portable runs the numpy fallback
             assert m.BACKEND == "c"
@@ -120,10 +115,9 @@ def test_an_srs_arm_is_solved_at_its_arm_angle():
                     assert min(_gap(f, v) for v in sets) < 1e-6
 
 
-@PATHS
-def test_any_arm_angle_gives_eight_sets_with_the_elbow_there(stages):
+def test_any_arm_angle_gives_eight_sets_with_the_elbow_there():
     """One pose, the arm angle swept over the circle: every set reaches the pose at that arm angle, 8 of them."""
-    m, py, _ = solver(stages)
+    m, py, _ = solver()
     chain = ref.load(IIWA)
     q = case_rng(2301).uniform(-2.0, 2.0, 7)
     T = chain(q)
@@ -136,12 +130,11 @@ def test_any_arm_angle_gives_eight_sets_with_the_elbow_there(stages):
                 assert abs(math.remainder(reference_angle(chain, v) - psi, 2 * math.pi)) < 1e-9
 
 
-@PATHS
-def test_the_arm_angle_singularities_are_flagged(stages):
+def test_the_arm_angle_singularities_are_flagged():
     """The wrist centre on the first axis (the reference plane undefined): valid sets, status indeterminate. The arm
     stretched (the elbow on the shoulder-wrist line: every arm angle is that configuration): the sets flagged
     singular."""
-    m, py, _ = solver(stages)
+    m, py, _ = solver()
     chain = ref.load(IIWA)
     for mod in (m, py):
         q = np.array([0.3, 0.2, 0.4, 1.2, 0.0, -1.2, 0.5])  # a regular configuration next to them
@@ -158,10 +151,9 @@ def test_the_arm_angle_singularities_are_flagged(stages):
         assert min(_gap(v, q) for v in s.values[s.valid]) < 1e-9
 
 
-@PATHS
-def test_the_c_verb_reads_the_arm_angle_as_python_does(tmp_path, stages):
+def test_the_c_verb_reads_the_arm_angle_as_python_does(tmp_path):
     """wk_NAME_arm_angle (the C header's verb) equals the module's arm_angle and the reference's."""
-    m, _, out = solver(stages)
+    m, _, out = solver()
     chain = ref.load(IIWA)
     rng = case_rng(2302)
     qs = rng.uniform(-math.pi, math.pi, (20, 7))
@@ -197,9 +189,8 @@ def test_arms_that_are_no_s_r_s_are_refused_with_the_reason(tmp_path):
         own_robot.load(IIWA, free="a3", redundancy="arm-angle")
 
 
-@PATHS
-def test_the_module_command_takes_the_arm_angle(tmp_path, stages):
-    m, _, out = solver(stages)
+def test_the_module_command_takes_the_arm_angle(tmp_path):
+    m, _, out = solver()
     chain = ref.load(IIWA)
     q = case_rng(2303).uniform(-2.0, 2.0, 7)
     psi = m.arm_angle(q)
@@ -214,19 +205,18 @@ def test_the_module_command_takes_the_arm_angle(tmp_path, stages):
     assert len(sets) == 8 and min(_gap(v, q) for v in sets) < 1e-9
 
 
-@PATHS
-def test_the_arm_angle_solver_is_clean_under_asan_ubsan(stages):
-    """The sanitizer driver of every chain solver (tests/c/chain_sanitize.c: random, special and hostile inputs, every
-    returned set reproducing the pose) on the arm-angle solver, at arm angle 0.4."""
-    from cbuild import SANITIZE_FLAGS, compile_executable
-    from test_chain_c import CHAIN_SANITIZE, _sanitizer_available
+def test_the_arm_angle_solver_is_clean_under_asan_ubsan():
+    """The sanitizer driver of a one-parameter own-robot solver (tests/c/own_robot_sanitize.c: random, special and
+    hostile inputs, every returned set reproducing the pose) on the arm-angle solver, at arm angle 0.4."""
+    from cbuild import SANITIZE_FLAGS, compile_executable, sanitizer_available
 
-    if not _sanitizer_available():
+    if not sanitizer_available():
         pytest.skip("compiler has no ASan/UBSan runtime")
-    m, _, out = solver(stages)
+    m, _, out = solver()
     cdir = out / "c"
     flags = [*SANITIZE_FLAGS, "-DMECH=iiwa_psi", '-DMECH_H="iiwa_psi.h"', f"-DN={m.N_JOINTS}", f"-DMAX_IK={m.MAX_IK}"]
-    exe = compile_executable([CHAIN_SANITIZE, cdir / "iiwa_psi.c", cdir / "wristkin_runtime.c"], [cdir],
+    driver = Path(__file__).parent / "c" / "own_robot_sanitize.c"
+    exe = compile_executable([driver, cdir / "iiwa_psi.c", cdir / "wristkin_runtime.c"], [cdir],
                              "chain_iiwa_psi_sanitize", extra_flags=flags)
     run = subprocess.run([str(exe)], capture_output=True, text=True, timeout=300,
                          env={"ASAN_OPTIONS": "detect_leaks=1:abort_on_error=1",
@@ -235,15 +225,14 @@ def test_the_arm_angle_solver_is_clean_under_asan_ubsan(stages):
     assert "runtime error" not in run.stderr and "AddressSanitizer" not in run.stderr
 
 
-@PATHS
-def test_near_its_singularities_the_generating_joints_are_returned(stages):
+def test_near_its_singularities_the_generating_joints_are_returned():
     """The elbow nearly stretched (q4 = +-delta: the distance reads it only to sqrt(eps), and the merged root stood
     for one side of the line, the shoulder and wrist a half turn off the other side's joints: 5 of 10 poses missed
     at delta <= 1e-8), the wrist (q6) and the shoulder (q2 lines up a1 and a3) near their families: the generating
     joints within the conditioning allowance 1e-6 + 1e-13 / delta (a pose rounded to eps moves the joints along
     the near-null direction by ~eps / sigma_min), down to 1e-10 (at 1e-12 the families' bands stand in, as for
     every robot: README, Known defects), in C and on numpy."""
-    m, py, _ = solver(stages)
+    m, py, _ = solver()
     chain = ref.load(IIWA)
     rng = case_rng(2304)
     for joint in (3, 5, 1):
@@ -258,11 +247,10 @@ def test_near_its_singularities_the_generating_joints_are_returned(stages):
                     assert min(_gap(v, q) for v in s.values[s.valid]) <= 1e-6 + 1e-13 / delta, (joint, delta, k)
 
 
-@PATHS
-def test_the_sets_are_named_by_their_branches(stages):
+def test_the_sets_are_named_by_their_branches():
     """BRANCHES names the elbow's and the shoulder's choice (their joints' signs) and the wrist's; the 8 sets of a
     regular pose carry the 8 combinations, and select(branch=...) picks the one asked for."""
-    m, _, _ = solver(stages)
+    m, _, _ = solver()
     assert m.BRANCHES == {"elbow": ["positive", "negative"], "shoulder": ["positive", "negative"],
                           "wrist": ["noflip", "flip"]}
     q = case_rng(2305).uniform(-2.0, 2.0, 7)
@@ -277,22 +265,21 @@ def test_the_sets_are_named_by_their_branches(stages):
         assert (v[3] >= 0) == (want["elbow"] == "positive") and (v[1] >= 0) == (want["shoulder"] == "positive")
 
 
-@PATHS
-def test_description_files_as_shipped(tmp_path, stages):
+def test_description_files_as_shipped(tmp_path):
     """pybullet's iiwa (kuka_iiwa/model.urdf as shipped: its axes 5e-13 off an exact S-R-S arm, from rounded
-    angles) is solved at its arm angle, polished on its true axes (was refused: only an exact arm was taken); the
+    angles) is solved at its arm angle on its ideal table (the end frame's difference bounded in the audit); the
     ROS-Industrial kuka_lbr_iiwa xacro, whose joint a2 and a3 stand 0.44 mm off axis a1, is refused naming the
     shoulder (the arm angle would be read 1e-3 rad off: hold a joint instead)."""
     import pybullet_data
     import rtbdata
 
     urdf = Path(pybullet_data.getDataPath()) / "kuka_iiwa" / "model.urdf"
-    own_robot.derive(urdf, tmp_path, name="pb_iiwa", redundancy="arm-angle", stages=stages, progress=lambda _: None)
+    own_robot.derive(urdf, tmp_path, name="pb_iiwa", redundancy="arm-angle", progress=lambda _: None)
     m = own_robot.import_solver(tmp_path, "pb_iiwa")
     py = own_robot.import_solver(tmp_path, "pb_iiwa", backend="numpy")
-    # the interpreter polishes on the true axes; the derived stages take 5e-13 as the numbers' rounding (its ideal
-    # table, the end frame's difference bounded in the audit's description step)
-    assert m.CALIBRATED == (stages == "interpreted")
+    # the stages take 5e-13 as the numbers' rounding (the ideal table, the end frame's difference bounded in the
+    # audit's description step): not a calibrated robot
+    assert not m.CALIBRATED
     rng = case_rng(2306)
     for _ in range(10):
         q = rng.uniform(-math.pi, math.pi, 7)

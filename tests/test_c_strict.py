@@ -7,19 +7,13 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from cbuild import RUNTIME_C, SANITIZE_FLAGS, compile_executable, compiler
+from cbuild import RUNTIME_C, SANITIZE_FLAGS, compile_executable, compiler, sanitizer_available
 
 ROOT = Path(__file__).resolve().parent.parent
 C_DIR = ROOT / "generated" / "c"
 
 
-def _sanitizer_available() -> bool:
-    probe = subprocess.run([compiler(), "-fsanitize=address,undefined", "-x", "c", "-", "-o", "/dev/null"],
-                           input="int main(void){return 0;}", capture_output=True, text=True)
-    return probe.returncode == 0
-
-
-@pytest.mark.skipif(not _sanitizer_available(), reason="compiler has no ASan/UBSan runtime")
+@pytest.mark.skipif(not sanitizer_available(), reason="compiler has no ASan/UBSan runtime")
 def test_generated_c_is_clean_under_asan_ubsan():
     exe = compile_executable([ROOT / "tests" / "c" / "uw_sanitize.c", C_DIR / "underactuated_wrist.c", RUNTIME_C],
                              [C_DIR], "uw_sanitize", extra_flags=SANITIZE_FLAGS)
@@ -33,7 +27,7 @@ def test_generated_c_is_clean_under_asan_ubsan():
 SERIAL = ["puma560", "rpp_wrist", "scara_wrist", "spherical_wrist", "wrist_1dof", "p1p2p3rarb", "rarararbrb"]
 
 
-@pytest.mark.skipif(not _sanitizer_available(), reason="compiler has no ASan/UBSan runtime")
+@pytest.mark.skipif(not sanitizer_available(), reason="compiler has no ASan/UBSan runtime")
 @pytest.mark.parametrize("name", SERIAL)
 def test_serial_chains_are_clean_under_asan_ubsan(name):
     n_joints = importlib.import_module(f"wristkin.{name}").N_JOINTS
@@ -53,7 +47,7 @@ def test_generated_c_compiles_with_strict_flags_as_a_unit():
                         "-o", "/dev/null", f"-I{C_DIR}"], check=True, capture_output=True, text=True)
 
 
-@pytest.mark.skipif(not _sanitizer_available(), reason="compiler has no ASan/UBSan runtime")
+@pytest.mark.skipif(not sanitizer_available(), reason="compiler has no ASan/UBSan runtime")
 def test_rsr_wrist_and_hybrid_are_clean_under_asan_ubsan():
     exe = compile_executable([ROOT / "tests" / "c" / "rsr_sanitize.c", C_DIR / "rsr_wrist.c", C_DIR / "scara_rsr.c",
                               RUNTIME_C],

@@ -243,19 +243,15 @@ def test_a_calibrated_arm_is_solved_on_ideal_axes_and_polished_on_the_true_ones(
 
 def test_an_srs_arm_s_held_elbow_is_planned_as_a_self_motion_and_never_picked():
     """The iiwa14 with its elbow a4 held: the spherical shoulder turns the arm about the shoulder-wrist line and the
-    spherical wrist undoes it, so every reachable pose has infinitely many solutions. Was: a solver whose
-    decomposition (a general 3R for the wrist centre) reported every such pose unreachable (20 of 20 generating
-    poses); then refused. Now planned as the held elbow (the shoulder at previous's arm angle, then the wrist: the
-    derived stages solve it, tests/test_derived_robot.py), which the plan interpreter refuses with the reason; listed
-    last among the choices and never picked without --free (its poses are only those at the elbow's reach)."""
+    spherical wrist undoes it, so every reachable pose has infinitely many solutions. It is planned as the held
+    elbow (the shoulder at previous's arm angle, then the wrist: the derived stages solve it,
+    tests/test_derived_robot.py), listed last among the choices and never picked without --free (its poses are only
+    those at the elbow's reach)."""
     from derive.families.chain import workable_free_joints
-    from derive.model import NoDecomposition
 
-    held = own_robot.load(_file("iiwa14", "urdf"), free="a4", stages="interpreted")
+    held = own_robot.description(_file("iiwa14", "urdf"), free="a4")
     assert held.held_elbow and [op["op"] for op in held.plan()[0].ops] == ["begin", "held_elbow", "orient"]
-    with pytest.raises(NoDecomposition, match="self-motion, which the derived stages solve"):
-        held.derive()
-    mech = own_robot.load(_file("iiwa14", "urdf"), stages="interpreted")
+    mech = own_robot.description(_file("iiwa14", "urdf"))
     choices = workable_free_joints(mech.NAME, mech.title, mech.desc)
     assert choices[-1] == "a4" and {"a1", "a3", "a5", "a7"} <= set(choices)
     assert mech.desc.free != 3 and not mech.held_elbow
@@ -266,7 +262,7 @@ def test_a_tolerance_below_the_deviation_leaves_the_general_6r():
     is then solved by elimination on its true axes, with nothing idealised."""
     from derive.kinematics.planner import NoClosedForm, find_plan
 
-    mech = own_robot.load(_file("kr6_calibrated", "urdf"), geometry_tol=1e-9, stages="interpreted")
+    mech = own_robot.description(_file("kr6_calibrated", "urdf"), geometry_tol=1e-9)
     with pytest.raises(NoClosedForm, match="a2/a3"):
         find_plan(mech.solver_chain(mech.chain), 1e-9)
     plan, ideal = mech.plan()
@@ -380,18 +376,15 @@ def test_bad_input_is_a_typed_error():
 
 
 # ------------------------------------------------------------------------------------------------ the command
-@pytest.mark.parametrize("stages", [None, "interpreted"])
-def test_the_command_writes_importable_solvers_and_an_audit(stages, tmp_path):
-    """By default a robot the derived stages cover gets them (the command says so); --stages interpreted the plan
-    interpreter. Either way: importable, linted Python, C, CasADi and an audit naming the decomposition."""
+def test_the_command_writes_importable_solvers_and_an_audit(tmp_path):
+    """The command derives the robot's stages: importable, linted Python, C, CasADi and an audit naming the
+    decomposition and its first stage."""
     env = {**os.environ, "PYTHONPATH": str(Path(__file__).parent.parent)}
     cmd = [sys.executable, "-m", "derive.cli", "derive", str(_file("ur5e", "urdf")), "--out", str(tmp_path),
-           "--name", "my_ur", *(["--stages", stages] if stages else [])]
+           "--name", "my_ur"]
     done = subprocess.run(cmd, capture_output=True, text=True, env=env, check=False)
     assert done.returncode == 0, done.stderr
     assert "wrote" in done.stdout
-    assert ("IK: the plan interpreter (--stages interpreted)" if stages else "IK: derived straight-line stages") \
-        in done.stdout
     for rel in ("python/my_ur.py", "python/_wristkin_runtime.py", "c/my_ur.h", "c/my_ur.c", "casadi/my_ur.casadi",
                 "audit/my_ur.md"):
         assert (tmp_path / rel).is_file(), rel
@@ -401,7 +394,7 @@ def test_the_command_writes_importable_solvers_and_an_audit(stages, tmp_path):
     assert lint.returncode == 0, lint.stdout  # generated code passes ruff (the project's settings)
     report = (tmp_path / "audit" / "my_ur.md").read_text()
     assert "three parallel axes" in report
-    assert ("Subproblem formula" if stages else "IK stage 1: angle shoulder_pan_joint") in report
+    assert "IK stage 1: angle shoulder_pan_joint" in report
     probe = ("import sys; sys.path.insert(0, sys.argv[1]); import my_ur; import numpy as np; "
              "print(my_ur.ik(my_ur.fk_matrix([0.1, -1, 1, 0.2, 0.3, 0.4])).count)")
     run = subprocess.run([sys.executable, "-S", "-c", probe, str(tmp_path / "python")], capture_output=True,
@@ -534,7 +527,7 @@ def test_a_wrist_at_the_base_is_solved_from_the_tool(tmp_path):
     """The KR6 read backwards (its spherical wrist at the base): the planner reverses the chain."""
     from derive.kinematics.poe import reverse
 
-    kr6 = own_robot.load(_file("kr6", "poe"), stages="interpreted").chain
+    kr6 = own_robot.description(_file("kr6", "poe")).chain
     back = reverse(kr6)
     r = back.home[:3, :3]
     rpy = [math.atan2(r[2, 1], r[2, 2]), -math.asin(r[2, 0]), math.atan2(r[1, 0], r[0, 0])]
@@ -557,33 +550,28 @@ def test_a_wrist_at_the_base_is_solved_from_the_tool(tmp_path):
 
 def test_a_general_3r_arm_is_solved_by_its_polynomial(tmp_path):
     """No two of the first three axes meet or are parallel: no invariant separates them, so their joints come
-    from every real root of a degree-8 polynomial (subproblem 5 in effect); the sets equal the reference's. Both
-    paths, in one test (the reference's solutions serve both): the derived spatial3 stage (the default: its twists
-    off the 5-degree grid stay numbers) and the interpreter's spatial3 op."""
+    from every real root of a degree-8 polynomial (subproblem 5 in effect): the derived spatial3 stage (its twists
+    off the 5-degree grid stay numbers); the sets equal the reference's."""
     spec = tmp_path / "skew3.toml"
     spec.write_text(poe_spec("skew3", "general 3R arm + wrist", **SKEW3))
-    mods = []
-    for stages in ("auto", "interpreted"):
-        derived_cache.derive(spec, tmp_path / stages, native=False, stages=stages)
-        mods.append(own_robot.import_solver(tmp_path / stages, "skew3"))
-    derived, interpreted = mods
-    assert derived.MAX_IK == interpreted.MAX_IK == 8 and "spatial3" in repr(interpreted._PLAN)
-    assert "return _spatial3_stage(_k_stage1," in (tmp_path / "auto" / "python" / "skew3.py").read_text()
+    derived_cache.derive(spec, tmp_path / "out", native=False)
+    m = own_robot.import_solver(tmp_path / "out", "skew3")
+    assert m.MAX_IK == 8
+    assert "return _spatial3_stage(_k_stage1," in (tmp_path / "out" / "python" / "skew3.py").read_text()
     r = ref.load(spec)
     rng = case_rng(22)
     for k in range(20):
         q = rng.uniform(-math.pi, math.pi, 6)
         T = r(q)
-        found = ref.ik_all(r, 6, T, seed=k) if k < 4 else None
-        for m in mods:
-            sol = m.ik(T)
-            assert min(_gap(v, q, m.JOINT_KINDS) for v in sol) < 1e-7
-            for v in sol:
-                assert np.max(np.abs(m.fk_matrix(v) - T)) <= m.IK_VERIFY_TOL
-            if found is not None:
-                assert len(found) == sol.count
-                for v in found:
-                    assert min(_gap(v, w, m.JOINT_KINDS) for w in sol) < 1e-6
+        sol = m.ik(T)
+        assert min(_gap(v, q, m.JOINT_KINDS) for v in sol) < 1e-7
+        for v in sol:
+            assert np.max(np.abs(m.fk_matrix(v) - T)) <= m.IK_VERIFY_TOL
+        if k < 4:
+            found = ref.ik_all(r, 6, T, seed=k)
+            assert len(found) == sol.count
+            for v in found:
+                assert min(_gap(v, w, m.JOINT_KINDS) for w in sol) < 1e-6
 
 
 def test_a_ur_wrist_singularity_is_never_empty():
@@ -604,11 +592,9 @@ def test_a_ur_wrist_singularity_is_never_empty():
 
 
 # the URDF solver runs the C (the folder's extension), DH numpy; the offset wrist's (subproblem 6) has DH only, and
-# its C is compared with its numpy near the singularity in test_chain_c (interpreted) and test_derived_robot (derived)
-@pytest.mark.parametrize(("robot", "fmt", "stages"), (("ur5e", "urdf", "auto"), ("ur5e", "dh", "auto"),
-                                                      ("ur5e_offset", "dh", "auto"),
-                                                      ("ur5e_offset", "dh", "interpreted")))
-def test_a_ur_near_its_wrist_singularity_is_never_empty(robot, fmt, stages):
+# its C is compared with its numpy near the singularity in test_derived_robot
+@pytest.mark.parametrize(("robot", "fmt"), (("ur5e", "urdf"), ("ur5e", "dh"), ("ur5e_offset", "dh")))
+def test_a_ur_near_its_wrist_singularity_is_never_empty(robot, fmt):
     """|q5| from 1e-7 to 1e-5: near, not at, the family. Within the double-root tolerance (|sin q5| <= 1e-6) the
     two wrist roots merge into one common vector on the group's axis, a family whose members need not reproduce a
     pose that is not singular (12 of 200 poses at |q5| = 1e-6 came back empty); the two roots are then taken
@@ -616,9 +602,8 @@ def test_a_ur_near_its_wrist_singularity_is_never_empty(robot, fmt, stages):
     (or resolves them only to sqrt(eps)): its roots are refined by Newton on subproblem 6's two equations, and a
     merged one that verifies nothing is split along them (9 of 200 poses at |q5| = 1e-6 had come back empty).
     Every returned set reproduces the pose through the independent reference's FK (the solver's acceptance
-    IK_VERIFY_TOL, plus 1e-12 for the two FKs' rounding). The offset wrist on both paths: its derived sp6 stage (the
-    default) and the plan interpreter."""
-    m, r = solver(robot, fmt, stages=stages), reference(robot, fmt)
+    IK_VERIFY_TOL, plus 1e-12 for the two FKs' rounding); the offset wrist's by its sp6 stage."""
+    m, r = solver(robot, fmt), reference(robot, fmt)
     rng = case_rng(24)
     for i in range(100):
         q = rng.uniform(-math.pi, math.pi, 6)
@@ -632,8 +617,6 @@ def test_a_ur_near_its_wrist_singularity_is_never_empty(robot, fmt, stages):
 
 # ------------------------------------------------------------------------------------------ offset wrist (subproblem 6)
 OFFSET = "ur5e_offset"  # the UR5e with a5 = 3 cm (tests/robots/ur5e_offset, DH only): axes 5 and 6 apart
-# both paths: the derived sp6 stage (--stages auto, the default) and the plan interpreter's sp6 op
-OFFSET_PATHS = pytest.mark.parametrize("stages", ("auto", "interpreted"))
 
 
 def _joint_tol(m, q) -> float:
@@ -645,15 +628,12 @@ def _joint_tol(m, q) -> float:
     return 10.0 * math.sqrt(6.0) * m.IK_VERIFY_TOL / max(float(s[-1]), 1e-300)
 
 
-@OFFSET_PATHS
-def test_offset_wrist_is_subproblem_6_and_fk_equals_the_reference(stages):
-    m, r = solver(OFFSET, "dh", stages=stages), reference(OFFSET, "dh")
+def test_offset_wrist_is_subproblem_6_and_fk_equals_the_reference():
+    m, r = solver(OFFSET, "dh"), reference(OFFSET, "dh")
     assert "offset wrist" in m.DECOMPOSITION and "subproblem 6" in m.DECOMPOSITION
     assert m.MAX_IK == 8  # a quartic in q1, two elbows each
-    if stages == "interpreted":
-        assert "sp6" in repr(m._PLAN)
-    else:  # the serial family's module, its first stage subproblem 6's
-        assert not hasattr(m, "_PLAN") and m._STAGES[0][0].__name__ == "_solve_stage1"
+    # the serial family's module, its first stage subproblem 6's
+    assert m._STAGES[0][0].__name__ == "_solve_stage1"
     rng = case_rng(24)
     for _ in range(20):
         q = rng.uniform(-math.pi, math.pi, 6)
@@ -662,9 +642,8 @@ def test_offset_wrist_is_subproblem_6_and_fk_equals_the_reference(stages):
         np.testing.assert_allclose(m.jacobian(q), r.jacobian(q), atol=1e-12 * _size(m))
 
 
-@OFFSET_PATHS
-def test_offset_wrist_ik_contains_the_generating_joints_and_every_set_reproduces_the_pose(stages):
-    m, r = solver(OFFSET, "dh", stages=stages), reference(OFFSET, "dh")
+def test_offset_wrist_ik_contains_the_generating_joints_and_every_set_reproduces_the_pose():
+    m, r = solver(OFFSET, "dh"), reference(OFFSET, "dh")
     rng = case_rng(25)
     counts = {}
     for _ in range(60):
@@ -679,12 +658,11 @@ def test_offset_wrist_ik_contains_the_generating_joints_and_every_set_reproduces
     assert counts.get(8, 0) >= 20, counts  # most random poses have all eight sets
 
 
-@OFFSET_PATHS
-def test_offset_wrist_sets_equal_the_multistart_reference(stages):
+def test_offset_wrist_sets_equal_the_multistart_reference():
     """None missed, none spurious: on regular poses (sigma_min / sigma_max > 1e-3) the sets equal every solution
     the numeric reference finds, to 1e-6 rad (the reference's dedup; it converges to 1e-10 in the pose, so its
     joints are good to ~1e-10 / sigma_min <= 1e-7 here)."""
-    m, r = solver(OFFSET, "dh", stages=stages), reference(OFFSET, "dh")
+    m, r = solver(OFFSET, "dh"), reference(OFFSET, "dh")
     rng = case_rng(26)
     for k in range(4):
         q = _regular_joints(m, rng)
@@ -696,13 +674,12 @@ def test_offset_wrist_sets_equal_the_multistart_reference(stages):
             assert min(_gap(v, w, m.JOINT_KINDS) for w in ours) < 1e-6
 
 
-@OFFSET_PATHS
-def test_offset_wrist_singularity_gives_the_generating_family(stages):
+def test_offset_wrist_singularity_gives_the_generating_family():
     """q5 = 0 or pi exactly: axis 6 parallel to axes 2, 3, 4, a one-parameter family (q6 against the group's
     sum) whose free angle also moves the wrist point. Without `previous` the family is still returned (flagged
     singular and indeterminate), with q1 and q5 of the generating configuration; with `previous` = the generating
     configuration, that configuration; with `previous` moved along the family, the member at its q6."""
-    m, r = solver(OFFSET, "dh", stages=stages), reference(OFFSET, "dh")
+    m, r = solver(OFFSET, "dh"), reference(OFFSET, "dh")
     rng = case_rng(27)
     for i in range(60):
         q = rng.uniform(-math.pi, math.pi, 6)
@@ -721,7 +698,7 @@ def test_offset_wrist_singularity_gives_the_generating_family(stages):
         assert min(_gap(sol.values[k][[0, 4]], q[[0, 4]], "RR") for k in family) < 1e-7
         # with `previous`: q6 taken from it, the rest from closed forms at that angle (the planar pair conditioned
         # by the elbow's margin above), so again rounding, not the singular Jacobian's conditioning
-        # (a set index's row: the derived module keeps each set at its branch word, the interpreter packs them)
+        # (a set index's row: the module keeps each set at its branch word)
         near = m.ik(T, previous=q)
         k = min(np.flatnonzero(near.valid), key=lambda i: _gap(near.values[i], q, m.JOINT_KINDS))
         assert _gap(near.values[k], q, m.JOINT_KINDS) < 1e-7 and near.flags[k] & m.FLAG_INDETERMINATE

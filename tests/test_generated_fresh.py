@@ -58,9 +58,9 @@ OWN_ROBOTS = {
     "ur5e_tilted_g6": (ROOT / "tests" / "robots" / "ur5e_tilted" / "ur5e_tilted_poe.toml",
                        {"name": "ur5e_tilted_g6", "free": None}),
     "panda_free1": (ROOT / "tests" / "robots" / "panda" / "panda_dh.toml",
-                    {"name": "panda_free1", "stages": "derived", "free": "joint1"}),
+                    {"name": "panda_free1", "free": "joint1"}),
     "kr6c": (ROOT / "tests" / "robots" / "kr6_calibrated" / "kr6_calibrated.urdf",
-             {"name": "kr6c", "stages": "derived", "native": True}),
+             {"name": "kr6c", "native": True}),
 }
 
 

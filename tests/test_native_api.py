@@ -5,11 +5,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import derived_cache
 import pytest
 
 from derive import own_robot
 from derive.catalogue import registry
-from derive.families.chain.mechanism import ChainMechanism
+from derive.mechanism import SERIAL_C_API
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -31,14 +32,12 @@ def test_the_catalogue_declares_the_verbs_its_header_has(name):
     assert {f: getattr(api, f) for f in api.__dataclass_fields__} == declared_in(header, name)
 
 
-@pytest.mark.parametrize("stages", ["interpreted", "derived"])
-def test_a_derived_robot_declares_the_verbs_its_header_has(stages, tmp_path):
-    """A user robot's module either way its IK runs: the plan interpreter's chain module or derived stages."""
+def test_a_derived_robot_declares_the_verbs_its_header_has(tmp_path):
+    """A user robot's module (its IK derived as straight-line stages): the serial family's verbs."""
     urdf = ROOT / "tests" / "robots" / "ur5e" / "ur5e.urdf"
-    own_robot.derive(urdf, tmp_path, name="ur", native=False, stages=stages, progress=lambda _: None)
-    api = own_robot.load(urdf, name="ur", stages=stages).C_API
-    if stages == "interpreted":
-        assert api == ChainMechanism.C_API
+    derived_cache.derive(urdf, tmp_path, name="ur", native=False)
+    api = own_robot.load(urdf, name="ur").C_API
+    assert api == SERIAL_C_API
     header = (tmp_path / "c" / "ur.h").read_text()
     assert {f: getattr(api, f) for f in api.__dataclass_fields__} == declared_in(header, "ur")
 

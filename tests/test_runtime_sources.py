@@ -78,11 +78,11 @@ def test_runtime_sources_hold_no_template_syntax():
         assert not any(d in text for d in ("{{", "{%", "{#")), path
 
 
-@pytest.mark.parametrize("template", ["c/chain.c.jinja", "python/chain.py.jinja"])
+@pytest.mark.parametrize("template", ["c/serial.c.jinja", "python/serial.py.jinja"])
 def test_the_own_robot_templates_print_data_not_numerics(template):
-    """The own-robot solver's templates print the robot's constants, data and plan rows and inline the runtime
-    sources (issue 22): at most 400 lines, no dispatch on a plan op (derive/families/chain/views.py renders the
-    rows)."""
+    """A user robot's solver (the serial family's templates, its stages derived) prints the robot's kernels and data
+    and inlines the runtime sources: at most 400 lines, no dispatch on a stage kind (derive/serial_core/views.py
+    chooses the sources and renders the stage rows in Python)."""
     text = (ROOT / "templates" / template).read_text()
     assert len(text.splitlines()) <= 400
     assert not re.search(r"\{%-?\s*(el)?if\s+(o|op|kind)\b", text)

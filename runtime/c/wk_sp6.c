@@ -9,7 +9,7 @@
  * refined on the second equation's parts normal to n (its roots to eps / delta, not sqrt(eps)), and the singular
  * configurations are tried directly. Python's twin: runtime/python/sp6.py, step for step.
  * Needs poly_real_roots.c, wk_poly_ops.c, wk_geom3.c and wristkin_runtime's flags before it. The serial arm's sp6
- * stage (serial/sr_sp6.c) calls it with its tolerances; tests/test_runtime_sources.py tests it as it is
+ * stage (serial/sr_sp6.c) calls it with its tolerances; tests/test_shared_runtime.py tests it as it is
  * (tests/c/shared_runtime_harness.c). */
 
 /* the caller's tolerances (the serial stage's SR_SP6_*) */

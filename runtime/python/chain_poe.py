@@ -3,11 +3,11 @@
 A wristkin runtime source: every user robot's generated module inlines it from the marker line on
 (derive/runtime_files.py), after the robot's constants; above the marker, what it reads from them and from the
 other sources (own_stand_in.py: a stand-in robot), so that it is linted and tested as it is
-(tests/test_own_runtime.py)."""
+(tests/test_shared_runtime.py)."""
 
 from __future__ import annotations
 
-from chain_rigid import _ID, _apply, _as_rt, _compose, _inverse, _mv, _scale, _screw
+from chain_rigid import _ID, _apply, _as_rt, _compose, _mv, _screw
 from own_stand_in import JOINT_KINDS, N_JOINTS
 
 
@@ -37,31 +37,8 @@ def _held(ch, f, v):
                   _compose(m, ch.home), tuple(ch.index[i] for i in keep))
 
 
-def _reversed(ch):
-    """The chain read from the tool: T^-1 = M^-1 exp(-S_n q_n) ... exp(-S_1 q_1), axes flipped so the values
-    stay the same."""
-    minv = _inverse(ch.home)
-    n = len(ch.kinds)
-    idx = range(n - 1, -1, -1)
-    return _Chain(tuple(ch.kinds[i] for i in idx), tuple(_scale(_mv(minv[0], ch.axes[i]), -1.0) for i in idx),
-                  tuple(_apply(minv, ch.points[i]) for i in idx), minv, tuple(ch.index[i] for i in idx))
-
-
 def _product(ch, q, js):
     t = _ID
     for j in js:
         t = _compose(t, _screw(ch.kinds[j], ch.axes[j], ch.points[j], q[j]))
     return t
-
-
-def _between(ch, q, g, lo, hi):
-    """g with the solved joints before lo and after hi removed: the product of the joints lo..hi."""
-    return _compose(_compose(_inverse(_product(ch, q, range(lo))), g),
-                    _inverse(_product(ch, q, range(hi + 1, len(ch.kinds)))))
-
-
-def _fk_chain(ch, q):
-    """The chain's end frame (no base / tool) for joint values q in the chain's order."""
-    return _compose(_product(ch, q, range(len(ch.kinds))), ch.home)
-
-

@@ -3,7 +3,7 @@
 A wristkin runtime source: every user robot's generated module inlines it from the marker line on
 (derive/runtime_files.py), after the robot's constants; above the marker, what it reads from them and from the
 other sources (own_stand_in.py: a stand-in robot), so that it is linted and tested as it is
-(tests/test_own_runtime.py)."""
+(tests/test_shared_runtime.py)."""
 
 
 # wristkin: inlined from here

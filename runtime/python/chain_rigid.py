@@ -3,13 +3,11 @@
 A wristkin runtime source: every user robot's generated module inlines it from the marker line on
 (derive/runtime_files.py), after the robot's constants; above the marker, what it reads from them and from the
 other sources (own_stand_in.py: a stand-in robot), so that it is linted and tested as it is
-(tests/test_own_runtime.py)."""
+(tests/test_shared_runtime.py)."""
 
 from __future__ import annotations
 
 import math
-
-import numpy as np
 
 
 # wristkin: inlined from here
@@ -34,10 +32,6 @@ def _scale(a, s):
     return (a[0] * s, a[1] * s, a[2] * s)
 
 
-def _norm(a):
-    return math.sqrt(_dot(a, a))
-
-
 def _rot(k, t):
     """Rotation about the unit axis k by t (Rodrigues), rows."""
     c, s = math.cos(t), math.sin(t)
@@ -50,11 +44,6 @@ def _rot(k, t):
 
 def _mv(r, v):
     return (_dot(r[0], v), _dot(r[1], v), _dot(r[2], v))
-
-
-def _mtv(r, v):
-    return (r[0][0] * v[0] + r[1][0] * v[1] + r[2][0] * v[2], r[0][1] * v[0] + r[1][1] * v[1] + r[2][1] * v[2],
-            r[0][2] * v[0] + r[1][2] * v[1] + r[2][2] * v[2])
 
 
 def _mm(a, b):
@@ -99,10 +88,3 @@ def _screw(kind, h, p, q):
 
 def _as_rt(m):
     return tuple(tuple(m[i][:3]) for i in range(3)), (m[0][3], m[1][3], m[2][3])
-
-
-def _to_matrix(a):
-    r, t = a
-    return np.array([[*r[0], t[0]], [*r[1], t[1]], [*r[2], t[2]], [0.0, 0.0, 0.0, 1.0]])
-
-

@@ -3,7 +3,7 @@ runtime/c/wk_geom3.c's twin, step for step.
 
 A wristkin runtime source: a generated module with a spatial 3R or subproblem 6 inlines it from the marker line on
 (derive/runtime_files.py), before those cores; it imports nothing, so that it is linted and tested as it is
-(tests/test_spatial3_runtime.py, tests/test_chain_runtime.py)."""
+(tests/test_spatial3_runtime.py, tests/test_shared_runtime.py)."""
 
 from __future__ import annotations
 

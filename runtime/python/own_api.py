@@ -4,7 +4,7 @@ verbs (its IK derived as straight-line stages; serial_own.py the chain its branc
 A wristkin runtime source: every user robot's generated module inlines it from the marker line on
 (derive/runtime_files.py), after the robot's constants and verbs; above the marker, what it reads from them
 (own_stand_in.py and serial_stand_in.py: stand-in robots), so that it is linted and tested as it is
-(tests/test_own_runtime.py). A module provides _branch_chain(design) (the ideal chain the branches are read on, with
+(tests/test_shared_runtime.py). A module provides _branch_chain(design) (the ideal chain the branches are read on, with
 its joints' index) and _fk_design(q) (the design fk takes with the command line's full joints)."""
 
 from __future__ import annotations

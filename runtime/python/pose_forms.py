@@ -2,7 +2,7 @@
 
 A wristkin runtime source: every serial arm's and user robot's generated module inlines it from the marker line on
 (derive/runtime_files.py), after its constants; above the marker, what it reads from them (serial_stand_in.py: the
-PUMA-560), so that it is linted and tested as it is (tests/test_serial_runtime.py, tests/test_chain_runtime.py)."""
+PUMA-560), so that it is linted and tested as it is (tests/test_serial_runtime.py, tests/test_shared_runtime.py)."""
 
 from __future__ import annotations
 

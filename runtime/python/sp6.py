@@ -9,7 +9,7 @@ configurations are tried directly.
 
 A wristkin runtime source: a serial arm's module with an sp6 stage (serial_sp6.py) inlines it from the marker line on
 (derive/runtime_files.py), after poly_real_roots.py, chain_poly.py and geom3.py; above the marker, what it reads from
-them, so that it is linted and tested as it is (tests/test_runtime_sources.py)."""
+them, so that it is linted and tested as it is (tests/test_shared_runtime.py)."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
-/* Sanitizer driver for a generated chain solver: random, singular and hostile inputs; every returned set must
-   reproduce the pose. Compile with -DMECH=name -DMECH_H='"name.h"' -DN=joints -DMAX_IK=sets (-DFREE=index of the
-   free joint, if any). */
+/* Sanitizer driver for a user robot's generated solver whose design is one run-time parameter (a held joint or the
+   arm angle: params[1]): random, singular and hostile inputs; every returned set must reproduce the pose. Compile
+   with -DMECH=name -DMECH_H='"name.h"' -DN=joints -DMAX_IK=sets (-DFREE=index of the free joint, if any). */
 #include <math.h>
 #include <stdio.h>
 #include MECH_H
