@@ -42,9 +42,9 @@ from serial_own import _branch_chain, _fk_design
 # ---------------------------------------------------------------------------- branches and limits
 def branch_of(joints, design=None) -> dict:
     """The named branches of a configuration: {branch: label} for every branch in BRANCHES (e.g. elbow up /
-    down), read from the configuration itself."""
-    d = _design(design)
+    down), read from the configuration itself (a held joint at its value there unless `design` gives one)."""
     q = _joints(joints)
+    d = _design(_fk_design(q) if design is None else design)
     ideal = _branch_chain(d)
     qc = [q[i] for i in ideal.index]
     out = {}
