@@ -426,8 +426,8 @@ def test_a_held_value_where_the_others_are_a_self_motion_is_refused(tmp_path):
 
 def test_the_held_joint_s_command_line_gives_the_python_sets():
     """`python NAME.py ik --pose ... --free V --json` gives the sets the module's ik returns for the same pose and
-    held value (all 8, in its order, values to 1e-12, each with branch_of's labels at that held value, one column per
-    joint), and `fk` takes the six other joints with --free (the pose to 1e-12)."""
+    held value (all 8, in its order, values to 1e-12, each with branch_of's labels at that held value, which
+    branch_of reads from the set itself without a design; one column per joint), and `fk` takes the six other joints with --free (the pose to 1e-12)."""
     import json
 
     m, _, _ = held("iiwa14", "urdf", None)
@@ -442,6 +442,7 @@ def test_the_held_joint_s_command_line_gives_the_python_sets():
     assert len(got["solutions"]) == sol.count == 8
     for s, v in zip(got["solutions"], sol, strict=True):
         assert np.max(np.abs(np.array(s["values"]) - v)) <= 1e-12 and s["branches"] == m.branch_of(v, [q[0]])
+        assert m.branch_of(v) == s["branches"]  # without a design: the held joint at the set's own value
     fk = subprocess.run([sys.executable, m.__file__, "fk", "--joints", *map(str, q[1:]), "--free", str(q[0]),
                          "--json"], capture_output=True, text=True, timeout=120, check=True).stdout
     a = np.array(json.loads(fk)["solutions"][0]["values"])
