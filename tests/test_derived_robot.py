@@ -427,7 +427,8 @@ def test_a_held_value_where_the_others_are_a_self_motion_is_refused(tmp_path):
 def test_the_held_joint_s_command_line_gives_the_python_sets():
     """`python NAME.py ik --pose ... --free V --json` gives the sets the module's ik returns for the same pose and
     held value (all 8, in its order, values to 1e-12, each with branch_of's labels at that held value, which
-    branch_of reads from the set itself without a design; one column per joint), and `fk` takes the six other joints with --free (the pose to 1e-12)."""
+    branch_of reads from the set itself without a design; one column per joint), and `fk` takes the six other
+    joints with --free (the pose to 1e-12)."""
     import json
 
     m, _, _ = held("iiwa14", "urdf", None)
