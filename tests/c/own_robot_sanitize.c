@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 #include MECH_H
+#define WK_SANITIZE_SERIAL_TAIL
 #include "sanitize.h"
 
 /* a random rotation (unit quaternion) and translation as the top 3x4 of a frame */
@@ -70,13 +71,7 @@ int main(void)
             checksum += FN(MECH, _ik)(bad, &d, &ik);
         }
     }
-    for (i = 0; i < 3 * N; ++i) rows[i] = uniform(-1.0, 1.0);
-    checksum += FN(MECH, _fk_batch)(3, rows, NULL, fkb);
-    for (i = 0; i < 3; ++i)
-        for (j = 0; j < 12; ++j) poses[12 * i + j] = fkb[i].values[0][j];
-    checksum += FN(MECH, _ik_batch)(3, poses, NULL, ikb);
-    checksum += FN(MECH, _ik)(NULL, NULL, &ik) + FN(MECH, _fk)(NULL, NULL, &fk) + FN(MECH, _ik)(poses, NULL, NULL);
-    checksum += FN(MECH, _ik_batch)(0, NULL, NULL, NULL) + FN(MECH, _design_init)(NULL, NULL);
+    checksum += batch_and_null_inputs(rows, poses, fkb, ikb, &ik, &fk);
     checksum += FN(MECH, _design_set_frames)(NULL, NULL, NULL) + FN(MECH, _design_set_frames)(&d, NULL, NULL);
     q[0] = NAN;
     checksum += FN(MECH, _ik_near)(poses, NULL, q, &ik) + FN(MECH, _jacobian)(q, NULL, jac);

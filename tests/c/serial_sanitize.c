@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdio.h>
 #include MECH_H
+#define WK_SANITIZE_SERIAL_TAIL
 #include "sanitize.h"
 
 int main(void)
@@ -27,13 +28,7 @@ int main(void)
             checksum += FN(MECH, _ik)(bad, NULL, &ik) + ik.count;
         }
     }
-    for (i = 0; i < 3 * N; ++i) rows[i] = uniform(-1.0, 1.0);
-    checksum += FN(MECH, _fk_batch)(3, rows, NULL, fkb);
-    for (i = 0; i < 3; ++i)
-        for (j = 0; j < 12; ++j) poses[12 * i + j] = fkb[i].values[0][j];
-    checksum += FN(MECH, _ik_batch)(3, poses, NULL, ikb);
-    checksum += FN(MECH, _ik)(NULL, NULL, &ik) + FN(MECH, _fk)(NULL, NULL, &fk) + FN(MECH, _ik)(poses, NULL, NULL);
-    checksum += FN(MECH, _ik_batch)(0, NULL, NULL, NULL) + FN(MECH, _design_init)(NULL, NULL);
+    checksum += batch_and_null_inputs(rows, poses, fkb, ikb, &ik, &fk);
     { /* the design atlas's conditioning batch: a valid batch, then NULL, a bad length and NaN joints */
         int64_t sums[2] = {0, 0};
         double li_min = HUGE_VAL;
