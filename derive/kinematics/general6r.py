@@ -346,13 +346,15 @@ def regularity_preference(score) -> float:
     return score[3] * (HIDDEN_T3_PREFERENCE if score[2] == 0 else 1.0)
 
 
-def choose_labelling(chains, rng: np.random.Generator, poses: int = 4) -> Labelling:
-    """The labelling that returns the generating joints at every sampled pose (random and near singular) of every
-    chain given (a free joint's held values give several; where none does, the fewest misses), among those the ones
-    within WORK_SLACK of the least work per root, and among those the best worst regularity, a hidden t3 preferred
-    within HIDDEN_T3_PREFERENCE of it. Every regular option is ranked so (the runtime falls back along the order).
-    NoDecomposition when every one is degenerate."""
-    chains = [chains] if isinstance(chains, Chain) else list(chains)
+# the decomposition in words, before the reading the stage runs (the planner says this much; the stage adds its
+# reading, which it chooses on the chain it solves)
+STRATEGY = ("no closed-form decomposition (no three axes meet or are parallel where one is needed): the general 6R "
+            "by elimination (Raghavan-Roth's 14 equations, Manocha-Canny's eigenproblem)")
+
+
+def _regularity_scores(chains, rng: np.random.Generator, poses: int):
+    """(shift, reverse, hidden, worst regularity) of every reading over `poses` random poses of each chain, and the
+    regular ones, most preferred first; NoDecomposition when none is regular."""
     for chain in chains:
         if chain.n != 6 or any(k != "R" for k in chain.kinds):
             raise NoDecomposition(f"the general 6R elimination needs 6 revolute joints ({chain.n} joints, kinds "
@@ -373,6 +375,24 @@ def choose_labelling(chains, rng: np.random.Generator, poses: int = 4) -> Labell
         raise NoDecomposition(f"the general 6R elimination is degenerate for every labelling of the loop (best "
                               f"regularity {best:.1e} < {REGULARITY_MIN:g}): the 14 equations are dependent for "
                               "this geometry")
+    return scores, regular
+
+
+def check_regular(chains, rng: np.random.Generator, poses: int = 4) -> None:
+    """NoDecomposition where no reading of the loop is regular at the chains' random poses (the 14 equations
+    dependent for this geometry): the planner's check, without choose_labelling's sampled solves."""
+    _regularity_scores([chains] if isinstance(chains, Chain) else list(chains), rng, poses)
+
+
+def choose_labelling(chains, rng: np.random.Generator, poses: int = 4) -> Labelling:
+    """The labelling that returns the generating joints at every sampled pose (random and near singular) of every
+    chain given (a free joint's held values give several; where none does, the fewest misses), among those the ones
+    within WORK_SLACK of the least work per root, and among those the best worst regularity, a hidden t3 preferred
+    within HIDDEN_T3_PREFERENCE of it. Every regular option is ranked so (the runtime falls back along the order).
+    NoDecomposition when every one is degenerate."""
+    chains = [chains] if isinstance(chains, Chain) else list(chains)
+    scores, regular = _regularity_scores(chains, rng, poses)
+    g6 = numerics()
     samples, near = _samples(chains, rng)
     misses = {sc[:3]: _misses(sc[:3], samples) for sc in regular}
     fewest = min(misses.values())
@@ -393,7 +413,7 @@ def choose_labelling(chains, rng: np.random.Generator, poses: int = 4) -> Labell
                      near, misses[best[:3]])
 
 def op(labelling: Labelling) -> dict:
-    """The planner op that runs the elimination (one op solving all six joints)."""
+    """The reading as a planner op's fields (one op solving all six joints), as equation_residual reads them."""
     return {"op": "general6r", "shift": labelling.shift, "reverse": labelling.reverse, "hidden": labelling.hidden}
 
 

@@ -507,9 +507,6 @@ def replay(chain: Chain, plan: Plan, q) -> list[float]:
             out.append(float(np.max(np.abs(units - rd))))
         elif kind == "group_rest":
             out.append(0.0)
-        elif kind == "general6r":
-            from .general6r import equation_residual
-            out.append(equation_residual(c, op, qv))
         elif kind == "arm_angle":
             out.append(arm_angle_residual(c, e, x, y))
         elif kind == "sp6":

@@ -47,7 +47,6 @@ class ChainMechanism:
         self.NAME, self.title, self.desc = name, title, desc
         self._plan: Plan | None = None
         self._ideal: Chain | None = None
-        self._labelling: general6r.Labelling | None = None
         self._degenerate: tuple[tuple[float, str], ...] | None = None
         self._samples: tuple[float, ...] | None = None  # _held_samples, computed once
         self._held_elbow: bool | None = None  # held_elbow, computed once
@@ -257,19 +256,17 @@ class ChainMechanism:
                                "many solutions; hold another joint")
 
     def _general_plan(self, base: Chain, refused: NoClosedForm) -> Plan:
-        """No decomposition fits: a 6R chain (after the free joint is held) is solved by elimination, read the way
-        that keeps it regular at every held value sampled; anything else keeps the planner's refusal."""
+        """No decomposition fits: a 6R chain (after the free joint is held) is solved by elimination where some
+        reading of its loop is regular at every held value sampled (its stage chooses the reading on the chain it
+        solves: serial/planned.py); anything else keeps the planner's refusal."""
         if base.n != 6 or any(k != "R" for k in base.kinds):
             raise refused
         chains = [self.solver_chain(self.chain, v) for v in self._held_samples()]
         try:
-            labelling = general6r.choose_labelling(chains, np.random.default_rng(11))
+            general6r.check_regular(chains, np.random.default_rng(11))
         except NoDecomposition as exc:
             raise NoClosedForm(f"{refused}; {exc}") from None
-        self._labelling = labelling
-        return Plan([general6r.op(labelling)], False, "no closed-form decomposition (no three axes meet or are "
-                    "parallel where one is needed): the general 6R by elimination (Raghavan-Roth's 14 equations, "
-                    f"Manocha-Canny's eigenproblem), {labelling.text(base.joint_names)}")
+        return Plan([{"op": "general6r"}], False, general6r.STRATEGY)
 
     def idealise(self, plan: Plan) -> Chain:
         """The full chain with the relations the plan relies on made exact: parallel axes get their mean

@@ -22,6 +22,7 @@ import sympy as sp
 
 from ...checks import jacobian_fd_error, numeric_predicate, sampler
 from ...identities.dh import DHRow
+from ...kinematics import general6r
 from ...kinematics.dh_table import OwnRobotApi, RobotTable
 from ...kinematics.poe_symbolic import joint_symbols, number, symbolic_chain
 from ...literals import c_num, own_api_literals, text_literal
@@ -164,9 +165,9 @@ def from_table(robot: RobotTable) -> SerialMechanism:
                       tuple(defaults), [], notes=f"standard DH table read from the description ({robot.rule})",
                       tool=tool, base=base, held=held, arm_angle=psi)
     try:
-        stage_list, _ = planned_stages(rows, tuple(joints), spec.kinds, tuple(design), tuple(defaults), "standard",
-                                       [str(q) for q in joints], base, tool, held, general, psi,
-                                       "held_elbow" in robot.ops)
+        stage_list, planned = planned_stages(rows, tuple(joints), spec.kinds, tuple(design), tuple(defaults),
+                                             "standard", [str(q) for q in joints], base, tool, held, general, psi,
+                                             "held_elbow" in robot.ops)
     except (PlanError, ValueError) as exc:
         missing = sorted(robot.ops - SUPPORTED - {"general6r"})
         if missing:  # say what the planner's decomposition needs, not the search's refusal
@@ -186,8 +187,12 @@ def from_table(robot: RobotTable) -> SerialMechanism:
     conditioning = DH_ROUNDING / min(tilts, default=1.0)
     tol = 1e-12 * max(robot.size, 1.0) if calibrated else \
         1e-12 + (snapped + 2 * n * robot.deviation + conditioning) * max(robot.size, 1.0)
+    # an elimination's words name the reading its stage runs, chosen on the table (the planner only checked that one
+    # is regular); a note after them (how the free joint was chosen) stays
+    strategy = robot.api.strategy.replace(general6r.STRATEGY, planned, 1) if general else robot.api.strategy
     mech = _DerivedRobot(name, lambda: replace(spec, stages=stage_list), robot.description_fk, tol,
-                         replace(robot.api, description_tol=tol), robot.joint_names, robot.degenerate_held,
+                         replace(robot.api, description_tol=tol, strategy=strategy), robot.joint_names,
+                         robot.degenerate_held,
                          robot.chain if calibrated else None)
     mech.DERIVE_SECONDS = 0.2 * 2 ** n
     return mech

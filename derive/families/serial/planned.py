@@ -247,9 +247,7 @@ def stages(rows, joints, kinds, design, defaults, convention="standard", names=N
         out = [replace(stage, joints=tuple(idx))]
         if hj is not None:
             out.insert(0, _held_stage(all_joints[hj], hj, held[1]))
-        return out, ("no closed-form decomposition (no three axes meet or are parallel where one is needed): the "
-                     "general 6R by elimination (Raghavan-Roth's 14 equations, Manocha-Canny's eigenproblem), "
-                     f"{labelling.text([labels[i] for i in idx])}")
+        return out, f"{general6r.STRATEGY}, {labelling.text([labels[i] for i in idx])}"
     n = len(idx)
     pose = _Motion(R_POSE, P_POSE)
     origins = [f[:3, 3] for f in frames]  # where axes meet: a DH frame's origin
