@@ -122,6 +122,13 @@ def test_families_and_mechanisms_have_the_typed_interface():
     for name, mech in registry().items():
         assert isinstance(mech, Mechanism) and isinstance(mech, MechanismDefaults), name
         assert len(mech.TEMPLATES) == 3 and mech.DERIVE_SECONDS > 0, name
+    # a user's robot as read: a RobotDescription, which only the family with from_table turns into a Mechanism
+    from derive import own_robot
+    from derive.mechanism import RobotDescription
+
+    read = own_robot.description(ROOT / "tests" / "robots" / "kr6" / "kr6.urdf")
+    assert isinstance(read, RobotDescription) and not isinstance(read, Mechanism)
+    assert sum(f.from_table is not None for f in FAMILIES.values()) == 1
 
 
 def test_the_core_probes_no_mechanism_member():
