@@ -100,13 +100,14 @@ def import_solver(out: Path, name: str, backend: str | None = None):
                 os.environ["WRISTKIN_BACKEND"] = env
 
 
-def _extension(out: Path, mech, progress) -> list[Path]:
-    """OUT/native/_native.c over every solver in OUT/c, compiled into OUT/python/_wristkin_native: the Python
-    solvers then run the C. Without a compiler they run on numpy (said, not an error). A folder may hold robots
-    derived one command at a time: OUT/native/api.json keeps each one's declared C verbs (Mechanism.C_API), so the
-    binding is rendered from declarations, not from reading the headers."""
+def _extension(out: Path, mech, progress):
+    """OUT/native/_native.c over every solver in OUT/c, its compile into OUT/python/_wristkin_native started: the
+    Python solvers then run the C. Returns (the files written, a function that waits for the compile and returns
+    the extension's path, or None where there is none). Without a compiler they run on numpy (said, not an error).
+    A folder may hold robots derived one command at a time: OUT/native/api.json keeps each one's declared C verbs
+    (Mechanism.C_API), so the binding is rendered from declarations, not from reading the headers."""
     from .mechanism import CApi
-    from .native_build import BuildError, build
+    from .native_build import BuildError, start
     from .pipeline import native_binding, solver_names, write_file
 
     record = out / "native" / "api.json"
@@ -116,12 +117,22 @@ def _extension(out: Path, mech, progress) -> list[Path]:
     api_file = write_file(record, json.dumps(known, indent=1, sort_keys=True) + "\n")
     binding = native_binding(out, {n: CApi(**v) for n, v in known.items()}, "_wristkin_native")
     target = out / "python" / f"_wristkin_native{sysconfig.get_config_var('EXT_SUFFIX') or '.so'}"
-    try:
-        build(out, target=target)
-    except BuildError as exc:
+
+    def said(exc):
         progress(f"  no C extension ({str(exc).splitlines()[0]}): the Python solvers run on numpy")
-        return [api_file, binding]
-    return [api_file, binding, target]
+    try:
+        pending = start(out, target=target)
+    except BuildError as exc:
+        said(exc)
+        return [api_file, binding], lambda: None
+
+    def finish():
+        try:
+            return pending.wait()
+        except BuildError as exc:
+            said(exc)
+            return None
+    return [api_file, binding], finish
 
 
 def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=None, progress=print,
@@ -152,13 +163,19 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
                *emit_solvers(nm, mech, ks, out / "python", out / "c"),
                *emit_c_runtime(out / "c", mech.c_shared_files())]
     stage("emitted Python and C")
-    if native:
-        written += _extension(out, mech, progress)
-        stage("compiled the C into the folder's Python extension (_wristkin_native)")
+    finish = None
+    if native:  # the compile runs beside the CasADi functions and the audit (they run the numpy solver)
+        files, finish = _extension(out, mech, progress)
+        written += files
     solver = import_solver(out, nm, backend="numpy")
     written += emit_casadi(nm, mech, dv, ks, out / "casadi", solver)
     stage("wrote the CasADi functions")
     written += audit.write_report(mech, dv, out, solver=solver)
     stage("audited the generated solver")
+    if finish is not None:
+        extension = finish()
+        if extension is not None:
+            written.append(extension)
+            stage("compiled the C into the folder's Python extension (_wristkin_native), begun after emitting")
     progress(f"wrote {len(written)} files to {out} in {time.perf_counter() - t0:.1f} s")
     return written
