@@ -61,10 +61,11 @@ def robots(folder: Path):
 
 def bench(name, path, free, n):
     from derive import own_robot
+    from derive.pipeline import default_jobs
 
     out = Path(tempfile.mkdtemp(prefix=f"wk_g6_bench_{name}_"))
     t0 = time.perf_counter()
-    own_robot.derive(path, out, name=name, free=free, progress=lambda _: None)
+    own_robot.derive(path, out, name=name, free=free, progress=lambda _: None, jobs=default_jobs())
     derive_s = time.perf_counter() - t0
     m = own_robot.import_solver(out, name)
     rng = np.random.default_rng(7)

@@ -199,14 +199,15 @@ def bench_robot(urdf: Path, n: int, arm_angle: bool = False) -> dict:
     derived with --redundancy arm-angle and solved at arm angle ARM_ANGLE for every pose (8 sets each; no peer has
     this IK). The peers are timed on the same poses."""
     from derive import own_robot
+    from derive.pipeline import default_jobs
 
     robot = urdf.stem
     out = Path(tempfile.mkdtemp(prefix=f"wk_bench_{robot}_"))
     t0 = time.perf_counter()
     if arm_angle:
-        own_robot.derive(urdf, out, redundancy="arm-angle", progress=lambda _: None)
+        own_robot.derive(urdf, out, redundancy="arm-angle", progress=lambda _: None, jobs=default_jobs())
     else:
-        own_robot.derive(urdf, out, free=FREE.get(robot), progress=lambda _: None)
+        own_robot.derive(urdf, out, free=FREE.get(robot), progress=lambda _: None, jobs=default_jobs())
     derive_s = time.perf_counter() - t0
     m = own_robot.import_solver(out, robot)
     rng = np.random.default_rng(7)

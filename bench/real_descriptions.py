@@ -57,12 +57,14 @@ def check_robot(name: str, n: int) -> dict:
     from reference import chain as ref
 
     from derive import own_robot
+    from derive.pipeline import default_jobs
 
     rel, base, tip, free = ROBOTS[name]
     file = robots_dir() / rel
     out = Path(tempfile.mkdtemp(prefix=f"wk_real_{name}_"))
     t0 = time.perf_counter()
-    own_robot.derive(file, out, name=name, base=base, tip=tip, free=free, progress=lambda _: None, native=False)
+    own_robot.derive(file, out, name=name, base=base, tip=tip, free=free, progress=lambda _: None, native=False,
+                     jobs=default_jobs())
     derive_s = time.perf_counter() - t0
     m = own_robot.import_solver(out, name)
     r = ref.urdf_fk(file, base, tip)

@@ -5,7 +5,7 @@
     python -m derive.cli audit [M] [--out DIR] [--jobs N] [--catalogue DIR]
     python -m derive.cli native [--out DIR]
     python -m derive.cli derive SOURCE --out DIR [--name N] [--base LINK] [--tip LINK] [--free JOINT]
-                                [--geometry-tol TOL]
+                                [--geometry-tol TOL] [--no-native] [--jobs N]
 
 `native` compiles DIR's generated C into DIR/python/wristkin/_native (the solvers of DIR then run the C; needs a
 C compiler and the Python headers, not the derivation stack).
@@ -151,7 +151,8 @@ def cmd_derive(args) -> int:
     try:
         own_robot.derive(args.source, Path(args.out), args.name, args.base, args.tip, args.free, args.geometry_tol,
                          native=not args.no_native, xacro_args=_pairs(args.xacro_args, "--xacro-arg", "VALUE"),
-                         packages=_pairs(args.packages, "--package", "DIR"), redundancy=args.redundancy)
+                         packages=_pairs(args.packages, "--package", "DIR"), redundancy=args.redundancy,
+                         jobs=args.jobs or _pipeline().default_jobs())
     except NoDecomposition as exc:
         raise _Error(str(exc), EXIT_FAILED) from None
     except CheckFailed as exc:  # the robot's derivation did not prove out: no solver is written for it

@@ -42,7 +42,8 @@ COMMANDS = (
                                      "of angles)"}),
       (("--no-native",), {"action": "store_true",
                           "help": "do not compile the C into the folder's Python extension (the solvers then "
-                                  "run on numpy)"}))),
+                                  "run on numpy)"}),
+      _JOBS)),
 )
 
 _TYPES = {"int": int, "float": float}

@@ -110,9 +110,54 @@ def _reduce(kernel: Kernel) -> _Reduced:
     return _Reduced(tuple(temps), tuple(reduced), unpack, int(ops))
 
 
+# filled by lower_ahead's worker processes, for the last emission only: (kernel, target) -> Lowered, which lower()
+# takes from here, and kernel -> its CSE (reduced() takes it)
+_AHEAD: dict[tuple[Kernel, str], Lowered] = {}
+_AHEAD_REDUCED: dict[Kernel, _Reduced] = {}
+_PENDING: list[tuple[Kernel, tuple[str, ...]]] = []  # what the forked workers lower (inherited, not pickled)
+
+
+def reduced(kernel: Kernel) -> _Reduced:
+    """The kernel's CSE (temporaries, reduced outputs), as lower() prints it."""
+    return _AHEAD_REDUCED.get(kernel) or _reduce(kernel)
+
+
+def _lower_pending(i: int) -> tuple[_Reduced, list[Lowered]]:
+    kernel, targets = _PENDING[i]
+    return _reduce(kernel), [lower(kernel, t) for t in targets]
+
+
+def lower_ahead(work: list[tuple[Kernel, tuple[str, ...]]], jobs: int) -> None:
+    """Lower each (kernel, targets) in up to `jobs` forked processes, largest kernels first, so that lower() then
+    returns them at once: CSE is most of an emission (a calibrated 7-joint arm's FK and Jacobians, 4 s on one core).
+    The workers' results are the same data lower() computes (plain strings): the bytes do not depend on `jobs`.
+    Without fork (or jobs <= 1) nothing is done ahead."""
+    import multiprocessing as mp
+
+    _AHEAD.clear()
+    _AHEAD_REDUCED.clear()
+    todo = list(work)
+    if jobs <= 1 or len(todo) < 2 or "fork" not in mp.get_all_start_methods():
+        return
+    size = {id(k): sum(1 for _ in distinct_nodes([sp.sympify(e) for _, e in k.outputs])) for k, _ in todo}
+    _PENDING[:] = sorted(todo, key=lambda kt: -size[id(kt[0])])
+    try:
+        with mp.get_context("fork").Pool(min(jobs, len(todo))) as pool:
+            for i, (red, done) in enumerate(pool.map(_lower_pending, range(len(_PENDING)), chunksize=1)):
+                kernel, targets = _PENDING[i]
+                _AHEAD_REDUCED[kernel] = red
+                for t, low in zip(targets, done, strict=True):
+                    _AHEAD[(kernel, t)] = low
+    finally:
+        _PENDING.clear()
+
+
 def lower(kernel: Kernel, target: str) -> Lowered:
+    ahead = _AHEAD.get((kernel, target))
+    if ahead is not None:
+        return ahead
     printer = {"c": CPrinter(), "python": PyMathPrinter(), "numpy": NumpyPrinter()}[target]
-    r = _reduce(kernel)
+    r = reduced(kernel)
     return Lowered(
         kernel.name, kernel.doc, r.unpack,
         tuple((str(t), printer.doprint(e)) for t, e in r.temps),

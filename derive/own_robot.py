@@ -136,9 +136,10 @@ def _extension(out: Path, mech, progress):
 
 
 def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=None, progress=print,
-           native: bool = True, xacro_args=None, packages=None, redundancy=None) -> list[Path]:
+           native: bool = True, xacro_args=None, packages=None, redundancy=None, jobs: int = 1) -> list[Path]:
     """Derive, emit and audit one description into `out`; returns the files written. `native`: also compile the
-    folder's C into the Python extension the solvers call (skipped with native=False: they run on numpy)."""
+    folder's C into the Python extension the solvers call (skipped with native=False: they run on numpy). `jobs`:
+    processes that lower the kernels side by side (the same bytes; the command line takes the machine's cores)."""
     from . import audit
     from .pipeline import emit_c_runtime, emit_casadi, emit_solvers, write_file
 
@@ -160,7 +161,7 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
     ks = mech.kernels(dv)
     written = [write_file(out / "python" / "_wristkin_runtime.py", runtime_files.emit("python/_runtime.py",
                                                                                    header_lines())),
-               *emit_solvers(nm, mech, ks, out / "python", out / "c"),
+               *emit_solvers(nm, mech, ks, out / "python", out / "c", jobs=jobs),
                *emit_c_runtime(out / "c", mech.c_shared_files())]
     stage("emitted Python and C")
     finish = None

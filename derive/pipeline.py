@@ -16,7 +16,7 @@ from pathlib import Path
 
 from . import cli_commands, runtime_files
 from .catalogue import CATALOGUE, registry
-from .lower import lower
+from .lower import lower, lower_ahead
 from .mechanism import Mechanism
 from .render import ROOT, header_lines, input_hash, render, tool_versions
 from .tolerances import TOLERANCES
@@ -58,9 +58,12 @@ def tasks(names=None, catalogue: Path = CATALOGUE) -> list[tuple[str, ...]]:
     return sorted(jobs, key=lambda g: (-sum(cost[n] for n in g), g))
 
 
-def emit_solvers(name: str, mod: Mechanism, ks, py_dir: Path, c_dir: Path) -> list[Path]:
+def emit_solvers(name: str, mod: Mechanism, ks, py_dir: Path, c_dir: Path, jobs: int = 1) -> list[Path]:
     """The mechanism's Python module (py_dir/name.py) and C header and source (c_dir) rendered from its kernels:
-    the catalogue's and a `wristkin derive` folder's alike."""
+    the catalogue's and a `wristkin derive` folder's alike. `jobs` > 1: the kernels are lowered in that many
+    processes first (the same bytes)."""
+    lower_ahead([(k, (*(("python",) if k.python else ()), *(("numpy",) if k.name in mod.VECTORISED_KERNELS else ()),
+                      "c")) for k in ks], jobs)
     ctx = _context(mod, ks)
     t_py, t_h, t_c = mod.TEMPLATES
     return [write_file(py_dir / f"{name}.py", render(t_py, **ctx)),

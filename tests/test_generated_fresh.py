@@ -70,7 +70,9 @@ def test_own_robots_derive_to_the_same_bytes_on_other_kernels(tmp_path, robot):
     run's (or an earlier pass's: tests/derived_cache.py), byte for byte, compiled extensions aside (they carry their
     build folder). A description's numbers become the solver's constants, so they are composed with fixed-order sums
     (derive/kinematics/same_bits.py), not numpy's BLAS products and SIMD norms: before, the calibrated KR 6's
-    constants differed in their last ulp (-7.000001999999983e-09 against ...9856e-09) and the Panda's SCALE too."""
+    constants differed in their last ulp (-7.000001999999983e-09 against ...9856e-09) and the Panda's SCALE too.
+    The other derivation lowers its kernels in two processes (`wristkin derive`'s default on two cores, here one
+    process each): the bytes must not depend on that either."""
     import json
 
     import derived_cache
@@ -81,7 +83,7 @@ def test_own_robots_derive_to_the_same_bytes_on_other_kernels(tmp_path, robot):
     env = {k: v for k, v in os.environ.items() if k not in ("OPENBLAS_CORETYPE", "NPY_DISABLE_CPU_FEATURES")}
     env.update(MACHINES[OTHER])
     code = ("import json, sys; from derive import own_robot; "
-            "own_robot.derive(sys.argv[1], sys.argv[2], progress=lambda _: None, **json.loads(sys.argv[3]))")
+            "own_robot.derive(sys.argv[1], sys.argv[2], progress=lambda _: None, jobs=2, **json.loads(sys.argv[3]))")
     subprocess.run([sys.executable, "-c", code, str(source), str(there), json.dumps(options)],
                    cwd=ROOT, env=env, check=True, capture_output=True, text=True)
     assert _files(here) == _files(there)

@@ -269,7 +269,7 @@ def mirror_keeps_fk(spec, fk_cs_kernel) -> bool:
     bit for bit the FK of its base set in the generated fk_cs kernel: every CSE temporary of the kernel, as printed,
     is unchanged or exactly negated under the flip and every output unchanged. Then the base set's verification is
     the mirror's, and the C solver reuses it."""
-    from ..lower import cse_kernel
+    from ..lower import reduced
 
     wrist = [st for st in spec.stages if st.kind == "wrist"]
     if not wrist:
@@ -277,11 +277,11 @@ def mirror_keeps_fk(spec, fk_cs_kernel) -> bool:
     cs, ss = cs_symbols(spec)
     j4, j5, j6 = wrist[0].joints
     flipped = {cs[j4], ss[j4], ss[j5], cs[j6], ss[j6]}
-    temps, reduced = cse_kernel(fk_cs_kernel)
+    cse = reduced(fk_cs_kernel)  # the CSE lower() prints (computed once)
     known: dict = {}
-    for sym, e in temps:
+    for sym, e in cse.temps:
         p = flip_parity(sp.sympify(e), flipped, known)
         if p is None:
             return False
         known[sym] = p
-    return all(flip_parity(e, flipped, known) == 0 for e in reduced)
+    return all(flip_parity(e, flipped, known) == 0 for e in cse.reduced)

@@ -24,7 +24,7 @@ from ...checks import jacobian_fd_error, numeric_predicate, sampler
 from ...identities.dh import DHRow
 from ...kinematics import general6r
 from ...kinematics.dh_table import OwnRobotApi, RobotTable
-from ...kinematics.poe_symbolic import joint_symbols, number, symbolic_chain
+from ...kinematics.poe_symbolic import number, symbolic_chain
 from ...literals import c_num, own_api_literals, text_literal
 from ...model import NotDerivable, Step
 from ...serial_core.stages import POSE_SYMBOLS, cs_symbols, on_cs_all
@@ -325,23 +325,18 @@ class _DerivedRobot(SerialMechanism):
         """A calibrated robot: the FK and Jacobian the module emits (and polishes every candidate on) become the
         description's true chain, base and tool folded in; the stages stay those of the ideal table, proven above."""
         chain, spec = self.true_chain, self.spec
-        qs, cs, ss = joint_symbols(chain.n)
-        trig = {**{c: sp.cos(q) for c, q in zip(cs, spec.joints, strict=True)},
-                **{s: sp.sin(q) for s, q in zip(ss, spec.joints, strict=True)},
-                **dict(zip(qs, spec.joints, strict=True))}
-        rot, end, cols = symbolic_chain(chain)
+        rot, end, cols = symbolic_chain(chain, spec.joints)
         base, tool = (sp.Matrix(4, 4, [number(x) for x in np.asarray(m, dtype=float).ravel()])
                       for m in (chain.base, chain.tool))
         t = sp.eye(4)
         t[:3, :3], t[:3, 3] = rot, end
-        full = (base * t * tool).xreplace(trig)  # xreplace: subs took 20 s on a KR 6
+        full = base * t * tool
         lever = rot * tool[:3, 3]  # the tool point's offset from the chain's end frame origin
         jac = sp.zeros(6, chain.n)
         for k, col in enumerate(cols):
             w, lin = sp.Matrix(col[3:]), sp.Matrix(col[:3])
             jac[:3, k] = base[:3, :3] * (lin + w.cross(lever))
             jac[3:, k] = base[:3, :3] * w
-        jac = jac.xreplace(trig)
         f_t, f_j = sampler(spec.joints, full), sampler(spec.joints, jac)
         scale = max(self.api.scale, 1.0)
 
