@@ -131,13 +131,14 @@ def lower_ahead(work: list[tuple[Kernel, tuple[str, ...]]], jobs: int) -> None:
     """Lower each (kernel, targets) in up to `jobs` forked processes, largest kernels first, so that lower() then
     returns them at once: CSE is most of an emission (a calibrated 7-joint arm's FK and Jacobians, 4 s on one core).
     The workers' results are the same data lower() computes (plain strings): the bytes do not depend on `jobs`.
-    Without fork (or jobs <= 1) nothing is done ahead."""
+    Off Linux (fork is unsafe on macOS, missing on Windows) or with jobs <= 1 nothing is done ahead."""
     import multiprocessing as mp
+    import sys
 
     _AHEAD.clear()
     _AHEAD_REDUCED.clear()
     todo = list(work)
-    if jobs <= 1 or len(todo) < 2 or "fork" not in mp.get_all_start_methods():
+    if jobs <= 1 or len(todo) < 2 or not sys.platform.startswith("linux"):
         return
     size = {id(k): sum(1 for _ in distinct_nodes([sp.sympify(e) for _, e in k.outputs])) for k, _ in todo}
     _PENDING[:] = sorted(todo, key=lambda kt: -size[id(kt[0])])
