@@ -39,7 +39,7 @@ def own_api_literals(api) -> dict:
     """A user robot's module constants beyond the verbs (kinematics/dh_table.OwnRobotApi: limits, named branches, the
     ideal axes their roles read, the decomposition's words) as a user robot's module prints them."""
     return {"limits_lower": [py_num(v) for v in api.lower], "limits_upper": [py_num(v) for v in api.upper],
-            "strategy_literal": text_literal(api.strategy), "controls_literal": text_literal(api.controls),
+            "strategy_literal": text_literal(api.decomposition), "controls_literal": text_literal(api.controls),
             "branch_names": api.branches, "roles": pprint.pformat(tuple(api.roles), width=110),
             "ideal_axes": vectors(api.ideal_axes), "ideal_points": vectors(api.ideal_points),
             "ideal_home": vectors(api.ideal_home), "scale": repr(float(api.scale)),

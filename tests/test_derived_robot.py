@@ -585,7 +585,7 @@ def test_the_derived_module_offers_the_robot_api_and_command_line(robot):
     assert m.JOINT_KINDS == tuple("R" if t == "revolute" else "P" for t in reference.types)
     assert np.array_equal(m.LOWER, reference.lower) and np.array_equal(m.UPPER, reference.upper)
     api = own_robot.description(path).robot_table().api
-    assert m.DECOMPOSITION == api.strategy and m.CONTROLS == api.controls
+    assert m.DECOMPOSITION == api.decomposition and m.CONTROLS == api.controls
     assert {k: tuple(v) for k, v in m.BRANCHES.items()} == dict(api.branches)
     rng = case_rng(2311)
     for _ in range(50):

@@ -158,3 +158,9 @@ class OwnRobotApi:
     # the module's FK off the description's own product by at most this (metres and rotation entries): rounding on
     # the true axes; the derived stages' exact geometry adds the description's rounding (from_table)
     description_tol: float
+    free_note: str = ""  # how the held joint was chosen when the command named none (said after the strategy)
+
+    @property
+    def decomposition(self) -> str:
+        """The module's DECOMPOSITION: the strategy, then the free-joint note where there is one."""
+        return f"{self.strategy}; {self.free_note}" if self.free_note else self.strategy

@@ -5,7 +5,7 @@ templates/{python,c}/chain.*.jinja.
 Spec fields (docs/specs.md, "chain"): `convention` (standard | modified | poe | urdf), `[[joint]]` rows (DH:
 name, type, a, alpha, d, theta, direction, lower, upper; POE: name, type, axis, point, lower, upper), `[home]`
 (POE), `urdf`, `base_link`, `tip_link` (URDF), `[base]`, `[tool]`, `free`, `redundancy`, `geometry_tol`.
-The chain family reads and plans; it emits nothing itself: own_robot.load hands ChainMechanism.robot_table to the
+The chain family reads and plans; it emits nothing itself: own_robot.load hands ChainDescription.robot_table to the
 family with from_table (the serial family), which derives the robot's stages."""
 
 from dataclasses import replace
@@ -14,7 +14,7 @@ from pathlib import Path
 from ...model import NoDecomposition
 from ...spec import Spec, common
 from .description import SPEC_FIELDS, read
-from .mechanism import ChainMechanism
+from .robot import ChainDescription
 
 __all__ = ["SOURCE_SUFFIXES", "SPEC_FIELDS", "from_spec", "spec_for_file"]
 
@@ -54,14 +54,14 @@ def spec_for_file(path: Path, name=None, base=None, tip=None, free=None, geometr
     return spec
 
 
-def free_joint_choices(name: str, title: str, desc) -> list[tuple[tuple, str, ChainMechanism]]:
+def free_joint_choices(name: str, title: str, desc) -> list[tuple[tuple, str, ChainDescription]]:
     """Every joint that, held as the run-time parameter, leaves a chain solved in closed form, cheapest first:
     (cost, joint name, mechanism), cost = (a self-motion, the general 6R elimination, branches, position in the
     chain). A self-motion (an S-R-S arm's elbow held: its poses only where the wrist centre is at the elbow's reach,
     each a family) comes last and is never picked without --free."""
     out = []
     for k, jname in enumerate(desc.chain.joint_names):
-        mech = ChainMechanism(name, title, replace(desc, free=k))
+        mech = ChainDescription(name, title, replace(desc, free=k))
         try:
             plan, _ = mech.plan()
         except NoDecomposition:
@@ -76,10 +76,10 @@ def workable_free_joints(name: str, title: str, desc) -> list[str]:
     return [jname for _, jname, _ in free_joint_choices(name, title, desc)]
 
 
-def from_spec(spec: Spec) -> ChainMechanism:
+def from_spec(spec: Spec) -> ChainDescription:
     desc = read(spec)
     head = common(spec)
-    mech = ChainMechanism(head["name"], head["title"], desc)
+    mech = ChainDescription(head["name"], head["title"], desc)
     if (desc.chain.n <= 6 and desc.free < 0) or desc.redundancy == "arm-angle":
         if desc.redundancy == "arm-angle":
             mech.plan()  # an arm that is no S-R-S: refused here, naming what is missing
@@ -96,8 +96,6 @@ def from_spec(spec: Spec) -> ChainMechanism:
         how = "the general 6R elimination" if general else f"a decomposition with {branches} branches"
         chosen.free_note = (f"free joint {jname} chosen (no --free given): the cheapest closed form ({how}); the "
                             f"other choices that work: {others}")
-        plan, _ = chosen.plan()
-        plan.strategy = f"{plan.strategy}; {chosen.free_note}"
         return chosen
     try:
         mech.plan()  # a free joint that leaves no decomposition: said here with the choices that work

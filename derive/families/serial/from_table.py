@@ -22,7 +22,6 @@ import sympy as sp
 
 from ...checks import jacobian_fd_error, numeric_predicate, sampler
 from ...identities.dh import DHRow
-from ...kinematics import general6r
 from ...kinematics.dh_table import OwnRobotApi, RobotTable
 from ...kinematics.poe_symbolic import number, symbolic_chain
 from ...literals import c_num, own_api_literals, text_literal
@@ -188,8 +187,8 @@ def from_table(robot: RobotTable) -> SerialMechanism:
     tol = 1e-12 * max(robot.size, 1.0) if calibrated else \
         1e-12 + (snapped + 2 * n * robot.deviation + conditioning) * max(robot.size, 1.0)
     # an elimination's words name the reading its stage runs, chosen on the table (the planner only checked that one
-    # is regular); a note after them (how the free joint was chosen) stays
-    strategy = robot.api.strategy.replace(general6r.STRATEGY, planned, 1) if general else robot.api.strategy
+    # is regular); the free-joint note is the api's own field
+    strategy = planned if general else robot.api.strategy
     mech = _DerivedRobot(name, lambda: replace(spec, stages=stage_list), robot.description_fk, tol,
                          replace(robot.api, description_tol=tol, strategy=strategy), robot.joint_names,
                          robot.degenerate_held,
@@ -286,7 +285,7 @@ class _DerivedRobot(SerialMechanism):
         decomposition its stages follow and how far its description is from the exact geometry they solve."""
         out = super().audit_numbers(dv, solver, audit_dir)
         api = self.api
-        out["summary"] = [("decomposition (derived straight-line stages)", api.strategy),
+        out["summary"] = [("decomposition (derived straight-line stages)", api.decomposition),
                           ("what the joints control", api.controls),
                           ("the description's axes off the exact geometry", f"{api.deviation:.2g} (geometry "
                            f"tolerance {api.geometry_tol:g}; the end frame's difference is checked in the last "

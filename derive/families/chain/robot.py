@@ -39,7 +39,7 @@ ARM_ANGLE_DEVIATION = 1e-9
 SELF_MOTION_RATIO = 1e-9
 
 
-class ChainMechanism:
+class ChainDescription:
     """A serial chain from a description (DH, POE, URDF) and the planner's decomposition of it: a
     derive.mechanism.RobotDescription, whose robot_table the serial family derives as straight-line stages."""
 
@@ -329,7 +329,8 @@ class ChainMechanism:
         deviation = self.deviation()
         return OwnRobotApi(c.lower, c.upper, labels, tuple(roles), ideal.axes, ideal.points, ideal.home,
                            plan.strategy, self.controls(), c.base, c.tool, self.scale(), self.desc.geometry_tol,
-                           deviation, deviation > CALIBRATED_DEVIATION, 1e-12 * self.scale())  # the chain step's
+                           deviation, deviation > CALIBRATED_DEVIATION, 1e-12 * self.scale(),  # the chain step's
+                           self.free_note)
 
     def scale(self) -> float:
         c = self.chain
