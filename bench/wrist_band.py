@@ -1,0 +1,114 @@
+"""How much rounding does a spherical wrist's sin(theta5) carry at an exact wrist singularity, measured against the two
+amplifications that could scale its family band?
+
+Run from the repository root:  .venv/bin/python bench/wrist_band.py [--poses 1500] [--seed 1]
+
+The derived wrist stage reads |sin theta5| as the family (one representative) below WRIST_FAMILY_TOL (64 eps) times
+`amp_before`, the product of the angle stages' own amplifications before it. This bench derives the spherical-wrist
+fixtures (numpy backend), sets theta5 = 0 or pi exactly at random joints, solves the FK pose, and for the generating
+branch records the |sin theta5| the stage computed (pure rounding: it is 0 in exact arithmetic) over
+
+* eps x amp_before (what the band uses now), and
+* eps x kappa, kappa = size / sigma_min of the wrist centre's 3 x 3 Jacobian in joints 1-3 (central differences of
+  the wrist centre, the point of the tool frame that joints 4-6 do not move; size = max(1, |position|)): how much
+  the position joints amplify the pose's rounding into the wrist's rotation.
+
+A bound is good when the largest ratio stays below 64 with room, and tight when the ratios are not far below it. It
+also prints kappa at the LR Mate pose the near-singular bench misses at theta5 = 1e-12 (the family band there is
+7.7e-12 from amp_before = 543). Prints one line per robot.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+EPS = float(np.finfo(float).eps)
+ROBOTS = ("lrmate", "kr6", "irb120", "tx2_60")
+# bench/near_singular.py's LR Mate pose missed at theta5 = 1e-12 (2026-11-29)
+LRMATE_MISS = (-0.9821104536660639, 1.1159593609618579, -1.747828137939208, 0.3288563662222219, 1.0004574458673634e-12,
+               -0.21650171387252692)
+
+
+def wrist_centre(m, rng) -> np.ndarray:
+    """The point of the tool frame that joints 4-6 do not move (least squares over wrist configurations)."""
+    q = rng.uniform(-2.0, 2.0, 6)
+    t0 = m.fk_matrix(q)
+    rows, rhs = [], []
+    for _ in range(6):
+        q2 = q.copy()
+        q2[3:] = rng.uniform(-3.0, 3.0, 3)
+        t = m.fk_matrix(q2)
+        rows.append(t[:3, :3] - t0[:3, :3])
+        rhs.append(t0[:3, 3] - t[:3, 3])
+    return np.linalg.lstsq(np.vstack(rows), np.concatenate(rhs), rcond=None)[0]
+
+
+def kappa(m, q, centre) -> float:
+    def point(x):
+        t = m.fk_matrix(x)
+        return t[:3, :3] @ centre + t[:3, 3]
+    h, jac = 1e-6, np.zeros((3, 3))
+    for i in range(3):
+        a, b = q.copy(), q.copy()
+        a[i] += h
+        b[i] -= h
+        jac[:, i] = (point(a) - point(b)) / (2.0 * h)
+    size = max(1.0, float(np.max(np.abs(m.fk_matrix(q)[:3, 3]))))
+    return size / float(np.linalg.svd(jac, compute_uv=False)[-1])
+
+
+def measure(robot: str, poses: int, seed: int) -> str:
+    from derive import own_robot
+
+    out = Path(tempfile.mkdtemp(prefix=f"wk_band_{robot}_"))
+    own_robot.derive(ROOT / "tests" / "robots" / robot / f"{robot}.urdf", out, progress=lambda _: None, native=False)
+    m = own_robot.import_solver(out, robot, backend="numpy")
+    rng = np.random.default_rng(seed)
+    centre = wrist_centre(m, rng)
+    seen, plain = [], m._wrist
+
+    def wrist(out_, sgn, signs, joints, q, c, s, dp, amp_before):
+        seen.append((abs(math.hypot(out_[2], out_[5])), amp_before, list(q[:3])))
+        return plain(out_, sgn, signs, joints, q, c, s, dp, amp_before)
+    m._wrist = wrist
+    by_amp, by_kappa = [], []
+    for i in range(poses):
+        q = rng.uniform(-2.8, 2.8, 6)
+        q[4] = 0.0 if i % 2 == 0 else math.pi
+        seen.clear()
+        m.ik(m.fk_matrix(q))
+        for s5, amp, q123 in seen:
+            if np.max(np.abs(np.remainder(np.array(q123) - q[:3] + math.pi, 2.0 * math.pi) - math.pi)) < 1e-6:
+                by_amp.append(s5 / (EPS * amp))
+                by_kappa.append(s5 / (EPS * kappa(m, q, centre)))
+    a, k = np.array(by_amp), np.array(by_kappa)
+    line = (f"{robot}: {len(a)} generating branches; |sin theta5| / (eps amp_before) max {a.max():.1f}, p99 "
+            f"{np.percentile(a, 99):.2f}, median {np.median(a):.3f}; / (eps kappa) max {k.max():.2f}, p99 "
+            f"{np.percentile(k, 99):.2f}, median {np.median(k):.3f}")
+    if robot == "lrmate":
+        kap = kappa(m, np.array(LRMATE_MISS), centre)
+        line += f"; the missed pose's kappa {kap:.1f} (a band of 64 eps kappa = {64 * EPS * kap:.1e})"
+    return line
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--poses", type=int, default=1500)
+    ap.add_argument("--seed", type=int, default=1)
+    args = ap.parse_args(argv)
+    for robot in ROBOTS:
+        print(measure(robot, args.poses, args.seed))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
