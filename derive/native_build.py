@@ -33,6 +33,14 @@ class PendingBuild:
                                              stderr=subprocess.PIPE, text=True))
                       for src, obj in zip(sources, self._objects, strict=True)]
 
+    def cancel(self) -> None:
+        """Stop the compilers and remove their objects (the caller failed before it needed the extension)."""
+        for _, job in self._jobs:
+            if job.poll() is None:
+                job.kill()
+            job.communicate()
+        self._dir.cleanup()
+
     def wait(self) -> Path:
         """The extension, once every source compiled and the objects linked; BuildError naming the first failure."""
         try:

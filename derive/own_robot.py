@@ -103,7 +103,8 @@ def import_solver(out: Path, name: str, backend: str | None = None):
 def _extension(out: Path, mech, progress):
     """OUT/native/_native.c over every solver in OUT/c, its compile into OUT/python/_wristkin_native started: the
     Python solvers then run the C. Returns (the files written, a function that waits for the compile and returns
-    the extension's path, or None where there is none). Without a compiler they run on numpy (said, not an error).
+    the extension's path, or None where there is none, and one that stops it). Without a compiler they run on numpy
+    (said, not an error).
     A folder may hold robots derived one command at a time: OUT/native/api.json keeps each one's declared C verbs
     (Mechanism.C_API), so the binding is rendered from declarations, not from reading the headers."""
     from .mechanism import CApi
@@ -124,7 +125,7 @@ def _extension(out: Path, mech, progress):
         pending = start(out, target=target)
     except BuildError as exc:
         said(exc)
-        return [api_file, binding], lambda: None
+        return [api_file, binding], lambda: None, lambda: None
 
     def finish():
         try:
@@ -132,7 +133,7 @@ def _extension(out: Path, mech, progress):
         except BuildError as exc:
             said(exc)
             return None
-    return [api_file, binding], finish
+    return [api_file, binding], finish, pending.cancel
 
 
 def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=None, progress=print,
@@ -164,15 +165,20 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
                *emit_solvers(nm, mech, ks, out / "python", out / "c", jobs=jobs),
                *emit_c_runtime(out / "c", mech.c_shared_files())]
     stage("emitted Python and C")
-    finish = None
+    finish = cancel = None
     if native:  # the compile runs beside the CasADi functions and the audit (they run the numpy solver)
-        files, finish = _extension(out, mech, progress)
+        files, finish, cancel = _extension(out, mech, progress)
         written += files
-    solver = import_solver(out, nm, backend="numpy")
-    written += emit_casadi(nm, mech, dv, ks, out / "casadi", solver)
-    stage("wrote the CasADi functions")
-    written += audit.write_report(mech, dv, out, solver=solver)
-    stage("audited the generated solver")
+    try:
+        solver = import_solver(out, nm, backend="numpy")
+        written += emit_casadi(nm, mech, dv, ks, out / "casadi", solver)
+        stage("wrote the CasADi functions")
+        written += audit.write_report(mech, dv, out, solver=solver)
+        stage("audited the generated solver")
+    except BaseException:
+        if cancel is not None:  # no compiler left running behind a failed derivation
+            cancel()
+        raise
     if finish is not None:
         extension = finish()
         if extension is not None:
