@@ -54,11 +54,7 @@ class PendingBuild:
                 _fail(cmd, run.stderr)
             return self._target
         finally:
-            for _, job in self._jobs:  # a failure above leaves the others to finish, not to linger
-                if job.poll() is None:
-                    job.kill()
-                    job.wait()
-            self._dir.cleanup()
+            self.cancel()  # after a failure the other compilers are stopped, not left to finish
 
 
 def start(out: Path, cc: str | None = None, target: Path | None = None) -> PendingBuild:

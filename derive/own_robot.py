@@ -22,6 +22,7 @@ from pathlib import Path
 from . import runtime_files
 from .families import FAMILIES
 from .mechanism import Mechanism
+from .native_build import BuildError, start
 from .render import header_lines
 from .spec import Spec, SpecError
 
@@ -100,15 +101,17 @@ def import_solver(out: Path, name: str, backend: str | None = None):
                 os.environ["WRISTKIN_BACKEND"] = env
 
 
+def _no_extension(progress, exc) -> None:
+    progress(f"  no C extension ({str(exc).splitlines()[0]}): the Python solvers run on numpy")
+
+
 def _extension(out: Path, mech, progress):
     """OUT/native/_native.c over every solver in OUT/c, its compile into OUT/python/_wristkin_native started: the
-    Python solvers then run the C. Returns (the files written, a function that waits for the compile and returns
-    the extension's path, or None where there is none, and one that stops it). Without a compiler they run on numpy
-    (said, not an error).
-    A folder may hold robots derived one command at a time: OUT/native/api.json keeps each one's declared C verbs
-    (Mechanism.C_API), so the binding is rendered from declarations, not from reading the headers."""
+    Python solvers then run the C. Returns (the files written, the PendingBuild, or None without a compiler: the
+    solvers then run on numpy, said, not an error). A folder may hold robots derived one command at a time:
+    OUT/native/api.json keeps each one's declared C verbs (Mechanism.C_API), so the binding is rendered from
+    declarations, not from reading the headers."""
     from .mechanism import CApi
-    from .native_build import BuildError, start
     from .pipeline import native_binding, solver_names, write_file
 
     record = out / "native" / "api.json"
@@ -118,22 +121,11 @@ def _extension(out: Path, mech, progress):
     api_file = write_file(record, json.dumps(known, indent=1, sort_keys=True) + "\n")
     binding = native_binding(out, {n: CApi(**v) for n, v in known.items()}, "_wristkin_native")
     target = out / "python" / f"_wristkin_native{sysconfig.get_config_var('EXT_SUFFIX') or '.so'}"
-
-    def said(exc):
-        progress(f"  no C extension ({str(exc).splitlines()[0]}): the Python solvers run on numpy")
     try:
-        pending = start(out, target=target)
+        return [api_file, binding], start(out, target=target)
     except BuildError as exc:
-        said(exc)
-        return [api_file, binding], lambda: None, lambda: None
-
-    def finish():
-        try:
-            return pending.wait()
-        except BuildError as exc:
-            said(exc)
-            return None
-    return [api_file, binding], finish, pending.cancel
+        _no_extension(progress, exc)
+        return [api_file, binding], None
 
 
 def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=None, progress=print,
@@ -165,9 +157,9 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
                *emit_solvers(nm, mech, ks, out / "python", out / "c", jobs=jobs),
                *emit_c_runtime(out / "c", mech.c_shared_files())]
     stage("emitted Python and C")
-    finish = cancel = None
+    pending = None
     if native:  # the compile runs beside the CasADi functions and the audit (they run the numpy solver)
-        files, finish, cancel = _extension(out, mech, progress)
+        files, pending = _extension(out, mech, progress)
         written += files
     try:
         solver = import_solver(out, nm, backend="numpy")
@@ -176,13 +168,14 @@ def derive(source, out, name=None, base=None, tip=None, free=None, geometry_tol=
         written += audit.write_report(mech, dv, out, solver=solver)
         stage("audited the generated solver")
     except BaseException:
-        if cancel is not None:  # no compiler left running behind a failed derivation
-            cancel()
+        if pending is not None:  # no compiler left running behind a failed derivation
+            pending.cancel()
         raise
-    if finish is not None:
-        extension = finish()
-        if extension is not None:
-            written.append(extension)
+    if pending is not None:
+        try:
+            written.append(pending.wait())
             stage("compiled the C into the folder's Python extension (_wristkin_native), begun after emitting")
+        except BuildError as exc:
+            _no_extension(progress, exc)
     progress(f"wrote {len(written)} files to {out} in {time.perf_counter() - t0:.1f} s")
     return written

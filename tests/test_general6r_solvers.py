@@ -90,6 +90,7 @@ def test_every_solution_against_the_multistart_reference(name):
         # description (a rounded file: the near-special KR 6's 5e-12, within DESCRIPTION_TOL), each over sigma_min
         # (a pose entry's error moves the joints by at most sqrt(6) times it over sigma_min, to first order)
         off = float(np.max(np.abs(m.fk_matrix(q, design) - T)))
+        assert off <= m.DESCRIPTION_TOL  # the module's FK is the description's, within what its audit proves
         assert min(_distance(q, v) for v in sol) < 1e-9 + (1e-13 + math.sqrt(6.0) * off) / smin
         fixed = None if free_index is None else {free_index: q[free_index]}
         expected = ref.ik_all(reference, n, T, starts=100, seed=int(rng.integers(1 << 30)), fixed=fixed)

@@ -3,6 +3,9 @@ waits for it after the audit), with a failure named and a cancelled build leavin
 
 from __future__ import annotations
 
+import time
+from pathlib import Path
+
 import pytest
 
 from derive.native_build import BuildError, start
@@ -31,12 +34,20 @@ def test_a_failing_source_is_named(tmp_path):
     assert not (tmp_path / "ext.so").exists()
 
 
-def test_a_cancelled_build_leaves_no_compiler_running(tmp_path):
+def test_a_cancelled_build_stops_its_compilers(tmp_path):
+    """A compiler that would take a minute (a stand-in that sleeps) is killed, not waited for, and its objects'
+    folder removed."""
     out = _folder(tmp_path, "double wk_solver_probe(double x) { return 2.0 * x; }")
-    pending = start(out, target=tmp_path / "ext.so")
+    slow = tmp_path / "slow-cc"
+    slow.write_text("#!/bin/sh\nexec sleep 60\n")
+    slow.chmod(0o755)
+    pending = start(out, cc=str(slow), target=tmp_path / "ext.so")
+    objects = Path(pending._dir.name)
+    assert objects.is_dir()
+    t0 = time.perf_counter()
     pending.cancel()
-    assert all(job.poll() is not None for _, job in pending._jobs)
-    assert not (tmp_path / "ext.so").exists()
+    assert time.perf_counter() - t0 < 10.0
+    assert not objects.exists() and not (tmp_path / "ext.so").exists()
 
 
 def test_no_compiler_is_a_build_error(tmp_path):

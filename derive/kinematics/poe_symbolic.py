@@ -43,15 +43,12 @@ def joint_symbols(n: int) -> tuple[tuple[sp.Symbol, ...], ...]:
     return tuple(tuple(sp.Symbol(f"{v}{i}", real=True) for i in range(n)) for v in ("q", "c", "s"))
 
 
-def symbolic_chain(chain, joints=None):
-    """(R, t, columns) of the chain's end frame (no base / tool) over the joint symbols: the product of the screws
-    times the home frame, and the geometric Jacobian's columns (w x (p - o), w) or (w, 0), linear rows first.
-    `joints` (n symbols): over them and their cos and sin instead, built so (the same expressions as the joint
-    symbols' with cos and sin put in afterwards, without the seconds that substitution takes on a 7-joint chain)."""
-    if joints is None:
-        qs, cs, ss = joint_symbols(chain.n)
-    else:
-        qs, cs, ss = tuple(joints), tuple(sp.cos(q) for q in joints), tuple(sp.sin(q) for q in joints)
+def symbolic_chain(chain, joints):
+    """(R, t, columns) of the chain's end frame (no base / tool) over the n joint symbols `joints` and their cos and
+    sin: the product of the screws times the home frame, and the geometric Jacobian's columns (w x (p - o), w) or
+    (w, 0), linear rows first. Built over cos q and sin q directly (symbols for them substituted afterwards gave the
+    same expressions and took seconds of xreplace on a 7-joint chain)."""
+    qs, cs, ss = tuple(joints), tuple(sp.cos(q) for q in joints), tuple(sp.sin(q) for q in joints)
     rot, t = sp.eye(3), sp.zeros(3, 1)
     axes_points = []
     for kind, a, p, q, c, s in zip(chain.kinds, chain.axes, chain.points, qs, cs, ss, strict=True):
