@@ -1,21 +1,23 @@
-"""How much rounding does a spherical wrist's sin(theta5) carry at an exact wrist singularity, measured against the two
-amplifications that could scale its family band?
+"""How much rounding does a spherical wrist's sin(theta5) carry at an exact wrist singularity, measured against the
+factors that scale its family band?
 
 Run from the repository root:  .venv/bin/python bench/wrist_band.py [--poses 1500] [--seed 1]
 
-The derived wrist stage reads |sin theta5| as the family (one representative) below WRIST_FAMILY_TOL (64 eps) times
-`amp_before`, the product of the angle stages' own amplifications before it. This bench derives the spherical-wrist
-fixtures (numpy backend), sets theta5 = 0 or pi exactly at random joints, solves the FK pose, and for the generating
-branch records the |sin theta5| the stage computed (pure rounding: it is 0 in exact arithmetic) over
+The derived wrist stage reads |sin theta5| as the family (one representative) below WRIST_FAMILY_TOL (64 eps) times a
+factor: `amp_before`, the product of the angle stages' own amplifications before it, narrowed where smaller to
+WRIST_KAPPA_SHARE kappa (serial_stages._wrist_amp), kappa = size ||adj J_c||_F / |det J_c| of the wrist centre's
+Jacobian in the prefix joints (the stage's derived kernel). This bench derives the spherical-wrist fixtures (numpy
+backend), sets theta5 = 0 or pi exactly at random joints, solves the FK pose, and for the generating branch records
+the |sin theta5| the stage computed (pure rounding: it is 0 in exact arithmetic) over
 
-* eps x amp_before (what the band uses now), and
-* eps x kappa, kappa = size / sigma_min of the wrist centre's 3 x 3 Jacobian in joints 1-3 (central differences of
-  the wrist centre, the point of the tool frame that joints 4-6 do not move; size = max(1, |position|)): how much
-  the position joints amplify the pose's rounding into the wrist's rotation.
+* eps x amp_before (the product alone, the band before the kernel),
+* eps x kappa (an independent reading: size / sigma_min of the wrist centre's 3 x 3 Jacobian in joints 1-3 by central
+  differences of the FK, size = max(1, |position|)), and
+* eps x the factor the stage now uses.
 
-A bound is good when the largest ratio stays below 64 with room, and tight when the ratios are not far below it. It
-also prints kappa at the LR Mate pose the near-singular bench misses at theta5 = 1e-12 (the family band there is
-7.7e-12 from amp_before = 543). Prints one line per robot.
+A factor is safe when the largest ratio stays below 64 with room. It also solves the LR Mate pose the near-singular
+bench missed at theta5 = 1e-12 (the product's band there was 7.7e-12) and says whether its generating joints come
+back. Prints one line per robot.
 """
 
 from __future__ import annotations
@@ -76,27 +78,37 @@ def measure(robot: str, poses: int, seed: int) -> str:
     centre = wrist_centre(m, rng)
     seen, plain = [], m._wrist
 
-    def wrist(out_, sgn, signs, joints, q, c, s, dp, amp_before):
-        seen.append((abs(math.hypot(out_[2], out_[5])), amp_before, list(q[:3])))
-        return plain(out_, sgn, signs, joints, q, c, s, dp, amp_before)
+    def wrist(out_, sgn, signs, joints, q, c, s, dp, amp_before, kernel=None, pose=None):
+        # the factor the stage reads (the gate passed: sin theta5 = 0)
+        factor = m._wrist_amp(0.0, amp_before, kernel, pose, q, c, s, dp)
+        seen.append((abs(math.hypot(out_[2], out_[5])), amp_before, factor, list(q[:3])))
+        return plain(out_, sgn, signs, joints, q, c, s, dp, amp_before, kernel, pose)
     m._wrist = wrist
-    by_amp, by_kappa = [], []
+    by_amp, by_kappa, by_factor = [], [], []
     for i in range(poses):
         q = rng.uniform(-2.8, 2.8, 6)
         q[4] = 0.0 if i % 2 == 0 else math.pi
         seen.clear()
         m.ik(m.fk_matrix(q))
-        for s5, amp, q123 in seen:
+        for s5, amp, factor, q123 in seen:
             if np.max(np.abs(np.remainder(np.array(q123) - q[:3] + math.pi, 2.0 * math.pi) - math.pi)) < 1e-6:
                 by_amp.append(s5 / (EPS * amp))
                 by_kappa.append(s5 / (EPS * kappa(m, q, centre)))
-    a, k = np.array(by_amp), np.array(by_kappa)
-    line = (f"{robot}: {len(a)} generating branches; |sin theta5| / (eps amp_before) max {a.max():.1f}, p99 "
-            f"{np.percentile(a, 99):.2f}, median {np.median(a):.3f}; / (eps kappa) max {k.max():.2f}, p99 "
-            f"{np.percentile(k, 99):.2f}, median {np.median(k):.3f}")
+                by_factor.append(s5 / (EPS * factor))
+    a, k, f = np.array(by_amp), np.array(by_kappa), np.array(by_factor)
+
+    def spread(x):
+        return f"max {x.max():.2f}, p99 {np.percentile(x, 99):.2f}, median {np.median(x):.3f}"
+    line = (f"{robot}: {len(a)} generating branches; |sin theta5| over eps x amp_before {spread(a)}; over eps x "
+            f"kappa {spread(k)}; over eps x the stage's factor {spread(f)}")
     if robot == "lrmate":
-        kap = kappa(m, np.array(LRMATE_MISS), centre)
-        line += f"; the missed pose's kappa {kap:.1f} (a band of 64 eps kappa = {64 * EPS * kap:.1e})"
+        m._wrist = plain
+        q = np.array(LRMATE_MISS)
+        sol = m.ik(m.fk_matrix(q))
+        off = min(float(np.max(np.abs(np.remainder(np.asarray(v) - q + math.pi, 2.0 * math.pi) - math.pi)))
+                  for v in sol)
+        line += (f"; the pose missed before (kappa {kappa(m, q, centre):.1f}): its generating joints "
+                 f"{'returned' if off < 1e-6 + 1e-13 / LRMATE_MISS[4] else 'missed'} ({off:.1e} rad off)")
     return line
 
 

@@ -34,10 +34,13 @@ ROBOTS_DIR = Path(__file__).resolve().parent / "robots"
 # one of each decomposition path: three parallel axes (ur5e), the meeting pair (irb120), a plane + a single
 # joint (kr6), a held free joint of a 7-joint arm (iiwa14, a3 held)
 ROBOTS = {"ur5e": None, "irb120": None, "kr6": None, "iiwa14": "a3"}
-# down to 1e-10: at 1e-12 a wrist can be within its family band, 1e-12 times the amplification of the trig stages
-# before it (up to ~20: an irb120 wrist at 1e-12 came back as the family at seed 3 under Haswell);
-# bench/near_singular.py reports 1e-12 too
-DELTAS = (1e-10, 1e-8, 1e-6, 1e-4)
+# down to 1e-12: a spherical wrist's family band scales by its wrist centre's kappa (serial_stages._wrist_amp), no
+# longer by the product of the stages' amplifications before it, which took an irb120 wrist at 1e-12 for the family
+# (seed 3 under Haswell)
+DELTAS = (1e-12, 1e-10, 1e-8, 1e-6, 1e-4)
+# but a UR's wrist (joint 5, the half-gap stage; README, Known defects): at 1e-12 its q6 reads to eps / 1e-12 = 2e-4
+# rad, and an elbow 8e-4 rad from straight behind it then reads u 4e-5 past 1 and loses the generating branch (seed 3)
+NOT_AT_1E12 = {"ur5e": 4}
 IK_VERIFY_TOL = 1e-9  # the API's contract on every valid set (docs/API.md)
 EPS = float(np.finfo(float).eps)
 
@@ -73,6 +76,8 @@ def test_generating_joints_are_returned_near_every_singularity(solvers):
     assert len({j for j, _ in configs}) >= 3, configs
     for j, qs in configs:
         for delta in DELTAS:
+            if delta == 1e-12 and NOT_AT_1E12.get(name) == j:
+                continue
             for sign in (1.0, -1.0):
                 q = qs.copy()
                 q[j] += sign * delta

@@ -297,6 +297,79 @@ def test_c_sources_solve_every_catalogue_serial_robot_as_python_does(clib):
             assert min(_gap(v, q, kinds) for v in values[valid]) <= 1e-6, (name, q)
 
 
+def _random_centre_jacobians(rng, count):
+    """3 x 3 wrist-centre Jacobians U diag(sigma) V^T, sigma_min from 1 down to 1e-9 (a prefix near its own
+    singularity), their sizes 0.1-2 m, and a wrist-centre position of 0.1-3 m."""
+    for i in range(count):
+        u, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+        v, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+        top = rng.uniform(0.1, 2.0)
+        sigma = np.array([top, top * rng.uniform(0.05, 1.0), top * 10.0 ** -rng.uniform(0, 9 * (i % 4) / 3)])
+        pose = np.zeros(12)
+        pose[[3, 7, 11]] = rng.normal(size=3) * rng.uniform(0.1, 3.0)
+        yield u @ np.diag(sigma) @ v.T, pose
+
+
+def test_the_wrist_band_factor_reads_the_wrist_centre_kappa(py):
+    """_wrist_amp against an independent reading: kappa_F = size ||J^-1||_F from numpy's inverse (size = max(1,
+    |p|)), between size / sigma_min (the SVD) and sqrt(3) times that; the factor min(WRIST_KAPPA_SHARE kappa_F,
+    WRIST_AMP_SHARE amp_before) to the cofactors' rounding relative to the inverse's (16 eps cond(J)); amp_before
+    where there is no kernel, where |sin theta5| is beyond twice the widest band's reach (the kernel not read) and
+    at det J = 0 exactly (the cap)."""
+    st = py.stages
+    rng = case_rng(2262)
+    eps = float(np.finfo(float).eps)
+    for jac, pose in _random_centre_jacobians(rng, 200):
+        amp = 10.0 ** rng.uniform(0.0, 6.0)
+        entries = tuple(jac.ravel())
+        got = st._wrist_amp(0.0, amp, lambda *_, m=entries: m, pose, None, None, None, None)
+        size = max(1.0, float(np.max(np.abs(pose[[3, 7, 11]]))))
+        sv = np.linalg.svd(jac, compute_uv=False)
+        kappa_f = size * float(np.linalg.norm(np.linalg.inv(jac)))
+        assert size / sv[-1] * (1 - 1e-6) <= kappa_f <= math.sqrt(3.0) * size / sv[-1] * (1 + 1e-6)
+        want = min(st.WRIST_KAPPA_SHARE * kappa_f, st.WRIST_AMP_SHARE * amp)
+        assert abs(got - want) <= 16 * eps * sv[0] / sv[-1] * want, (got, want, sv)
+    seen = []
+
+    def kernel(*_):
+        seen.append(1)
+        return (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
+    far = 2.0 * st.WRIST_EXACT_TOL * st.WRIST_AMP_SHARE * 3.0 * 1.01
+    assert st._wrist_amp(far, 3.0, kernel, np.zeros(12), None, None, None, None) == 3.0 and not seen
+    assert st._wrist_amp(0.0, 3.0, None, np.zeros(12), None, None, None, None) == 3.0
+    flat = (1.0, 2.0, 3.0, 2.0, 4.0, 6.0, 0.0, 1.0, 0.0)  # two rows parallel: det 0 exactly
+    assert st._wrist_amp(0.0, 3.0, lambda *_: flat, np.zeros(12), None, None, None, None) == st.WRIST_AMP_SHARE * 3.0
+
+
+KERNEL = ctypes.CFUNCTYPE(None, D, D, D, D, D, D)
+
+
+def test_c_wrist_band_factor_is_pythons_to_the_bit(clib, py):
+    """sr_wrist_amp and _wrist_amp read the same kernel output with the same operations: the same double, on the
+    random Jacobians above, a singular one and beyond the gate."""
+    name, L, _, _ = clib
+    L.wkt_sr_has_wrist.restype = ctypes.c_int
+    if not L.wkt_sr_has_wrist():
+        pytest.skip(f"{name} has no spherical wrist stage")
+    L.wkt_sr_wrist_amp.restype = ctypes.c_double
+    L.wkt_sr_wrist_amp.argtypes = [ctypes.c_double, ctypes.c_double, KERNEL, D]
+    st = py.stages
+    rng = case_rng(2263)
+    cases = list(_random_centre_jacobians(rng, 60))
+    cases.append((np.array([[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 1.0, 0.0]]), np.zeros(12)))
+    for jac, pose in cases:
+        m = tuple(jac.ravel())
+
+        def fill(_pose, _q, _c, _s, _dp, out, m=m):
+            for i, v in enumerate(m):
+                out[i] = v
+        cb = KERNEL(fill)
+        for s5 in (0.0, 1e-12, 1.0):
+            amp = 10.0 ** rng.uniform(0.0, 4.0)
+            want = st._wrist_amp(s5, amp, lambda *_, m=m: m, pose, None, None, None, None)
+            assert L.wkt_sr_wrist_amp(s5, amp, cb, _p(np.ascontiguousarray(pose))) == want, (name, jac, s5)
+
+
 def test_c_design_init_rejects_what_python_rejects(clib):
     name, L, n, _ = clib
     mod = importlib.import_module(f"wristkin.{name}")

@@ -190,6 +190,14 @@ def serial_kernels(spec, dv: Derivation):
     for k, st in enumerate(spec.stages, start=1):
         ks.append(Kernel(f"stage{k}", f"IK stage {k} ({st.kind}): {st.title}", (pose, q, ("c", cs), ("s", ss), dp),
                          tuple(zip(stage_output_names(st), on_cs_all(st.exprs, spec), strict=True))))
+        centre = dv.exports.get("wrist_centre", {}).get(k)
+        if centre is not None:  # the wrist centre's Jacobian in the prefix joints (families/serial/wrist_centre.py)
+            ks.append(Kernel(f"stage{k}_centre", f"IK stage {k}'s wrist centre Jacobian in the joints solved before "
+                             "it (3 x 3, row-major): its family band's amplification", (pose, q, ("c", cs), ("s", ss),
+                                                                                         dp),
+                             tuple(zip((f"j{r}{c}" for r in range(3) for c in range(3)),
+                                       on_cs_all([centre[r, c] for r in range(3) for c in range(3)], spec),
+                                       strict=True))))
         if st.reader:  # the arm angle of joint values: what the module's arm_angle() reads (serial_arm_angle.py)
             ks.append(Kernel("arm_angle_parts", "The first axis, the shoulder centre, the elbow point, the wrist "
                              "centre and the elbow axis's direction the joints place (5 x 3).", (q, dp),
@@ -199,8 +207,9 @@ def serial_kernels(spec, dv: Derivation):
     return ks
 
 
-def stage_view(spec) -> list[dict]:
-    """What the templates need to emit the solution tree.
+def stage_view(spec, kernel_names=frozenset()) -> list[dict]:
+    """What the templates need to emit the solution tree (`kernel_names`: the kernels emitted, where a wrist stage's
+    centre Jacobian is one).
 
     The first branching stage takes the highest bits of the set index, so consecutive sets share their
     prefix and a stage is recomputed only when its prefix (key = k >> shift) changes. A stage of more than two
@@ -228,6 +237,7 @@ def stage_view(spec) -> list[dict]:
         view["floor_tol"] = {"distance": "0.0", "wrist": "WRIST_FAMILY_TOL"}[st.gap]
         if st.kind == "wrist":
             view["signs"] = list(st.signs)
+            view["centre"] = f"stage{k}_centre" in kernel_names  # its family band reads the centre's kappa
             view["joint_kinds"] = [spec.kinds[j] for j in st.joints]
         else:
             view["joint_kind"] = spec.kinds[st.joints[0]]

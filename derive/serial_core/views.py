@@ -103,10 +103,12 @@ def py_stage_body(st: dict) -> list[str]:
                 f"{_tuple(st['joints'])}, q, c, s, pose, dp, {extra}, ws)"]
     if st["kind"] == "wrist":
         joints, signs = "(" + ", ".join(map(str, st["joints"])) + ")", "(" + ", ".join(map(str, st["signs"])) + ")"
+        centre = f"_k_stage{st['index']}_centre, pose" if st.get("centre") else "None, pose"
         mirror = ["if k & 1:  # the second branch mirrors the first (set k - 1's prefix)",
-                  f"    return _wrist_mirror({joints}, q, c, s, a)"] if st["bit"] == 0 else []
+                  f"    return _wrist_mirror({joints}, q, c, s, a, {centre}, dp)"] if st["bit"] == 0 else []
         return [f"a = {_amp_before(st)}  # the angle stages' amplification"] + mirror + [
-            f"return _wrist({out}, _sign(k, {st['bit']}), {signs}, {joints}, q, c, s, dp, a)"]
+            f"return _wrist({out}, _sign(k, {st['bit']}), {signs}, {joints}, q, c, s, dp, a,",
+            f"              {centre})"]
     raise ValueError(f"stage kind {st['kind']!r}")
 
 
@@ -155,11 +157,12 @@ def c_stage_body(st: dict) -> list[str]:
         signs = ", ".join(f"{v}.0" for v in st["signs"])
         body = [f"static const int joints[3] = {{ {joints} }};",
                 f"static const double signs[8] = {{ {signs} }};"] + head
+        centre = f"sr_k_stage{st['index']}_centre" if st.get("centre") else "NULL"
         if st["bit"] == 0:
-            body += [f"if ((k & 1) == 1) return sr_wrist_mirror(joints, q, c, s, {_amp_before(st)}, f); "
-                     "/* set k - 1's prefix */"]
+            body += [f"if ((k & 1) == 1) return sr_wrist_mirror(joints, q, c, s, {_amp_before(st)}, {centre}, pose, "
+                     "dp, f); /* set k - 1's prefix */"]
         return body + [call, f"return sr_wrist(out, sr_sign(k, {st['bit']}), signs, joints, q, c, s, dp, "
-                             f"{_amp_before(st)}, f);"]
+                             f"{_amp_before(st)}, {centre}, pose, f);"]
     raise ValueError(f"stage kind {st['kind']!r}")
 
 

@@ -259,14 +259,47 @@ def _wrist_sigma(up, dp, joints):
     return 1.0 if same <= 1e-9 * (1.0 + max((abs(v) for v in dp[:N_LENGTHS]), default=0.0)) else -1.0
 
 
-def _wrist_mirror(joints, q, c, s, amp_before):
+# The factor the wrist's family bands scale by (_wrist_amp) takes these shares of its two readings: at exact wrist
+# singularities the computed |sin theta5| stayed below 0.96 eps kappa and below 130 eps amp_before (bench/wrist_band.py:
+# 6,000 poses of four arms), so the family band WRIST_FAMILY_TOL (64 eps) times 0.25 kappa, or times 16 amp_before
+# where that is smaller, keeps a margin of 8 or more over that rounding
+WRIST_KAPPA_SHARE = 0.25
+WRIST_AMP_SHARE = 16.0
+
+
+def _wrist_amp(s5, amp_before, centre, pose, q, c, s, dp):
+    """The factor the wrist's family bands scale by: how much the stages before the wrist amplify the pose's rounding
+    into the wrist's rotation. Where the stage has its wrist centre's Jacobian J_c in the prefix joints (`centre`, its
+    kernel: derive/families/serial/wrist_centre.py), WRIST_KAPPA_SHARE kappa, kappa = size ||adj J_c||_F / |det J_c|
+    >= size / sigma_min(J_c), capped at WRIST_AMP_SHARE amp_before: the product of the angle stages' own
+    amplifications, loose on most poses (up to 100x kappa), the bound where a prefix stage sits at its double root
+    (kappa unbounded, that stage's error held to its band). Without the kernel, amp_before. Read only where
+    |sin theta5| is within twice the widest band's reach (a regular pose never evaluates the kernel; the margin lets
+    the mirror, which reads its base's normalised sine, take the same factor)."""
+    if centre is None:
+        return amp_before
+    cap = WRIST_AMP_SHARE * amp_before
+    if not abs(s5) <= 2.0 * WRIST_EXACT_TOL * cap:
+        return amp_before
+    m = centre(pose, q, c, s, dp)
+    a0, a1, a2 = m[4] * m[8] - m[5] * m[7], m[5] * m[6] - m[3] * m[8], m[3] * m[7] - m[4] * m[6]
+    a3, a4, a5 = m[2] * m[7] - m[1] * m[8], m[0] * m[8] - m[2] * m[6], m[1] * m[6] - m[0] * m[7]
+    a6, a7, a8 = m[1] * m[5] - m[2] * m[4], m[2] * m[3] - m[0] * m[5], m[0] * m[4] - m[1] * m[3]
+    det = abs(m[0] * a0 + m[1] * a1 + m[2] * a2)
+    adj = math.sqrt(a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3 + a4 * a4 + a5 * a5 + a6 * a6 + a7 * a7 + a8 * a8)
+    share = WRIST_KAPPA_SHARE * max(1.0, abs(pose[3]), abs(pose[7]), abs(pose[11])) * adj
+    return share / det if share < cap * det else cap
+
+
+def _wrist_mirror(joints, q, c, s, amp_before, centre=None, pose=None, dp=None):
     """The second wrist branch mirrors the first, computed for the same prefix at set k - 1 (the wrist is the last
     branching stage): q5 -> -q5, q4 -> q4 + pi, q6 -> q6 + pi. At the singularity the first branch already holds
-    the whole family (its sin theta5 exactly 0), so this one is a duplicate; within WRIST_EXACT_TOL amp_before of it
-    both are the pose's own reading of a near family (_wrist)."""
+    the whole family (its sin theta5 exactly 0), so this one is a duplicate; within WRIST_EXACT_TOL of it (times the
+    factor _wrist_amp reads, as the first branch did) both are the pose's own reading of a near family (_wrist)."""
     j4, j5, j6 = joints
     if abs(s[j5]) <= WRIST_FAMILY_TOL:
         return False, 0
+    amp_before = _wrist_amp(s[j5], amp_before, centre, pose, q, c, s, dp)
     q[j5], s[j5] = -q[j5], -s[j5]
     for j in (j4, j6):
         q[j], c[j], s[j] = q[j] - math.pi if q[j] > 0.0 else q[j] + math.pi, -c[j], -s[j]
@@ -275,17 +308,19 @@ def _wrist_mirror(joints, q, c, s, amp_before):
     return True, FLAG_SINGULAR_INVERSE if abs(s[j5]) <= SINGULAR_EPS else 0
 
 
-def _wrist(out, sgn, signs, joints, q, c, s, dp, amp_before):
+def _wrist(out, sgn, signs, joints, q, c, s, dp, amp_before, centre=None, pose=None):
     """The spherical wrist (q4, q5, q6) from the entries of its rotation (out, 9), branch sgn; `signs`: the DH
     twists' signs of those entries (e0..e3) and of the singular family's (k00, k10 with theta5 = 0, then pi);
     `amp_before`: how much the angle stages before it amplified the input's rounding (the product of their amp: each
     reads the joints the ones before it solved), by which its family bands grow: |sin theta5| within
     WRIST_FAMILY_TOL amp_before is the family (one representative), within WRIST_EXACT_TOL amp_before the pose is
-    within rounding of it and both branches are its own reading, flagged indeterminate."""
+    within rounding of it and both branches are its own reading, flagged indeterminate; amp_before narrowed to the
+    wrist centre's conditioning where the stage has its kernel (`centre`, read at `pose`: _wrist_amp)."""
     e0, e1, e2, e3, k00a, k10a, k00b, k10b = signs
     j4, j5, j6 = joints
     s5 = sgn * math.hypot(out[2], out[5])
     c5 = e0 * out[8]
+    amp_before = _wrist_amp(s5, amp_before, centre, pose, q, c, s, dp)
     f = FLAG_SINGULAR_INVERSE if abs(s5) <= SINGULAR_EPS else 0
     if abs(s5) <= WRIST_EXACT_TOL * amp_before:
         # the sine 1e-12 on a KR 6 read as the family gave q4 := 0, 2 rad from the generating joints (62 of 400

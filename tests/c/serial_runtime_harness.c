@@ -22,6 +22,8 @@ int wkt_sr_fk(const double *joints, double *pose, double *jac, double *man, unsi
 int wkt_sr_fk_batch(size_t n, const double *joints, sr_fk_solutions *out);
 int wkt_sr_select_ik(const sr_ik_solutions *s, const double *previous);
 int wkt_sr_atlas(size_t n, const double *joints, double length, double threshold, int64_t *sums, double *li_min);
+int wkt_sr_has_wrist(void);
+double wkt_sr_wrist_amp(double s5, double amp_before, sr_stage_kernel centre, const double *pose);
 
 int wkt_sr_sizes(int *n, int *max_ik)
 {
@@ -84,4 +86,23 @@ int wkt_sr_select_ik(const sr_ik_solutions *s, const double *previous)
 int wkt_sr_atlas(size_t n, const double *joints, double length, double threshold, int64_t *sums, double *li_min)
 {
     return sr_api_atlas_conditioning(n, joints, NULL, length, threshold, sums, li_min);
+}
+
+int wkt_sr_has_wrist(void)
+{
+    return SR_WRIST_STAGE >= 0;
+}
+
+/* The wrist's band factor from a centre kernel the caller gives (the prefix joints all zero: its own matter) */
+double wkt_sr_wrist_amp(double s5, double amp_before, sr_stage_kernel centre, const double *pose)
+{
+#if SR_WRIST_STAGE >= 0
+    double q[SR_N] = { 0.0 }, c[SR_N] = { 0.0 }, s[SR_N] = { 0.0 };
+    return sr_wrist_amp(s5, amp_before, centre, pose, q, c, s, NULL);
+#else
+    (void)s5;
+    (void)centre;
+    (void)pose;
+    return amp_before;
+#endif
 }

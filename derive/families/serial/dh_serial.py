@@ -29,6 +29,7 @@ from ...kinematics.general6r import steps as elimination_steps
 from ...kinematics.poe import Chain, rot
 from ...model import Check, Derivation, Finding, Step
 from ...serial_core.stages import POSE_SYMBOLS, Stage, stage_output_names
+from .wrist_centre import centre_steps
 
 
 @dataclass
@@ -94,6 +95,12 @@ def _reader(joints: tuple, design: tuple, reader: tuple):
     return sp.lambdify((*joints, *design), list(reader), "numpy")
 
 
+def _draw(spec: SerialSpec, rng) -> tuple[dict, dict]:
+    """Joints and the design the stages solve their FK at (a held joint's value, an arm angle: _design_at)."""
+    q = _sample_joints(spec, rng)
+    return q, _design_at(spec, q, _sample_design(spec, rng))
+
+
 def _sample_joints(spec: SerialSpec, rng) -> dict:
     return {q: (rng.uniform(-math.pi, math.pi) if k == "R" else rng.uniform(-1.0, 1.0))
             for q, k in zip(spec.joints, spec.kinds, strict=True)}
@@ -139,6 +146,7 @@ def derive_spec(spec: SerialSpec) -> Derivation:
     dv.findings.extend(spec.findings)
     _jacobian_step(dv, spec, plain, ts[-1])
     _ik_steps(dv, spec, fT)
+    centre_steps(dv, spec, plain, lambda rng: _draw(spec, rng))
     dv.exports["T"] = T
     dv.exports["frames"] = ts
     return dv

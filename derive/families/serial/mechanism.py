@@ -26,7 +26,7 @@ class SerialMechanism(SerialArm):
         return views.serial_views({"name": self.NAME, "title": sp_.title, "joint_names": [str(q) for q in sp_.joints],
                 "joint_kinds": list(sp_.kinds), "design_names": [str(d) for d in sp_.design],
                 "design_values": [repr(float(v)) for v in sp_.design_default], "n_joints": n,
-                "max_ik": n_combos, "stages": stages.stage_view(sp_),
+                "max_ik": n_combos, "stages": stages.stage_view(sp_, {k.name for k in ks}),
                 "fold_bits": stages.fold_bits(sp_), "upper": self.NAME.upper(),
                 "mirror_keeps_fk": stages.mirror_keeps_fk(sp_, next(k for k in ks if k.name == "fk_cs")),
                 "design_default": [repr(float(v)) for v in sp_.design_default],

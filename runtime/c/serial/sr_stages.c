@@ -336,14 +336,49 @@ static double sr_wrist_sigma(int up, const double *dp, const int *w)
     return diff <= 1e-9 * scale ? 1.0 : -1.0;
 }
 
+/* The shares of the wrist centre's kappa and of amp_before the family bands' factor takes (Python's
+ * WRIST_KAPPA_SHARE and WRIST_AMP_SHARE say why) */
+#define SR_WRIST_KAPPA_SHARE 0.25
+#define SR_WRIST_AMP_SHARE 16.0
+
+/* The factor the wrist's family bands scale by: WRIST_KAPPA_SHARE kappa of the wrist centre's Jacobian in the prefix
+ * joints (its kernel `centre`), kappa = size ||adj J||_F / |det J|, capped at WRIST_AMP_SHARE amp_before; amp_before
+ * without the kernel, or where |sin theta5| is beyond twice the widest band's reach (Python's _wrist_amp: the same
+ * operations) */
+static double sr_wrist_amp(double s5, double amp_before, sr_stage_kernel centre, const double *pose, const double *q,
+                           const double *c, const double *s, const double *dp)
+{
+    double m[9], a[9], det, adj, share, cap;
+    if (centre == NULL) return amp_before;
+    cap = SR_WRIST_AMP_SHARE * amp_before;
+    if (!(fabs(s5) <= 2.0 * SR_WRIST_EXACT_TOL * cap)) return amp_before;
+    centre(pose, q, c, s, dp, m);
+    a[0] = m[4] * m[8] - m[5] * m[7];
+    a[1] = m[5] * m[6] - m[3] * m[8];
+    a[2] = m[3] * m[7] - m[4] * m[6];
+    a[3] = m[2] * m[7] - m[1] * m[8];
+    a[4] = m[0] * m[8] - m[2] * m[6];
+    a[5] = m[1] * m[6] - m[0] * m[7];
+    a[6] = m[1] * m[5] - m[2] * m[4];
+    a[7] = m[2] * m[3] - m[0] * m[5];
+    a[8] = m[0] * m[4] - m[1] * m[3];
+    det = fabs(m[0] * a[0] + m[1] * a[1] + m[2] * a[2]);
+    adj = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3] + a[4] * a[4] + a[5] * a[5] + a[6] * a[6] +
+               a[7] * a[7] + a[8] * a[8]);
+    share = SR_WRIST_KAPPA_SHARE * fmax(1.0, fmax(fabs(pose[3]), fmax(fabs(pose[7]), fabs(pose[11])))) * adj;
+    return share < cap * det ? share / det : cap;
+}
+
 #if SR_HAS_WRIST_MIRROR
 /* The second wrist branch mirrors the first, computed for the same prefix at set k - 1 (the wrist is the last
  * branching stage): q5 -> -q5, q4 -> q4 + pi, q6 -> q6 + pi. At the singularity the first branch already holds the
  * whole family (its sin theta5 exactly 0), so this one is a duplicate; within SR_WRIST_EXACT_TOL amp_before of it
  * both are the pose's own reading of a near family (sr_wrist). */
-static int sr_wrist_mirror(const int *w, double *q, double *c, double *s, double amp_before, unsigned *f)
+static int sr_wrist_mirror(const int *w, double *q, double *c, double *s, double amp_before, sr_stage_kernel centre,
+                           const double *pose, const double *dp, unsigned *f)
 {
     if (fabs(s[w[1]]) <= SR_WRIST_FAMILY_TOL) return 0;
+    amp_before = sr_wrist_amp(s[w[1]], amp_before, centre, pose, q, c, s, dp);
     if (fabs(s[w[1]]) <= SR_SINGULAR_EPS) *f = WK_FLAG_SINGULAR_INVERSE;
     if (fabs(s[w[1]]) <= SR_WRIST_EXACT_TOL * amp_before)
         *f = WK_FLAG_SINGULAR_INVERSE | WK_FLAG_INDETERMINATE | WK_FLAG_READ_MEMBER;
@@ -362,15 +397,16 @@ static int sr_wrist_mirror(const int *w, double *q, double *c, double *s, double
 /* The spherical wrist (q4, q5, q6 = w[0..2]) from the entries of its rotation (out, 9), branch sgn; e: the DH
  * twists' signs of those entries (e0..e3) and of the singular family's (k00, k10 at theta5 = 0, then pi). */
 static int sr_wrist(const double *out, double sgn, const double *e, const int *w, double *q, double *c, double *s,
-                    const double *dp, double amp_before, unsigned *f)
+                    const double *dp, double amp_before, sr_stage_kernel centre, const double *pose, unsigned *f)
 {
     const double s5 = sgn * sqrt(out[2] * out[2] + out[5] * out[5]), c5 = e[0] * out[8];
-    /* the family bands: the stages before amplified the input's rounding into the wrist's rotation; within the
-     * exact band the entries place the member of a near family, flagged indeterminate (Python's _wrist) */
-    const double family = SR_WRIST_FAMILY_TOL * amp_before;
+    /* the family bands: the stages before amplified the input's rounding into the wrist's rotation (by the wrist
+     * centre's kappa where smaller); within the exact band the entries place the member of a near family, flagged
+     * indeterminate (Python's _wrist) */
+    const double amp = sr_wrist_amp(s5, amp_before, centre, pose, q, c, s, dp), family = SR_WRIST_FAMILY_TOL * amp;
     double x, y, n;
     if (fabs(s5) <= SR_SINGULAR_EPS) *f = WK_FLAG_SINGULAR_INVERSE;
-    if (fabs(s5) <= SR_WRIST_EXACT_TOL * amp_before) *f |= WK_FLAG_INDETERMINATE | WK_FLAG_READ_MEMBER;
+    if (fabs(s5) <= SR_WRIST_EXACT_TOL * amp) *f |= WK_FLAG_INDETERMINATE | WK_FLAG_READ_MEMBER;
     if (fabs(s5) > family && fabs(s5) <= SR_SINGULAR_EPS) {
         /* near the singularity q6 = phi - sigma q4, phi from the well-conditioned entries (see Python) */
         const int up = c5 >= 0.0;
