@@ -886,6 +886,27 @@ def test_a_wrist_within_rounding_of_its_singularity_is_read_from_the_pose(robot)
         <= 1e-9 and exact.count < a.count
 
 
+def test_a_ur_wrist_near_its_family_moves_q6_within_its_rounding_to_where_the_elbow_reaches():
+    """q5 = 1e-12 with the elbow 8e-4 rad from straight (test seed 3 of the near-singular test): q6, read from vectors
+    1e-12 long, carries eps / 1e-12 = 2e-4 rad of rounding, which put the elbow's u 4e-5 past 1 and lost the
+    generating branch (the sets left were 2.8 rad away). Moved within that rounding to the nearest q6 where the elbow
+    reaches (serial_stages._near_family_by_reach), the branch comes back within the conditioning's allowance (1e-6 +
+    1e-13 / 1e-12), flagged indeterminate and singular, every set on the pose, C and numpy the same sets and flags."""
+    m, py, _ = derived("ur5e")
+    reference = ref.load(_file("ur5e", "urdf"))
+    q = np.array([-2.2262586417025823, 2.841167984757657, -0.00081254707372036, 1.969717705068045,
+                  9.975412033834723e-13, -0.8931264531874339])
+    T = py.fk_matrix(q)  # the module's own pose, as the near-singular test solves it (the URDF's, 1.7e-16 off, reaches)
+    a, b = m.ik(T), py.ik(T)
+    assert a.count == b.count and np.array_equal(a.flags, b.flags) and np.array_equal(a.valid, b.valid)
+    assert np.max(np.abs(a.values[a.valid] - b.values[b.valid])) <= 1e-12
+    k = min(range(a.count), key=lambda i: _gap(a.values[a.valid][i], q))
+    assert _gap(a.values[a.valid][k], q) <= 1e-6 + 1e-13 / 1e-12
+    marks = m.FLAG_INDETERMINATE | m.FLAG_SINGULAR_INVERSE
+    assert a.flags[a.valid][k] & marks == marks
+    assert all(ref.pose_error(reference(np.asarray(v)), T) <= 1e-9 for v in a)
+
+
 def test_two_members_of_the_ur_wrist_family_are_never_merged_as_a_double_root():
     """q5 = pi exactly and the elbow 2.7e-5 rad from straight (make test-seeds drew it, seed 413261): the elbow's two
     roots, each a member of the wrist's family, were merged as indistinct, because the merge's Gauss-Newton step moved

@@ -183,7 +183,43 @@ def _rotation2d(out, j, q, c, s, prev, amp, probe=None, pose=None, dp=None):
     cu, su, c0, s0 = u / nu, v / nu, u0 / n0, v0 / n0
     c[j], s[j] = cu * c0 + su * s0, su * c0 - cu * s0
     q[j] = math.atan2(s[j], c[j])
+    if probe is not None and STAGE_NOISE * amp[j] > TANGENT_MAX and _near_family_by_reach(
+            j, q, c, s, probe, pose, dp, tol / min(nu, n0)):
+        return True, FLAG_INDETERMINATE | FLAG_SINGULAR_INVERSE
     return True, 0
+
+
+def _near_family_by_reach(j, q, c, s, probe, pose, dp, window):
+    """Near the family (a UR's q5 within ~1e-9 of its wrist singularity) joint j is read from vectors so short that
+    its rounding moves the next stage's target past the band that stage allows (STAGE_NOISE times the amplification
+    reaches TANGENT_MAX): q6 to eps / 1e-12 = 2e-4 rad put a nearly straight elbow's u 4e-5 past 1, and the generating
+    branch was lost. Where the next stage does not reach at the joint as read, the joint moves to the nearest member
+    where it does (its reach's edge, C = +-sqrt(A^2 + B^2), from the three probes _family_by_reach takes: C = C0 + C1
+    cos t + C2 sin t), if that is within `window`, the angle the vectors' rounding allows (the family's band over the
+    shorter vector: continuous with the family, where every member is allowed). Moving along the near family changes
+    the pose by |sin q5| times the move (rounding): the sets verify. Returns whether it moved (else q, c, s as read)."""
+    o = probe(pose, q, c, s, dp)
+    r = math.hypot(o[0], o[1])
+    if abs(o[2]) <= r:
+        return False
+    read = (q[j], c[j], s[j])
+
+    def at(t, ct, st):
+        q[j], c[j], s[j] = t, ct, st
+        return probe(pose, q, c, s, dp)[2]
+    c_zero, c_pi, c_half = at(0.0, 1.0, 0.0), at(math.pi, -1.0, 0.0), at(0.5 * math.pi, 0.0, 1.0)
+    c0 = 0.5 * (c_zero + c_pi)
+    c1, c2 = 0.5 * (c_zero - c_pi), c_half - c0
+    g = math.hypot(c1, c2)
+    x = (math.copysign(r, o[2]) - c0) / g if g > DEGENERATE_EPS else 2.0
+    if abs(x) <= 1.0:
+        phi, w = math.atan2(c2, c1), math.acos(x)
+        t = min((phi + w, phi - w), key=lambda v: abs(math.remainder(v - read[0], 2.0 * math.pi)))
+        if abs(math.remainder(t - read[0], 2.0 * math.pi)) <= window:
+            q[j], c[j], s[j] = _wrap(t), math.cos(t), math.sin(t)
+            return True
+    q[j], c[j], s[j] = read
+    return False
 
 
 def _family_by_reach(j, q, c, s, prev, probe, pose, dp):

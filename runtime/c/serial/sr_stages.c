@@ -221,6 +221,48 @@ static void sr_family_by_reach(int j, double *q, double *c, double *s, const dou
     s[j] = sin(t);
     q[j] = atan2(s[j], c[j]);
 }
+
+/* Near the family joint j's rounding moves the next stage's target past its band: where that stage does not reach at
+ * the joint as read, the joint moves to the nearest member where it does (its reach's edge, from three probes), if
+ * within `window` (Python's _near_family_by_reach says why). Returns whether it moved (else q, c, s as read). */
+static int sr_near_family_by_reach(int j, double *q, double *c, double *s, sr_stage_kernel probe, const double *pose,
+                                   const double *dp, double window)
+{
+    double o[6], r, c_zero, c_pi, c0, c1, c2, g, x, phi, w, t, ta, tb;
+    const double rq = q[j], rc = c[j], rs = s[j];
+    probe(pose, q, c, s, dp, o);
+    r = sqrt(o[0] * o[0] + o[1] * o[1]);
+    if (fabs(o[2]) <= r) return 0;
+    x = o[2] < 0.0 ? -r : r;
+    q[j] = 0.0, c[j] = 1.0, s[j] = 0.0;
+    probe(pose, q, c, s, dp, o);
+    c_zero = o[2];
+    q[j] = SR_PI, c[j] = -1.0, s[j] = 0.0;
+    probe(pose, q, c, s, dp, o);
+    c_pi = o[2];
+    q[j] = 0.5 * SR_PI, c[j] = 0.0, s[j] = 1.0;
+    probe(pose, q, c, s, dp, o);
+    c0 = 0.5 * (c_zero + c_pi);
+    c1 = 0.5 * (c_zero - c_pi);
+    c2 = o[2] - c0;
+    g = sqrt(c1 * c1 + c2 * c2);
+    x = g > SR_DEGENERATE_EPS ? (x - c0) / g : 2.0;
+    if (fabs(x) <= 1.0) {
+        phi = atan2(c2, c1);
+        w = acos(x);
+        ta = fabs(remainder(phi + w - rq, 2.0 * SR_PI));
+        tb = fabs(remainder(phi - w - rq, 2.0 * SR_PI));
+        t = tb < ta ? phi - w : phi + w;
+        if ((tb < ta ? tb : ta) <= window) {
+            q[j] = wk_wrap(t);
+            c[j] = cos(t);
+            s[j] = sin(t);
+            return 1;
+        }
+    }
+    q[j] = rq, c[j] = rc, s[j] = rs;
+    return 0;
+}
 #endif
 
 /* Joint j as the angle from (u0, v0) to (u, v) (out = u, v, u0, v0); a family where either vanishes (its member by
@@ -253,6 +295,11 @@ static int sr_rotation2d(const double *out, int j, double *q, double *c, double 
         c[j] = cu * c0 + su * s0;
         s[j] = su * c0 - cu * s0;
         q[j] = atan2(s[j], c[j]);
+#if SR_HAS_FAMILY_PROBE
+        if (probe && SR_STAGE_NOISE * amp[j] > SR_TANGENT_MAX &&
+            sr_near_family_by_reach(j, q, c, s, probe, pose, dp, tol / shorter))
+            *f = WK_FLAG_INDETERMINATE | WK_FLAG_SINGULAR_INVERSE;
+#endif
     }
     return 1;
 }
