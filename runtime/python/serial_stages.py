@@ -189,6 +189,17 @@ def _rotation2d(out, j, q, c, s, prev, amp, probe=None, pose=None, dp=None):
     return True, 0
 
 
+def _reach_terms(j, q, c, s, probe, pose, dp):
+    """(C0, C1, C2): the next stage's C = C0 + C1 cos t + C2 sin t over joint j's value t (a distance squared to a
+    point on a circle), from its kernel `probe` at t = 0, pi and pi / 2 (q, c, s[j] left at the last)."""
+    out = []
+    for t, ct, st in ((0.0, 1.0, 0.0), (math.pi, -1.0, 0.0), (0.5 * math.pi, 0.0, 1.0)):
+        q[j], c[j], s[j] = t, ct, st
+        out.append(probe(pose, q, c, s, dp)[2])
+    c0 = 0.5 * (out[0] + out[1])
+    return c0, 0.5 * (out[0] - out[1]), out[2] - c0
+
+
 def _near_family_by_reach(j, q, c, s, probe, pose, dp, window):
     """Near the family (a UR's q5 within ~1e-9 of its wrist singularity) joint j is read from vectors so short that
     its rounding moves the next stage's target past the band that stage allows (STAGE_NOISE times the amplification
@@ -203,13 +214,7 @@ def _near_family_by_reach(j, q, c, s, probe, pose, dp, window):
     if abs(o[2]) <= r:
         return False
     read = (q[j], c[j], s[j])
-
-    def at(t, ct, st):
-        q[j], c[j], s[j] = t, ct, st
-        return probe(pose, q, c, s, dp)[2]
-    c_zero, c_pi, c_half = at(0.0, 1.0, 0.0), at(math.pi, -1.0, 0.0), at(0.5 * math.pi, 0.0, 1.0)
-    c0 = 0.5 * (c_zero + c_pi)
-    c1, c2 = 0.5 * (c_zero - c_pi), c_half - c0
+    c0, c1, c2 = _reach_terms(j, q, c, s, probe, pose, dp)
     g = math.hypot(c1, c2)
     x = (math.copysign(r, o[2]) - c0) / g if g > DEGENERATE_EPS else 2.0
     if abs(x) <= 1.0:
@@ -229,16 +234,12 @@ def _family_by_reach(j, q, c, s, prev, probe, pose, dp):
     circle), read from three probes of its kernel. previous's member where it reaches (|C| <= sqrt(A^2 + B^2));
     else the member with C = 0, the middle of that stage's reach, or the one nearest it (if any member reaches,
     that one does). A fixed three or four kernel calls: no search over the family."""
-    def at(t, ct, st):
-        q[j], c[j], s[j] = t, ct, st
-        return probe(pose, q, c, s, dp)
     if prev is not None:
-        o = at(prev[j], math.cos(prev[j]), math.sin(prev[j]))
+        q[j], c[j], s[j] = prev[j], math.cos(prev[j]), math.sin(prev[j])
+        o = probe(pose, q, c, s, dp)
         if abs(o[2]) <= math.hypot(o[0], o[1]) * (1.0 + TANGENT_TOL):
             return
-    c_zero, c_pi, c_half = at(0.0, 1.0, 0.0)[2], at(math.pi, -1.0, 0.0)[2], at(0.5 * math.pi, 0.0, 1.0)[2]
-    c0 = 0.5 * (c_zero + c_pi)
-    c1, c2 = 0.5 * (c_zero - c_pi), c_half - c0
+    c0, c1, c2 = _reach_terms(j, q, c, s, probe, pose, dp)
     g = math.hypot(c1, c2)
     if g <= DEGENERATE_EPS:  # the next stage does not see the family: its usual representative
         _family_member(j, q, c, s, prev)

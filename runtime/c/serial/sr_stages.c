@@ -189,10 +189,28 @@ static inline int sr_trig_linear(const double *out, int factored, double gap_tol
 /* The member of a family in joint j whose next stage (A cos q' + B sin q' + C = 0, its kernel `probe`) reaches:
  * previous's where it does, else the one with C = 0 from three probes, C = C0 + C1 cos t + C2 sin t in the member t
  * (Python's _family_by_reach says why) */
+/* The next stage's C = C0 + C1 cos t + C2 sin t over joint j's value t, from its kernel `probe` at t = 0, pi and
+ * pi / 2 (q, c, s[j] left at the last; Python's _reach_terms) */
+static void sr_reach_terms(int j, double *q, double *c, double *s, sr_stage_kernel probe, const double *pose,
+                           const double *dp, double *c0, double *c1, double *c2)
+{
+    double o[6], c_zero;
+    q[j] = 0.0, c[j] = 1.0, s[j] = 0.0;
+    probe(pose, q, c, s, dp, o);
+    c_zero = o[2];
+    q[j] = SR_PI, c[j] = -1.0, s[j] = 0.0;
+    probe(pose, q, c, s, dp, o);
+    *c0 = 0.5 * (c_zero + o[2]);
+    *c1 = 0.5 * (c_zero - o[2]);
+    q[j] = 0.5 * SR_PI, c[j] = 0.0, s[j] = 1.0;
+    probe(pose, q, c, s, dp, o);
+    *c2 = o[2] - *c0;
+}
+
 static void sr_family_by_reach(int j, double *q, double *c, double *s, const double *prev, sr_stage_kernel probe,
                                const double *pose, const double *dp)
 {
-    double o[6], c_zero, c_pi, c0, c1, c2, g, t;
+    double o[6], c0, c1, c2, g, t;
     if (prev) {
         q[j] = prev[j];
         c[j] = cos(prev[j]);
@@ -200,17 +218,7 @@ static void sr_family_by_reach(int j, double *q, double *c, double *s, const dou
         probe(pose, q, c, s, dp, o);
         if (fabs(o[2]) <= sqrt(o[0] * o[0] + o[1] * o[1]) * (1.0 + SR_TANGENT_TOL)) return;
     }
-    q[j] = 0.0, c[j] = 1.0, s[j] = 0.0;
-    probe(pose, q, c, s, dp, o);
-    c_zero = o[2];
-    q[j] = SR_PI, c[j] = -1.0, s[j] = 0.0;
-    probe(pose, q, c, s, dp, o);
-    c_pi = o[2];
-    q[j] = 0.5 * SR_PI, c[j] = 0.0, s[j] = 1.0;
-    probe(pose, q, c, s, dp, o);
-    c0 = 0.5 * (c_zero + c_pi);
-    c1 = 0.5 * (c_zero - c_pi);
-    c2 = o[2] - c0;
+    sr_reach_terms(j, q, c, s, probe, pose, dp, &c0, &c1, &c2);
     g = sqrt(c1 * c1 + c2 * c2);
     if (g <= SR_DEGENERATE_EPS) { /* the next stage does not see the family: its usual representative */
         sr_family_member(j, q, c, s, prev);
@@ -228,23 +236,13 @@ static void sr_family_by_reach(int j, double *q, double *c, double *s, const dou
 static int sr_near_family_by_reach(int j, double *q, double *c, double *s, sr_stage_kernel probe, const double *pose,
                                    const double *dp, double window)
 {
-    double o[6], r, c_zero, c_pi, c0, c1, c2, g, x, phi, w, t, ta, tb;
+    double o[6], r, c0, c1, c2, g, x, phi, w, t, ta, tb;
     const double rq = q[j], rc = c[j], rs = s[j];
     probe(pose, q, c, s, dp, o);
     r = sqrt(o[0] * o[0] + o[1] * o[1]);
     if (fabs(o[2]) <= r) return 0;
     x = o[2] < 0.0 ? -r : r;
-    q[j] = 0.0, c[j] = 1.0, s[j] = 0.0;
-    probe(pose, q, c, s, dp, o);
-    c_zero = o[2];
-    q[j] = SR_PI, c[j] = -1.0, s[j] = 0.0;
-    probe(pose, q, c, s, dp, o);
-    c_pi = o[2];
-    q[j] = 0.5 * SR_PI, c[j] = 0.0, s[j] = 1.0;
-    probe(pose, q, c, s, dp, o);
-    c0 = 0.5 * (c_zero + c_pi);
-    c1 = 0.5 * (c_zero - c_pi);
-    c2 = o[2] - c0;
+    sr_reach_terms(j, q, c, s, probe, pose, dp, &c0, &c1, &c2);
     g = sqrt(c1 * c1 + c2 * c2);
     x = g > SR_DEGENERATE_EPS ? (x - c0) / g : 2.0;
     if (fabs(x) <= 1.0) {
