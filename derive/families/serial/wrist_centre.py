@@ -37,19 +37,21 @@ def _off_line(p, z, o) -> float:
 
 
 def centre_steps(dv: Derivation, spec, frames, draw) -> None:
-    """For each wrist stage whose prefix (the joints the stages before it solve) is three joints: the frame origin
-    on the three wrist axes (their meeting point, the wrist centre) and its Jacobian in those joints, recorded as a
-    step with its checks and exported as dv.exports["wrist_centre"][k] (the 3 x 3 Jacobian). `draw(rng)` gives
-    (joints, design) dicts as the derivation's checks sample them (a held joint's value in the design)."""
+    """For each wrist stage whose prefix (the joints the stages before it solve from the pose) is three joints: the
+    frame origin on the three wrist axes (their meeting point, the wrist centre) and its Jacobian in those joints,
+    recorded as a step with its checks and exported as dv.exports["wrist_centre"][k] (the 3 x 3 Jacobian).
+    `draw(rng)` gives (joints, design) dicts as the derivation's checks sample them (a held joint's value in the
+    design)."""
     solved: list[int] = []
     held = {spec.joints[spec.held[0]]: spec.held[1]} if spec.held else {}
     axes = _axes(spec, frames)
     origins = [(sp.eye(4) if spec.base is None else spec.base)[:3, 3]] + [f[:3, 3] for f in frames]
     for k, st in enumerate(spec.stages, start=1):
-        if st.kind != "wrist" or len(solved) != 3:
+        # a held joint's stage reads its design value, not the pose: the prefix is the joints solved from the pose
+        prefix = [spec.joints[j] for j in solved if not (spec.held and j == spec.held[0])]
+        if st.kind != "wrist" or len(prefix) != 3:
             solved.extend(st.joints)
             continue
-        prefix = [spec.joints[j] for j in solved]
         wrist_axes = [axes[j] for j in st.joints]
         later = set(spec.joints) - set(prefix) - set(held)
         args = (*spec.joints, *spec.design)
