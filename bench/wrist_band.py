@@ -32,40 +32,14 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "tests"))
+from reference import wrist_centre as reference  # noqa: E402  (the centre and kappa from the FK alone)
 
 EPS = float(np.finfo(float).eps)
 ROBOTS = ("lrmate", "kr6", "irb120", "tx2_60")
 # bench/near_singular.py's LR Mate pose missed at theta5 = 1e-12 (2026-11-29)
 LRMATE_MISS = (-0.9821104536660639, 1.1159593609618579, -1.747828137939208, 0.3288563662222219, 1.0004574458673634e-12,
                -0.21650171387252692)
-
-
-def wrist_centre(m, rng) -> np.ndarray:
-    """The point of the tool frame that joints 4-6 do not move (least squares over wrist configurations)."""
-    q = rng.uniform(-2.0, 2.0, 6)
-    t0 = m.fk_matrix(q)
-    rows, rhs = [], []
-    for _ in range(6):
-        q2 = q.copy()
-        q2[3:] = rng.uniform(-3.0, 3.0, 3)
-        t = m.fk_matrix(q2)
-        rows.append(t[:3, :3] - t0[:3, :3])
-        rhs.append(t0[:3, 3] - t[:3, 3])
-    return np.linalg.lstsq(np.vstack(rows), np.concatenate(rhs), rcond=None)[0]
-
-
-def kappa(m, q, centre) -> float:
-    def point(x):
-        t = m.fk_matrix(x)
-        return t[:3, :3] @ centre + t[:3, 3]
-    h, jac = 1e-6, np.zeros((3, 3))
-    for i in range(3):
-        a, b = q.copy(), q.copy()
-        a[i] += h
-        b[i] -= h
-        jac[:, i] = (point(a) - point(b)) / (2.0 * h)
-    size = max(1.0, float(np.max(np.abs(m.fk_matrix(q)[:3, 3]))))
-    return size / float(np.linalg.svd(jac, compute_uv=False)[-1])
 
 
 def measure(robot: str, poses: int, seed: int) -> str:
@@ -75,7 +49,7 @@ def measure(robot: str, poses: int, seed: int) -> str:
     own_robot.derive(ROOT / "tests" / "robots" / robot / f"{robot}.urdf", out, progress=lambda _: None, native=False)
     m = own_robot.import_solver(out, robot, backend="numpy")
     rng = np.random.default_rng(seed)
-    centre = wrist_centre(m, rng)
+    centre = reference.centre_in_end_frame(m.fk_matrix, rng.uniform(-2.0, 2.0, 6), rng)
     seen, plain = [], m._wrist
 
     def wrist(out_, sgn, signs, joints, q, c, s, dp, amp_before, kernel=None, pose=None):
@@ -93,7 +67,7 @@ def measure(robot: str, poses: int, seed: int) -> str:
         for s5, amp, factor, q123 in seen:
             if np.max(np.abs(np.remainder(np.array(q123) - q[:3] + math.pi, 2.0 * math.pi) - math.pi)) < 1e-6:
                 by_amp.append(s5 / (EPS * amp))
-                by_kappa.append(s5 / (EPS * kappa(m, q, centre)))
+                by_kappa.append(s5 / (EPS * reference.kappa(m.fk_matrix, centre, q)))
                 by_factor.append(s5 / (EPS * factor))
     a, k, f = np.array(by_amp), np.array(by_kappa), np.array(by_factor)
 
@@ -107,7 +81,8 @@ def measure(robot: str, poses: int, seed: int) -> str:
         sol = m.ik(m.fk_matrix(q))
         off = min(float(np.max(np.abs(np.remainder(np.asarray(v) - q + math.pi, 2.0 * math.pi) - math.pi)))
                   for v in sol)
-        line += (f"; the pose missed before (kappa {kappa(m, q, centre):.1f}): its generating joints "
+        kap = reference.kappa(m.fk_matrix, centre, q)
+        line += (f"; the pose missed before (kappa {kap:.1f}): its generating joints "
                  f"{'returned' if off < 1e-6 + 1e-13 / LRMATE_MISS[4] else 'missed'} ({off:.1e} rad off)")
     return line
 

@@ -351,8 +351,9 @@ def _wrist(out, sgn, signs, joints, q, c, s, dp, amp_before, centre=None, pose=N
     `amp_before`: how much the angle stages before it amplified the input's rounding (the product of their amp: each
     reads the joints the ones before it solved), by which its family bands grow: |sin theta5| within
     WRIST_FAMILY_TOL amp_before is the family (one representative), within WRIST_EXACT_TOL amp_before the pose is
-    within rounding of it and both branches are its own reading, flagged indeterminate; amp_before narrowed to the
-    wrist centre's conditioning where the stage has its kernel (`centre`, read at `pose`: _wrist_amp)."""
+    within rounding of it and both branches are its own reading, flagged indeterminate; where the stage has its wrist
+    centre's kernel (`centre`, read at `pose`) the bands take _wrist_amp's factor instead (the centre's kappa share,
+    capped at WRIST_AMP_SHARE amp_before)."""
     e0, e1, e2, e3, k00a, k10a, k00b, k10b = signs
     j4, j5, j6 = joints
     s5 = sgn * math.hypot(out[2], out[5])

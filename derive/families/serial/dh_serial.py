@@ -146,7 +146,9 @@ def derive_spec(spec: SerialSpec) -> Derivation:
     dv.findings.extend(spec.findings)
     _jacobian_step(dv, spec, plain, ts[-1])
     _ik_steps(dv, spec, fT)
-    centre_steps(dv, spec, plain, lambda rng: _draw(spec, rng))
+    # the wrist centre's candidates: the frames' origins (a spherical wrist's is one of them)
+    centre_steps(dv, spec, joint_axes(spec, plain), [_base(spec)[:3, 3]] + [f[:3, 3] for f in plain],
+                 lambda rng: _draw(spec, rng))
     dv.exports["T"] = T
     dv.exports["frames"] = ts
     return dv
@@ -159,16 +161,23 @@ def _mismatch(ours: sp.Matrix, printed: sp.Matrix) -> str:
                      f"{sp.sstr(printed[i, j])}" for i, j in bad)
 
 
+def _base(spec: SerialSpec) -> sp.Matrix:
+    return sp.eye(4) if spec.base is None else spec.base
+
+
+def joint_axes(spec: SerialSpec, ts) -> list[tuple[sp.Matrix, sp.Matrix]]:
+    """Each joint's axis in the world, (direction z, a point o) over the frames without the tool: joint i turns about
+    z of frame i - 1 (standard DH) or of frame i (modified DH)."""
+    frames = [ts[i] if spec.convention == "modified" else _base(spec) if i == 0 else ts[i - 1]
+              for i in range(len(spec.joints))]
+    return [(f[:3, 2], f[:3, 3]) for f in frames]
+
+
 def _jacobian_step(dv: Derivation, spec: SerialSpec, ts, t_end) -> None:
-    """Joint i turns about z of frame i-1 (standard DH) or of frame i (modified DH)."""
+    """Joint i turns about z of frame i-1 (standard DH) or of frame i (modified DH): joint_axes."""
     p_end = t_end[:3, 3]
     cols = []
-    for i, kind in enumerate(spec.kinds):
-        if spec.convention == "modified":
-            prev = ts[i]
-        else:
-            prev = (sp.eye(4) if spec.base is None else spec.base) if i == 0 else ts[i - 1]
-        z, o = prev[:3, 2], prev[:3, 3]
+    for kind, (z, o) in zip(spec.kinds, joint_axes(spec, ts), strict=True):
         cols.append(sp.Matrix.vstack(z.cross(p_end - o), z) if kind == "R" else sp.Matrix.vstack(z, sp.zeros(3, 1)))
     J = sp.Matrix.hstack(*cols)
     fT = sampler((*spec.joints, *spec.design), t_end)
@@ -199,9 +208,7 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
             return [float(v) for v in fn(*pose, *q.values(), *dsn.values())]
 
         def err(rng, st=st, at_fk=at_fk, wrist=wrist):
-            q = _sample_joints(spec, rng)
-            dsn = _sample_design(spec, rng)
-            _design_at(spec, q, dsn)  # a held joint at its value, the arm angle at the joints': the stages solve that
+            q, dsn = _draw(spec, rng)  # a held joint at its value, the arm angle at the joints': the stages solve that
             vals = at_fk(q, dsn)
             qs = [q[spec.joints[j]] for j in st.joints]
             if st.kind == "trig_linear":
@@ -256,9 +263,7 @@ def _ik_steps(dv: Derivation, spec: SerialSpec, fT) -> None:
             checks.append(_arm_angle_finds(spec, st, at_fk))
         if st.factored:
             def factors(rng, at_fk=at_fk):
-                q = _sample_joints(spec, rng)
-                dsn = _sample_design(spec, rng)
-                _design_at(spec, q, dsn)
+                q, dsn = _draw(spec, rng)
                 a, b, c, dm, dp, em = at_fk(q, dsn)
                 # relative to (A^2 + B^2): both sides are sums of squares of metre-sized terms
                 return abs(dm * dp / 4 - (a * a + b * b - c * c)) / max(a * a + b * b, 1e-300) + (em < abs(dm)) * 1.0

@@ -17,35 +17,21 @@ from ...checks import numeric_predicate, sampler
 from ...model import Derivation, Step
 
 
-def _axes(spec, frames) -> list[tuple[sp.Matrix, sp.Matrix]]:
-    """Each joint's axis (direction z, a point o) in the world: z of frame i - 1 (standard DH) or of frame i
-    (modified DH), as the geometric Jacobian reads them."""
-    out = []
-    for i in range(len(spec.joints)):
-        if spec.convention == "modified":
-            f = frames[i]
-        else:
-            f = (sp.eye(4) if spec.base is None else spec.base) if i == 0 else frames[i - 1]
-        out.append((f[:3, 2], f[:3, 3]))
-    return out
-
-
 def _off_line(p, z, o) -> float:
     """The distance of point p from the line through o along the unit direction z."""
     d = p - o
     return float(np.linalg.norm(d - np.dot(d, z) * z))
 
 
-def centre_steps(dv: Derivation, spec, frames, draw) -> None:
+def centre_steps(dv: Derivation, spec, axes, candidates, draw) -> None:
     """For each wrist stage whose prefix (the joints the stages before it solve from the pose) is three joints: the
-    frame origin on the three wrist axes (their meeting point, the wrist centre) and its Jacobian in those joints,
-    recorded as a step with its checks and exported as dv.exports["wrist_centre"][k] (the 3 x 3 Jacobian).
+    candidate point on the three wrist axes (their meeting point, the wrist centre) and its Jacobian in those joints,
+    recorded as a step with its checks and exported as dv.exports["wrist_centre"][k] (the 3 x 3 Jacobian). `axes`:
+    each joint's (direction, point) in the world; `candidates`: points over the joints (a DH chain's frame origins);
     `draw(rng)` gives (joints, design) dicts as the derivation's checks sample them (a held joint's value in the
     design)."""
     solved: list[int] = []
     held = {spec.joints[spec.held[0]]: spec.held[1]} if spec.held else {}
-    axes = _axes(spec, frames)
-    origins = [(sp.eye(4) if spec.base is None else spec.base)[:3, 3]] + [f[:3, 3] for f in frames]
     for k, st in enumerate(spec.stages, start=1):
         # a held joint's stage reads its design value, not the pose: the prefix is the joints solved from the pose
         prefix = [spec.joints[j] for j in solved if not (spec.held and j == spec.held[0])]
@@ -59,14 +45,14 @@ def centre_steps(dv: Derivation, spec, frames, draw) -> None:
         rng = np.random.default_rng(k)
         samples = [draw(rng) for _ in range(8)]
         centre = None
-        for o in origins:
+        for o in candidates:
             p = o.xreplace(held)
             if p.free_symbols & later:
                 continue  # a point a wrist joint (or a later one) moves is not the centre
             at = sampler(args, p)
             if all(max(_off_line(np.array(at(*q.values(), *d.values()), dtype=float).ravel(),
                                  *_unit_line(np.array(lines(*q.values(), *d.values()), dtype=float), i))
-                       for i in range(3)) <= 1e-9 * _size(q, d) for q, d in samples):
+                       for i in range(3)) <= 1e-9 * _size(d) for q, d in samples):
                 centre = p
                 break
         if centre is None:  # no frame origin on the three axes: the band keeps the stages' product (amp_before)
@@ -79,7 +65,7 @@ def centre_steps(dv: Derivation, spec, frames, draw) -> None:
             q, d = draw(rng)
             p = np.array(f_p(*q.values(), *d.values()), dtype=float).ravel()
             lv = np.array(f_l(*q.values(), *d.values()), dtype=float)
-            return max(_off_line(p, *_unit_line(lv, i)) for i in range(3)) / _size(q, d)
+            return max(_off_line(p, *_unit_line(lv, i)) for i in range(3)) / _size(d)
 
         def fd(rng, f_p=f_p, f_j=f_j, prefix=prefix):
             q, d = draw(rng)
@@ -92,7 +78,7 @@ def centre_steps(dv: Derivation, spec, frames, draw) -> None:
                 col = (np.array(f_p(*a.values(), *d.values()), dtype=float) -
                        np.array(f_p(*b.values(), *d.values()), dtype=float)).ravel() / 2e-6
                 err = max(err, float(np.max(np.abs(col - jv[:, i]))))
-            return err / _size(q, d)
+            return err / _size(d)
         names = ", ".join(str(s) for s in prefix)
         dv.add(Step(f"wrist_centre{k}", f"The wrist centre of stage {k} and its Jacobian in {names}",
                     "the frame origin on the three wrist axes (they meet there); J_c = d p_c / d(" + names + "): the "
@@ -113,6 +99,6 @@ def _unit_line(lines: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
     return z / np.linalg.norm(z), o
 
 
-def _size(q: dict, d: dict) -> float:
+def _size(d: dict) -> float:
     """The scale lengths are compared at: 1 or the largest design length."""
     return max([1.0, *(abs(float(v)) for v in d.values())])

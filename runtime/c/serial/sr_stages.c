@@ -186,9 +186,6 @@ static inline int sr_trig_linear(const double *out, int factored, double gap_tol
 #if SR_HAS_ROTATION2D
 
 #if SR_HAS_FAMILY_PROBE
-/* The member of a family in joint j whose next stage (A cos q' + B sin q' + C = 0, its kernel `probe`) reaches:
- * previous's where it does, else the one with C = 0 from three probes, C = C0 + C1 cos t + C2 sin t in the member t
- * (Python's _family_by_reach says why) */
 /* The next stage's C = C0 + C1 cos t + C2 sin t over joint j's value t, from its kernel `probe` at t = 0, pi and
  * pi / 2 (q, c, s[j] left at the last; Python's _reach_terms) */
 static void sr_reach_terms(int j, double *q, double *c, double *s, sr_stage_kernel probe, const double *pose,
@@ -207,6 +204,9 @@ static void sr_reach_terms(int j, double *q, double *c, double *s, sr_stage_kern
     *c2 = o[2] - *c0;
 }
 
+/* The member of a family in joint j whose next stage (A cos q' + B sin q' + C = 0, its kernel `probe`) reaches:
+ * previous's where it does, else the one with C = 0 from three probes, C = C0 + C1 cos t + C2 sin t in the member t
+ * (Python's _family_by_reach says why) */
 static void sr_family_by_reach(int j, double *q, double *c, double *s, const double *prev, sr_stage_kernel probe,
                                const double *pose, const double *dp)
 {
@@ -417,8 +417,8 @@ static double sr_wrist_amp(double s5, double amp_before, sr_stage_kernel centre,
 #if SR_HAS_WRIST_MIRROR
 /* The second wrist branch mirrors the first, computed for the same prefix at set k - 1 (the wrist is the last
  * branching stage): q5 -> -q5, q4 -> q4 + pi, q6 -> q6 + pi. At the singularity the first branch already holds the
- * whole family (its sin theta5 exactly 0), so this one is a duplicate; within SR_WRIST_EXACT_TOL amp_before of it
- * both are the pose's own reading of a near family (sr_wrist). */
+ * whole family (its sin theta5 exactly 0), so this one is a duplicate; within SR_WRIST_EXACT_TOL of it (times
+ * sr_wrist_amp's factor, as the first branch read it) both are the pose's own reading of a near family (sr_wrist). */
 static int sr_wrist_mirror(const int *w, double *q, double *c, double *s, double amp_before, sr_stage_kernel centre,
                            const double *pose, const double *dp, unsigned *f)
 {
@@ -445,9 +445,9 @@ static int sr_wrist(const double *out, double sgn, const double *e, const int *w
                     const double *dp, double amp_before, sr_stage_kernel centre, const double *pose, unsigned *f)
 {
     const double s5 = sgn * sqrt(out[2] * out[2] + out[5] * out[5]), c5 = e[0] * out[8];
-    /* the family bands: the stages before amplified the input's rounding into the wrist's rotation (by the wrist
-     * centre's kappa where smaller); within the exact band the entries place the member of a near family, flagged
-     * indeterminate (Python's _wrist) */
+    /* the family bands: the stages before amplified the input's rounding into the wrist's rotation (sr_wrist_amp's
+     * factor: the wrist centre's kappa share, capped at WRIST_AMP_SHARE x their product); within the exact band the
+     * entries place the member of a near family, flagged indeterminate (Python's _wrist) */
     const double amp = sr_wrist_amp(s5, amp_before, centre, pose, q, c, s, dp), family = SR_WRIST_FAMILY_TOL * amp;
     double x, y, n;
     if (fabs(s5) <= SR_SINGULAR_EPS) *f = WK_FLAG_SINGULAR_INVERSE;
