@@ -317,6 +317,46 @@ def test_a_calibrated_robot_near_its_singularities_is_never_told_a_reachable_pos
     assert tested >= 18
 
 
+# two of the near-singular bench's wrist configurations of the calibrated KR 6 (bench/near_singular.py, its rng seed
+# 20261126): q1..q4 and q6; q5 is set below, delta from the true chain's own singular value
+CALIBRATED_WRISTS = ((-0.03014554028610883, 2.056887356833461, -0.664393353221219, 2.270621274795859,
+                      -0.012792224011724418),
+                     (-0.9821104536660639, 1.1159593609618579, -1.747828137939208, 0.3288563662222219,
+                      -0.21650171387252692))
+
+
+@pytest.mark.parametrize("wrist", range(len(CALIBRATED_WRISTS)))
+def test_a_calibrated_wrist_near_its_singularity_is_placed_by_the_pose(wrist, tmp_path):
+    """The calibrated KR 6 with its wrist 1e-12 to 1e-10 rad from the true chain's singular theta5 (det J = 0,
+    bisected on the module's Jacobian near theta5 = 0): sigma_min / sigma_max ~ 1e-13 there, and the ideal stages'
+    set, polished until the check passed (a residual of 1.2e-13), lay 0.55 and 1.24 rad from the generating q4 along
+    the ideal wrist's self-motion, which the calibration breaks. A set the stages flag singular is now searched
+    along the near-null direction to the FK's rounding (serial_ik, sr_ik.c): the generating joints are among the sets
+    within the conditioning allowance 1e-6 + 1e-13 / delta (a pose error of rounding size, ~1e-16 x scale, moves them
+    by that over sigma_min ~ delta), in C and on numpy, and every set is on the independent reference's pose."""
+    path = _file("kr6_calibrated", "urdf")
+    derived_cache.derive(path, tmp_path / "d", name="kr6c", native=True)
+    m, py = own_robot.import_solver(tmp_path / "d", "kr6c"), own_robot.import_solver(tmp_path / "d", "kr6c", "numpy")
+    reference = ref.load(path)
+    q1, q2, q3, q4, q6 = CALIBRATED_WRISTS[wrist]
+
+    def det(q5):
+        return float(np.linalg.det(np.asarray(m.jacobian([q1, q2, q3, q4, q5, q6]), dtype=float)))
+
+    lo, hi = -1e-3, 1e-3  # the singular theta5 of the true chain, to the last bit
+    assert det(lo) * det(hi) < 0.0
+    while (mid := 0.5 * (lo + hi)) not in (lo, hi):
+        lo, hi = (lo, mid) if det(lo) * det(mid) <= 0.0 else (mid, hi)
+    for delta in (1e-12, 1e-10):
+        for sign in (1.0, -1.0):
+            q = np.array([q1, q2, q3, q4, lo + sign * delta, q6])
+            T = reference(q)
+            for sol in (m.ik(T), py.ik(T)):
+                assert min(_gap(v, q) for v in sol) <= 1e-6 + 1e-13 / delta, (delta, sign, sol.reason)
+                assert all(ref.pose_error(reference(np.asarray(v)), T) <= 3 / math.sqrt(2) * m.IK_VERIFY_TOL
+                           for v in sol)
+
+
 # ------------------------------------------------------------------------------------------------ a held joint
 # None: the command's choice (the iiwa's a1, the Panda's joint4); the Panda and the iiwa's a6 are solved from the tool,
 # the Panda's joint6 with axes 5 and 7 meeting across it

@@ -38,6 +38,7 @@ from serial_stand_in import (
     FLAG_DOUBLE_ROOT,
     FLAG_INDETERMINATE,
     FLAG_PROJECTED,
+    FLAG_SINGULAR_INVERSE,
     IK_VERIFY_TOL,
     IMAGE_CHECKS,
     JOINT_KINDS,
@@ -121,7 +122,7 @@ def _ik_numpy(pose, d, previous):
             unreachable += 1
             continue
         err = max(abs(x - y) for x, y in zip(_k_fk_cs(q, c, s, d.params), p, strict=True))
-        qk = q
+        qk, placed = q, False
         if err > IK_VERIFY_TOL or ((f & FLAG_DOUBLE_ROOT or CALIBRATED) and err > polish_double):
             # a tangent root leaves a sqrt(eps) error downstream, and a double root's centre its stage's noise (a
             # UR's folded elbow behind a wrist 1e-5 from singular: the pose within 3e-12): polish a copy, a double
@@ -142,6 +143,15 @@ def _ik_numpy(pose, d, previous):
                 qn, err_n = _along_null(qk, p, d.params, rounding)
                 if err_n < err:
                     qk, err = qn, err_n
+        elif CALIBRATED and f & FLAG_SINGULAR_INVERSE and err > rounding:
+            # near a singularity of the ideal geometry a set that passes the check may still lie residual / sigma_min
+            # from the true chain's solution, along the near-null direction (a wrist 1e-12 from singular, sigma_min
+            # 1e-13: a residual of 1.2e-13 left q4 0.55 rad off, outside the conditioning allowance). The calibration
+            # breaks the ideal wrist's self-motion, so the pose places the set: searched there to the FK's rounding
+            qn, err_n = _along_null(qk, p, d.params, rounding)
+            if err_n < err:
+                qk, err = qn, err_n
+            placed = err <= rounding  # the pose's own set: `previous` does not move it (below)
         if not err <= IK_VERIFY_TOL:
             continue
         carried[k] = qk is not q and any(  # only a polished or searched set (a new list) can be carried
@@ -153,7 +163,7 @@ def _ik_numpy(pose, d, previous):
                                       for x, kind in zip(qk, JOINT_KINDS, strict=True) if kind == "P"):
             beyond += 1  # a set fk would reject: IK returns only what FK accepts
             continue
-        if _WRIST_STAGE >= 0 and prev is not None and state[_WRIST_STAGE][1] & (
+        if _WRIST_STAGE >= 0 and prev is not None and not placed and state[_WRIST_STAGE][1] & (
                 FLAG_INDETERMINATE | _runtime.FLAG_READ_MEMBER) == FLAG_INDETERMINATE:
             # the wrist's own family (|sin theta5| <= WRIST_FAMILY_TOL), not another stage's: above that threshold
             # the pose places the wrist and `previous` must not move it (it moved theta4 by 3 rad at 1e-12)

@@ -144,7 +144,8 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
     for (k = 0; k < SR_MAX_IK; ++k) {
         double t[12], err = 0.0;
         unsigned f = 0u;
-        int alive = 1, have_t = 1, moved_by_checks;
+        int alive = 1, have_t = 1, moved_by_checks, placed = 0; /* placed: the pose's own set (a calibrated arm's) */
+        (void)placed;
         /* the stages (sr_run_stages, printed per chain): each recomputed only when its branch prefix changes */
         alive = sr_run_stages(k, pose, q, c, s, d->params, prev, amp, &ws, key, stage_ok, stage_flags, &f);
         if ((k & 1) == 0) chord.ok = 0; /* an odd set reuses its even neighbour's LU only */
@@ -196,10 +197,18 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
                 if (sr_revolute[j]) out->values[k][j] = wk_wrap(out->values[k][j]);
         }
 #if SR_CALIBRATED
-        if (!(err <= SR_IK_VERIFY_TOL))
+        if (!(err <= SR_IK_VERIFY_TOL)) {
             err = sr_compensated(k, pose, out->values[k], d->params, prev, polish_double, err);
-        if (!(err <= SR_IK_VERIFY_TOL)) /* along the near-null direction, to the FK's rounding (Python's reasons) */
+            if (!(err <= SR_IK_VERIFY_TOL)) /* along the near-null direction, to the FK's rounding (Python's reasons) */
+                err = sr_along_null(out->values[k], pose, d->params, rounding, err);
+        } else if ((f & WK_FLAG_SINGULAR_INVERSE) && err > rounding) {
+            /* near a singularity of the ideal geometry a set that passes the check may lie residual / sigma_min from
+               the true chain's solution: searched along the near-null direction to the FK's rounding, where the pose
+               places it (`previous` then does not move it; Python's reasons) */
             err = sr_along_null(out->values[k], pose, d->params, rounding, err);
+            placed = err <= rounding;
+            moved_by_checks = 1;
+        }
 #endif
         if (err <= SR_IK_VERIFY_TOL && moved_by_checks) { /* only a polished or searched set can be carried */
             for (j = 0; j < SR_N; ++j) {
@@ -221,7 +230,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
             continue;
         }
 #if SR_WRIST_STAGE >= 0
-        if (previous && (stage_flags[SR_WRIST_STAGE] & (WK_FLAG_INDETERMINATE | WK_FLAG_READ_MEMBER)) ==
+        if (previous && !placed && (stage_flags[SR_WRIST_STAGE] & (WK_FLAG_INDETERMINATE | WK_FLAG_READ_MEMBER)) ==
                             WK_FLAG_INDETERMINATE) {
             /* the wrist's own family (|sin theta5| <= the family tolerance), not another stage's: above it the pose
                places the wrist and `previous` must not move it */
