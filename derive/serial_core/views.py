@@ -281,6 +281,7 @@ def serial_views(ctx: dict) -> dict:
             "c_stages": [{"index": st["index"], "shift": st["shift"], "body": c_stage_body(st)} for st in stages],
             "wrist_stage": c_flags["SR_WRIST_STAGE"],
             "wrist_joints": [wrist[0]["joints"][0], wrist[0]["joints"][2]] if wrist else [],
+            "wrist_bend": c_flags["SR_WRIST_J5"],
             "revolute": [1 if k == "R" else 0 for k in ctx["joint_kinds"]], "c_flags": c_flags, "c_tables": c_tables,
             "own_api": own or None, "own_partials": OWN_PARTIALS if own else (), "base0": base0, "tool0": tool0,
             "identity": [repr(float(v)) for v in IDENTITY_3X4],

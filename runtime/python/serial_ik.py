@@ -32,6 +32,7 @@ from serial_stand_in import (
     _IMAGE_CHECK,
     _STAGES,
     _UNREACHABLE_NOTE,
+    _WRIST_BEND,
     _WRIST_STAGE,
     CALIBRATED,
     DOUBLE_ROOT_POLISH_TOL,
@@ -60,8 +61,16 @@ from serial_stand_in import (
 )
 from serial_verify import _along_null, _nearest_member, _polish, _refit
 
-
 # wristkin: inlined from here
+# a calibrated arm's set whose wrist bend has |sin q5| at most this, polished on the true chain, is searched along the
+# near-null direction as a set the stages flag singular is: the polish stops at DOUBLE_ROOT_POLISH_TOL, which leaves
+# it up to that over sigma_min from the solution, sigma_min ~ |sin q5|; at 1e-4 that is 1e-8 rad, below the
+# conditioning allowance's 1e-6 with a margin for the wrist's geometry. The stages' flag is read on the ideal
+# geometry, whose q5 differs from the true chain's by the deviation's share (a true q5 of 1e-12 not flagged: q4
+# 1.2 rad off)
+CALIBRATED_WRIST_SEARCH = 1e-4
+
+
 def ik(pose, design=None, previous=None) -> Solutions:
     """Every IK solution (at most MAX_IK), each verified by FK against the pose. A one-parameter family (the wrist
     at |sin theta5| <= WRIST_EXACT_TOL, or a stage whose equation vanishes) is returned once: its member nearest
@@ -143,7 +152,8 @@ def _ik_numpy(pose, d, previous):
                 qn, err_n = _along_null(qk, p, d.params, rounding)
                 if err_n < err:
                     qk, err = qn, err_n
-        elif CALIBRATED and f & FLAG_SINGULAR_INVERSE and err > rounding:
+        elif CALIBRATED and err > rounding and (f & FLAG_SINGULAR_INVERSE or (
+                _WRIST_BEND >= 0 and abs(math.sin(qk[_WRIST_BEND])) <= CALIBRATED_WRIST_SEARCH)):
             # near a singularity of the ideal geometry a set that passes the check may still lie residual / sigma_min
             # from the true chain's solution, along the near-null direction (a wrist 1e-12 from singular, sigma_min
             # 1e-13: a residual of 1.2e-13 left q4 0.55 rad off, outside the conditioning allowance). The calibration

@@ -76,6 +76,7 @@ _UNREACHABLE_NOTE = None  # what an unreachable pose's reason adds (a user's cha
 _FOLD_BITS = (2, 1, )
 _WRIST_JOINTS = (3, 5)
 _WRIST_STAGE = 3
+_WRIST_BEND = 4
 
 # the numpy path: no extension (the generated module binds these from wristkin._native when it is built)
 _C = None

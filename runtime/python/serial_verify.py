@@ -75,10 +75,12 @@ def _polish(q, pose, dp, iters=POLISH_STEPS, target=IK_VERIFY_TOL):
 
 
 # a calibrated arm's search along its near-null direction (_along_null): steps of the held-joint fit, the held
-# joint's Newton steps, and the longest of those (rad, or length for a slide)
+# joint's Newton steps, the longest of those (rad, or length for a slide), and the halvings of a step that does not
+# help before the search ends
 HELD_FIT_STEPS = 8
 NULL_SEARCH_STEPS = 20
 NULL_SEARCH_MAX_STEP = 0.5
+NULL_SEARCH_HALVINGS = 6
 
 
 def _held_fit(q, pose, dp, hold):
@@ -101,7 +103,9 @@ def _along_null(q, pose, dp, target):
     is (J n) . e n_j / |J n|^2 (n and J n read again at each point), taken along n, at most NULL_SEARCH_MAX_STEP
     in the held joint, while it helps and
     the residual is above `target` (the plain polish cannot finish: its damping holds a step along n still below
-    sigma_min ~ 1e-6); then polished: (q, residual)."""
+    sigma_min ~ 1e-6); a step that does not help is halved, NULL_SEARCH_HALVINGS times at most (along a wrist's
+    broken self-motion the residual is no linear function of the held joint: the Newton step from a set 0.39 rad off
+    was 1.02, clamped to 0.5 it missed, its half helped); then polished: (q, residual)."""
     def null(qq):
         jac = np.array(_k_jacobian(qq, dp), dtype=float).reshape(6, N_JOINTS)
         if _HELD >= 0:
@@ -123,9 +127,13 @@ def _along_null(q, pose, dp, target):
         step = min(max(step, -NULL_SEARCH_MAX_STEP), NULL_SEARCH_MAX_STEP)
         if not step != 0.0:
             break
-        # along n (the held fit then corrects a second-order error only: one or two steps, not five)
-        trial = [x + step * v / n[hold] for x, v in zip(q, n, strict=True)]
-        trial, e2, err2 = _held_fit(trial, pose, dp, hold)
+        for _ in range(NULL_SEARCH_HALVINGS + 1):
+            # along n (the held fit then corrects a second-order error only: one or two steps, not five)
+            trial = [x + step * v / n[hold] for x, v in zip(q, n, strict=True)]
+            trial, e2, err2 = _held_fit(trial, pose, dp, hold)
+            if err2 < err:
+                break
+            step *= 0.5
         if not err2 < err:
             break
         q, e, err = trial, e2, err2

@@ -5,6 +5,20 @@
  * switches, the sr_design / sr_ik_solutions / sr_fk_solutions types, its derived kernels sr_k_* and stage
  * functions; derive/runtime_files.py, derive/families/serial/views.py, tests/test_serial_runtime.py) */
 #if SR_CALIBRATED
+/* Python's CALIBRATED_WRIST_SEARCH says why */
+#define SR_CALIBRATED_WRIST_SEARCH 1e-4
+
+/* whether a set's wrist bend is within SR_CALIBRATED_WRIST_SEARCH of singular (|sin q5|; 0 without a wrist) */
+static int sr_wrist_bent(const double *q)
+{
+#if SR_WRIST_J5 >= 0
+    return fabs(sin(q[SR_WRIST_J5])) <= SR_CALIBRATED_WRIST_SEARCH;
+#else
+    (void)q;
+    return 0;
+#endif
+}
+
 /* A calibrated robot's set k whose polish on the true chain failed (the ideal stages' answer outside Gauss-Newton's
  * basin: near a singularity the ideal geometry's 1e-7 moves it by 1e-7 / sigma_min), solved again by the ideal
  * stages for the pose the ideal chain must reach so that the true one reaches `pose`, T_c = pose true(q)^-1
@@ -201,7 +215,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
             err = sr_compensated(k, pose, out->values[k], d->params, prev, polish_double, err);
             if (!(err <= SR_IK_VERIFY_TOL)) /* along the near-null direction, to the FK's rounding (Python's reasons) */
                 err = sr_along_null(out->values[k], pose, d->params, rounding, err);
-        } else if ((f & WK_FLAG_SINGULAR_INVERSE) && err > rounding) {
+        } else if (err > rounding && ((f & WK_FLAG_SINGULAR_INVERSE) || sr_wrist_bent(out->values[k]))) {
             /* near a singularity of the ideal geometry a set that passes the check may lie residual / sigma_min from
                the true chain's solution: searched along the near-null direction to the FK's rounding, where the pose
                places it (`previous` then does not move it; Python's reasons) */

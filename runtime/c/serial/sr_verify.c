@@ -93,6 +93,7 @@ static double sr_polish(double *q, const double *pose, const double *dp, double 
 #define SR_HELD_FIT_STEPS 8
 #define SR_NULL_SEARCH_STEPS 20
 #define SR_NULL_SEARCH_MAX_STEP 0.5
+#define SR_NULL_SEARCH_HALVINGS 6
 
 /* Damped Gauss-Newton on the other joints with joint `hold` fixed, until a step no longer helps: the residual, q
  * and e moved (Python's _held_fit) */
@@ -128,8 +129,8 @@ static void sr_null_direction(const double *q, const double *dp, double *n, doub
 
 /* A calibrated arm's set that Gauss-Newton could not bring onto the pose (residual err): the joint carrying most of
  * the near-null direction n held and the others fitted, then Newton steps (J n) . e n_j / |J n|^2 on the held joint
- * taken along n (n read again at each point) while they help and the residual is above `target`; then polished (Python's
- * _along_null says why): the residual, qk replaced when it improves on err. */
+ * taken along n (n read again at each point, a step that does not help halved SR_NULL_SEARCH_HALVINGS times at most)
+ * while they help and the residual is above `target`; then polished (Python's _along_null says why): the residual, qk replaced when it improves on err. */
 static double sr_along_null(double *qk, const double *pose, const double *dp, double target, double err)
 {
     double q[SR_N], trial[SR_N], n[SR_N], jn[6], e[6], e2[6], err1, err2;
@@ -144,6 +145,7 @@ static double sr_along_null(double *qk, const double *pose, const double *dp, do
     err1 = sr_held_fit(q, pose, dp, hold, e);
     for (it = 0; it < SR_NULL_SEARCH_STEPS && !(err1 <= target); ++it) {
         double s2 = 0.0, g = 0.0, step;
+        int half;
         sr_null_direction(q, dp, n, jn);
         for (j = 0; j < 6; ++j) {
             s2 += jn[j] * jn[j];
@@ -153,8 +155,12 @@ static double sr_along_null(double *qk, const double *pose, const double *dp, do
         step = step < -SR_NULL_SEARCH_MAX_STEP ? -SR_NULL_SEARCH_MAX_STEP :
                (step > SR_NULL_SEARCH_MAX_STEP ? SR_NULL_SEARCH_MAX_STEP : step);
         if (!(step != 0.0)) break;
-        for (j = 0; j < SR_N; ++j) trial[j] = q[j] + step * n[j] / n[hold]; /* along n: the fit corrects less */
-        err2 = sr_held_fit(trial, pose, dp, hold, e2);
+        for (half = 0; half <= SR_NULL_SEARCH_HALVINGS; ++half) {
+            for (j = 0; j < SR_N; ++j) trial[j] = q[j] + step * n[j] / n[hold]; /* along n: the fit corrects less */
+            err2 = sr_held_fit(trial, pose, dp, hold, e2);
+            if (err2 < err1) break;
+            step *= 0.5;
+        }
         if (!(err2 < err1)) break;
         for (j = 0; j < SR_N; ++j) q[j] = trial[j];
         for (j = 0; j < 6; ++j) e[j] = e2[j];
