@@ -152,12 +152,14 @@ def _ik_numpy(pose, d, previous):
                 qn, err_n = _along_null(qk, p, d.params, rounding)
                 if err_n < err:
                     qk, err = qn, err_n
-        elif CALIBRATED and err > rounding and (f & FLAG_SINGULAR_INVERSE or (
+        elif CALIBRATED and err > rounding and (err > polish_double or f & FLAG_SINGULAR_INVERSE or (
                 _WRIST_BEND >= 0 and abs(math.sin(qk[_WRIST_BEND])) <= CALIBRATED_WRIST_SEARCH)):
             # near a singularity of the ideal geometry a set that passes the check may still lie residual / sigma_min
             # from the true chain's solution, along the near-null direction (a wrist 1e-12 from singular, sigma_min
-            # 1e-13: a residual of 1.2e-13 left q4 0.55 rad off, outside the conditioning allowance). The calibration
-            # breaks the ideal wrist's self-motion, so the pose places the set: searched there to the FK's rounding
+            # 1e-13: a residual of 1.2e-13 left q4 0.55 rad off, outside the conditioning allowance; an elbow 1e-8
+            # from stretched: the polish stalled at 4.9e-10, short of its target, on both sides of the solution,
+            # 5e-3 from it). The calibration breaks the ideal wrist's self-motion, so the pose places the set:
+            # searched there to the FK's rounding
             qn, err_n = _along_null(qk, p, d.params, rounding)
             if err_n < err:
                 qk, err = qn, err_n
@@ -187,9 +189,12 @@ def _ik_numpy(pose, d, previous):
     # that solution twice
     _runtime.drop_carried(values, valid, flags, aux, carried, _REVOLUTE)
     if _FOLD_BITS:
-        # a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when)
+        # a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when); a
+        # calibrated arm's every pair (its fold bits are all the set index's), not only its stages' merge candidates:
+        # the stages read the ideal geometry, the sets are polished or searched on the true chain
         _runtime.merge_indistinct(values, valid, flags, aux, _FOLD_BITS, _REVOLUTE,
-                                  lambda x, step, accept: _refit(x, p, d.params, step, accept), size, N_JOINTS >= 6)
+                                  lambda x, step, accept: _refit(x, p, d.params, step, accept), size,
+                                  N_JOINTS >= 6 and not CALIBRATED)
     reasons = [f"{unreachable} of {MAX_IK} branch words have a stage with no real solution"] if unreachable else []
     if "why" in ws:  # a stage's own words for why it has no solution (the held elbow's reach)
         reasons.insert(0, ws["why"])

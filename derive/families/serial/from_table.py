@@ -256,6 +256,11 @@ class _DerivedRobot(SerialMechanism):
         extra = {"calibrated": self.true_chain is not None, "joint_names": list(self.joint_names),
                  # what the ideal stages' u may lie past 1 by on the true robot's pose (serial.py.jinja says why)
                  "tangent_calibrated": 16.0 * api.deviation if self.true_chain is not None else 0.0}
+        if self.true_chain is not None:
+            # every bit of the set index is a pair the merge compares: near a singularity of the ideal geometry two
+            # sets (a wrist's mirror, an elbow's or a shoulder's pair) are polished or searched onto one solution of
+            # the true chain, apart along its near-null direction by what the pose cannot resolve
+            extra["fold_bits"] = list(range(sum(st.width for st in self.spec.stages)))
         if held:  # the held joint's value: the design, named as the joint
             extra.update(held=held[0], n_lengths=0, design_names=[self.joint_names[held[0]]])
             checks = self._held_checks()

@@ -215,10 +215,12 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
             err = sr_compensated(k, pose, out->values[k], d->params, prev, polish_double, err);
             if (!(err <= SR_IK_VERIFY_TOL)) /* along the near-null direction, to the FK's rounding (Python's reasons) */
                 err = sr_along_null(out->values[k], pose, d->params, rounding, err);
-        } else if (err > rounding && ((f & WK_FLAG_SINGULAR_INVERSE) || sr_wrist_bent(out->values[k]))) {
+        } else if (err > rounding && (err > polish_double || (f & WK_FLAG_SINGULAR_INVERSE) ||
+                                      sr_wrist_bent(out->values[k]))) {
             /* near a singularity of the ideal geometry a set that passes the check may lie residual / sigma_min from
-               the true chain's solution: searched along the near-null direction to the FK's rounding, where the pose
-               places it (`previous` then does not move it; Python's reasons) */
+               the true chain's solution (its polish stalled short of its target, or it reached it on a nearly
+               singular J): searched along the near-null direction to the FK's rounding, where the pose places it
+               (`previous` then does not move it; Python's reasons) */
             err = sr_along_null(out->values[k], pose, d->params, rounding, err);
             placed = err <= rounding;
             moved_by_checks = 1;
@@ -271,14 +273,15 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
                                   &out->aux[0][0], SR_N_IK_AUX, carried);
 #if SR_N_FOLD_BITS > 0
     {
-        /* a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when) */
+        /* a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when); a
+           calibrated arm's every pair (Python's reasons) */
         sr_fit fit;
         fit.pose = pose;
         fit.dp = d->params;
         out->count -= wk_merge_indistinct(SR_MAX_IK, SR_N, sr_revolute, sr_fold_bits, SR_N_FOLD_BITS,
                                           &out->values[0][0],
                                           out->valid, out->flags, &out->aux[0][0], SR_N_IK_AUX,
-                                          sr_refit, &fit, size, SR_N >= 6);
+                                          sr_refit, &fit, size, SR_N >= 6 && !SR_CALIBRATED);
     }
 #endif
     for (k = 0; k < SR_MAX_IK; ++k) /* of the sets kept (as Python's flags read after the merge) */
