@@ -30,9 +30,8 @@ static inline double wk_g3_norm(const double *a)
 }
 
 /* p turned by q about the line (h, r): r + R (p - r), R by Rodrigues (o may alias p) */
-static inline void wk_g3_turn(const double *h, const double *r, double q, const double *p, double *o)
+static inline void wk_g3_turn_cs(const double *h, const double *r, double c, double s, const double *p, double *o)
 {
-    const double c = cos(q), s = sin(q);
     double d[3], hx[3], hd;
     d[0] = p[0] - r[0];
     d[1] = p[1] - r[1];
@@ -44,11 +43,21 @@ static inline void wk_g3_turn(const double *h, const double *r, double q, const 
     o[2] = r[2] + c * d[2] + s * hx[2] + hd * h[2];
 }
 
+static inline void wk_g3_turn(const double *h, const double *r, double q, const double *p, double *o)
+{
+    wk_g3_turn_cs(h, r, cos(q), sin(q), p, o);
+}
+
 /* the direction v turned by q about h: rot(h, q) v (o may alias v) */
-static inline void wk_g3_turn_dir(const double *h, double q, const double *v, double *o)
+static inline void wk_g3_turn_dir_cs(const double *h, double c, double s, const double *v, double *o)
 {
     static const double origin[3] = {0.0, 0.0, 0.0};
-    wk_g3_turn(h, origin, q, v, o);
+    wk_g3_turn_cs(h, origin, c, s, v, o);
+}
+
+static inline void wk_g3_turn_dir(const double *h, double q, const double *v, double *o)
+{
+    wk_g3_turn_dir_cs(h, cos(q), sin(q), v, o);
 }
 
 /* t with rot(k, t) p = q seen normal to k (subproblem 1); 0 when either is within eps_scale of the axis */

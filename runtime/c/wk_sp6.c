@@ -54,12 +54,14 @@ static void wk_sp6_trig_coef(const double *n, const double *k, const double *p, 
 static void wk_sp6_eval(const double *n, const double *h0, const double *p0, const double *h4, const double *p4,
                         const double *g, const double *h5, double q0, double q4, double *f, double *jac)
 {
+    /* one cos and sin per angle (libm's may set errno: the compiler does not share them between the turns) */
+    const double c0 = cos(-q0), s0 = sin(-q0), c4 = cos(q4), s4 = sin(q4);
     double w[4][3], a[3], b[3];
     int i;
-    wk_g3_turn_dir(h0, -q0, p0, w[0]);
-    wk_g3_turn_dir(h0, -q0, g, w[1]);
-    wk_g3_turn_dir(h4, q4, p4, w[2]);
-    wk_g3_turn_dir(h4, q4, h5, w[3]);
+    wk_g3_turn_dir_cs(h0, c0, s0, p0, w[0]);
+    wk_g3_turn_dir_cs(h0, c0, s0, g, w[1]);
+    wk_g3_turn_dir_cs(h4, c4, s4, p4, w[2]);
+    wk_g3_turn_dir_cs(h4, c4, s4, h5, w[3]);
     for (i = 0; i < 2; ++i) { /* i = 0: F1 (p0, p4), i = 1: F2 (g, h5) */
         const double *wa = w[i], *wb = w[2 + i];
         f[i] = wk_g3_dot(n, wa) - wk_g3_dot(n, wb);

@@ -53,13 +53,15 @@ static double wk_s3_point(const double (*h0)[3], const double (*r0)[3], const do
             r[i][m] = r0[i][m];
         }
     }
-    /* the last joint first: each turn moves the point and the lines after it; the lines before keep theirs */
+    /* the last joint first: each turn moves the point and the lines after it; the lines before keep theirs (one
+     * cos and sin per joint: libm's may set errno, so the compiler does not share them between the turns) */
     for (i = 2; i >= 0; --i) {
+        const double c = cos(q[i]), s = sin(q[i]);
         int k;
-        wk_g3_turn(h0[i], r0[i], q[i], p, p);
+        wk_g3_turn_cs(h0[i], r0[i], c, s, p, p);
         for (k = i + 1; k < 3; ++k) {
-            wk_g3_turn(h0[i], r0[i], q[i], r[k], r[k]);
-            wk_g3_turn_dir(h0[i], q[i], h[k], h[k]);
+            wk_g3_turn_cs(h0[i], r0[i], c, s, r[k], r[k]);
+            wk_g3_turn_dir_cs(h0[i], c, s, h[k], h[k]);
         }
     }
     wk_g3_axpy(p, -1.0, y, d);
