@@ -18,6 +18,8 @@ bench/own_robots.py), `wristkin derive` writes its solvers, then:
   made the pose, 1e-6 + 1e-13 / delta rad per joint (a pose error of rounding size moves the joints along the
   near-null direction by about eps x scale / sigma_min, sigma_min ~ delta; the issue's allowance);
 * the time cliff: the 99th percentile and the maximum of the sweep's calls over the median call on random poses.
+* one solution twice: pairs of C's sets within 1e-3 rad whose midpoint is on the pose as well as they are (to 16 eps x
+  size, the FK's rounding): a copy, not a second solution.
 
 Prints one Markdown table; the numbers also go to the JSON file.
 """
@@ -201,6 +203,22 @@ def missing(q, sets, delta, free):
     return best > allowance, best
 
 
+def indistinct_pairs(m, design, T, sets) -> int:
+    """Pairs of returned sets within MERGE_SPAN (1e-3 rad) whose midpoint is on the pose as well as they are, to 16
+    eps x size: one solution returned twice (none is spurious only where this is 0)."""
+    def err(x):
+        return float(np.max(np.abs(m.fk_matrix(x, design)[:3] - T[:3])))
+
+    floor = 16 * np.finfo(float).eps * max(1.0, float(np.max(np.abs(T[:3, 3]))))
+    count = 0
+    for i in range(len(sets)):
+        for k in range(i):
+            dq = np.remainder(sets[i] - sets[k] + math.pi, 2 * math.pi) - math.pi
+            if np.max(np.abs(dq)) <= 1e-3 and err(sets[k] + 0.5 * dq) <= max(err(sets[i]), err(sets[k])) + floor:
+                count += 1
+    return count
+
+
 def bench_robot(spec: Path) -> dict:
     """One robot's sweep (its derived solvers; the singular configurations from a fixed rng and the robot's FK)."""
     from derive import own_robot
@@ -223,11 +241,13 @@ def bench_robot(spec: Path) -> dict:
     sweep_ns = np.array([r["ns"] for r in c[: len(rows)]])
     py = own_robot.import_solver(out, spec.stem, backend="numpy")
     by_joint: dict[str, dict] = {}
+    twice = 0
     for (j, delta, q), cr, T in zip(rows, c, poses, strict=False):
         ps = py.ik(T, design)
         psets = [ps.values[k] for k in np.flatnonzero(ps.valid)]
         c_miss, c_err = missing(q, cr["sets"], delta, _free(m))
         p_miss, _ = missing(q, psets, delta, _free(m))
+        twice += indistinct_pairs(m, design, T, cr["sets"])
         key = f"q{j + 1}"
         d = by_joint.setdefault(key, {"poses": 0, "c_missing": {}, "py_missing": {}, "worst": 0.0})
         d["poses"] += 1
@@ -244,7 +264,8 @@ def bench_robot(spec: Path) -> dict:
             "median_us": median / 1e3, "p99_over_median": float(np.percentile(sweep_ns, 99)) / median,
             "max_over_median": float(sweep_ns.max()) / median,
             "c_missing": sum(sum(d["c_missing"].values()) for d in by_joint.values()),
-            "py_missing": sum(sum(d["py_missing"].values()) for d in by_joint.values()), "by_joint": by_joint}
+            "py_missing": sum(sum(d["py_missing"].values()) for d in by_joint.values()), "indistinct_pairs": twice,
+            "by_joint": by_joint}
 
 
 def report(names=None, json_path: Path = ROOT / "build" / "bench" / "near_singular.json") -> str:
@@ -255,16 +276,18 @@ def report(names=None, json_path: Path = ROOT / "build" / "bench" / "near_singul
              f"by +-delta, delta = {', '.join(f'{d:.0e}' for d in DELTAS)} rad (machine: "
              f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores):", "",
              "| robot | decomposition | poses | generating joints missing C / numpy | "
-             "missing where (joint: delta x n) | median call us | p99 / median | max / median |",
-             "|---|---|---:|---:|---|---:|---:|---:|"]
+             "missing where (joint: delta x n) | one solution twice (C) | median call us | p99 / median | "
+             "max / median |",
+             "|---|---|---:|---:|---|---:|---:|---:|---:|"]
     for r in rows:
         if "skipped" in r:
-            lines.append(f"| {r['robot']} | skipped: {r['skipped']} | | | | | | |")
+            lines.append(f"| {r['robot']} | skipped: {r['skipped']} | | | | | | | |")
             continue
         where = "; ".join(f"{k}: " + ", ".join(f"{d} x{n}" for d, n in sorted(v["c_missing"].items()))
                           for k, v in r["by_joint"].items() if v["c_missing"]) or "-"
         lines.append(f"| {r['robot']} | {r['decomposition']} | {r['poses']} | {r['c_missing']} / {r['py_missing']} | "
-                     f"{where} | {r['median_us']:.2f} | {r['p99_over_median']:.1f} | {r['max_over_median']:.1f} |")
+                     f"{where} | {r['indistinct_pairs']} | {r['median_us']:.2f} | {r['p99_over_median']:.1f} | "
+                     f"{r['max_over_median']:.1f} |")
     json_path.parent.mkdir(parents=True, exist_ok=True)
     json_path.write_text(json.dumps(rows, indent=2, default=str))
     return "\n".join(lines)
