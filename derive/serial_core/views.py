@@ -242,6 +242,7 @@ def serial_views(ctx: dict) -> dict:
     c_tables = []
     if ctx["fold_bits"]:
         bits = ", ".join(map(str, ctx["fold_bits"]))
+        # the set-index bits whose pairs wk_merge_indistinct compares (Python's _FOLD_BITS)
         c_tables.append(f"static const int sr_fold_bits[SR_N_FOLD_BITS] = {{ {bits} }};")
     if c_flags["SR_N_DESIGN_CHECKS"]:
         zero = ", ".join({"zero": "1", "nonzero": "0", "held": "2"}[c["kind"]] for c in design_checks)

@@ -639,13 +639,12 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bit
             x = values + (size_t)k * (size_t)n;
             y = values + (size_t)k2 * (size_t)n;
             for (j = 0; j < n && span <= WK_MERGE_SPAN; ++j) { /* most pairs are apart: stop at the first joint */
-                const double d = revolute[j] ? wk_wrap(y[j] - x[j]) : y[j] - x[j];
-                if (!(fabs(d) <= span)) span = fabs(d);
+                mid[j] = revolute[j] ? wk_wrap(y[j] - x[j]) : y[j] - x[j]; /* the difference, for now */
+                if (!(fabs(mid[j]) <= span)) span = fabs(mid[j]);
             }
             if (!(span <= WK_MERGE_SPAN)) continue;
             for (j = 0; j < n; ++j) { /* the midpoint of a pair within the span only (a calibrated arm offers all) */
-                const double d = revolute[j] ? wk_wrap(y[j] - x[j]) : y[j] - x[j];
-                mid[j] = x[j] + 0.5 * d;
+                mid[j] = x[j] + 0.5 * mid[j];
                 if (revolute[j]) mid[j] = wk_wrap(mid[j]);
             }
             rx = aux[(size_t)k * (size_t)aux_stride];

@@ -130,7 +130,8 @@ static void sr_null_direction(const double *q, const double *dp, double *n, doub
 /* A calibrated arm's set that Gauss-Newton could not bring onto the pose (residual err): the joint carrying most of
  * the near-null direction n held and the others fitted, then Newton steps (J n) . e n_j / |J n|^2 on the held joint
  * taken along n (n read again at each point, a step that does not help halved SR_NULL_SEARCH_HALVINGS times at most)
- * while they help and the residual is above `target`; then polished (Python's _along_null says why): the residual, qk replaced when it improves on err. */
+ * while they help and the residual is above `target`; then polished (Python's _along_null says why): the residual,
+ * qk replaced when it improves on err. */
 static double sr_along_null(double *qk, const double *pose, const double *dp, double target, double err)
 {
     double q[SR_N], trial[SR_N], n[SR_N], jn[6], e[6], e2[6], err1, err2;
