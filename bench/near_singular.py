@@ -41,6 +41,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
+from reference.distinct import indistinct_pairs as reference_indistinct  # noqa: E402
 from reference.singular import singular_configurations as reference_singular  # noqa: E402
 
 ROBOTS = ROOT / "tests" / "robots"
@@ -205,18 +206,11 @@ def missing(q, sets, delta, free):
 
 def indistinct_pairs(m, design, T, sets) -> int:
     """Pairs of returned sets within MERGE_SPAN (1e-3 rad) whose midpoint is on the pose as well as they are, to 16
-    eps x size: one solution returned twice (none is spurious only where this is 0)."""
+    eps x size (tests/reference/distinct.py): one solution returned twice (none is spurious only where this is 0)."""
     def err(x):
         return float(np.max(np.abs(m.fk_matrix(x, design)[:3] - T[:3])))
 
-    floor = 16 * np.finfo(float).eps * max(1.0, float(np.max(np.abs(T[:3, 3]))))
-    count = 0
-    for i in range(len(sets)):
-        for k in range(i):
-            dq = np.remainder(sets[i] - sets[k] + math.pi, 2 * math.pi) - math.pi
-            if np.max(np.abs(dq)) <= 1e-3 and err(sets[k] + 0.5 * dq) <= max(err(sets[i]), err(sets[k])) + floor:
-                count += 1
-    return count
+    return len(reference_indistinct(sets, err, float(np.max(np.abs(T[:3, 3])))))
 
 
 def bench_robot(spec: Path) -> dict:

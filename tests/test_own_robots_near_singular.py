@@ -25,6 +25,8 @@ from pathlib import Path
 import derived_cache
 import numpy as np
 import pytest
+from reference import chain as ref
+from reference.distinct import indistinct_pairs
 from reference.singular import singular_configurations
 from seeding import case_rng
 
@@ -94,3 +96,88 @@ def test_generating_joints_are_returned_near_every_singularity(solvers):
                     assert best <= allowance, (*where, best)
                     for x in sets:
                         assert np.max(np.abs(py.fk_matrix(x, design) - pose)) <= IK_VERIFY_TOL, (*where, x)
+
+
+# a stage that gives several candidates at once, one of each kind: the Panda's spatial 3R (solved from the tool,
+# joint5 held), the UR5e's offset wrist (subproblem 6's quartic), the tilted UR5e (the general 6R's elimination)
+SEVERAL = {"panda": ("panda_dh.toml", "joint5"), "ur5e_offset": ("ur5e_offset_dh.toml", None),
+           "ur5e_tilted": ("ur5e_tilted_poe.toml", None)}
+# configurations of the near-singular bench (bench/near_singular.py, its rng seed 20261126) where a stage returned one
+# solution twice before the merge took its candidates' pairs: (the joint along which it is singular, the joints with
+# that one at its singular value, the offsets delta)
+_UR_SHOULDER = (-0.3554100265288045, -1.6023877475853687, 1.0241904681719145, 2.3636659614137088, -0.6274887692932287)
+SEVERAL_SINGULAR = {
+    "panda": ((3, (-0.03014554028610883, 2.056887356833461, -0.664393353221219, -0.46700242365301187, 0.0,
+                   -0.012792224011724418, -0.9821104536660639), (1e-12, 1e-10, 1e-8)),
+              (3, (1.1159593609618579, -1.747828137939208, 0.3288563662222219, -0.46700242365301176, 0.0,
+                   -2.92120561830356, -0.4781400249201049), (1e-10,))),
+    "ur5e_offset": ((1, (_UR_SHOULDER[0], -0.9870879016814625, *_UR_SHOULDER[1:]), (1e-12, 1e-10, 1e-8)),
+                    (1, (_UR_SHOULDER[0], 2.1545047519083305, *_UR_SHOULDER[1:]), (1e-12, 1e-10, 1e-8))),
+    "ur5e_tilted": ((1, (_UR_SHOULDER[0], -1.033593690641725, *_UR_SHOULDER[1:]), (1e-10,)),
+                    (2, (1.708386886500807, 2.7090841119471234, -0.7176012946875933, 1.6305072709418047,
+                         0.03481059150605592, -0.8301753580830393), (1e-6,)),
+                    (2, (0.08419836630675492, -2.89327736014482, -3.1080589007538886, 0.6889124955985468,
+                         2.7052142085628077, 1.9087899858898822), (1e-8,)),
+                    (3, (2.140436534587443, 0.6482062827172048, 2.883081078039301, -0.14380554381278485,
+                         1.1081439160689524, 1.9835134011362818), (1e-12,)))}
+
+
+@pytest.fixture(scope="module", params=sorted(SEVERAL))
+def several(request, tmp_path_factory):
+    name = request.param
+    file, free = SEVERAL[name]
+    out = tmp_path_factory.mktemp(f"several_{name}")
+    derived_cache.derive(ROBOTS_DIR / name / file, out, name=name, free=free, native=True)
+    c = own_robot.import_solver(out, name)
+    if os.environ.get("WRISTKIN_BACKEND") != "numpy":
+        assert c.BACKEND == "c"
+    return name, c, own_robot.import_solver(out, name, backend="numpy")
+
+
+def test_a_several_candidate_stage_returns_one_solution_once(several):
+    """Near a singularity two of a spatial 3R's, subproblem 6's or the general 6R's candidates can be one solution:
+    the Panda's spatial 3R gave two sets 7e-8 apart at joint4 1e-12 from singular, each on the pose to 3e-16, not
+    flagged (bench/near_singular.py: 16 such pairs over its sweep, the offset-wrist UR5e 22, the tilted UR5e 3). The
+    merge compared only pairs differing in one two-root stage's bit; a several-candidate stage's near pair differs in
+    several. Its candidates within MERGE_SPAN of each other are now merge candidates, and the merge takes every pair
+    within its bits. So, at the bench's configurations where that happened (SEVERAL_SINGULAR) and at this test's own
+    (det J = 0 bisected along each joint), 1e-12 .. 1e-4 from singular: no two sets whose midpoint is on the
+    reference's pose as well as they are (tests/reference/distinct.py; before, at the suite's default seed: the Panda
+    12 pairs in C and 12 on numpy, the offset UR5e 58 and 58, the tilted UR5e 5 in C), the generating joints among
+    the sets within the conditioning allowance, every set on the pose, C and numpy."""
+    name, c, py = several
+    free = c._FREE
+    design = [0.0] if free >= 0 else None
+    joints = [j for j in range(c.N_JOINTS) if j != free]
+    reference = ref.load(ROBOTS_DIR / name / SEVERAL[name][0])
+
+    def jac(q):
+        J = np.asarray(py.jacobian(q, design), float)
+        return np.delete(J, free, axis=1) if free >= 0 else J
+
+    configs = [(j, np.array(qs), deltas) for j, qs, deltas in SEVERAL_SINGULAR[name]]
+    configs += [(j, qs, DELTAS) for j, qs in singular_configurations(
+        jac, c.N_JOINTS, case_rng(2262), joints, bases=1, per_base=2, fixed={free: 0.0} if free >= 0 else None)]
+    twice = []
+    for j, qs, deltas in configs:
+        for delta in deltas:
+            for sign in (1.0, -1.0):
+                q = qs.copy()
+                q[j] += sign * delta
+                T = reference(q)
+                sigma = float(np.linalg.svd(jac(q), compute_uv=False)[-1])
+                length = max(1.0, float(np.max(np.abs(T[:3, 3]))))
+                allowance = 1e-6 + max(1e-13 / delta, 16 * EPS * length / max(sigma, 1e-300))
+                for mod in (c, py):
+                    s = mod.ik(T, design)
+                    sets = list(s)
+                    where = (name, mod.BACKEND, f"q{j + 1}", delta, sign, q.tolist(), s.reason)
+                    assert sets, where
+                    assert min(_gap(x, q) for x in sets) <= allowance, where
+                    # the module's check (max |entry| of [R | p] <= IK_VERIFY_TOL) in the reference's measure: |dp| <=
+                    # sqrt(3) IK_VERIFY_TOL, the angle <= |dR|_F / sqrt(2) <= 3 / sqrt(2) IK_VERIFY_TOL
+                    for x in sets:
+                        assert ref.pose_error(reference(x), T) <= 3 / math.sqrt(2) * IK_VERIFY_TOL, (*where, x)
+                    pairs = indistinct_pairs(sets, lambda x, T=T: ref.pose_error(reference(x), T), length)
+                    twice += [(*where, sets[a], sets[b]) for a, b in pairs]
+    assert not twice, twice

@@ -30,7 +30,7 @@ U = ctypes.POINTER(ctypes.c_uint)
 SP6_MAX, S3_MAX = 17, 12  # WK_SP6_MAX, WK_S3_MAX
 # the serial sp6 stage's tolerances at scale 1, as the harness hands them to wk_sp6: (scale, degenerate,
 # double_root, tangent, on_axis)
-SP6_TOLS = (1.0, 1e-12, 1e-12, 1e-9, 1e-12)
+SP6_TOLS = (1.0, 1e-12, 1e-12, 1e-9, 1e-12, 1.4210854715202004e-14)
 
 
 def _rot(k, t):
@@ -93,7 +93,8 @@ def test_the_harness_tolerances_are_the_serial_stage_s():
     py_stage = (RUNTIME_PY / "serial_sp6.py").read_text()
     assert f"#define WKT_DEGENERATE_EPS {TOLERANCES['degenerate']}\n" in text
     assert float(TOLERANCES["degenerate"]) == SP6_TOLS[1]
-    for key, value in (("DOUBLE_ROOT_TOL", SP6_TOLS[2]), ("TANGENT_TOL", SP6_TOLS[3]), ("ON_AXIS_TOL", SP6_TOLS[4])):
+    for key, value in (("DOUBLE_ROOT_TOL", SP6_TOLS[2]), ("TANGENT_TOL", SP6_TOLS[3]), ("ON_AXIS_TOL", SP6_TOLS[4]),
+                       ("FAMILY_TOL", SP6_TOLS[5])):
         for source, pattern in ((text, rf"#define WKT_SP6_{key} (\S+)\n"), (c_stage, rf"#define SR_SP6_{key} (\S+)\n"),
                                 (py_stage, rf"\nSP6_{key} = (\S+)\n")):
             assert float(re.search(pattern, source).group(1)) == value, (key, pattern)

@@ -245,10 +245,21 @@ def stage_view(spec, kernel_names=frozenset()) -> list[dict]:
     return out
 
 
-def fold_bits(spec) -> list[int]:
-    """The set-index bits of the two-root (trig_linear) stages: sets differing in one of them are a pair that the
-    runtime merges when the pose cannot tell them apart (a double root)."""
-    return [v["bit"] for v in stage_view(spec) if v["kind"] == "trig_linear"]
+# stages that give several candidates at once (one computation per prefix, kept in the call's scratch)
+SEVERAL_CANDIDATES = ("general6r", "spatial3", "sp6", "arm_angle", "held_elbow")
+
+
+def fold_masks(spec) -> list[int]:
+    """The set-index masks whose pairs (k ^ k2 within a mask) the runtime merges when the pose cannot tell them apart
+    (a double root): a two-root (trig_linear) stage's bit, and the bits of a stage that gives several candidates at
+    once (its candidates within MERGE_SPAN of each other are flagged merge candidates: serial_stages._ws_mark_near)."""
+    out = []
+    for v in stage_view(spec):
+        if v["kind"] == "trig_linear":
+            out.append(1 << v["bit"])
+        elif v["kind"] in SEVERAL_CANDIDATES:
+            out.append(((1 << v["width"]) - 1) << v["shift"])
+    return out
 
 
 def flip_parity(e, flipped: set, known: dict):

@@ -225,7 +225,7 @@ def serial_views(ctx: dict) -> dict:
         "SR_HAS_HELD_ELBOW": int(held_elbow),
         "SR_HAS_WRIST_MIRROR": int(bool(wrist) and wrist[0]["bit"] == 0),
         "SR_REUSE_MIRROR_CHECK": int(reuse),
-        "SR_N_FOLD_BITS": len(ctx["fold_bits"]),
+        "SR_N_FOLD_MASKS": len(ctx["fold_masks"]),
         "SR_LENGTHS_FLOOR": int(bool(ctx.get("lengths_floor"))),
         # the design's first SR_N_LENGTHS values are lengths (a held joint's angle follows them); SR_HELD: that
         # joint (-1: none), which the Gauss-Newton steps leave alone
@@ -240,10 +240,10 @@ def serial_views(ctx: dict) -> dict:
     }
     # the chain's tables the C sources read (only those it has: C99 has no empty arrays)
     c_tables = []
-    if ctx["fold_bits"]:
-        bits = ", ".join(map(str, ctx["fold_bits"]))
-        # the set-index bits whose pairs wk_merge_indistinct compares (Python's _FOLD_BITS)
-        c_tables.append(f"static const int sr_fold_bits[SR_N_FOLD_BITS] = {{ {bits} }};")
+    if ctx["fold_masks"]:
+        masks = ", ".join(f"{m}u" for m in ctx["fold_masks"])
+        # the set-index masks whose pairs wk_merge_indistinct compares (Python's _FOLD_MASKS)
+        c_tables.append(f"static const unsigned sr_fold_masks[SR_N_FOLD_MASKS] = {{ {masks} }};")
     if c_flags["SR_N_DESIGN_CHECKS"]:
         zero = ", ".join({"zero": "1", "nonzero": "0", "held": "2"}[c["kind"]] for c in design_checks)
         c_tables += ["/* design conditions (Python DESIGN_CHECKS): 1 = |v| <= tol required, 0 = |v| > tol required, "

@@ -28,8 +28,8 @@ extern "C" {
 #define WK_FLAG_DOUBLE_ROOT 8u
 #define WK_FLAG_INDETERMINATE 16u
 #define WK_FLAG_PROJECTED 32u /* the input rotation was projected onto SO(3) (max|R^T R - I| <= 1e-6) */
-/* internal, never in a returned set: a two-root stage's half-gap within its upstream noise of a double root (the
-   pairs wk_merge_indistinct compares) */
+/* internal, never in a returned set: a two-root stage's half-gap within its upstream noise of a double root, or a
+   several-candidate stage's candidate within WK_MERGE_SPAN of another (the pairs wk_merge_indistinct compares) */
 #define WK_FLAG_MERGE_CANDIDATE 0x10000u
 /* internal, never returned: a wrist within rounding of its family whose member the pose's own entries placed (a
  * serial arm's wrist stage); `previous` moves only a family's representative, not such a set */
@@ -98,7 +98,8 @@ int wk_square_solve(const double *a, int n, const double *b, double rel_pivot, d
 int wk_lu_factor(const double *a, int n, double rel_pivot, double *lu, int *perm);
 void wk_lu_solve(const double *lu, const int *perm, int n, const double *b, double *x);
 
-/* Merge two valid sets that differ only in the branch of one two-root stage (k and k | 1 << bits[b]) when the pose
+/* Merge two valid sets that differ only in the branch of one stage (k ^ k2 within one of masks[]: a two-root stage's
+ * bit, a several-candidate stage's bits; mask by mask, k ascending, then k2 > k ascending) when the pose
  * cannot tell them apart: their midpoint, refitted by one Gauss-Newton step no longer than an eighth of their span,
  * fits the pose within WK_MERGE_ULPS eps max(1, scale) of their residuals (scale: the pose's size, max |p|;
  * wristkin_runtime.c says why). values: max_sets x n row-major; aux: the residual at aux[k * aux_stride].
@@ -109,14 +110,16 @@ typedef double (*wk_refit_fn)(double *q, double max_step, double accept, const v
 #define WK_MERGE_MAX_JOINTS 16
 #define WK_MERGE_MAX_SETS 64
 #define WK_MERGE_ULPS 16.0
+/* sets farther apart in a joint are distinct at any curvature above 1e-7: not compared (Python's MERGE_SPAN) */
+#define WK_MERGE_SPAN 1e-3
 /* The FK's own rounding of a pose of size `scale` (max |p|): WK_MERGE_ULPS eps max(1, scale) */
 double wk_fk_rounding(double scale);
 /* candidates_only: only pairs both flagged WK_FLAG_MERGE_CANDIDATE are compared (a square chain, whose stages'
  * noise their amplification bounds; a chain of fewer than six joints over-determined by the pose carries the pose's
  * own inconsistency into its stages: every pair within the span). The flag is cleared from every set. */
-int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bits, int n_bits, double *values,
-                        int *valid, unsigned *flags, double *aux, int aux_stride, wk_refit_fn refit, const void *ctx,
-                        double scale, int candidates_only);
+int wk_merge_indistinct(int max_sets, int n, const int *revolute, const unsigned *masks, int n_masks,
+                        double *values, int *valid, unsigned *flags, double *aux, int aux_stride, wk_refit_fn refit,
+                        const void *ctx, double scale, int candidates_only);
 
 /* A set its checks carried far from its stages' answer (the polish on a 5-joint arm's inconsistent candidate, a
  * calibrated arm's search along the near-null direction) may have reached another branch's solution: one flagged in

@@ -577,8 +577,8 @@ int wk_select(int max_sets, int n, const int *valid, const unsigned *flags, cons
    WK_MERGE_ULPS eps max(1, scale) (the FK's own rounding of a pose of that size) of the pair's residuals. The pair
    becomes whichever of the two and the refitted midpoint fits best, flagged a double root. Pairs farther apart than
    WK_MERGE_SPAN in a joint are not compared: at a curvature above 1e-7 their midpoint misses by more than the
-   floor, and it bounds the extra work to near-coincident pairs. Returns the number of sets removed. */
-#define WK_MERGE_SPAN 1e-3
+   floor, and it bounds the extra work to near-coincident pairs (wristkin_common.h's WK_MERGE_SPAN). Returns the
+   number of sets removed. */
 double wk_fk_rounding(double scale)
 {
     return WK_MERGE_ULPS * DBL_EPSILON * (scale > 1.0 ? scale : 1.0);
@@ -610,12 +610,12 @@ int wk_drop_carried(int max_sets, int n, const int *revolute, double *values, in
     return dropped;
 }
 
-int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bits, int n_bits, double *values,
-                        int *valid, unsigned *flags, double *aux, int aux_stride, wk_refit_fn refit, const void *ctx,
-                        double scale, int candidates_only)
+int wk_merge_indistinct(int max_sets, int n, const int *revolute, const unsigned *masks, int n_masks,
+                        double *values, int *valid, unsigned *flags, double *aux, int aux_stride, wk_refit_fn refit,
+                        const void *ctx, double scale, int candidates_only)
 {
     const double floor_ = wk_fk_rounding(scale);
-    int b, k, j, removed = 0;
+    int b, k, k2, j, removed = 0;
     double mid[WK_MERGE_MAX_JOINTS];
     unsigned candidate[WK_MERGE_MAX_SETS];
     if (!flags) return 0;
@@ -623,48 +623,50 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const int *bit
         if (k < WK_MERGE_MAX_SETS) candidate[k] = flags[k] & WK_FLAG_MERGE_CANDIDATE;
         flags[k] &= ~WK_FLAG_MERGE_CANDIDATE; /* internal: never returned */
     }
-    if (n > WK_MERGE_MAX_JOINTS || max_sets > WK_MERGE_MAX_SETS || !revolute || !bits || !values || !valid || !aux ||
+    if (n > WK_MERGE_MAX_JOINTS || max_sets > WK_MERGE_MAX_SETS || !revolute || !masks || !values || !valid || !aux ||
         !refit)
         return 0;
-    for (b = 0; b < n_bits; ++b) {
-        const int m = 1 << bits[b];
+    for (b = 0; b < n_masks; ++b) {
+        const unsigned m = masks[b];
         for (k = 0; k < max_sets; ++k) {
-            const int k2 = k | m;
-            double *x, *y, rx, ry, rm, accept, span = 0.0;
-            if ((k & m) || k2 >= max_sets || !valid[k] || !valid[k2]) continue;
-            if (candidates_only && !(candidate[k] && candidate[k2])) continue; /* beyond their stage's noise */
-            /* two members of a one-parameter family: the refit's step moves along it, so the midpoint's fit proves
-               nothing, and each is a solution (merge_indistinct says more) */
-            if ((flags[k] & WK_FLAG_INDETERMINATE) && (flags[k2] & WK_FLAG_INDETERMINATE)) continue;
-            x = values + (size_t)k * (size_t)n;
-            y = values + (size_t)k2 * (size_t)n;
-            for (j = 0; j < n && span <= WK_MERGE_SPAN; ++j) { /* most pairs are apart: stop at the first joint */
-                mid[j] = revolute[j] ? wk_wrap(y[j] - x[j]) : y[j] - x[j]; /* the difference, for now */
-                if (!(fabs(mid[j]) <= span)) span = fabs(mid[j]);
+            if (!valid[k]) continue;
+            for (k2 = k + 1; k2 < max_sets; ++k2) { /* k ^ k2 within the mask (one bit: k2 = k | m) */
+                double *x, *y, rx, ry, rm, accept, span = 0.0;
+                if ((((unsigned)k ^ (unsigned)k2) & ~m) || !valid[k] || !valid[k2]) continue;
+                if (candidates_only && !(candidate[k] && candidate[k2])) continue; /* beyond their stage's noise */
+                /* two members of a one-parameter family: the refit's step moves along it, so the midpoint's fit
+                   proves nothing, and each is a solution (merge_indistinct says more) */
+                if ((flags[k] & WK_FLAG_INDETERMINATE) && (flags[k2] & WK_FLAG_INDETERMINATE)) continue;
+                x = values + (size_t)k * (size_t)n;
+                y = values + (size_t)k2 * (size_t)n;
+                for (j = 0; j < n && span <= WK_MERGE_SPAN; ++j) { /* most pairs are apart: stop at the first joint */
+                    mid[j] = revolute[j] ? wk_wrap(y[j] - x[j]) : y[j] - x[j]; /* the difference, for now */
+                    if (!(fabs(mid[j]) <= span)) span = fabs(mid[j]);
+                }
+                if (!(span <= WK_MERGE_SPAN)) continue;
+                for (j = 0; j < n; ++j) { /* the midpoint of a pair within the span only (a calibrated arm offers all) */
+                    mid[j] = x[j] + 0.5 * mid[j];
+                    if (revolute[j]) mid[j] = wk_wrap(mid[j]);
+                }
+                rx = aux[(size_t)k * (size_t)aux_stride];
+                ry = aux[(size_t)k2 * (size_t)aux_stride];
+                accept = (rx > ry ? rx : ry) + floor_;
+                rm = refit(mid, 0.125 * span, accept, ctx); /* a midpoint on the pose takes no step */
+                if (!(rm <= accept)) continue;
+                if (rm < rx && rm < ry) {
+                    for (j = 0; j < n; ++j) x[j] = mid[j];
+                    aux[(size_t)k * (size_t)aux_stride] = rm;
+                } else if (ry < rx) {
+                    for (j = 0; j < n; ++j) x[j] = y[j];
+                    aux[(size_t)k * (size_t)aux_stride] = ry;
+                }
+                flags[k] |= flags[k2] | WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
+                valid[k2] = 0;
+                flags[k2] = 0u;
+                aux[(size_t)k2 * (size_t)aux_stride] = NAN;
+                for (j = 0; j < n; ++j) y[j] = NAN;
+                ++removed;
             }
-            if (!(span <= WK_MERGE_SPAN)) continue;
-            for (j = 0; j < n; ++j) { /* the midpoint of a pair within the span only (a calibrated arm offers all) */
-                mid[j] = x[j] + 0.5 * mid[j];
-                if (revolute[j]) mid[j] = wk_wrap(mid[j]);
-            }
-            rx = aux[(size_t)k * (size_t)aux_stride];
-            ry = aux[(size_t)k2 * (size_t)aux_stride];
-            accept = (rx > ry ? rx : ry) + floor_;
-            rm = refit(mid, 0.125 * span, accept, ctx); /* a midpoint on the pose takes no step */
-            if (!(rm <= accept)) continue;
-            if (rm < rx && rm < ry) {
-                for (j = 0; j < n; ++j) x[j] = mid[j];
-                aux[(size_t)k * (size_t)aux_stride] = rm;
-            } else if (ry < rx) {
-                for (j = 0; j < n; ++j) x[j] = y[j];
-                aux[(size_t)k * (size_t)aux_stride] = ry;
-            }
-            flags[k] |= flags[k2] | WK_FLAG_DOUBLE_ROOT | WK_FLAG_SINGULAR_INVERSE;
-            valid[k2] = 0;
-            flags[k2] = 0u;
-            aux[(size_t)k2 * (size_t)aux_stride] = NAN;
-            for (j = 0; j < n; ++j) y[j] = NAN;
-            ++removed;
         }
     }
     return removed;

@@ -28,8 +28,8 @@ FLAG_GIMBAL = 4
 FLAG_DOUBLE_ROOT = 8
 FLAG_INDETERMINATE = 16
 FLAG_PROJECTED = 32  # the input rotation was projected onto SO(3) before solving (deviation in `reason`)
-# internal, never in a returned set: a two-root stage's half-gap within its upstream noise of a double root (the
-# pairs merge_indistinct compares)
+# internal, never in a returned set: a two-root stage's half-gap within its upstream noise of a double root, or a
+# several-candidate stage's candidate within MERGE_SPAN of another (the pairs merge_indistinct compares)
 FLAG_MERGE_CANDIDATE = 0x10000
 # internal, never returned: a wrist within rounding of its family whose member the pose's own entries placed (a
 # serial arm's wrist stage); `previous` moves only a family's representative, not such a set
@@ -426,57 +426,61 @@ def drop_carried(values, valid, flags, aux, carried, revolute):
     return dropped
 
 
-def merge_indistinct(values, valid, flags, aux, bits, revolute, refit, scale, candidates_only=True):
-    """Two valid sets that differ only in the branch of one two-root stage (k and k | 1 << bit) are one solution, a
-    double root, when the pose cannot tell them apart: a point between them fits the pose as well as they do. At a
-    fold of the chain the residual grows with the square of the distance along the fold, so the joints solved before
-    the stage, off by rounding, push the two computed roots ~1e-6 apart while both fit the pose to rounding; their
-    midpoint misses it only by that upstream error, which one Gauss-Newton step far shorter than the span removes.
-    Two distinct roots leave the midpoint off by curvature x (span / 2)^2, which a short step cannot remove. So:
-    `refit(midpoint, span / 8)` (the residual after one such step, the midpoint updated in place) within MERGE_ULPS
-    eps max(1, scale) of the pair's residuals. The pair becomes whichever of the two and the refitted midpoint fits
-    best, flagged a double root (in place; the C runtime's wk_merge_indistinct). `candidates_only`: only pairs both
-    flagged FLAG_MERGE_CANDIDATE (their stage's half-gap within its upstream noise) are compared (a square chain; one
-    of fewer than six joints carries the pose's own inconsistency into its stages, which their amplification does
-    not bound: every pair within MERGE_SPAN). The flag is cleared from every set. Returns the sets removed."""
+def merge_indistinct(values, valid, flags, aux, masks, revolute, refit, scale, candidates_only=True):
+    """Two valid sets that differ only in the branch of one stage (k ^ k2 within one of `masks`: a two-root stage's
+    bit, or the bits of a stage that gives several candidates at once, a spatial 3R's or the general 6R's) are one
+    solution, a double root, when the pose cannot tell them apart: a point between them fits the pose as well as they
+    do. At a fold of the chain the residual grows with the square of the distance along the fold, so the joints
+    solved before the stage, off by rounding, push the two computed roots ~1e-6 apart while both fit the pose to
+    rounding; their midpoint misses it only by that upstream error, which one Gauss-Newton step far shorter than the
+    span removes. Two distinct roots leave the midpoint off by curvature x (span / 2)^2, which a short step cannot
+    remove. So: `refit(midpoint, span / 8)` (the residual after one such step, the midpoint updated in place) within
+    MERGE_ULPS eps max(1, scale) of the pair's residuals. The pair becomes whichever of the two and the refitted
+    midpoint fits best, flagged a double root (in place; the C runtime's wk_merge_indistinct). Pairs are taken mask
+    by mask, k ascending, then k2 > k ascending (a single bit's pairs are (k, k | bit)). `candidates_only`: only pairs
+    both flagged FLAG_MERGE_CANDIDATE (their stage's roots within its upstream noise, or within MERGE_SPAN of
+    another candidate of the same stage) are compared (a square chain; one of fewer than six joints carries the
+    pose's own inconsistency into its stages, which their amplification does not bound: every pair within
+    MERGE_SPAN). The flag is cleared from every set. Returns the sets removed."""
     floor = fk_rounding(scale)
     candidate = [bool(int(f) & FLAG_MERGE_CANDIDATE) for f in flags]
     for k in range(len(flags)):
         flags[k] = int(flags[k]) & ~FLAG_MERGE_CANDIDATE  # internal: never returned
     removed = 0
-    for b in bits:
-        m = 1 << b
+    for m in masks:
         for k in range(len(values)):
-            k2 = k | m
-            if k & m or k2 >= len(values) or not (valid[k] and valid[k2]):
+            if not valid[k]:
                 continue
-            if candidates_only and not (candidate[k] and candidate[k2]):
-                continue  # apart beyond their stage's noise: distinct
-            if int(flags[k]) & int(flags[k2]) & FLAG_INDETERMINATE:
-                # two members of a one-parameter family (a UR's wrist at q5 = pi, its elbow 2.7e-5 from straight):
-                # the refit's step moves along the family, so the midpoint's fit proves nothing, and each is a
-                # solution (merged, `previous`'s member came back 2.7e-5 off: seed 413261)
-                continue
-            x, y = values[k], values[k2]
-            d = [_wrap(float(v - u)) if r else float(v - u) for u, v, r in zip(x, y, revolute, strict=True)]
-            span = max(abs(e) for e in d)
-            if not span <= MERGE_SPAN:
-                continue
-            mid = [_wrap(float(u) + 0.5 * e) if r else float(u) + 0.5 * e
-                   for u, e, r in zip(x, d, revolute, strict=True)]
-            rx, ry = float(aux[k][0]), float(aux[k2][0])
-            accept = max(rx, ry) + floor
-            rm = refit(mid, 0.125 * span, accept)  # a midpoint on the pose takes no step
-            if not rm <= accept:
-                continue
-            if rm < rx and rm < ry:
-                values[k], aux[k][0] = mid, rm
-            elif ry < rx:
-                values[k], aux[k][0] = y.copy(), ry
-            flags[k] |= flags[k2] | FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE
-            valid[k2], flags[k2], aux[k2][0] = False, 0, math.nan
-            values[k2] = math.nan
-            removed += 1
+            for k2 in range(k + 1, len(values)):
+                if (k ^ k2) & ~m or not (valid[k] and valid[k2]):
+                    continue
+                if candidates_only and not (candidate[k] and candidate[k2]):
+                    continue  # apart beyond their stage's noise: distinct
+                if int(flags[k]) & int(flags[k2]) & FLAG_INDETERMINATE:
+                    # two members of a one-parameter family (a UR's wrist at q5 = pi, its elbow 2.7e-5 from
+                    # straight): the refit's step moves along the family, so the midpoint's fit proves nothing, and
+                    # each is a solution (merged, `previous`'s member came back 2.7e-5 off: seed 413261)
+                    continue
+                x, y = values[k], values[k2]
+                d = [_wrap(float(v - u)) if r else float(v - u) for u, v, r in zip(x, y, revolute, strict=True)]
+                span = max(abs(e) for e in d)
+                if not span <= MERGE_SPAN:
+                    continue
+                mid = [_wrap(float(u) + 0.5 * e) if r else float(u) + 0.5 * e
+                       for u, e, r in zip(x, d, revolute, strict=True)]
+                rx, ry = float(aux[k][0]), float(aux[k2][0])
+                accept = max(rx, ry) + floor
+                rm = refit(mid, 0.125 * span, accept)  # a midpoint on the pose takes no step
+                if not rm <= accept:
+                    continue
+                if rm < rx and rm < ry:
+                    values[k], aux[k][0] = mid, rm
+                elif ry < rx:
+                    values[k], aux[k][0] = y.copy(), ry
+                flags[k] |= flags[k2] | FLAG_DOUBLE_ROOT | FLAG_SINGULAR_INVERSE
+                valid[k2], flags[k2], aux[k2][0] = False, 0, math.nan
+                values[k2] = math.nan
+                removed += 1
     return removed
 
 

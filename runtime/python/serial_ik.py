@@ -27,7 +27,7 @@ from serial_stand_in import (
     _C_IK,
     _C_IK_BATCH,
     _FK_IDEAL,
-    _FOLD_BITS,
+    _FOLD_MASKS,
     _IK_RESULT,
     _IMAGE_CHECK,
     _STAGES,
@@ -188,11 +188,11 @@ def _ik_numpy(pose, d, previous):
     # a set the polish carried to another branch's solution (a 5-joint arm's candidate that no orientation fits) is
     # that solution twice
     _runtime.drop_carried(values, valid, flags, aux, carried, _REVOLUTE)
-    if _FOLD_BITS:
-        # a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when); a
-        # calibrated arm's every pair (its fold bits are all the set index's), not only its stages' merge candidates:
-        # the stages read the ideal geometry, the sets are polished or searched on the true chain
-        _runtime.merge_indistinct(values, valid, flags, aux, _FOLD_BITS, _REVOLUTE,
+    if _FOLD_MASKS:
+        # a stage's pair that the pose cannot tell apart is one double root (the runtime says when); a calibrated
+        # arm's every single-bit pair (its masks hold every bit of the set index), not only its stages' merge
+        # candidates: the stages read the ideal geometry, the sets are polished or searched on the true chain
+        _runtime.merge_indistinct(values, valid, flags, aux, _FOLD_MASKS, _REVOLUTE,
                                   lambda x, step, accept: _refit(x, p, d.params, step, accept), size,
                                   N_JOINTS >= 6 and not CALIBRATED)
     reasons = [f"{unreachable} of {MAX_IK} branch words have a stage with no real solution"] if unreachable else []

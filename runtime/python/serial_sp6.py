@@ -26,6 +26,10 @@ SP6_KEEP = 4  # the quartic's real roots
 SP6_DOUBLE_ROOT_TOL = 1e-12
 SP6_ON_AXIS_TOL = 1e-12
 SP6_TANGENT_TOL = 1e-9
+# the wrist's family: the pose's axis on n within the rounding of unit vectors (64 eps, the spherical wrist's
+# WRIST_FAMILY_TOL); above it the split's two roots (a band of 1e-12 missed the generating joints of poses 1e-13 ..
+# 1e-12 rad from the singularity: 129 of 200 random ones at 1e-13)
+SP6_FAMILY_TOL = 1.4210854715202004e-14
 
 
 def _sp6_candidates(out):
@@ -34,7 +38,7 @@ def _sp6_candidates(out):
     nv, h0, p0, h4, p4 = (tuple(out[i:i + 3]) for i in range(0, 15, 3))
     d0, g, h5 = out[15], tuple(out[16:19]), tuple(out[19:22])
     scale = max(1.0, *(abs(v) for v in out[6:9]), *(abs(v) for v in out[12:16]))  # the points' and the constant's
-    tols = (scale, DEGENERATE_EPS, SP6_DOUBLE_ROOT_TOL, SP6_TANGENT_TOL, SP6_ON_AXIS_TOL)
+    tols = (scale, DEGENERATE_EPS, SP6_DOUBLE_ROOT_TOL, SP6_TANGENT_TOL, SP6_ON_AXIS_TOL, SP6_FAMILY_TOL)
     kept = []
     for q0, q4, f, order in _sp6_core(nv, h0, p0, h4, p4, d0, 0.0, g, h5, tols):
         if len(kept) == SP6_KEEP:

@@ -61,7 +61,7 @@ def _ws_take(ws, parent, compute, idx, joints, q, c, s):
     steps and band splits reach past pi). Returns the candidate (values, flags[, amplification]), None when there is
     no such candidate."""
     if ws.get("key") != parent:
-        ws["key"], ws["cands"] = parent, compute()
+        ws["key"], ws["cands"] = parent, _ws_mark_near(compute())
     if idx >= len(ws["cands"]):
         return None
     cand = ws["cands"][idx]
@@ -69,6 +69,20 @@ def _ws_take(ws, parent, compute, idx, joints, q, c, s):
         v = _wrap(v)
         q[j], c[j], s[j] = v, math.cos(v), math.sin(v)
     return cand
+
+
+def _ws_mark_near(cands):
+    """FLAG_MERGE_CANDIDATE on each of a stage's candidates within MERGE_SPAN in every joint of another (its joints
+    revolute: the general 6R's, a spatial 3R's, subproblem 6's, the arm angle's): near a double root of the stage the
+    two may be one solution, which the runtime's merge_indistinct decides on the whole set (the stage's bits are one
+    of its masks). A new list of (values, flags, ...) tuples; the C runtime's sr_ws_mark_near."""
+    out = list(cands)
+    for i in range(len(out)):
+        for j in range(i + 1, len(out)):
+            if all(abs(_wrap(float(v - u))) <= _runtime.MERGE_SPAN for u, v in zip(out[i][0], out[j][0], strict=True)):
+                out[i] = (out[i][0], int(out[i][1]) | _runtime.FLAG_MERGE_CANDIDATE, *out[i][2:])
+                out[j] = (out[j][0], int(out[j][1]) | _runtime.FLAG_MERGE_CANDIDATE, *out[j][2:])
+    return out
 
 
 def _design_size(dp):

@@ -38,10 +38,11 @@ SP6_NEWTON_STEPS = 3
 
 def _sp6_core(nv, h0, p0, h4, p4, d0, e0, g, h5, tols):
     """The candidates [(q0, q4, flags, order)] of subproblem 6, the regular ones first. `tols`: the caller's
-    (scale, degenerate, double_root, tangent, on_axis) (wk_sp6.c's wk_sp6_tols says what each is). `order`: how q4's
+    (scale, degenerate, double_root, tangent, on_axis, family) (wk_sp6.c's wk_sp6_tols says what each is). `order`:
+    how q4's
     error grows near the wrist singularity: 2 from the quartic and Newton on its equations (eps / g), 1 from the
     split or the normal parts' Newton (~eps). A merged double root far from the wrist stays, flagged."""
-    scale, degenerate, double_root, _tangent, on_axis = tols
+    scale, degenerate, double_root, _tangent, _on_axis, family = tols
 
     def coef(k, p, sign):
         kp = _g3_dot(k, p)
@@ -90,7 +91,7 @@ def _sp6_core(nv, h0, p0, h4, p4, d0, e0, g, h5, tols):
                 dn = _g3_dot(nv, w)
                 if dn * side > 0.0 and 1.0 - dn * dn <= double_root:
                     anchors.append((q0, q4))
-                    if _g3_norm(_g3_cross(nv, w)) <= on_axis:  # closed-form inputs: rounding, not a band's noise
+                    if _g3_norm(_g3_cross(nv, w)) <= family:  # closed-form inputs: rounding, not a band's noise
                         singular.append((q0, _wrap(q4), fl | FLAG_SINGULAR_INVERSE, 2))
                     else:
                         pair = _sp6_split(nv, h0, p0, h4, p4, d0, g, h5, q0, q4, tols)
@@ -137,7 +138,7 @@ def _within(root, others, tol):
 
 def _sp6_sp4(nv, h0, p0, d, tols):
     """t with n . rot(h0, t) p0 = d (subproblem 4): [(t, flags)] (_g3_trig)."""
-    scale, _degenerate, double_root, tangent, on_axis = tols
+    scale, _degenerate, double_root, tangent, on_axis, _family = tols
     kp = _g3_dot(h0, p0)
     return _g3_trig(_g3_dot(nv, _g3_axpy(p0, -kp, h0)), _g3_dot(nv, _g3_cross(h0, p0)), d - kp * _g3_dot(nv, h0), scale,
                     on_axis, tangent, double_root)

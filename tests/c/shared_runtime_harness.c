@@ -13,6 +13,7 @@
 #define WKT_SP6_DOUBLE_ROOT_TOL 1e-12
 #define WKT_SP6_TANGENT_TOL 1e-9
 #define WKT_SP6_ON_AXIS_TOL 1e-12
+#define WKT_SP6_FAMILY_TOL 1.4210854715202004e-14
 #define WKT_S3_ON_AXIS_TOL 1e-12
 
 #include "../../runtime/c/poly_real_roots.c"
@@ -39,6 +40,7 @@ static wk_sp6_tols wkt_sp6_tols(void)
     t.double_root = WKT_SP6_DOUBLE_ROOT_TOL;
     t.tangent = WKT_SP6_TANGENT_TOL;
     t.on_axis = WKT_SP6_ON_AXIS_TOL;
+    t.family = WKT_SP6_FAMILY_TOL;
     return t;
 }
 

@@ -372,7 +372,7 @@ def context_spec(spec: ScrewSpec) -> dict:
             "joint_kinds": list(spec.kinds), "design_names": [str(d) for d in spec.design],
             "design_values": [repr(float(v)) for v in spec.design_default], "n_joints": len(spec.joints),
             "max_ik": 2 ** sum(st.width for st in spec.stages), "stages": stages.stage_view(spec),
-            "fold_bits": stages.fold_bits(spec),
+            "fold_masks": stages.fold_masks(spec),
             "upper": spec.name.upper(), "design_default": [repr(float(v)) for v in spec.design_default],
             "design_checks": [{"kind": c.kind, "tol": repr(c.tol), "what": c.what} for c in spec.design_checks],
             "image_checks": [w for w, _ in spec.image_checks]})

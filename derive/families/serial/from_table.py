@@ -26,7 +26,7 @@ from ...kinematics.dh_table import OwnRobotApi, RobotTable
 from ...kinematics.poe_symbolic import number, symbolic_chain
 from ...literals import c_num, own_api_literals, text_literal
 from ...model import NotDerivable, Step
-from ...serial_core.stages import POSE_SYMBOLS, cs_symbols, on_cs_all
+from ...serial_core.stages import POSE_SYMBOLS, cs_symbols, fold_masks, on_cs_all
 from .dh_serial import SerialSpec
 from .mechanism import SerialMechanism
 from .planned import SUPPORTED, PlanError
@@ -259,8 +259,10 @@ class _DerivedRobot(SerialMechanism):
         if self.true_chain is not None:
             # every bit of the set index is a pair the merge compares: near a singularity of the ideal geometry two
             # sets (a wrist's mirror, an elbow's or a shoulder's pair) are polished or searched onto one solution of
-            # the true chain, apart along its near-null direction by what the pose cannot resolve
-            extra["fold_bits"] = list(range(sum(st.width for st in self.spec.stages)))
+            # the true chain, apart along its near-null direction by what the pose cannot resolve (and a
+            # several-candidate stage's bits, as every robot's)
+            extra["fold_masks"] = [1 << b for b in range(sum(st.width for st in self.spec.stages))] + [
+                m for m in fold_masks(self.spec) if m & (m - 1)]
         if held:  # the held joint's value: the design, named as the joint
             extra.update(held=held[0], n_lengths=0, design_names=[self.joint_names[held[0]]])
             checks = self._held_checks()

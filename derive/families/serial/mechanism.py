@@ -27,7 +27,7 @@ class SerialMechanism(SerialArm):
                 "joint_kinds": list(sp_.kinds), "design_names": [str(d) for d in sp_.design],
                 "design_values": [repr(float(v)) for v in sp_.design_default], "n_joints": n,
                 "max_ik": n_combos, "stages": stages.stage_view(sp_, {k.name for k in ks}),
-                "fold_bits": stages.fold_bits(sp_), "upper": self.NAME.upper(),
+                "fold_masks": stages.fold_masks(sp_), "upper": self.NAME.upper(),
                 "mirror_keeps_fk": stages.mirror_keeps_fk(sp_, next(k for k in ks if k.name == "fk_cs")),
                 "design_default": [repr(float(v)) for v in sp_.design_default],
                 # DH design values are link lengths and offsets: each is 0 or at least DESIGN_SCALE_MIN

@@ -34,6 +34,7 @@ static int sr_arm_angle(sr_stage_kernel kernel, long parent, int idx, const int 
         ws->key = parent;
         ws->n = wk_arm_angle(out, out + 3, out + 6, out + 9, out + 12, out + 15, out + 18, out + 21, out[24],
                              prev ? &prev[joints[0]] : NULL, NULL, &t, ws->q, ws->f);
+        sr_ws_mark_near(ws);
     }
     return sr_ws_take(ws, idx, joints, q, c, s, f);
 }
@@ -68,6 +69,7 @@ static int sr_held_elbow(sr_stage_kernel kernel, long parent, int idx, const int
                              ws->f);
         for (m = 0; m < ws->n; ++m)
             for (j = 0; j < 3; ++j) ws->q[m][j] = sets[m][j];
+        sr_ws_mark_near(ws);
     }
     return sr_ws_take(ws, idx, joints, q, c, s, f);
 }

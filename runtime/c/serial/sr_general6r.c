@@ -189,6 +189,7 @@ static int sr_general6r(sr_stage_kernel kernel, long parent, int idx, const int 
         kernel(pose, q, c, s, dp, out);
         ws->key = parent;
         ws->n = sr_g6_candidates(out, readings, n_readings, joints, q, pose, dp, ws);
+        sr_ws_mark_near(ws);
     }
     return sr_ws_take(ws, idx, joints, q, c, s, f);
 }

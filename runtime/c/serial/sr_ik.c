@@ -271,14 +271,14 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
        that solution twice */
     out->count -= wk_drop_carried(SR_MAX_IK, SR_N, sr_revolute, &out->values[0][0], out->valid, out->flags,
                                   &out->aux[0][0], SR_N_IK_AUX, carried);
-#if SR_N_FOLD_BITS > 0
+#if SR_N_FOLD_MASKS > 0
     {
-        /* a two-root stage's pair that the pose cannot tell apart is one double root (the runtime says when); a
-           calibrated arm's every pair (Python's reasons) */
+        /* a stage's pair that the pose cannot tell apart is one double root (the runtime says when); a calibrated
+           arm's every single-bit pair (Python's reasons) */
         sr_fit fit;
         fit.pose = pose;
         fit.dp = d->params;
-        out->count -= wk_merge_indistinct(SR_MAX_IK, SR_N, sr_revolute, sr_fold_bits, SR_N_FOLD_BITS,
+        out->count -= wk_merge_indistinct(SR_MAX_IK, SR_N, sr_revolute, sr_fold_masks, SR_N_FOLD_MASKS,
                                           &out->values[0][0],
                                           out->valid, out->flags, &out->aux[0][0], SR_N_IK_AUX,
                                           sr_refit, &fit, size, SR_N >= 6 && !SR_CALIBRATED);

@@ -15,6 +15,8 @@
 #define SR_SP6_DOUBLE_ROOT_TOL 1e-12
 #define SR_SP6_ON_AXIS_TOL 1e-12
 #define SR_SP6_TANGENT_TOL 1e-9
+/* the wrist's family: the pose's axis on n within the rounding of unit vectors (Python's SP6_FAMILY_TOL says why) */
+#define SR_SP6_FAMILY_TOL 1.4210854715202004e-14
 
 /* the candidates of the stage's outputs (n, h_j, p_j, h_k, p_k, d_j, g, h_l) into ws, at most SR_SP6_KEEP */
 static int sr_sp6_candidates(const double *out, sr_ws *ws)
@@ -31,6 +33,7 @@ static int sr_sp6_candidates(const double *out, sr_ws *ws)
     t.double_root = SR_SP6_DOUBLE_ROOT_TOL;
     t.tangent = SR_SP6_TANGENT_TOL;
     t.on_axis = SR_SP6_ON_AXIS_TOL;
+    t.family = SR_SP6_FAMILY_TOL;
     nc = wk_sp6(out, out + 3, out + 6, out + 9, out + 12, out[15], 0.0, out + 16, out + 19, &t, q0, q4, fl, ord);
     for (i = 0; i < nc && n < SR_SP6_KEEP; ++i) {
         double a[3], x[3], g;
@@ -57,6 +60,7 @@ static int sr_sp6(sr_stage_kernel kernel, long parent, int idx, const int *joint
         kernel(pose, q, c, s, dp, out);
         ws->key = parent;
         ws->n = sr_sp6_candidates(out, ws);
+        sr_ws_mark_near(ws);
     }
     if (!sr_ws_take(ws, idx, joints, q, c, s, f)) return 0;
     amp[joints[0]] = 1.0;

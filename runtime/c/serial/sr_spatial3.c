@@ -50,6 +50,7 @@ static int sr_spatial3(sr_stage_kernel kernel, long parent, int idx, const int *
         kernel(pose, q, c, s, dp, out);
         ws->key = parent;
         ws->n = sr_s3_candidates(out, ws);
+        sr_ws_mark_near(ws);
     }
     if (!sr_ws_take(ws, idx, joints, q, c, s, f)) return 0;
     if ((*f & WK_FLAG_INDETERMINATE) && prev) { /* the first joint's family: previous's member */

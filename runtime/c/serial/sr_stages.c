@@ -56,6 +56,23 @@ static void sr_ws_init(sr_ws *ws)
 }
 
 #if SR_WS_SETS > 0
+/* WK_FLAG_MERGE_CANDIDATE on each of the scratch's candidates within WK_MERGE_SPAN in every joint of another (their
+ * joints revolute): near a double root of the stage the two may be one solution, which wk_merge_indistinct decides
+ * on the whole set (the stage's bits are one of its masks); Python's _ws_mark_near */
+static void sr_ws_mark_near(sr_ws *ws)
+{
+    int i, j, m;
+    for (i = 0; i < ws->n; ++i)
+        for (j = i + 1; j < ws->n; ++j) {
+            int near = 1;
+            for (m = 0; m < SR_WS_JOINTS && near; ++m) near = fabs(wk_wrap(ws->q[j][m] - ws->q[i][m])) <= WK_MERGE_SPAN;
+            if (near) {
+                ws->f[i] |= WK_FLAG_MERGE_CANDIDATE;
+                ws->f[j] |= WK_FLAG_MERGE_CANDIDATE;
+            }
+        }
+}
+
 /* Candidate idx of the scratch into q, c, s at the stage's joints (wrapped: Newton's steps and band splits reach past
  * pi), its flags into *f; 0 when there is no such candidate */
 static int sr_ws_take(const sr_ws *ws, int idx, const int *joints, double *q, double *c, double *s, unsigned *f)

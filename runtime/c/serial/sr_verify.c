@@ -267,7 +267,7 @@ static double sr_polish_cs(double *q, double *c, double *s, const double *t, dou
     return sr_polish(q, pose, dp, target);
 }
 
-#if SR_N_FOLD_BITS > 0
+#if SR_N_FOLD_MASKS > 0
 /* the pose and design a set is fitted to (wk_merge_indistinct's refit) */
 typedef struct {
     const double *pose;
