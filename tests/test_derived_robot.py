@@ -320,8 +320,8 @@ def test_a_calibrated_robot_near_its_singularities_is_never_told_a_reachable_pos
 
 # configurations of the near-singular bench (bench/near_singular.py, its rng seed 20261126) of the calibrated KR 6:
 # (the joint along which it is singular, the joints with that one near its singular value, the offsets delta): two
-# wrists near theta5 = 0, one near pi (at 1e-8 its broken self-motion holds three solutions, README's "Known
-# defects"), a stretched and a folded elbow
+# wrists near theta5 = 0, one near pi (at 1e-8 its broken self-motion holds four solutions: the wrist family scan),
+# a stretched and a folded elbow
 _WRIST_A = (-0.03014554028610883, 2.056887356833461, -0.664393353221219, 2.270621274795859)
 _ELBOW = (1.708386886500807, 2.7090841119471234)
 _ELBOW_WRIST = (1.6305072709418047, 0.03481059150605592, -0.8301753580830393)
@@ -329,7 +329,7 @@ CALIBRATED_SINGULAR = (
     (4, (*_WRIST_A, 0.0, -0.012792224011724418), (1e-12, 1e-10, 1e-8)),
     (4, (-0.9821104536660639, 1.1159593609618579, -1.747828137939208, 0.3288563662222219, 0.0,
          -0.21650171387252692), (1e-12, 1e-10, 1e-8)),
-    (4, (*_WRIST_A, math.pi, -0.012792224011724418), (1e-12, 1e-10)),
+    (4, (*_WRIST_A, math.pi, -0.012792224011724418), (1e-12, 1e-10, 1e-8)),
     (2, (*_ELBOW, -3.0584514, *_ELBOW_WRIST), (1e-12, 1e-10, 1e-8)),
     (2, (*_ELBOW, -3.0264556, *_ELBOW_WRIST), (1e-12, 1e-10, 1e-8)))
 
@@ -378,6 +378,68 @@ def test_a_calibrated_arm_near_its_singularity_is_placed_by_the_pose(case, tmp_p
                 twice = indistinct_pairs(sets, lambda x, T=T: ref.pose_error(reference(x), T),
                                          float(np.max(np.abs(T[:3, 3]))))
                 assert not twice, (delta, sign, [(sets[i], sets[k]) for i, k in twice])
+
+
+def test_a_calibrated_wrist_family_returns_every_solution_of_the_true_chain(tmp_path):
+    """The calibrated KR 6 near theta5 = pi (the bench's configuration, CALIBRATED_SINGULAR[2], bisected on the module's
+    Jacobian): its ideal wrist's self-motion, broken by the calibration, holds four solutions of the true chain, two of
+    them a fold's pair 0.05 rad apart at 1e-8 from singular; the ideal stages' mirror pair reached one of them (7 sets
+    against the independent multistart's 10). The family is now scanned (serial_verify._family_scan: q4 round the
+    circle with the others fitted, each minimum searched along the near-null direction, a fold's other root estimated
+    from the residual either side) into the family's free slots and two of its own (MAX_IK twice the stages' 8). At
+    +-1e-8 and +-1e-9: every solution of the multistart (300 starts; tests/reference/chain.py) is among the sets, C and
+    numpy (to 1e-6 rad, or one solution where the pose cannot tell them apart: tests/reference/distinct.py), as many
+    sets as it finds distinct solutions, none of them one solution twice, every set on the reference's pose; the C
+    strict and clean under ASan/UBSan on these poses."""
+    path = _file("kr6_calibrated", "urdf")
+    derived_cache.derive(path, tmp_path / "d", name="kr6c", native=True)
+    m, py = own_robot.import_solver(tmp_path / "d", "kr6c"), own_robot.import_solver(tmp_path / "d", "kr6c", "numpy")
+    assert m.MAX_IK == 16 and py.MAX_IK == 16
+    reference = ref.load(path)
+    j, start, _ = CALIBRATED_SINGULAR[2]
+    base = np.array(start)
+
+    def det(x):
+        q = base.copy()
+        q[j] = x
+        return float(np.linalg.det(np.asarray(m.jacobian(q), dtype=float)))
+
+    lo, hi = start[j] - 1e-3, start[j] + 1e-3
+    while (mid := 0.5 * (lo + hi)) not in (lo, hi):
+        lo, hi = (lo, mid) if det(lo) * det(mid) <= 0.0 else (mid, hi)
+    poses = []
+    for delta in (1e-8, 1e-9):
+        for sign in (1.0, -1.0):
+            q = base.copy()
+            q[j] = lo + sign * delta
+            T = reference(q)
+            size = float(np.max(np.abs(T[:3, 3])))
+            found = ref.ik_all(reference, 6, T, seed=0, starts=300)
+
+            def err(x, T=T):
+                return ref.pose_error(reference(x), T)
+
+            # the multistart's own solutions, one where the pose cannot tell two apart (its dedup is 1e-6 rad; near
+            # singular one solution spreads wider, each point within its 1e-10 pose tolerance)
+            distinct = []
+            for f in found:
+                if not any(indistinct_pairs([f, g], err, size) for g in distinct):
+                    distinct.append(f)
+
+            for sol in (m.ik(T), py.ik(T)):
+                sets = [np.asarray(v) for v in sol]
+                where = (delta, sign, len(sets))
+                assert all(err(v) <= 3 / math.sqrt(2) * m.IK_VERIFY_TOL for v in sets), where
+                assert not indistinct_pairs(sets, err, size), where
+                for f in found:
+                    assert any(_gap(v, f) <= 1e-6 or indistinct_pairs([v, f], err, size) for v in sets), (*where, f)
+                assert len(sets) == len(distinct), (*where, len(distinct))
+            poses.append(T[:3].ravel())
+    # the scan's C (its 36 points, the family's slots) strict and clean under ASan/UBSan on these poses: the counts
+    # the module returns
+    _, counts = _sanitized_driver_run(m, tmp_path / "d", case_rng(2341), 4, poses)
+    for p, (count, _status, _chosen) in zip(poses, counts[4:], strict=False):
+        assert count == m.ik(np.vstack([p.reshape(3, 4), [0, 0, 0, 1]])).count
 
 
 # ------------------------------------------------------------------------------------------------ a held joint
@@ -1433,10 +1495,11 @@ int main(void) {
 """
 
 
-def _sanitized_driver_run(m, out: Path, rng, n_random: int):
+def _sanitized_driver_run(m, out: Path, rng, n_random: int, extra=()):
     """DRIVER compiled strictly under ASan/UBSan with the folder's C (the robot's, the runtime, the general 6R's
-    sources beside it) and run on n_random random poses, a wrist-singular one (the spherical wrists'), one out of
-    reach and one with a NaN: (poses, the driver's (count, status, selected) per pose), nothing reported."""
+    sources beside it) and run on n_random random poses, the `extra` poses ([R | p], 12 each), a wrist-singular one
+    (the spherical wrists'), one out of reach and one with a NaN: (poses, the driver's (count, status, selected) per
+    pose), nothing reported."""
     src = out / "c" / "driver.c"
     src.write_text(DRIVER.replace("NAME", m.NAME))
     exe = out / "c" / "driver"
@@ -1450,7 +1513,7 @@ def _sanitized_driver_run(m, out: Path, rng, n_random: int):
         if fj >= 0:
             q[fj] = 0.0
         return m.fk_matrix(q)[:3].ravel()
-    poses = [at(rng.uniform(-math.pi, math.pi, n)) for _ in range(n_random)]
+    poses = [at(rng.uniform(-math.pi, math.pi, n)) for _ in range(n_random)] + [np.asarray(p, float) for p in extra]
     poses.append(at([0.3, 0.2, -0.1, 0.5, 0.0, 0.4, 0.1][:n]))
     far = at(np.zeros(n)).copy()
     far[3] += 5.0

@@ -226,6 +226,10 @@ def serial_views(ctx: dict) -> dict:
         "SR_HAS_WRIST_MIRROR": int(bool(wrist) and wrist[0]["bit"] == 0),
         "SR_REUSE_MIRROR_CHECK": int(reuse),
         "SR_N_FOLD_MASKS": len(ctx["fold_masks"]),
+        # the stages' sets; a calibrated arm whose wrist is its last stage scans its near-singular wrist families into
+        # the sets after them (SR_MAX_IK twice as many: from_table.own_context)
+        "SR_STAGE_SETS": ctx.get("stage_sets", ctx["max_ik"]),
+        "SR_FAMILY_SCAN": int(bool(ctx.get("family_scan"))),
         "SR_LENGTHS_FLOOR": int(bool(ctx.get("lengths_floor"))),
         # the design's first SR_N_LENGTHS values are lengths (a held joint's angle follows them); SR_HELD: that
         # joint (-1: none), which the Gauss-Newton steps leave alone
@@ -283,6 +287,7 @@ def serial_views(ctx: dict) -> dict:
             "wrist_stage": c_flags["SR_WRIST_STAGE"],
             "wrist_joints": [wrist[0]["joints"][0], wrist[0]["joints"][2]] if wrist else [],
             "wrist_bend": c_flags["SR_WRIST_J5"],
+            "stage_sets": c_flags["SR_STAGE_SETS"], "family_scan": bool(ctx.get("family_scan")),
             "revolute": [1 if k == "R" else 0 for k in ctx["joint_kinds"]], "c_flags": c_flags, "c_tables": c_tables,
             "own_api": own or None, "own_partials": OWN_PARTIALS if own else (), "base0": base0, "tool0": tool0,
             "identity": [repr(float(v)) for v in IDENTITY_3X4],

@@ -26,10 +26,12 @@ from serial_input import (
 from serial_stand_in import (
     _C_IK,
     _C_IK_BATCH,
+    _FAMILY_SCAN,
     _FK_IDEAL,
     _FOLD_MASKS,
     _IK_RESULT,
     _IMAGE_CHECK,
+    _STAGE_SETS,
     _STAGES,
     _UNREACHABLE_NOTE,
     _WRIST_BEND,
@@ -46,6 +48,7 @@ from serial_stand_in import (
     LENGTH_MAX,
     MAX_IK,
     N_JOINTS,
+    SINGULAR_EPS,
     STATUS_INDETERMINATE,
     STATUS_OK,
     STATUS_UNREACHABLE,
@@ -59,7 +62,7 @@ from serial_stand_in import (
     _projected_note,
     _stack,
 )
-from serial_verify import _along_null, _nearest_member, _polish, _refit
+from serial_verify import _along_null, _family_scan, _indistinct, _nearest_member, _polish, _refit
 
 # wristkin: inlined from here
 # a calibrated arm's set whose wrist bend has |sin q5| at most this, polished on the true chain, is searched along the
@@ -69,6 +72,31 @@ from serial_verify import _along_null, _nearest_member, _polish, _refit
 # geometry, whose q5 differs from the true chain's by the deviation's share (a true q5 of 1e-12 not flagged: q4
 # 1.2 rad off)
 CALIBRATED_WRIST_SEARCH = 1e-4
+
+
+def _scan_families(values, valid, flags, aux, p, dp, rounding, projected):
+    """A calibrated arm's wrist families near theta5 = 0 or pi: the calibration breaks the ideal wrist's self-motion
+    into up to four solutions, of which the ideal stages' two sets (a wrist's mirror pair, sets 2P and 2P + 1) reach
+    at most two. Where one of them is within CALIBRATED_WRIST_SEARCH of singular, the family is scanned from it
+    (_family_scan), and each solution that is none of the sets kept (_indistinct: one solution where the pose cannot
+    tell them apart; the merge ran before, so a pair searched onto one solution left a slot) takes the family's next
+    free slot of 2P, 2P + 1, _STAGE_SETS + 2P and + 1 (MAX_IK is twice the stages' sets), flagged singular as the
+    stages flag theirs (and `projected`); more than the family's four: the first ones."""
+    floor = _runtime.fk_rounding(max(abs(p[3]), abs(p[7]), abs(p[11])))
+    for fam in range(_STAGE_SETS // 2):
+        start = next((k for k in (2 * fam, 2 * fam + 1)
+                      if valid[k] and abs(math.sin(values[k][_WRIST_BEND])) <= CALIBRATED_WRIST_SEARCH), -1)
+        if start < 0:
+            continue
+        slots = [k for k in (2 * fam, 2 * fam + 1, _STAGE_SETS + 2 * fam, _STAGE_SETS + 2 * fam + 1) if not valid[k]]
+        for x, err in _family_scan(list(values[start]), p, dp, rounding) if slots else ():
+            if any(valid[k] and _indistinct(x, err, values[k], float(aux[k][0]), p, dp, floor) for k in range(MAX_IK)):
+                continue
+            k = slots.pop(0)
+            values[k], aux[k][0], valid[k] = x, err, True
+            flags[k] = (FLAG_SINGULAR_INVERSE if abs(math.sin(x[_WRIST_BEND])) <= SINGULAR_EPS else 0) | projected
+            if not slots:
+                break
 
 
 def ik(pose, design=None, previous=None) -> Solutions:
@@ -117,7 +145,7 @@ def _ik_numpy(pose, d, previous):
     rounding = _runtime.fk_rounding(size)  # the FK's own rounding of this pose (the merge's floor)
     polish_double = DOUBLE_ROOT_POLISH_TOL * max(1.0, size)
     carried = [False] * MAX_IK  # sets the checks moved beyond CARRIED_MOVE (drop_carried)
-    for k in range(MAX_IK):
+    for k in range(_STAGE_SETS):  # the stages' sets (a calibrated arm's wrist family scan adds its own after them)
         f, alive = 0, True
         for i, (solve, shift) in enumerate(_STAGES):
             if k >> shift != key[i]:  # a stage is recomputed only when its branch prefix changes
@@ -195,6 +223,8 @@ def _ik_numpy(pose, d, previous):
         _runtime.merge_indistinct(values, valid, flags, aux, _FOLD_MASKS, _REVOLUTE,
                                   lambda x, step, accept: _refit(x, p, d.params, step, accept), size,
                                   N_JOINTS >= 6 and not CALIBRATED)
+    if _FAMILY_SCAN:  # after the merge: a mirror pair searched onto one solution leaves a slot for the scan
+        _scan_families(values, valid, flags, aux, p, d.params, rounding, FLAG_PROJECTED if dev else 0)
     reasons = [f"{unreachable} of {MAX_IK} branch words have a stage with no real solution"] if unreachable else []
     if "why" in ws:  # a stage's own words for why it has no solution (the held elbow's reach)
         reasons.insert(0, ws["why"])

@@ -77,6 +77,8 @@ _FOLD_MASKS = (4, 2, )
 _WRIST_JOINTS = (3, 5)
 _WRIST_STAGE = 3
 _WRIST_BEND = 4
+_STAGE_SETS = 8  # the stages' sets (MAX_IK but for a calibrated arm's wrist family scan: twice this)
+_FAMILY_SCAN = False  # a calibrated arm whose wrist is its last stage: its near-singular families scanned
 
 # the numpy path: no extension (the generated module binds these from wristkin._native when it is built)
 _C = None

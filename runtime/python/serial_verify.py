@@ -140,6 +140,82 @@ def _along_null(q, pose, dp, target):
     return _polish(q, pose, dp, target=target)
 
 
+# a calibrated arm's wrist family scan (_family_scan): points of q4 round the circle, each fitted with q4 held
+FAMILY_SCAN_POINTS = 36
+# two sets within this in every joint are one solution found twice by the scan
+FAMILY_SCAN_SAME = 1e-9
+# the probe either side of a root from which the scan estimates a fold's other root (_family_scan): the residual
+# there, ~1e-3 |s'|, must stand above rounding (s' ~ 1e-10 at 1e-10 from singular: 1e-13), and the quadratic model
+# hold to the other root
+FAMILY_PARTNER_PROBE = 1e-3
+
+
+def _family_scan(q, pose, dp, target):
+    """The true chain's solutions along a calibrated arm's wrist family: near theta5 = 0 or pi its ideal wrist's
+    self-motion (q4 and q6 turning together) is broken by the calibration into isolated solutions, up to four of them
+    (the bench's sweep: three at one pose 1e-8 from singular, where the ideal stages' two sets reached one). q4 is set
+    to FAMILY_SCAN_POINTS points round the circle from q's, the other joints fitted with it held (each from the
+    fit before: the family moves them little); where the fit's residual has a local minimum along the circle the set
+    is searched along the near-null direction to `target` (_along_null), and from the fold's other root estimated
+    about the solution it finds. Returns [(set, residual)], each verified (IK_VERIFY_TOL) and distinct
+    (FAMILY_SCAN_SAME), FAMILY_SCAN_POINTS at most."""
+    hold = _WRIST_JOINTS[0]
+    x, pts = list(q), []
+    for i in range(FAMILY_SCAN_POINTS):
+        x[hold] = _wrap(q[hold] + 2.0 * math.pi * i / FAMILY_SCAN_POINTS)
+        x, _, err = _held_fit(x, pose, dp, hold)
+        pts.append((err, list(x)))
+    out = []
+
+    def keep(start):
+        xq, e = _along_null(start, pose, dp, target)
+        if e <= IK_VERIFY_TOL and not any(
+                max(abs(_wrap(a - b)) if k == "R" else abs(a - b) for a, b, k in zip(xq, o, JOINT_KINDS, strict=True))
+                <= FAMILY_SCAN_SAME for o, _ in out):
+            out.append((xq, e))
+            return xq
+        return None
+
+    spacing = 2.0 * math.pi / FAMILY_SCAN_POINTS
+    for i, (err, x) in enumerate(pts):
+        if len(out) >= FAMILY_SCAN_POINTS:  # as many as C keeps
+            break
+        if not (err <= pts[i - 1][0] and err <= pts[(i + 1) % FAMILY_SCAN_POINTS][0]):
+            continue
+        root = keep(x)
+        if root is None:
+            continue
+        # near a fold the family's solutions come in pairs closer than the points (0.05, 5e-3 and 5.6e-4 rad apart
+        # at 1e-8, 1e-9 and 1e-10 from singular): one minimum between them, the search reaching one. Along the
+        # family the fit's residual is |s(t)|, s ~ s'(t - t1) + s''(t - t1)^2 / 2 about the root t1 found, so its
+        # values a probe h either side, a and b, give the other root t2 = t1 - 2 s' / s'' = t1 - h (a + b) / (a - b),
+        # searched from there when it is within a spacing (a farther one has a minimum of its own)
+        if len(out) >= FAMILY_SCAN_POINTS:
+            break
+        a, b = (_held_fit([v + side if k == hold else v for k, v in enumerate(root)], pose, dp, hold)[2]
+                for side in (FAMILY_PARTNER_PROBE, -FAMILY_PARTNER_PROBE))
+        if a != b:
+            step = -FAMILY_PARTNER_PROBE * (a + b) / (a - b)
+            if abs(step) <= spacing:
+                y = list(root)
+                y[hold] = _wrap(root[hold] + step)
+                keep(_held_fit(y, pose, dp, hold)[0])
+    return out
+
+
+def _indistinct(x, ex, y, ey, pose, dp, floor):
+    """Whether two verified sets (residuals ex, ey) are one solution as merge_indistinct decides: within MERGE_SPAN in
+    every joint, and their midpoint refitted by one step of at most an eighth of their span on the pose within floor
+    of their residuals."""
+    d = [_wrap(b - a) if k == "R" else b - a for a, b, k in zip(x, y, JOINT_KINDS, strict=True)]
+    span = max(abs(v) for v in d)
+    if not span <= _runtime.MERGE_SPAN:
+        return False
+    mid = [a + 0.5 * v for a, v in zip(x, d, strict=True)]
+    accept = max(ex, ey) + floor
+    return _refit(mid, pose, dp, 0.125 * span, accept) <= accept
+
+
 def _refit(q, pose, dp, max_step, accept):
     """The residual after at most one damped Gauss-Newton step no longer than max_step in any joint (q updated in
     place when it helps), none when it is at most `accept` already: the runtime's merge_indistinct asks whether a

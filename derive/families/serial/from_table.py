@@ -261,8 +261,13 @@ class _DerivedRobot(SerialMechanism):
             # sets (a wrist's mirror, an elbow's or a shoulder's pair) are polished or searched onto one solution of
             # the true chain, apart along its near-null direction by what the pose cannot resolve (and a
             # several-candidate stage's bits, as every robot's)
-            extra["fold_masks"] = [1 << b for b in range(sum(st.width for st in self.spec.stages))] + [
-                m for m in fold_masks(self.spec) if m & (m - 1)]
+            bits = sum(st.width for st in self.spec.stages)
+            extra["fold_masks"] = [1 << b for b in range(bits)] + [m for m in fold_masks(self.spec) if m & (m - 1)]
+            if self.spec.stages and self.spec.stages[-1].kind == "wrist":
+                # near theta5 = 0 or pi the calibration breaks the ideal wrist's self-motion into up to four solutions:
+                # each family (a mirror pair, sets 2P and 2P + 1) is scanned, after the merge, into its free slots and
+                # two more of its own after the stages' sets (serial_ik._scan_families)
+                extra.update(family_scan=True, stage_sets=2 ** bits, max_ik=2 ** (bits + 1))
         if held:  # the held joint's value: the design, named as the joint
             extra.update(held=held[0], n_lengths=0, design_names=[self.joint_names[held[0]]])
             checks = self._held_checks()

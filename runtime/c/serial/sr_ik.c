@@ -59,6 +59,47 @@ static double sr_compensated(int k, const double *pose, double *qk, const double
 }
 #endif
 
+#if SR_FAMILY_SCAN
+/* A calibrated arm's wrist families near theta5 = 0 or pi (Python's _scan_families says why): where set 2P or 2P + 1
+ * is within SR_CALIBRATED_WRIST_SEARCH of singular, the family is scanned from it, and each solution that is none of
+ * the sets kept (sr_indistinct) takes the family's next free slot of 2P, 2P + 1, SR_STAGE_SETS + 2P and + 1 (flagged
+ * as Python's, and `projected`). Returns the sets added. */
+static int sr_scan_families(const double *pose, const double *dp, double rounding, unsigned projected,
+                            sr_ik_solutions *out)
+{
+    double found[SR_FAMILY_SCAN_POINTS][SR_N], res[SR_FAMILY_SCAN_POINTS];
+    const double floor_ = wk_fk_rounding(fmax(fabs(pose[3]), fmax(fabs(pose[7]), fabs(pose[11]))));
+    sr_fit fit;
+    int fam, added = 0;
+    fit.pose = pose;
+    fit.dp = dp;
+    for (fam = 0; fam < SR_STAGE_SETS / 2; ++fam) {
+        const int own[4] = { 2 * fam, 2 * fam + 1, SR_STAGE_SETS + 2 * fam, SR_STAGE_SETS + 2 * fam + 1 };
+        int start = -1, slots[4], n_slots = 0, slot = 0, i, j, k, n;
+        for (k = 2 * fam; k <= 2 * fam + 1 && start < 0; ++k)
+            if (out->valid[k] && sr_wrist_bent(out->values[k])) start = k;
+        for (i = 0; i < 4; ++i)
+            if (!out->valid[own[i]]) slots[n_slots++] = own[i];
+        if (start < 0 || n_slots == 0) continue;
+        n = sr_family_scan(out->values[start], pose, dp, rounding, SR_FAMILY_SCAN_POINTS, found, res);
+        for (i = 0; i < n && slot < n_slots; ++i) {
+            int same = 0;
+            for (k = 0; k < SR_MAX_IK && !same; ++k)
+                same = out->valid[k] && sr_indistinct(found[i], res[i], out->values[k], out->aux[k][0], &fit, floor_);
+            if (same) continue;
+            k = slots[slot++];
+            for (j = 0; j < SR_N; ++j) out->values[k][j] = found[i][j];
+            out->aux[k][0] = res[i];
+            out->valid[k] = 1;
+            out->flags[k] = (fabs(sin(found[i][SR_WRIST_J5])) <= SR_SINGULAR_EPS ? WK_FLAG_SINGULAR_INVERSE : 0u) |
+                            projected;
+            ++added;
+        }
+    }
+    return added;
+}
+#endif
+
 static int sr_api_ik_near(const double pose_in[12], const sr_design *design, const double *previous,
                           sr_ik_solutions *out)
 {
@@ -155,7 +196,7 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
     size = fmax(fabs(pose[3]), fmax(fabs(pose[7]), fabs(pose[11])));
     rounding = wk_fk_rounding(size);
     polish_double = SR_DOUBLE_ROOT_POLISH_TOL * fmax(1.0, size);
-    for (k = 0; k < SR_MAX_IK; ++k) {
+    for (k = 0; k < SR_STAGE_SETS; ++k) { /* the stages' sets (a calibrated arm's family scan adds its own after) */
         double t[12], err = 0.0;
         unsigned f = 0u;
         int alive = 1, have_t = 1, moved_by_checks, placed = 0; /* placed: the pose's own set (a calibrated arm's) */
@@ -283,6 +324,9 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
                                           out->valid, out->flags, &out->aux[0][0], SR_N_IK_AUX,
                                           sr_refit, &fit, size, SR_N >= 6 && !SR_CALIBRATED);
     }
+#endif
+#if SR_FAMILY_SCAN /* after the merge: a mirror pair searched onto one solution leaves a slot for the scan */
+    out->count += sr_scan_families(pose, d->params, rounding, projected, out);
 #endif
     for (k = 0; k < SR_MAX_IK; ++k) /* of the sets kept (as Python's flags read after the merge) */
         if (out->valid[k] && (out->flags[k] & WK_FLAG_INDETERMINATE)) indeterminate = 1;

@@ -291,6 +291,97 @@ static double sr_refit(double *q, double max_step, double accept, const void *ct
 }
 #endif
 
+#if SR_FAMILY_SCAN
+/* a calibrated arm's wrist family scan (Python's FAMILY_SCAN_POINTS, FAMILY_SCAN_SAME) */
+#define SR_FAMILY_SCAN_POINTS 36
+#define SR_FAMILY_SCAN_SAME 1e-9
+#define SR_FAMILY_PARTNER_PROBE 1e-3
+
+/* set x (residual err) into out unless it fails the check or is one of the n there already (SR_FAMILY_SCAN_SAME):
+ * the new count */
+static int sr_scan_keep(const double *x, double err, double (*out)[SR_N], double *res, int n)
+{
+    int m, j;
+    if (!(err <= SR_IK_VERIFY_TOL)) return n;
+    for (m = 0; m < n; ++m) {
+        double span = 0.0;
+        for (j = 0; j < SR_N; ++j) {
+            const double d = fabs(sr_revolute[j] ? wk_wrap(x[j] - out[m][j]) : x[j] - out[m][j]);
+            if (d > span) span = d;
+        }
+        if (span <= SR_FAMILY_SCAN_SAME) return n;
+    }
+    for (j = 0; j < SR_N; ++j) out[n][j] = x[j];
+    res[n] = err;
+    return n + 1;
+}
+
+/* The true chain's solutions along a calibrated arm's wrist family from set q (Python's _family_scan says why): q4 at
+ * SR_FAMILY_SCAN_POINTS points round the circle, the others fitted with it held; each local minimum of the fit's
+ * residual searched along the near-null direction to `target`, and from a fold's other root estimated about the
+ * solution found (its residual a probe either side: Python's reasons). Up to `max_out` verified, distinct sets into out (their residuals into res);
+ * returns their count. */
+static int sr_family_scan(const double *q, const double *pose, const double *dp, double target, int max_out,
+                          double (*out)[SR_N], double *res)
+{
+    double pts[SR_FAMILY_SCAN_POINTS][SR_N], errs[SR_FAMILY_SCAN_POINTS], x[SR_N], root[SR_N], e[6];
+    const double spacing = 2.0 * SR_PI / SR_FAMILY_SCAN_POINTS;
+    const int hold = SR_WRIST_J4;
+    int i, j, n = 0;
+    for (j = 0; j < SR_N; ++j) x[j] = q[j];
+    for (i = 0; i < SR_FAMILY_SCAN_POINTS; ++i) {
+        x[hold] = wk_wrap(q[hold] + 2.0 * SR_PI * i / SR_FAMILY_SCAN_POINTS);
+        errs[i] = sr_held_fit(x, pose, dp, hold, e);
+        for (j = 0; j < SR_N; ++j) pts[i][j] = x[j];
+    }
+    for (i = 0; i < SR_FAMILY_SCAN_POINTS && n < max_out; ++i) {
+        const int before = i == 0 ? SR_FAMILY_SCAN_POINTS - 1 : i - 1, after = (i + 1) % SR_FAMILY_SCAN_POINTS;
+        double err, a, b;
+        int n0;
+        if (!(errs[i] <= errs[before] && errs[i] <= errs[after])) continue;
+        for (j = 0; j < SR_N; ++j) x[j] = pts[i][j];
+        err = sr_along_null(x, pose, dp, target, HUGE_VAL);
+        n0 = n;
+        n = sr_scan_keep(x, err, out, res, n);
+        if (n == n0 || n >= max_out) continue;
+        for (j = 0; j < SR_N; ++j) root[j] = x[j];
+        x[hold] = root[hold] + SR_FAMILY_PARTNER_PROBE; /* the fold's other root (Python's reasons) */
+        a = sr_held_fit(x, pose, dp, hold, e);
+        for (j = 0; j < SR_N; ++j) x[j] = root[j];
+        x[hold] = root[hold] - SR_FAMILY_PARTNER_PROBE;
+        b = sr_held_fit(x, pose, dp, hold, e);
+        if (a != b) {
+            const double step = -SR_FAMILY_PARTNER_PROBE * (a + b) / (a - b);
+            if (fabs(step) <= spacing) {
+                for (j = 0; j < SR_N; ++j) x[j] = root[j];
+                x[hold] = wk_wrap(root[hold] + step);
+                (void)sr_held_fit(x, pose, dp, hold, e);
+                err = sr_along_null(x, pose, dp, target, HUGE_VAL);
+                n = sr_scan_keep(x, err, out, res, n);
+            }
+        }
+    }
+    return n;
+}
+
+/* Whether two verified sets (residuals ex, ey) are one solution as wk_merge_indistinct decides (Python's
+ * _indistinct): within WK_MERGE_SPAN in every joint, their midpoint refitted by one step of at most an eighth of their
+ * span on the pose within floor of their residuals */
+static int sr_indistinct(const double *x, double ex, const double *y, double ey, const sr_fit *fit, double floor_)
+{
+    double mid[SR_N], d[SR_N], span = 0.0, accept;
+    int j;
+    for (j = 0; j < SR_N; ++j) {
+        d[j] = sr_revolute[j] ? wk_wrap(y[j] - x[j]) : y[j] - x[j];
+        if (fabs(d[j]) > span) span = fabs(d[j]);
+    }
+    if (!(span <= WK_MERGE_SPAN)) return 0;
+    for (j = 0; j < SR_N; ++j) mid[j] = x[j] + 0.5 * d[j];
+    accept = (ex > ey ? ex : ey) + floor_;
+    return sr_refit(mid, 0.125 * span, accept, fit) <= accept;
+}
+#endif
+
 #if SR_WRIST_STAGE >= 0
 /* The member of the wrist family (q4 + t, q6 - sigma t) whose q4 is previous's q4; sigma from the Jacobian's
  * wrist columns (their axes coincide at the singularity). */
