@@ -629,10 +629,13 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const unsigned
     for (b = 0; b < n_masks; ++b) {
         const unsigned m = masks[b];
         for (k = 0; k < max_sets; ++k) {
-            if (!valid[k]) continue;
-            for (k2 = k + 1; k2 < max_sets; ++k2) { /* k ^ k2 within the mask (one bit: k2 = k | m) */
+            unsigned sub = 0u;
+            if (((unsigned)k & m) == m || !valid[k]) continue; /* every mask bit set: no k2 above k */
+            /* k2 = k's bits outside the mask with each nonzero submask of it, ascending (one bit: k2 = k | m) */
+            while ((sub = (sub - m) & m) != 0u) {
                 double *x, *y, rx, ry, rm, accept, span = 0.0;
-                if ((((unsigned)k ^ (unsigned)k2) & ~m) || !valid[k] || !valid[k2]) continue;
+                k2 = (int)(((unsigned)k & ~m) | sub);
+                if (k2 <= k || k2 >= max_sets || !valid[k] || !valid[k2]) continue;
                 if (candidates_only && !(candidate[k] && candidate[k2])) continue; /* beyond their stage's noise */
                 /* two members of a one-parameter family: the refit's step moves along it, so the midpoint's fit
                    proves nothing, and each is a solution (merge_indistinct says more) */

@@ -449,10 +449,12 @@ def merge_indistinct(values, valid, flags, aux, masks, revolute, refit, scale, c
     removed = 0
     for m in masks:
         for k in range(len(values)):
-            if not valid[k]:
+            if k & m == m or not valid[k]:  # every mask bit set: no k2 above k
                 continue
-            for k2 in range(k + 1, len(values)):
-                if (k ^ k2) & ~m or not (valid[k] and valid[k2]):
+            sub = 0
+            while sub := (sub - m) & m:  # k2: k's bits outside the mask with each nonzero submask, ascending
+                k2 = (k & ~m) | sub
+                if k2 <= k or k2 >= len(values) or not (valid[k] and valid[k2]):
                     continue
                 if candidates_only and not (candidate[k] and candidate[k2]):
                     continue  # apart beyond their stage's noise: distinct
