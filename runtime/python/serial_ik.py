@@ -159,7 +159,7 @@ def _ik_numpy(pose, d, previous):
             unreachable += 1
             continue
         err = max(abs(x - y) for x, y in zip(_k_fk_cs(q, c, s, d.params), p, strict=True))
-        qk, placed = q, False
+        qk, placed, searched = q, False, False
         if err > IK_VERIFY_TOL or ((f & FLAG_DOUBLE_ROOT or CALIBRATED) and err > polish_double):
             # a tangent root leaves a sqrt(eps) error downstream, and a double root's centre its stage's noise (a
             # UR's folded elbow behind a wrist 1e-5 from singular: the pose within 3e-12): polish a copy, a double
@@ -178,16 +178,19 @@ def _ik_numpy(pose, d, previous):
                 # 1e-10 from singular: 0 sets before). Searched there to the FK's rounding (the conditioning
                 # allowance's residual: at sigma_min 1e-10 a residual of 1e-12 leaves the set 1e-2 off)
                 qn, err_n = _along_null(qk, p, d.params, rounding)
+                searched = True
                 if err_n < err:
                     qk, err = qn, err_n
-        elif CALIBRATED and err > rounding and (err > polish_double or f & FLAG_SINGULAR_INVERSE or (
+        if CALIBRATED and not searched and rounding < err <= IK_VERIFY_TOL and (
+                err > polish_double or f & FLAG_SINGULAR_INVERSE or (
                 _WRIST_BEND >= 0 and abs(math.sin(qk[_WRIST_BEND])) <= CALIBRATED_WRIST_SEARCH)):
             # near a singularity of the ideal geometry a set that passes the check may still lie residual / sigma_min
             # from the true chain's solution, along the near-null direction (a wrist 1e-12 from singular, sigma_min
             # 1e-13: a residual of 1.2e-13 left q4 0.55 rad off, outside the conditioning allowance; an elbow 1e-8
             # from stretched: the polish stalled at 4.9e-10, short of its target, on both sides of the solution,
             # 5e-3 from it). The calibration breaks the ideal wrist's self-motion, so the pose places the set:
-            # searched there to the FK's rounding
+            # searched there to the FK's rounding. So is a set the compensated re-solve brought within the check (an
+            # elbow 1e-6 from folded: 6e-11 on the pose, 6.3e-4 rad from the solution, never searched before)
             qn, err_n = _along_null(qk, p, d.params, rounding)
             if err_n < err:
                 qk, err = qn, err_n

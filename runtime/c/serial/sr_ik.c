@@ -252,19 +252,26 @@ static int sr_api_ik_near(const double pose_in[12], const sr_design *design, con
                 if (sr_revolute[j]) out->values[k][j] = wk_wrap(out->values[k][j]);
         }
 #if SR_CALIBRATED
-        if (!(err <= SR_IK_VERIFY_TOL)) {
-            err = sr_compensated(k, pose, out->values[k], d->params, prev, polish_double, err);
-            if (!(err <= SR_IK_VERIFY_TOL)) /* along the near-null direction, to the FK's rounding (Python's reasons) */
+        {
+            int searched = 0;
+            if (!(err <= SR_IK_VERIFY_TOL)) {
+                err = sr_compensated(k, pose, out->values[k], d->params, prev, polish_double, err);
+                if (!(err <= SR_IK_VERIFY_TOL)) { /* along the near-null direction, to rounding (Python's reasons) */
+                    err = sr_along_null(out->values[k], pose, d->params, rounding, err);
+                    searched = 1;
+                }
+            }
+            if (!searched && err > rounding && err <= SR_IK_VERIFY_TOL &&
+                (err > polish_double || (f & WK_FLAG_SINGULAR_INVERSE) || sr_wrist_bent(out->values[k]))) {
+                /* near a singularity of the ideal geometry a set that passes the check may lie residual /
+                   sigma_min from the true chain's solution (its polish stalled short of its target, or it reached it
+                   on a nearly singular J; or the compensated re-solve brought it within the check): searched along
+                   the near-null direction to the FK's rounding, where the pose places it (`previous` then does not
+                   move it; Python's reasons) */
                 err = sr_along_null(out->values[k], pose, d->params, rounding, err);
-        } else if (err > rounding && (err > polish_double || (f & WK_FLAG_SINGULAR_INVERSE) ||
-                                      sr_wrist_bent(out->values[k]))) {
-            /* near a singularity of the ideal geometry a set that passes the check may lie residual / sigma_min from
-               the true chain's solution (its polish stalled short of its target, or it reached it on a nearly
-               singular J): searched along the near-null direction to the FK's rounding, where the pose places it
-               (`previous` then does not move it; Python's reasons) */
-            err = sr_along_null(out->values[k], pose, d->params, rounding, err);
-            placed = err <= rounding;
-            moved_by_checks = 1;
+                placed = err <= rounding;
+                moved_by_checks = 1;
+            }
         }
 #endif
         if (err <= SR_IK_VERIFY_TOL && moved_by_checks) { /* only a polished or searched set can be carried */
