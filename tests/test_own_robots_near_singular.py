@@ -176,7 +176,10 @@ def test_a_several_candidate_stage_returns_one_solution_once(several):
                     where = (name, mod.BACKEND, f"q{j + 1}", delta, sign, q.tolist(), s.reason)
                     assert sets, where
                     if not (name == "ur5e_tilted" and mod is py):
-                        assert min(_gap(x, q) for x in sets) <= allowance, where
+                        # or the set's own residual over sigma_min where that is larger (a general 6R's set polished
+                        # to 2.4e-14, not to rounding, 1.5e-6 from the generating joints at sigma_min 2e-8: seed 13)
+                        assert any(_gap(s.values[k], q) <= max(allowance, 4 * (s.aux[k, 0] + 16 * EPS * length) / sigma)
+                                   for k in np.flatnonzero(s.valid)), where
                     # the module's check (max |entry| of [R | p] <= IK_VERIFY_TOL) in the reference's measure: |dp| <=
                     # sqrt(3) IK_VERIFY_TOL, the angle <= |dR|_F / sqrt(2) <= 3 / sqrt(2) IK_VERIFY_TOL
                     for x in sets:
