@@ -153,7 +153,8 @@ FAMILY_PARTNER_PROBE = 1e-3
 def _family_scan(q, pose, dp, target):
     """The true chain's solutions along a calibrated arm's wrist family: near theta5 = 0 or pi its ideal wrist's
     self-motion (q4 and q6 turning together) is broken by the calibration into isolated solutions, up to four of them
-    (the bench's sweep: three at one pose 1e-8 from singular, where the ideal stages' two sets reached one). q4 is set
+    (the bench's sweep: four at one pose 1e-8 from singular, a fold's pair among them, where the ideal stages' two
+    sets reached one). q4 is set
     to FAMILY_SCAN_POINTS points round the circle from q's, the other joints fitted with it held (each from the
     fit before: the family moves them little); where the fit's residual has a local minimum along the circle the set
     is searched along the near-null direction to `target` (_along_null), and from the fold's other root estimated

@@ -319,8 +319,8 @@ static int sr_scan_keep(const double *x, double err, double (*out)[SR_N], double
 /* The true chain's solutions along a calibrated arm's wrist family from set q (Python's _family_scan says why): q4 at
  * SR_FAMILY_SCAN_POINTS points round the circle, the others fitted with it held; each local minimum of the fit's
  * residual searched along the near-null direction to `target`, and from a fold's other root estimated about the
- * solution found (its residual a probe either side: Python's reasons). Up to `max_out` verified, distinct sets into out (their residuals into res);
- * returns their count. */
+ * solution found (its residual a probe either side: Python's reasons). Up to `max_out` verified, distinct sets
+ * into out (their residuals into res); returns their count. */
 static int sr_family_scan(const double *q, const double *pose, const double *dp, double target, int max_out,
                           double (*out)[SR_N], double *res)
 {
