@@ -482,7 +482,10 @@ def test_a_held_joint_is_the_design_s_last_value_and_every_set_comes_back(robot,
     assert m.DESIGN_NAMES == (name,) and m.N_JOINTS == 7
     rng = case_rng(2320)
     checked = 0
-    for k in range(40):
+    for draw in itertools.count():  # 40 poses, and on until 3 regular ones met the multistart (seed 421303: 2 in 40)
+        if draw >= 40 and checked == 3:
+            break
+        assert draw < 400, f"{checked} regular poses in 400 draws"
         q = rng.uniform(-math.pi, math.pi, 7)
         T = reference(q)
         sol, sol_py = m.ik(T, [q[f]]), py.ik(T, py.make_design({name: q[f]}))
@@ -501,12 +504,11 @@ def test_a_held_joint_is_the_design_s_last_value_and_every_set_comes_back(robot,
             sigma = np.linalg.svd(np.delete(m.jacobian(sol.values[k]), f, axis=1), compute_uv=False)[-1]
             bound = 1e-12 + 4 * (sol.aux[k, 0] + sol_py.aux[k, 0]) / sigma
             assert _gap(sol.values[k], sol_py.values[k]) <= bound, (q, k, sigma)
-        if k < 10:
+        if draw < 10:
             assert not m.fk(q).flags[0] & m.FLAG_SINGULAR_INVERSE and np.shape(m.jacobian(q)) == (6, 7)
         if checked < 3 and _regular(reference, q, held=f):
             _every_reference_solution(sol, reference, q, seed=checked, held=f)
             checked += 1
-    assert checked == 3
 
 
 NULL_DESIGN_DRIVER = r"""
