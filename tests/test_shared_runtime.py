@@ -100,6 +100,171 @@ def test_the_harness_tolerances_are_the_serial_stage_s():
             assert float(re.search(pattern, source).group(1)) == value, (key, pattern)
 
 
+# ------------------------------------------------------------------------------------------------ set identity
+REFIT = ctypes.CFUNCTYPE(ctypes.c_double, D, ctypes.c_double, ctypes.c_double, ctypes.c_void_p)
+
+
+def _set_lib(lib):
+    lib.wk_set_gap.argtypes = [ctypes.c_int, IP, D, D, ctypes.c_double]
+    lib.wk_set_gap.restype = ctypes.c_double
+    lib.wk_same_set.argtypes = [ctypes.c_int, IP, D, D]
+    lib.wk_pair_indistinct.argtypes = [ctypes.c_int, IP, D, ctypes.c_double, D, ctypes.c_double, REFIT,
+                                       ctypes.c_void_p, ctypes.c_double, D]
+    lib.wk_pair_indistinct.restype = ctypes.c_double
+    lib.wk_merge_indistinct.argtypes = [ctypes.c_int, ctypes.c_int, IP, U, ctypes.c_int, D, IP, U, D, ctypes.c_int,
+                                        REFIT, ctypes.c_void_p, ctypes.c_double, ctypes.c_int]
+    return lib
+
+
+def _c_refit(refit, n):
+    """The Python refit as C's wk_refit_fn on n joints (the pointer's joints copied in and written back)."""
+    def call(q, step, accept, _ctx):
+        x = [q[i] for i in range(n)]
+        err = refit(x, step, accept)
+        for i in range(n):
+            q[i] = x[i]
+        return err
+
+    return REFIT(call)
+
+
+def _ints(a, kind=ctypes.c_int):
+    return (kind * len(a))(*[int(v) for v in a])
+
+
+def test_the_set_gap_is_the_wrapped_max_norm_in_both_languages(py, lib):
+    """wk_set_gap / set_gap: the largest joint difference, revolute ones wrapped (a numpy reference: remainder by
+    2 pi), prismatic ones not, every joint revolute without a mask; the scan stops at the first joint beyond `stop`
+    and returns that joint's gap; C and Python equal to the bit; wk_same_set / same_set at SAME_SET (1e-9)."""
+    _set_lib(lib)
+    rng = case_rng(2231)
+    for _ in range(300):
+        n = int(rng.integers(1, 8))
+        x = rng.uniform(-4.0, 4.0, n)
+        y = x + rng.choice([1e-12, 1e-9, 2e-9, 1e-4, 3.0], n) * rng.choice([-1, 1], n) \
+            + rng.choice([0.0, 2 * math.pi, -2 * math.pi], n)
+        rev = rng.integers(0, 2, n)
+        d = y - x
+        ref = np.abs(np.where(rev == 1, np.remainder(d + math.pi, 2 * math.pi) - math.pi, d))
+        for mask, want in ((rev, ref), (None, np.abs(np.remainder(d + math.pi, 2 * math.pi) - math.pi))):
+            c_mask = None if mask is None else _ints(mask)
+            gap = lib.wk_set_gap(n, c_mask, _p(x), _p(y), math.inf)
+            assert gap == py.runtime.set_gap(x, y, None if mask is None else [bool(v) for v in mask])
+            assert abs(gap - np.max(want)) <= 1e-15 * 8
+            stop = 1e-6
+            first = next((i for i in range(n) if want[i] > stop), None)
+            short = lib.wk_set_gap(n, c_mask, _p(x), _p(y), stop)
+            assert short == py.runtime.set_gap(x, y, None if mask is None else list(mask), stop)
+            if first is not None:  # the first joint beyond stop, not the largest
+                assert abs(short - max(want[: first + 1])) <= 1e-14
+            same = lib.wk_same_set(n, c_mask, _p(x), _p(y))
+            assert bool(same) == py.runtime.same_set(x, y, None if mask is None else list(mask)) == (gap <= 1e-9)
+    nan = np.array([0.0, math.nan])
+    assert not py.runtime.same_set(nan, nan) and not lib.wk_same_set(2, None, _p(nan), _p(nan))
+
+
+def _fold_refit(roots, curvature, bend=0.0):
+    """A pose with a fold in joint 0 (residual curvature |(q0 - a)(q0 - b)| at the nearest pair of roots) and the
+    other joints placed at 0.5 + bend (q0 - c)^2 (c: that pair's centre; the sets on the pose, their midpoint off it
+    by bend (span / 2)^2): the refit takes one step of at most max_step on the other joints only (as a Gauss-Newton
+    step does along a regular direction) and reports the residual, q updated when it helps."""
+    def residual(q):
+        a, b = min(roots, key=lambda r: abs((q[0] - r[0]) * (q[0] - r[1])))
+        target = 0.5 + bend * (q[0] - 0.5 * (a + b)) ** 2
+        return curvature * abs((q[0] - a) * (q[0] - b)) + sum(abs(v - target) for v in q[1:]), target
+
+    def refit(q, max_step, accept, _ctx=None):
+        err, target = residual(q)
+        if err <= accept:
+            return err
+        moved = [q[0]] + [v + max(-max_step, min(max_step, target - v)) for v in q[1:]]
+        err2 = residual(moved)[0]
+        if err2 < err:
+            for i, v in enumerate(moved):
+                q[i] = v
+        return err2
+
+    return (lambda q: residual(q)[0]), refit
+
+
+def test_a_pair_is_one_solution_where_its_midpoint_fits_the_pose_and_two_where_the_fold_curves(py, lib):
+    """wk_pair_indistinct / pair_indistinct: two sets on one fold's double root split 1e-7 (both on the pose, their
+    midpoint 2.5e-12 off it in the other joints, which a step of an eighth of the span removes) are one solution, and
+    the refitted midpoint's residual comes back; two roots of a curved fold 2e-5 apart (the midpoint off by curvature x
+    1e-10) are two; a pair beyond MERGE_SPAN (1e-3) is never compared; C and Python return the same residual and
+    midpoint to the bit."""
+    _set_lib(lib)
+    floor = py.runtime.fk_rounding(1.0)
+    cases = []
+    for split, curvature, bend, one in ((1e-7, 1.0, 1e3, True),  # a double root split 1e-7: midpoint 2.5e-12 off
+                                        (2e-5, 1.0, 0.0, False),  # two roots: the midpoint off by 1e-10
+                                        (2e-5, 1e-9, 0.0, True),  # a flat fold: the pose cannot tell them apart
+                                        (2e-3, 0.0, 0.0, False)):  # beyond MERGE_SPAN: distinct by rule
+        root = 0.3
+        residual, refit = _fold_refit([(root - split / 2, root + split / 2)], curvature, bend)
+        on = 0.5 + bend * (split / 2) ** 2
+        x = [root - split / 2, on, on]
+        y = [root + split / 2, on, on]
+        rx, ry = residual(x), residual(y)
+        got = py.runtime.pair_indistinct(x, rx, y, ry, [True, True, False], refit, floor)
+        mid = np.zeros(3)
+        c_refit = _c_refit(refit, 3)
+        rm = lib.wk_pair_indistinct(3, _ints([1, 1, 0]), _p(x), rx, _p(y), ry, c_refit, None, floor, _p(mid))
+        assert (got is not None) == one == (rm >= 0.0), (split, curvature)
+        if one:
+            assert got[0] == rm and list(mid) == got[1] and rm <= max(rx, ry) + floor
+        cases.append(rm)
+    assert cases[0] <= 2.5e-15 * (1 + 1e-9)  # the step took the midpoint's 2.5e-12 off: the fold's own 2.5e-15 left
+
+
+def test_the_merge_keeps_one_set_per_solution_in_both_languages(py, lib):
+    """wk_merge_indistinct / merge_indistinct on random tables of sets (8 sets of 3 joints, masks of one bit and of
+    two bits): every pair inside a mask on one double root merges into the better fit (flagged double root and
+    singular), pairs of distinct roots stay, candidates_only compares flagged pairs only; C and Python leave the same
+    values, validity, flags and residuals (to the bit) and count the same removals."""
+    _set_lib(lib)
+    rng = case_rng(2232)
+    merges = 0
+    for trial in range(60):
+        roots, values = [], np.zeros((8, 3))
+        for k in range(8):
+            base = rng.uniform(-2.0, 2.0)
+            values[k] = [base, 0.5, 0.5 + rng.choice([0.0, 1e-12])]
+        for _ in range(int(rng.integers(1, 4))):  # pairs placed within a mask: one solution or two
+            k = int(rng.integers(0, 8))
+            k2 = k ^ int(rng.choice([1, 2, 3, 4]))
+            split = float(rng.choice([1e-8, 1e-6, 2e-5]))
+            values[k2] = values[k]
+            values[k2][0] = values[k][0] + split
+            roots.append((values[k][0], values[k2][0]) if split < 1e-6 else (values[k][0], values[k][0]))
+            if split >= 1e-6:
+                roots.append((values[k2][0], values[k2][0]))
+        roots += [(v, v) for v in values[:, 0]]
+        residual, refit = _fold_refit(roots, float(rng.choice([1.0, 1e3])))
+        valid = [int(rng.uniform() < 0.9) for _ in range(8)]
+        flags = [int(rng.choice([0, py.runtime.FLAG_MERGE_CANDIDATE])) | int(rng.choice([0, 0, 2])) for _ in range(8)]
+        aux = np.array([[residual(v), 0.0] for v in values])
+        masks, rev = [1, 6], [1, 1, 0]
+        only = bool(trial % 2)
+        pv, pvalid, pflags, paux = values.copy(), list(valid), list(flags), aux.copy()
+        removed = py.runtime.merge_indistinct(pv, pvalid, pflags, paux, masks, [bool(r) for r in rev],
+                                              refit, 1.0, candidates_only=only)
+        cv, cvalid, cflags, caux = values.copy(), _ints(valid), _ints(flags, ctypes.c_uint), aux.copy()
+        c_refit = _c_refit(refit, 3)
+        c_removed = lib.wk_merge_indistinct(8, 3, _ints(rev), _ints(masks, ctypes.c_uint), 2, _p(cv), cvalid, cflags,
+                                            _p(caux), 2, c_refit, None, 1.0, int(only))
+        assert removed == c_removed and list(cvalid) == pvalid and list(cflags) == pflags
+        assert np.array_equal(cv, pv, equal_nan=True) and np.array_equal(caux, paux, equal_nan=True)
+        merges += removed
+        for k in range(8):  # no two kept sets are one solution the merge could see
+            for k2 in range(k + 1, 8):
+                if pvalid[k] and pvalid[k2] and any((k ^ k2) & ~m == 0 for m in masks):
+                    one = py.runtime.pair_indistinct(pv[k], paux[k][0], pv[k2], paux[k2][0], [True, True, False],
+                                                     refit, py.runtime.fk_rounding(1.0))
+                    assert one is None or (only and not (flags[k] & flags[k2] & py.runtime.FLAG_MERGE_CANDIDATE))
+    assert merges > 0
+
+
 # ------------------------------------------------------------------------------------------------ dense steps
 def test_the_square_step_solves_to_its_conditioning_and_refuses_a_near_singular_matrix(lib):
     """wk_square_solve (the polish's square step): lstsq's answer to rounding times the conditioning (1e-13 * cond

@@ -98,6 +98,14 @@ int wk_square_solve(const double *a, int n, const double *b, double rel_pivot, d
 int wk_lu_factor(const double *a, int n, double rel_pivot, double *lu, int *perm);
 void wk_lu_solve(const double *lu, const int *perm, int n, const double *b, double *x);
 
+/* The largest |x[j] - y[j]| of two sets of n joints, revolute differences (revolute[j] nonzero, every joint when
+ * revolute is NULL) wrapped to [-pi, pi]; the scan stops at the first joint beyond `stop`, whose gap it returns
+ * (Python's set_gap) */
+double wk_set_gap(int n, const int *revolute, const double *x, const double *y, double stop);
+/* two sets within this in every joint are one solution (a solution's identity): wk_same_set (Python's same_set) */
+#define WK_SAME_SET 1e-9
+int wk_same_set(int n, const int *revolute, const double *x, const double *y);
+
 /* Merge two valid sets that differ only in the branch of one stage (k ^ k2 within one of masks[]: a two-root stage's
  * bit, a several-candidate stage's bits; mask by mask, k ascending, then k2 > k ascending) when the pose
  * cannot tell them apart: their midpoint, refitted by one Gauss-Newton step no longer than an eighth of their span,
@@ -114,6 +122,12 @@ typedef double (*wk_refit_fn)(double *q, double max_step, double accept, const v
 #define WK_MERGE_SPAN 1e-3
 /* The FK's own rounding of a pose of size `scale` (max |p|): WK_MERGE_ULPS eps max(1, scale) */
 double wk_fk_rounding(double scale);
+/* Whether sets x and y of n joints (residuals rx, ry) are one solution the pose cannot tell apart, the merge's test:
+ * within WK_MERGE_SPAN in every joint, and their midpoint (mid: n doubles), refitted by one step of at most an eighth
+ * of their span, within floor_ of their residuals. Returns the refitted midpoint's residual (mid then holds it) when
+ * they are, else -1 (Python's pair_indistinct). revolute as wk_set_gap's. */
+double wk_pair_indistinct(int n, const int *revolute, const double *x, double rx, const double *y, double ry,
+                          wk_refit_fn refit, const void *ctx, double floor_, double *mid);
 /* candidates_only: only pairs both flagged WK_FLAG_MERGE_CANDIDATE are compared (a square chain, whose stages'
  * noise their amplification bounds; a chain of fewer than six joints over-determined by the pose carries the pose's
  * own inconsistency into its stages: every pair within the span). The flag is cleared from every set. */
@@ -123,10 +137,8 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const unsigned
 
 /* A set its checks carried far from its stages' answer (the polish on a 5-joint arm's inconsistent candidate, a
  * calibrated arm's search along the near-null direction) may have reached another branch's solution: one flagged in
- * `carried` is dropped (values NaN, invalid, flags 0, its aux NaN) where it is within WK_SAME_SET in every joint
- * (revolute differences wrapped) of another valid set, an uncarried one or a carried one before it. Returns the count
- * dropped. */
-#define WK_SAME_SET 1e-9
+ * `carried` is dropped (values NaN, invalid, flags 0, its aux NaN) where it is one (wk_same_set) with another valid
+ * set, an uncarried one or a carried one before it. Returns the count dropped. */
 #define WK_CARRIED_MOVE 1e-6
 int wk_drop_carried(int max_sets, int n, const int *revolute, double *values, int *valid, unsigned *flags,
                     double *aux, int aux_stride, const unsigned char *carried);

@@ -591,13 +591,8 @@ int wk_drop_carried(int max_sets, int n, const int *revolute, double *values, in
     for (k = 0; k < max_sets; ++k) {
         if (!valid[k] || !carried[k]) continue;
         for (j = 0; j < max_sets; ++j) {
-            int same = 1;
             if (j == k || !valid[j] || (carried[j] && j > k)) continue;
-            for (i = 0; i < n && same; ++i) {
-                const double d = values[k * n + i] - values[j * n + i];
-                same = fabs(revolute[i] ? wk_wrap(d) : d) <= WK_SAME_SET;
-            }
-            if (same) {
+            if (wk_same_set(n, revolute, values + (size_t)k * (size_t)n, values + (size_t)j * (size_t)n)) {
                 valid[k] = 0;
                 flags[k] = 0u;
                 for (i = 0; i < n; ++i) values[k * n + i] = NAN;
@@ -608,6 +603,42 @@ int wk_drop_carried(int max_sets, int n, const int *revolute, double *values, in
         }
     }
     return dropped;
+}
+
+double wk_set_gap(int n, const int *revolute, const double *x, const double *y, double stop)
+{
+    double gap = 0.0;
+    int j;
+    for (j = 0; j < n; ++j) {
+        const double d = fabs((!revolute || revolute[j]) ? wk_wrap(y[j] - x[j]) : y[j] - x[j]);
+        if (!(d <= gap)) {
+            gap = d;
+            if (!(gap <= stop)) break; /* most pairs compared are apart: stop at the first joint beyond */
+        }
+    }
+    return gap;
+}
+
+int wk_same_set(int n, const int *revolute, const double *x, const double *y)
+{
+    return wk_set_gap(n, revolute, x, y, WK_SAME_SET) <= WK_SAME_SET;
+}
+
+double wk_pair_indistinct(int n, const int *revolute, const double *x, double rx, const double *y, double ry,
+                          wk_refit_fn refit, const void *ctx, double floor_, double *mid)
+{
+    const double span = wk_set_gap(n, revolute, x, y, WK_MERGE_SPAN);
+    double accept, rm;
+    int j;
+    if (!(span <= WK_MERGE_SPAN)) return -1.0;
+    for (j = 0; j < n; ++j) {
+        const int rev = !revolute || revolute[j];
+        mid[j] = x[j] + 0.5 * (rev ? wk_wrap(y[j] - x[j]) : y[j] - x[j]);
+        if (rev) mid[j] = wk_wrap(mid[j]);
+    }
+    accept = (rx > ry ? rx : ry) + floor_;
+    rm = refit(mid, 0.125 * span, accept, ctx); /* a midpoint on the pose takes no step */
+    return rm <= accept ? rm : -1.0;
 }
 
 int wk_merge_indistinct(int max_sets, int n, const int *revolute, const unsigned *masks, int n_masks,
@@ -633,7 +664,7 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const unsigned
             if (((unsigned)k & m) == m || !valid[k]) continue; /* every mask bit set: no k2 above k */
             /* k2 = k's bits outside the mask with each nonzero submask of it, ascending (one bit: k2 = k | m) */
             while ((sub = (sub - m) & m) != 0u) {
-                double *x, *y, rx, ry, rm, accept, span = 0.0;
+                double *x, *y, rx, ry, rm;
                 k2 = (int)(((unsigned)k & ~m) | sub);
                 if (k2 <= k || k2 >= max_sets || !valid[k] || !valid[k2]) continue;
                 if (candidates_only && !(candidate[k] && candidate[k2])) continue; /* beyond their stage's noise */
@@ -642,20 +673,10 @@ int wk_merge_indistinct(int max_sets, int n, const int *revolute, const unsigned
                 if ((flags[k] & WK_FLAG_INDETERMINATE) && (flags[k2] & WK_FLAG_INDETERMINATE)) continue;
                 x = values + (size_t)k * (size_t)n;
                 y = values + (size_t)k2 * (size_t)n;
-                for (j = 0; j < n && span <= WK_MERGE_SPAN; ++j) { /* most pairs are apart: stop at the first joint */
-                    mid[j] = revolute[j] ? wk_wrap(y[j] - x[j]) : y[j] - x[j]; /* the difference, for now */
-                    if (!(fabs(mid[j]) <= span)) span = fabs(mid[j]);
-                }
-                if (!(span <= WK_MERGE_SPAN)) continue;
-                for (j = 0; j < n; ++j) { /* the midpoint of a pair within the span only (a calibrated arm offers all) */
-                    mid[j] = x[j] + 0.5 * mid[j];
-                    if (revolute[j]) mid[j] = wk_wrap(mid[j]);
-                }
                 rx = aux[(size_t)k * (size_t)aux_stride];
                 ry = aux[(size_t)k2 * (size_t)aux_stride];
-                accept = (rx > ry ? rx : ry) + floor_;
-                rm = refit(mid, 0.125 * span, accept, ctx); /* a midpoint on the pose takes no step */
-                if (!(rm <= accept)) continue;
+                rm = wk_pair_indistinct(n, revolute, x, rx, y, ry, refit, ctx, floor_, mid);
+                if (rm < 0.0) continue;
                 if (rm < rx && rm < ry) {
                     for (j = 0; j < n; ++j) x[j] = mid[j];
                     aux[(size_t)k * (size_t)aux_stride] = rm;

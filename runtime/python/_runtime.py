@@ -401,6 +401,44 @@ def fk_rounding(scale):
 
 
 SAME_SET = 1e-9  # two valid sets within this in every joint are one (wristkin_common.h's WK_SAME_SET)
+
+
+def set_gap(x, y, revolute=None, stop=math.inf):
+    """The largest |x[j] - y[j]| of two sets of joints, revolute differences (revolute[j] true, every joint when
+    `revolute` is None) wrapped to [-pi, pi]; the scan stops at the first joint beyond `stop`, whose gap it returns
+    (the C runtime's wk_set_gap)."""
+    gap = 0.0
+    for j, (a, b) in enumerate(zip(x, y, strict=True)):
+        d = float(b) - float(a)
+        d = abs(_wrap(d) if revolute is None or revolute[j] else d)
+        if not d <= gap:
+            gap = d
+            if not gap <= stop:
+                break
+    return gap
+
+
+def same_set(x, y, revolute=None):
+    """Whether two sets are one solution by identity: within SAME_SET in every joint (set_gap)."""
+    return set_gap(x, y, revolute, SAME_SET) <= SAME_SET
+
+
+def pair_indistinct(x, rx, y, ry, revolute, refit, floor):
+    """Whether sets x and y (residuals rx, ry) are one solution the pose cannot tell apart, merge_indistinct's test:
+    within MERGE_SPAN in every joint, and their midpoint, refitted by one step of at most an eighth of their span
+    (`refit(mid, max_step, accept)`), within `floor` of their residuals. Returns (the refitted midpoint's residual,
+    the midpoint) when they are, else None (the C runtime's wk_pair_indistinct)."""
+    span = set_gap(x, y, revolute, MERGE_SPAN)
+    if not span <= MERGE_SPAN:
+        return None
+    mid = []
+    for j, (a, b) in enumerate(zip(x, y, strict=True)):
+        rev = revolute is None or revolute[j]
+        m = float(a) + 0.5 * (_wrap(float(b) - float(a)) if rev else float(b) - float(a))
+        mid.append(_wrap(m) if rev else m)
+    accept = max(rx, ry) + floor
+    rm = refit(mid, 0.125 * span, accept)  # a midpoint on the pose takes no step
+    return (rm, mid) if rm <= accept else None
 CARRIED_MOVE = 1e-6  # a set its checks moved further than this from its stages' answer was carried (WK_CARRIED_MOVE)
 
 
@@ -416,8 +454,7 @@ def drop_carried(values, valid, flags, aux, carried, revolute):
         for j in range(len(valid)):
             if j == k or not valid[j] or (carried[j] and j > k):
                 continue
-            if all(abs(math.remainder(a - b, 2.0 * math.pi) if rev else a - b) <= SAME_SET
-                   for a, b, rev in zip(values[k], values[j], revolute, strict=True)):
+            if same_set(values[k], values[j], revolute):
                 valid[k], flags[k] = False, 0
                 values[k] = np.nan
                 aux[k] = np.nan
@@ -463,18 +500,11 @@ def merge_indistinct(values, valid, flags, aux, masks, revolute, refit, scale, c
                     # straight): the refit's step moves along the family, so the midpoint's fit proves nothing, and
                     # each is a solution (merged, `previous`'s member came back 2.7e-5 off: seed 413261)
                     continue
-                x, y = values[k], values[k2]
-                d = [_wrap(float(v - u)) if r else float(v - u) for u, v, r in zip(x, y, revolute, strict=True)]
-                span = max(abs(e) for e in d)
-                if not span <= MERGE_SPAN:
+                y, rx, ry = values[k2], float(aux[k][0]), float(aux[k2][0])
+                one = pair_indistinct(values[k], rx, y, ry, revolute, refit, floor)
+                if one is None:
                     continue
-                mid = [_wrap(float(u) + 0.5 * e) if r else float(u) + 0.5 * e
-                       for u, e, r in zip(x, d, revolute, strict=True)]
-                rx, ry = float(aux[k][0]), float(aux[k2][0])
-                accept = max(rx, ry) + floor
-                rm = refit(mid, 0.125 * span, accept)  # a midpoint on the pose takes no step
-                if not rm <= accept:
-                    continue
+                rm, mid = one
                 if rm < rx and rm < ry:
                     values[k], aux[k][0] = mid, rm
                 elif ry < rx:

@@ -2,7 +2,7 @@
 and product of exponentials its derived kernel gives. The candidates are computed once per prefix of the set index
 above the stage's bits and kept in the call's scratch `ws`; set k takes candidate (k >> shift) & mask. Each is
 checked on the chain's FK, polished to rounding where the elimination left it off (a near-double root: its two
-eigenvalues resolved to sqrt(eps)), kept when it verifies, and dropped as a duplicate within G6_SAME rad of a kept
+eigenvalues resolved to sqrt(eps)), kept when it verifies, and dropped as a duplicate within SAME_SET rad of a kept
 one (a double root's two eigenvalues polish onto one solution). The C twin: runtime/c/serial/sr_general6r.c.
 
 A wristkin runtime source: a serial arm's generated module with a general6r stage inlines it from the marker line on
@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 
+import _runtime
 import numpy as np
 from general6r import g6_frames_of, g6_solve_flagged
 from serial_fk import _spectrum
@@ -32,8 +33,6 @@ from serial_stand_in import (
 from serial_verify import _polish
 
 # wristkin: inlined from here
-# two verified candidates within this in every joint are one solution (a solution's identity, as the spatial 3R's)
-G6_SAME = 1e-9
 # the sets are ordered by their first joint that differs by more than this (_g6_order)
 G6_ORDER_TOL = 1e-6
 
@@ -68,10 +67,11 @@ def _g6_conditioning(q, dp, joints):
 
 
 def _g6_same(a, b, err, scale):
-    """Whether sets a and b (joint values) are one solution: within G6_SAME, or within both G6_SAME_COND err / scale
-    and G6_SAME_MAX (err: their residuals' sum, scale: the smaller of their sigma_min bounds)."""
-    d = max(abs(_wrap(x - y)) for x, y in zip(a, b, strict=True))
-    return d <= G6_SAME or (d * scale <= G6_SAME_COND * err and d <= G6_SAME_MAX)
+    """Whether sets a and b (joint values) are one solution: within _runtime.SAME_SET (a solution's identity), or
+    within both G6_SAME_COND err / scale and G6_SAME_MAX (err: their residuals' sum, scale: the smaller of their
+    sigma_min bounds)."""
+    d = _runtime.set_gap(a, b)
+    return d <= _runtime.SAME_SET or (d * scale <= G6_SAME_COND * err and d <= G6_SAME_MAX)
 
 
 def _g6_candidates(out, readings, joints, q, pose, dp):

@@ -15,12 +15,12 @@ from __future__ import annotations
 
 import math
 
+import _runtime
 from serial_stages import _ws_take
-from serial_stand_in import DEGENERATE_EPS, FLAG_INDETERMINATE, ON_AXIS_TOL, _wrap
+from serial_stand_in import DEGENERATE_EPS, FLAG_INDETERMINATE, ON_AXIS_TOL
 from spatial3 import _spatial3_lines
 
 # wristkin: inlined from here
-S3_SAME = 1e-9  # two candidates within this in every joint are one (a solution's identity, as the general 6R's)
 S3_KEEP = 4  # Pieper's bound on a 3R's positions
 
 
@@ -35,7 +35,7 @@ def _s3_candidates(out):
                                 ON_AXIS_TOL):
         if len(kept) == S3_KEEP:
             break
-        if any(all(abs(_wrap(a - b)) <= S3_SAME for a, b in zip(q, other, strict=True)) for other, _ in kept):
+        if any(_runtime.same_set(q, other) for other, _ in kept):  # a solution's identity, as the general 6R's
             continue
         kept.append((q, f))
     return kept

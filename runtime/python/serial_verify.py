@@ -13,6 +13,7 @@ import math
 
 import _runtime
 import numpy as np
+from serial_input import _REVOLUTE
 from serial_stand_in import (
     _HELD,
     _WRIST_JOINTS,
@@ -142,8 +143,6 @@ def _along_null(q, pose, dp, target):
 
 # a calibrated arm's wrist family scan (_family_scan): points of q4 round the circle, each fitted with q4 held
 FAMILY_SCAN_POINTS = 36
-# two sets within this in every joint are one solution found twice by the scan
-FAMILY_SCAN_SAME = 1e-9
 # the probe either side of a root from which the scan estimates a fold's other root (_family_scan): the residual
 # there, ~1e-3 |s'|, must stand above rounding (s' ~ 1e-10 at 1e-10 from singular: 1e-13), and the quadratic model
 # hold to the other root
@@ -159,7 +158,7 @@ def _family_scan(q, pose, dp, target):
     fit before: the family moves them little); where the fit's residual has a local minimum along the circle the set
     is searched along the near-null direction to `target` (_along_null), and from the fold's other root estimated
     about the solution it finds. Returns [(set, residual)], each verified (IK_VERIFY_TOL) and distinct
-    (FAMILY_SCAN_SAME), FAMILY_SCAN_POINTS at most."""
+    (_runtime.same_set), FAMILY_SCAN_POINTS at most."""
     hold = _WRIST_JOINTS[0]
     x, pts = list(q), []
     for i in range(FAMILY_SCAN_POINTS):
@@ -170,9 +169,7 @@ def _family_scan(q, pose, dp, target):
 
     def keep(start):
         xq, e = _along_null(start, pose, dp, target)
-        if e <= IK_VERIFY_TOL and not any(
-                max(abs(_wrap(a - b)) if k == "R" else abs(a - b) for a, b, k in zip(xq, o, JOINT_KINDS, strict=True))
-                <= FAMILY_SCAN_SAME for o, _ in out):
+        if e <= IK_VERIFY_TOL and not any(_runtime.same_set(xq, o, _REVOLUTE) for o, _ in out):
             out.append((xq, e))
             return xq
         return None
@@ -205,16 +202,10 @@ def _family_scan(q, pose, dp, target):
 
 
 def _indistinct(x, ex, y, ey, pose, dp, floor):
-    """Whether two verified sets (residuals ex, ey) are one solution as merge_indistinct decides: within MERGE_SPAN in
-    every joint, and their midpoint refitted by one step of at most an eighth of their span on the pose within floor
-    of their residuals."""
-    d = [_wrap(b - a) if k == "R" else b - a for a, b, k in zip(x, y, JOINT_KINDS, strict=True)]
-    span = max(abs(v) for v in d)
-    if not span <= _runtime.MERGE_SPAN:
-        return False
-    mid = [a + 0.5 * v for a, v in zip(x, d, strict=True)]
-    accept = max(ex, ey) + floor
-    return _refit(mid, pose, dp, 0.125 * span, accept) <= accept
+    """Whether two verified sets (residuals ex, ey) are one solution as merge_indistinct decides
+    (_runtime.pair_indistinct, refitted on the pose)."""
+    return _runtime.pair_indistinct(x, ex, y, ey, _REVOLUTE,
+                                    lambda mid, step, accept: _refit(mid, pose, dp, step, accept), floor) is not None
 
 
 def _refit(q, pose, dp, max_step, accept):

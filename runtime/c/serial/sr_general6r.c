@@ -3,12 +3,10 @@
  * prefix of the set index above the stage's bits and kept in the call's scratch (sr_ws); set k takes candidate
  * (k >> shift) & mask. Each candidate is checked on the chain's FK, polished to rounding where the elimination left
  * it off (a near-double root: its two eigenvalues resolved to sqrt(eps)), kept when it verifies, and dropped as a
- * duplicate within SR_G6_SAME rad of a kept one (a double root's two eigenvalues polish onto one solution).
+ * duplicate within WK_SAME_SET rad of a kept one (a double root's two eigenvalues polish onto one solution).
  * (a wristkin runtime source, inlined whole into a serial arm's generated C that has a general6r stage, after
  * sr_verify.c; Python's serial_general6r.py; derive/families/serial/views.py, tests/test_derived_robot.py) */
 #if SR_HAS_GENERAL6R
-/* two verified candidates within this in every joint are one solution (a solution's identity, as the spatial 3R's) */
-#define SR_G6_SAME 1e-9
 /* the sets are ordered by their first joint that differs by more than this (Python's G6_ORDER_TOL: the C and numpy
  * eigensolvers find the roots in different orders; a set's joints agree across them to far less) */
 #define SR_G6_ORDER_TOL 1e-6
@@ -68,17 +66,13 @@ static double sr_g6_conditioning(const double *q, const double *dp, const int *j
     return ratio;
 }
 
-/* whether sets a and b are one solution: within SR_G6_SAME, or within both SR_G6_SAME_COND err / scale and
- * SR_G6_SAME_MAX (err: their residuals' sum, scale: the smaller of their sigma_min bounds; Python's _g6_same) */
+/* whether sets a and b are one solution: within WK_SAME_SET (a solution's identity), or within both SR_G6_SAME_COND
+ * err / scale and SR_G6_SAME_MAX (err: their residuals' sum, scale: the smaller of their sigma_min bounds; Python's
+ * _g6_same) */
 static int sr_g6_same(const double *a, const double *b, double err, double scale)
 {
-    double d = 0.0;
-    int j;
-    for (j = 0; j < 6; ++j) {
-        const double e = fabs(wk_wrap(a[j] - b[j]));
-        if (e > d) d = e;
-    }
-    return d <= SR_G6_SAME || (d * scale <= SR_G6_SAME_COND * err && d <= SR_G6_SAME_MAX);
+    const double d = wk_set_gap(6, NULL, a, b, INFINITY);
+    return d <= WK_SAME_SET || (d * scale <= SR_G6_SAME_COND * err && d <= SR_G6_SAME_MAX);
 }
 
 /* The verified candidates of one reading of the loop (`clusters`: reading its clusters' subspaces,

@@ -7,9 +7,6 @@
  * (a wristkin runtime source, inlined whole into a serial arm's generated C that has a spatial3 stage, after
  * sr_verify.c; Python's serial_spatial3.py; derive/serial_core/views.py, tests/test_derived_robot.py) */
 #if SR_HAS_SPATIAL3
-/* two candidates within this in every joint are one (a solution's identity, as the general 6R's) */
-#define SR_S3_SAME 1e-9
-
 /* the candidates of the stage's outputs (3 axes, 3 points, x, y) into ws: distinct, at most SR_S3_KEEP */
 static int sr_s3_candidates(const double *out, sr_ws *ws)
 {
@@ -27,11 +24,7 @@ static int sr_s3_candidates(const double *out, sr_ws *ws)
                      SR_ON_AXIS_TOL, cand, fl);
     for (i = 0; i < nc && n < SR_S3_KEEP; ++i) {
         int dup = 0;
-        for (j = 0; j < n && !dup; ++j) {
-            int same = 1;
-            for (m = 0; m < 3 && same; ++m) same = fabs(wk_wrap(cand[i][m] - ws->q[j][m])) <= SR_S3_SAME;
-            dup = same;
-        }
+        for (j = 0; j < n && !dup; ++j) dup = wk_same_set(3, NULL, cand[i], ws->q[j]); /* a solution's identity */
         if (dup) continue;
         for (m = 0; m < 3; ++m) ws->q[n][m] = cand[i][m];
         ws->f[n] = fl[i];

@@ -292,25 +292,18 @@ static double sr_refit(double *q, double max_step, double accept, const void *ct
 #endif
 
 #if SR_FAMILY_SCAN
-/* a calibrated arm's wrist family scan (Python's FAMILY_SCAN_POINTS, FAMILY_SCAN_SAME) */
+/* a calibrated arm's wrist family scan (Python's FAMILY_SCAN_POINTS) */
 #define SR_FAMILY_SCAN_POINTS 36
-#define SR_FAMILY_SCAN_SAME 1e-9
 #define SR_FAMILY_PARTNER_PROBE 1e-3
 
-/* set x (residual err) into out unless it fails the check or is one of the n there already (SR_FAMILY_SCAN_SAME):
- * the new count */
+/* set x (residual err) into out unless it fails the check or is one of the n there already (wk_same_set): the new
+ * count */
 static int sr_scan_keep(const double *x, double err, double (*out)[SR_N], double *res, int n)
 {
     int m, j;
     if (!(err <= SR_IK_VERIFY_TOL)) return n;
-    for (m = 0; m < n; ++m) {
-        double span = 0.0;
-        for (j = 0; j < SR_N; ++j) {
-            const double d = fabs(sr_revolute[j] ? wk_wrap(x[j] - out[m][j]) : x[j] - out[m][j]);
-            if (d > span) span = d;
-        }
-        if (span <= SR_FAMILY_SCAN_SAME) return n;
-    }
+    for (m = 0; m < n; ++m)
+        if (wk_same_set(SR_N, sr_revolute, x, out[m])) return n;
     for (j = 0; j < SR_N; ++j) out[n][j] = x[j];
     res[n] = err;
     return n + 1;
@@ -364,21 +357,12 @@ static int sr_family_scan(const double *q, const double *pose, const double *dp,
     return n;
 }
 
-/* Whether two verified sets (residuals ex, ey) are one solution as wk_merge_indistinct decides (Python's
- * _indistinct): within WK_MERGE_SPAN in every joint, their midpoint refitted by one step of at most an eighth of their
- * span on the pose within floor of their residuals */
+/* Whether two verified sets (residuals ex, ey) are one solution as wk_merge_indistinct decides (wk_pair_indistinct,
+ * refitted on the pose; Python's _indistinct) */
 static int sr_indistinct(const double *x, double ex, const double *y, double ey, const sr_fit *fit, double floor_)
 {
-    double mid[SR_N], d[SR_N], span = 0.0, accept;
-    int j;
-    for (j = 0; j < SR_N; ++j) {
-        d[j] = sr_revolute[j] ? wk_wrap(y[j] - x[j]) : y[j] - x[j];
-        if (fabs(d[j]) > span) span = fabs(d[j]);
-    }
-    if (!(span <= WK_MERGE_SPAN)) return 0;
-    for (j = 0; j < SR_N; ++j) mid[j] = x[j] + 0.5 * d[j];
-    accept = (ex > ey ? ex : ey) + floor_;
-    return sr_refit(mid, 0.125 * span, accept, fit) <= accept;
+    double mid[SR_N];
+    return wk_pair_indistinct(SR_N, sr_revolute, x, ex, y, ey, sr_refit, fit, floor_, mid) >= 0.0;
 }
 #endif
 
