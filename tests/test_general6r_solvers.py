@@ -114,7 +114,7 @@ def test_a_near_special_arm_near_its_wrist_singularity():
     and LAPACK's eigensolvers found different members (C 4 sets, numpy 8 at test seed 10): the cluster's subspace
     gives its solutions (general6r.py's G6_CLUSTER_TOL); a reading can miss a pair of solutions born at the
     singularity, so near one every reading is solved (G6_NEAR_SINGULAR); and two copies of one solution are one set
-    within what their residuals allow at their conditioning (G6_SAME_COND). Measured with test seeds 0..29: none
+    where the pose cannot tell them apart (_g6_same: the merge's midpoint test). Measured with test seeds 0..29: none
     differs at 1e-5. At 1e-6 and closer, clusters of distinct solutions 1e-5 .. 5e-4 apart with sigma_min ~1e-7 still
     differ (10 and 9 of 120 poses): not swept.
     C = numpy means every set of each within its allowance of a set of the other, not equal counts: where a random

@@ -144,9 +144,9 @@ def test_a_several_candidate_stage_returns_one_solution_once(several):
     (det J = 0 bisected along each joint), 1e-12 .. 1e-4 from singular: no two sets whose midpoint is on the
     reference's pose as well as they are (tests/reference/distinct.py; before, at the suite's default seed: the Panda
     12 pairs in C and 12 on numpy, the offset UR5e 58 and 58, the tilted UR5e 5 in C), the generating joints among
-    the sets within the conditioning allowance, every set on the pose, C and numpy. Not the general 6R's numpy path's
-    generating joints: near a fold its LAPACK eigenvalues under another BLAS kernel lose one of a pair of solutions
-    2e-5 apart (OpenBLAS Haswell, test seed 3: q2 1e-6 from singular, C returns both), README's "Known defects"."""
+    the sets within the conditioning allowance, every set on the pose, C and numpy (the tilted UR5e's numpy path, q2
+    1e-6 from singular, OpenBLAS's Haswell kernel, test seed 3, kept one of a fold's two solutions 2e-5 apart: its
+    duplicate test read sigma_min from the Gram matrix as 0; it now asks the pose, as the merge does)."""
     name, c, py = several
     free = c._FREE
     design = [0.0] if free >= 0 else None
@@ -175,11 +175,10 @@ def test_a_several_candidate_stage_returns_one_solution_once(several):
                     sets = list(s)
                     where = (name, mod.BACKEND, f"q{j + 1}", delta, sign, q.tolist(), s.reason)
                     assert sets, where
-                    if not (name == "ur5e_tilted" and mod is py):
-                        # or the set's own residual over sigma_min where that is larger (a general 6R's set polished
-                        # to 2.4e-14, not to rounding, 1.5e-6 from the generating joints at sigma_min 2e-8: seed 13)
-                        assert any(_gap(s.values[k], q) <= max(allowance, 4 * (s.aux[k, 0] + 16 * EPS * length) / sigma)
-                                   for k in np.flatnonzero(s.valid)), where
+                    # or the set's own residual over sigma_min where that is larger (a general 6R's set polished to
+                    # 2.4e-14, not to rounding, 1.5e-6 from the generating joints at sigma_min 2e-8: seed 13)
+                    assert any(_gap(s.values[k], q) <= max(allowance, 4 * (s.aux[k, 0] + 16 * EPS * length) / sigma)
+                               for k in np.flatnonzero(s.valid)), where
                     # the module's check (max |entry| of [R | p] <= IK_VERIFY_TOL) in the reference's measure: |dp| <=
                     # sqrt(3) IK_VERIFY_TOL, the angle <= |dR|_F / sqrt(2) <= 3 / sqrt(2) IK_VERIFY_TOL
                     for x in sets:

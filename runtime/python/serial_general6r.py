@@ -2,8 +2,9 @@
 and product of exponentials its derived kernel gives. The candidates are computed once per prefix of the set index
 above the stage's bits and kept in the call's scratch `ws`; set k takes candidate (k >> shift) & mask. Each is
 checked on the chain's FK, polished to rounding where the elimination left it off (a near-double root: its two
-eigenvalues resolved to sqrt(eps)), kept when it verifies, and dropped as a duplicate within SAME_SET rad of a kept
-one (a double root's two eigenvalues polish onto one solution). The C twin: runtime/c/serial/sr_general6r.c.
+eigenvalues resolved to sqrt(eps)), kept when it verifies, and dropped as a duplicate of a kept one (within
+SAME_SET, or their midpoint on the pose as well: a double root's two eigenvalues polish onto one solution;
+_g6_same). The C twin: runtime/c/serial/sr_general6r.c.
 
 A wristkin runtime source: a serial arm's generated module with a general6r stage inlines it from the marker line on
 (derive/runtime_files.py), after its constants, derived kernels, stage functions and the sources before it; above the
@@ -12,12 +13,11 @@ tested as it is (tests/test_derived_robot.py)."""
 
 from __future__ import annotations
 
-import math
-
 import _runtime
 import numpy as np
 from general6r import g6_frames_of, g6_solve_flagged
 from serial_fk import _spectrum
+from serial_input import _REVOLUTE
 from serial_stages import _ws_take
 from serial_stand_in import (
     DOUBLE_ROOT_POLISH_TOL,
@@ -30,7 +30,7 @@ from serial_stand_in import (
     _k_jacobian,
     _wrap,
 )
-from serial_verify import _polish
+from serial_verify import _indistinct, _polish
 
 # wristkin: inlined from here
 # the sets are ordered by their first joint that differs by more than this (_g6_order)
@@ -43,35 +43,23 @@ G6_ORDER_TOL = 1e-6
 G6_NEAR_SINGULAR = 1e-3
 
 
-# two verified sets are one solution when they are within G6_SAME_COND (err_a + err_b) / sigma_min, what their pose
-# residuals allow at their conditioning (joints in rad, lengths in the model's units), and G6_SAME_MAX. The residual
-# is the largest entry of [R | p], and the scale of sigma_min (_g6_conditioning) is within sqrt(6) of it: the factor
-# covers both. Near a singularity a residual of 1e-13 leaves a set 1e-8 from the solution (C and numpy then kept one
-# each, or both); a set whose polish stopped at its step cap, a residual of 3e-10, 1.2e-9 from its twin at sigma_min
-# / sigma_max 2.5e-2; near a wrist's self-motion (sigma_min / sigma_max 1e-7) residuals of 1e-10 leave copies 5e-4
-# apart along it. Two distinct solutions d apart near a double root have sigma_min ~ d and residuals at rounding, so
-# only pairs within ~sqrt(eps) of one another, which no residual resolves, merge; G6_SAME_MAX keeps a residual near
-# IK_VERIFY_TOL at sigma_min ~ 0 from merging sets radians apart.
-G6_SAME_COND = 4.0
-G6_SAME_MAX = 1e-3
-
-
 def _g6_conditioning(q, dp, joints):
-    """(sigma_min / sigma_max of the solved joints' Jacobian J (a held joint's column left out; serial_fk's
-    _spectrum), a scale of its sigma_min: that ratio times |J|_F where it is within G6_NEAR_SINGULAR, else
-    G6_NEAR_SINGULAR |J|_F / sqrt(6), below sigma_min: the C runtime proves most sets above that ratio and does not
-    compute it; over-rating such a set's allowance is harmless, two regular solutions lie far further apart)."""
+    """sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out; serial_fk's _spectrum)."""
     jac = np.array(_k_jacobian(q, dp), dtype=float).reshape(6, N_JOINTS)[:, list(joints)]
-    ratio, fro = _spectrum(jac)[1], math.sqrt(float(np.sum(jac * jac)))
-    return ratio, (ratio * fro if ratio <= G6_NEAR_SINGULAR else G6_NEAR_SINGULAR * fro / math.sqrt(6.0))
+    return _spectrum(jac)[1]
 
 
-def _g6_same(a, b, err, scale):
-    """Whether sets a and b (joint values) are one solution: within _runtime.SAME_SET (a solution's identity), or
-    within both G6_SAME_COND err / scale and G6_SAME_MAX (err: their residuals' sum, scale: the smaller of their
-    sigma_min bounds)."""
-    d = _runtime.set_gap(a, b)
-    return d <= _runtime.SAME_SET or (d * scale <= G6_SAME_COND * err and d <= G6_SAME_MAX)
+def _g6_same(x, err, kept, kept_err, joints, q, pose, dp, floor):
+    """Whether candidate x (every joint, residual err) and kept set `kept` (the solved joints' values, residual
+    kept_err; the others q's) are one solution: within _runtime.SAME_SET, or the pose cannot tell them apart
+    (serial_verify's _indistinct: the merge's midpoint test). Not a bound by sigma_min: the Gram matrix's spectrum
+    reads sigma_min / sigma_max below sqrt(eps) as 0 (OpenBLAS's Haswell kernel, the tilted UR5e's q2 1e-6 from
+    singular), which merged two solutions of a fold 2e-5 apart, each on the pose to 1e-12, whose midpoint is 1e-10
+    off it; the midpoint measures what the pose tells apart at any conditioning."""
+    y = list(q)
+    for j, v in zip(joints, kept, strict=True):
+        y[j] = v
+    return _runtime.same_set(x, y, _REVOLUTE) or _indistinct(x, err, y, kept_err, pose, dp, floor)
 
 
 def _g6_candidates(out, readings, joints, q, pose, dp):
@@ -87,15 +75,15 @@ def _g6_candidates(out, readings, joints, q, pose, dp):
     or where the reading shows a cluster (a pair near the real axis, a root whose candidate is no solution or meets
     another's: the near-special KR 6's far members; numpy lost four of its solutions so, C none), every reading is
     solved again with them."""
-    kept, errs, scales, tried_odd, near = [], [], [], False, False
+    kept, errs, tried_odd, near = [], [], False, False
     for labelling in readings:
-        merged, near = _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, False)
+        merged, near = _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, False)
         if near or kept and (len(kept) % 2 == 0 or tried_odd or merged):
             break
         tried_odd = bool(kept)
     if near:  # every reading, with its clusters' subspaces (a set kept already is kept once)
         for labelling in readings:
-            _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, True)
+            _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, True)
     for i in range(1, len(kept)):  # insertion sort by _g6_order, as the C runtime's (stable)
         item, j = kept[i], i
         while j > 0 and _g6_order(kept[j - 1], item) > 0:
@@ -105,9 +93,9 @@ def _g6_candidates(out, readings, joints, q, pose, dp):
     return kept
 
 
-def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, clusters):
+def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, clusters):
     """The verified candidates of one reading of the loop appended to kept ((joint values of `joints`, flags), at
-    most MAX_IK; their residuals to errs, their sigma_min bounds to scales), each unless it is one solution with a
+    most MAX_IK; their residuals to errs), each unless it is one solution with a
     kept one (_g6_same; then the better fit stands for it); returns how many of its candidates met one of its own
     and whether the reading needs the others (a kept set within G6_NEAR_SINGULAR of singular, an eigenvalue pair
     near the real axis: general6r.py's G6_CLUSTER_IM_TOL, a candidate that is no solution, two on one solution):
@@ -119,7 +107,7 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, cluster
     g4 = np.vstack([np.array(out[36:48], dtype=float).reshape(3, 4), [0.0, 0.0, 0.0, 1.0]])
     shift, reverse, hidden = labelling
     size = max(abs(pose[3]), abs(pose[7]), abs(pose[11]))
-    target = DOUBLE_ROOT_POLISH_TOL * max(1.0, size)
+    target, floor = DOUBLE_ROOT_POLISH_TOL * max(1.0, size), _runtime.fk_rounding(size)
     first, merged = len(kept), 0
     cands, near = g6_solve_flagged(frames, np.eye(4), g4, shift, bool(reverse), hidden, clusters)
     for cand in cands:
@@ -132,10 +120,12 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, cluster
         if not err <= IK_VERIFY_TOL:
             near = True  # a root that is no solution: a cluster's far member, or a reading degenerating here
             continue
-        vals = [_wrap(x[j]) for j in joints]
-        ratio, scale = _g6_conditioning(x, dp, joints)
+        for j in joints:
+            x[j] = _wrap(x[j])
+        vals = [x[j] for j in joints]
+        ratio = _g6_conditioning(x, dp, joints)
         dup = next((m for m, (other, _) in enumerate(kept)
-                    if _g6_same(vals, other, err + errs[m], min(scale, scales[m]))), -1)
+                    if _g6_same(x, err, other, errs[m], joints, q, pose, dp, floor)), -1)
         if dup >= 0:  # one solution found twice: the better fit stands for it
             merged += dup >= first
             near = near or dup >= first  # two of its roots on one solution: a double root, or a cluster's
@@ -147,7 +137,6 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, scales, cluster
         near = near or ratio <= G6_NEAR_SINGULAR
         kept.append((vals, FLAG_SINGULAR_INVERSE if ratio <= SINGULAR_EPS else 0))
         errs.append(err)
-        scales.append(scale)
     return merged, near
 
 

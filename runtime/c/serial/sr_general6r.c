@@ -3,7 +3,8 @@
  * prefix of the set index above the stage's bits and kept in the call's scratch (sr_ws); set k takes candidate
  * (k >> shift) & mask. Each candidate is checked on the chain's FK, polished to rounding where the elimination left
  * it off (a near-double root: its two eigenvalues resolved to sqrt(eps)), kept when it verifies, and dropped as a
- * duplicate within WK_SAME_SET rad of a kept one (a double root's two eigenvalues polish onto one solution).
+ * duplicate of a kept one (within WK_SAME_SET, or their midpoint on the pose as well: a double root's two eigenvalues
+ * polish onto one solution; sr_g6_same).
  * (a wristkin runtime source, inlined whole into a serial arm's generated C that has a general6r stage, after
  * sr_verify.c; Python's serial_general6r.py; derive/families/serial/views.py, tests/test_derived_robot.py) */
 #if SR_HAS_GENERAL6R
@@ -41,57 +42,53 @@ static void sr_g6_sort(sr_ws *ws, int n)
  * a pair of solutions; every reading is then solved and their sets joined (Python's G6_NEAR_SINGULAR) */
 #define SR_G6_NEAR_SINGULAR 1e-3
 
-/* two verified sets are one solution when they are within SR_G6_SAME_COND (err_a + err_b) / sigma_min, what their
- * residuals allow at that conditioning, and SR_G6_SAME_MAX (Python's G6_SAME_COND says why) */
-#define SR_G6_SAME_COND 4.0
-#define SR_G6_SAME_MAX 1e-3
-
 /* sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out; a Cholesky bound proves most
- * sets above SR_G6_NEAR_SINGULAR, sr_gram_spectrum decides the rest: Python's eigvalsh through
- * serial_fk's _spectrum), 1 where proven above; *scale, of its sigma_min: that ratio times |J|_F where it is within
- * SR_G6_NEAR_SINGULAR, else SR_G6_NEAR_SINGULAR |J|_F / sqrt(6) (Python's _g6_conditioning) */
-static double sr_g6_conditioning(const double *q, const double *dp, const int *joints, double *scale)
+ * sets above SR_G6_NEAR_SINGULAR, sr_gram_spectrum decides the rest: Python's eigvalsh through serial_fk's _spectrum),
+ * 1 where proven above (Python's _g6_conditioning) */
+static double sr_g6_conditioning(const double *q, const double *dp, const int *joints)
 {
-    double full[6 * SR_N], jac[36], man, ratio, fro = 0.0;
+    double full[6 * SR_N], jac[36], man, ratio;
     int i, j;
     sr_k_jacobian(q, dp, full);
     for (i = 0; i < 6; ++i)
         for (j = 0; j < 6; ++j) jac[6 * i + j] = full[SR_N * i + joints[j]];
-    for (i = 0; i < 36; ++i) fro += jac[i] * jac[i];
-    fro = sqrt(fro);
-    *scale = SR_G6_NEAR_SINGULAR * fro / sqrt(6.0);
     if (wk_conditioning_bound(jac, 6, SR_G6_NEAR_SINGULAR, &man) == 1) return 1.0;
     (void)sr_gram_spectrum(jac, 6, &ratio);
-    if (ratio <= SR_G6_NEAR_SINGULAR) *scale = ratio * fro;
     return ratio;
 }
 
-/* whether sets a and b are one solution: within WK_SAME_SET (a solution's identity), or within both SR_G6_SAME_COND
- * err / scale and SR_G6_SAME_MAX (err: their residuals' sum, scale: the smaller of their sigma_min bounds; Python's
- * _g6_same) */
-static int sr_g6_same(const double *a, const double *b, double err, double scale)
+/* whether candidate x (every joint, residual err) and kept set `kept` (the solved joints' values, residual
+ * kept_err; the others q's) are one solution: within WK_SAME_SET, or the pose cannot tell them apart (sr_indistinct,
+ * the merge's midpoint test; Python's _g6_same says why not a conditioning bound) */
+static int sr_g6_same(const double *x, double err, const double *kept, double kept_err, const int *joints,
+                      const double *q, const sr_fit *fit, double floor_)
 {
-    const double d = wk_set_gap(6, NULL, a, b, INFINITY);
-    return d <= WK_SAME_SET || (d * scale <= SR_G6_SAME_COND * err && d <= SR_G6_SAME_MAX);
+    double y[SR_N];
+    int j;
+    for (j = 0; j < SR_N; ++j) y[j] = q[j];
+    for (j = 0; j < 6; ++j) y[joints[j]] = kept[j];
+    return wk_same_set(SR_N, sr_revolute, x, y) || sr_indistinct(x, err, y, kept_err, fit, floor_);
 }
 
 /* The verified candidates of one reading of the loop (`clusters`: reading its clusters' subspaces,
- * wk_g6_solve_clusters) appended to ws's first n (at most SR_MAX_IK; their residuals
- * to errs, their sigma_min bounds to scales), each unless it is one solution with a kept one (sr_g6_same; then the
+ * wk_g6_solve_clusters) appended to ws's first n (at most SR_MAX_IK; their residuals to errs), each unless it is one solution with a kept one (sr_g6_same; then the
  * better fit stands for it); returns the new count, in *merged how many of its candidates met one of its own and in
  * *near whether the reading needs the others (a kept set within SR_G6_NEAR_SINGULAR of singular, an eigenvalue pair
  * near the real axis, a candidate that is no solution, two on one solution; Python's _g6_reading): out = the stage kernel's axes (18), points
  * (18) and target [R | p] (12); q carries the joints solved before the stage (a held joint's value) */
 static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, int clusters, const int *joints,
-                         const double *q, const double *pose, const double *dp, sr_ws *ws, double *errs,
-                         double *scales, int n, int *merged, int *near)
+                         const double *q, const double *pose, const double *dp, sr_ws *ws, double *errs, int n,
+                         int *merged, int *near)
 {
     static const double id4[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     double frames[96], g4[16], cand[WK_G6_MAX_CANDIDATES * 6];
     const double size = fmax(fabs(pose[3]), fmax(fabs(pose[7]), fabs(pose[11])));
-    const double target = SR_DOUBLE_ROOT_POLISH_TOL * fmax(1.0, size);
+    const double target = SR_DOUBLE_ROOT_POLISH_TOL * fmax(1.0, size), floor_ = wk_fk_rounding(size);
     const int first = n;
     int i, j, m, nr, near_pair = 0;
+    sr_fit fit;
+    fit.pose = pose;
+    fit.dp = dp;
     *merged = 0;
     wk_g6_z_frames(out, out + 18, frames);
     for (i = 0; i < 12; ++i) g4[i] = out[36 + i];
@@ -101,7 +98,7 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
                               WK_G6_MAX_CANDIDATES);
     *near |= near_pair;
     for (i = 0; i < nr; ++i) {
-        double x[SR_N], t[12], vals[6], err, ratio, scale;
+        double x[SR_N], t[12], vals[6], err, ratio;
         int dup = -1;
         for (j = 0; j < SR_N; ++j) x[j] = q[j];
         for (j = 0; j < 6; ++j) x[joints[j]] = cand[6 * i + j];
@@ -120,9 +117,9 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
             x[joints[j]] = wk_wrap(x[joints[j]]);
             vals[j] = x[joints[j]];
         }
-        ratio = sr_g6_conditioning(x, dp, joints, &scale);
+        ratio = sr_g6_conditioning(x, dp, joints);
         for (m = 0; m < n && dup < 0; ++m)
-            if (sr_g6_same(vals, ws->q[m], err + errs[m], fmin(scale, scales[m]))) dup = m;
+            if (sr_g6_same(x, err, ws->q[m], errs[m], joints, q, &fit, floor_)) dup = m;
         if (dup >= 0) { /* one solution found twice: the better fit stands for it */
             if (dup >= first) { /* two of its roots on one solution: a double root, or a cluster's */
                 ++*merged;
@@ -137,7 +134,6 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
         if (n == SR_MAX_IK) continue; /* more than 16: a degenerate pose's family, the first 16 kept */
         for (j = 0; j < 6; ++j) ws->q[n][j] = vals[j];
         errs[n] = err;
-        scales[n] = scale;
         ws->f[n] = ratio <= SR_SINGULAR_EPS ? WK_FLAG_SINGULAR_INVERSE : 0u;
         *near |= ratio <= SR_G6_NEAR_SINGULAR;
         ++n;
@@ -155,18 +151,18 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
 static int sr_g6_candidates(const double *out, const int (*readings)[3], int n, const int *joints, const double *q,
                             const double *pose, const double *dp, sr_ws *ws)
 {
-    double errs[SR_MAX_IK], scales[SR_MAX_IK];
+    double errs[SR_MAX_IK];
     int i, found = 0, tried_odd = 0, merged = 0, near = 0;
     for (i = 0; i < n; ++i) {
         found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], 0, joints, q, pose, dp, ws, errs,
-                              scales, found, &merged, &near);
+                              found, &merged, &near);
         if (near || (found > 0 && (found % 2 == 0 || tried_odd || merged))) break;
         tried_odd = found > 0;
     }
     if (near) /* every reading, with its clusters' subspaces (a set kept already is kept once) */
         for (i = 0; i < n; ++i)
             found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], 1, joints, q, pose, dp, ws,
-                                  errs, scales, found, &merged, &near);
+                                  errs, found, &merged, &near);
     sr_g6_sort(ws, found);
     return found;
 }

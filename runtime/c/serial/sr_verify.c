@@ -267,7 +267,7 @@ static double sr_polish_cs(double *q, double *c, double *s, const double *t, dou
     return sr_polish(q, pose, dp, target);
 }
 
-#if SR_N_FOLD_MASKS > 0
+#if SR_N_FOLD_MASKS > 0 || SR_HAS_GENERAL6R
 /* the pose and design a set is fitted to (wk_merge_indistinct's refit) */
 typedef struct {
     const double *pose;
@@ -288,6 +288,16 @@ static double sr_refit(double *q, double max_step, double accept, const void *ct
         for (j = 0; j < SR_N; ++j)
             if (sr_revolute[j]) q[j] = wk_wrap(q[j]);
     return err2;
+}
+#endif
+
+#if SR_FAMILY_SCAN || SR_HAS_GENERAL6R
+/* Whether two verified sets (residuals ex, ey) are one solution as wk_merge_indistinct decides (wk_pair_indistinct,
+ * refitted on the pose; Python's _indistinct) */
+static int sr_indistinct(const double *x, double ex, const double *y, double ey, const sr_fit *fit, double floor_)
+{
+    double mid[SR_N];
+    return wk_pair_indistinct(SR_N, sr_revolute, x, ex, y, ey, sr_refit, fit, floor_, mid) >= 0.0;
 }
 #endif
 
@@ -355,14 +365,6 @@ static int sr_family_scan(const double *q, const double *pose, const double *dp,
         }
     }
     return n;
-}
-
-/* Whether two verified sets (residuals ex, ey) are one solution as wk_merge_indistinct decides (wk_pair_indistinct,
- * refitted on the pose; Python's _indistinct) */
-static int sr_indistinct(const double *x, double ex, const double *y, double ey, const sr_fit *fit, double floor_)
-{
-    double mid[SR_N];
-    return wk_pair_indistinct(SR_N, sr_revolute, x, ex, y, ey, sr_refit, fit, floor_, mid) >= 0.0;
 }
 #endif
 
