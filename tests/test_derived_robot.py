@@ -325,13 +325,17 @@ def test_a_calibrated_robot_near_its_singularities_is_never_told_a_reachable_pos
 _WRIST_A = (-0.03014554028610883, 2.056887356833461, -0.664393353221219, 2.270621274795859)
 _ELBOW = (1.708386886500807, 2.7090841119471234)
 _ELBOW_WRIST = (1.6305072709418047, 0.03481059150605592, -0.8301753580830393)
+# the bench's shoulder configuration (bench/near_singular.py: its wrist centre 5e-8 from axis 1 on the ideal geometry)
+_SHOULDER = (-0.3554100265288045, 2.413491786727166, -1.6023877475853687, 1.0241904681719145, 2.3636659614137088,
+             -0.6274887692932287)
 CALIBRATED_SINGULAR = (
     (4, (*_WRIST_A, 0.0, -0.012792224011724418), (1e-12, 1e-10, 1e-8, 1e-6)),
     (4, (-0.9821104536660639, 1.1159593609618579, -1.747828137939208, 0.3288563662222219, 0.0,
          -0.21650171387252692), (1e-12, 1e-10, 1e-8, 1e-6)),
     (4, (*_WRIST_A, math.pi, -0.012792224011724418), (1e-12, 1e-10, 1e-8, 1e-6)),
     (2, (*_ELBOW, -3.0584514, *_ELBOW_WRIST), (1e-12, 1e-10, 1e-8, 1e-6)),
-    (2, (*_ELBOW, -3.0264556, *_ELBOW_WRIST), (1e-12, 1e-10, 1e-8, 1e-6)))
+    (2, (*_ELBOW, -3.0264556, *_ELBOW_WRIST), (1e-12, 1e-10, 1e-8, 1e-6)),
+    (1, _SHOULDER, (1e-12, 1e-10, 1e-8, 1e-6)))
 
 
 @pytest.mark.parametrize("case", range(len(CALIBRATED_SINGULAR)))
@@ -509,6 +513,55 @@ def test_a_held_joint_is_the_design_s_last_value_and_every_set_comes_back(robot,
         if checked < 3 and _regular(reference, q, held=f):
             _every_reference_solution(sol, reference, q, seed=checked, held=f)
             checked += 1
+
+
+def test_a_calibrated_shoulder_family_returns_every_solution_along_it(tmp_path):
+    """The calibrated KR 6 with its q2 1e-8 from a singular configuration of its true chain where the ideal
+    geometry's wrist centre is on axis 1 (the bench's shoulder configuration, bisected on the module's Jacobian): the
+    ideal shoulder's self-motion (q1 and the wrist turning together), broken by the calibration, holds two solutions
+    0.08 rad apart (a bump of 1e-10 between them); the ideal stages' set was polished onto the far one, and the
+    generating joints were missing (bench/near_singular.py: the one miss of its 168 poses). The family is now scanned
+    along q1 too (serial_ik._shoulder_near: the first stage's wrist centre within 1e-4 of axis 1). At +-1e-8: every
+    solution of an independent scan along q1 (tests/reference/chain.family_solutions: 360 points, a 1-D minimisation
+    at each minimum, residual within 1e-13) is among the sets, C and numpy, within the conditioning allowance
+    1e-6 + 1e-13 / delta (or one solution where the pose cannot tell them apart: tests/reference/distinct.py); no two
+    sets are one solution; every set on the reference's pose."""
+    path = _file("kr6_calibrated", "urdf")
+    derived_cache.derive(path, tmp_path / "d", name="kr6c", native=True)
+    m, py = own_robot.import_solver(tmp_path / "d", "kr6c"), own_robot.import_solver(tmp_path / "d", "kr6c", "numpy")
+    assert m._SHOULDER_FAMILY is not None and m._SHOULDER_FAMILY[0] == 0
+    reference = ref.load(path)
+    base = np.array(_SHOULDER)
+
+    def det(x):
+        q = base.copy()
+        q[1] = x
+        return float(np.linalg.det(np.asarray(m.jacobian(q), dtype=float)))
+
+    lo, hi = base[1] - 1e-3, base[1] + 1e-3
+    assert det(lo) * det(hi) < 0.0
+    while (mid := 0.5 * (lo + hi)) not in (lo, hi):
+        lo, hi = (lo, mid) if det(lo) * det(mid) <= 0.0 else (mid, hi)
+    delta = 1e-8
+    for sign in (1.0, -1.0):
+        q = base.copy()
+        q[1] = lo + sign * delta
+        T = reference(q)
+        size = float(np.max(np.abs(T[:3, 3])))
+
+        def err(x, T=T):
+            return ref.pose_error(reference(x), T)
+
+        along = ref.family_solutions(reference, T, q, hold=0)
+        assert len(along) >= 2  # the generating solution and another, 0.08 rad apart (measured)
+        for sol in (m.ik(T), py.ik(T)):
+            sets = [np.asarray(v) for v in sol]
+            where = (sign, sol.count)
+            assert all(err(v) <= 3 / math.sqrt(2) * m.IK_VERIFY_TOL for v in sets), where
+            assert not indistinct_pairs(sets, err, size), where
+            for f in along:
+                assert any(_gap(v, f) <= 1e-6 + 1e-13 / delta or indistinct_pairs([v, f], err, size) for v in sets), \
+                    (*where, f)
 
 
 NULL_DESIGN_DRIVER = r"""

@@ -230,6 +230,9 @@ def serial_views(ctx: dict) -> dict:
         # the sets after them (SR_MAX_IK twice as many: from_table.own_context)
         "SR_STAGE_SETS": ctx.get("stage_sets", ctx["max_ik"]),
         "SR_FAMILY_SCAN": int(bool(ctx.get("family_scan"))),
+        # such an arm's q1 where its first stage reads it from the wrist centre (its shoulder's self-motion scanned
+        # too: serial_ik._shoulder_near); -1: none
+        "SR_SHOULDER_JOINT": ctx.get("shoulder_family", -1),
         "SR_LENGTHS_FLOOR": int(bool(ctx.get("lengths_floor"))),
         # the design's first SR_N_LENGTHS values are lengths (a held joint's angle follows them); SR_HELD: that
         # joint (-1: none), which the Gauss-Newton steps leave alone
@@ -288,6 +291,8 @@ def serial_views(ctx: dict) -> dict:
             "wrist_joints": [wrist[0]["joints"][0], wrist[0]["joints"][2]] if wrist else [],
             "wrist_bend": c_flags["SR_WRIST_J5"],
             "stage_sets": c_flags["SR_STAGE_SETS"], "family_scan": bool(ctx.get("family_scan")),
+            "shoulder_family": (f"({ctx['shoulder_family']}, _k_stage1)" if ctx.get("shoulder_family", -1) >= 0
+                                else "None"),
             "revolute": [1 if k == "R" else 0 for k in ctx["joint_kinds"]], "c_flags": c_flags, "c_tables": c_tables,
             "own_api": own or None, "own_partials": OWN_PARTIALS if own else (), "base0": base0, "tool0": tool0,
             "identity": [repr(float(v)) for v in IDENTITY_3X4],

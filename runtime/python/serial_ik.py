@@ -23,6 +23,7 @@ from serial_input import (
     _joints,
     _pose,
 )
+from serial_stages import _design_size
 from serial_stand_in import (
     _C_IK,
     _C_IK_BATCH,
@@ -31,10 +32,12 @@ from serial_stand_in import (
     _FOLD_MASKS,
     _IK_RESULT,
     _IMAGE_CHECK,
+    _SHOULDER_FAMILY,
     _STAGE_SETS,
     _STAGES,
     _UNREACHABLE_NOTE,
     _WRIST_BEND,
+    _WRIST_JOINTS,
     _WRIST_STAGE,
     CALIBRATED,
     DOUBLE_ROOT_POLISH_TOL,
@@ -72,31 +75,54 @@ from serial_verify import _along_null, _family_scan, _indistinct, _nearest_membe
 # geometry, whose q5 differs from the true chain's by the deviation's share (a true q5 of 1e-12 not flagged: q4
 # 1.2 rad off)
 CALIBRATED_WRIST_SEARCH = 1e-4
+# a calibrated arm whose first stage reads q1 from the wrist centre's (x, y) (_SHOULDER_FAMILY): where that point
+# lies within this (times the design's size) of axis 1, as read on the ideal geometry, the shoulder's self-motion is
+# near (q1 and the wrist turning together about a centre on the axis), and each family is scanned along q1: sigma_min
+# of the true chain is ~ that distance, so a set polished to DOUBLE_ROOT_POLISH_TOL lies up to 1e-8 rad off at 1e-4,
+# as CALIBRATED_WRIST_SEARCH's; the bench's shoulder 1e-8 from singular left its generating pair 0.08 rad from the
+# stages' set, a bump of 1e-10 between them along q1
+CALIBRATED_SHOULDER_SEARCH = 1e-4
+
+
+def _shoulder_near(p, dp):
+    """Whether the pose puts the ideal geometry's wrist centre within CALIBRATED_SHOULDER_SEARCH of axis 1 (the first
+    stage's A, B: the centre's (y, x) in the base frame; it reads no joints)."""
+    if _SHOULDER_FAMILY is None:
+        return False
+    zeros = [0.0] * N_JOINTS
+    a, b = _SHOULDER_FAMILY[1](p, zeros, [1.0] * N_JOINTS, zeros, dp)[:2]
+    return math.hypot(a, b) <= CALIBRATED_SHOULDER_SEARCH * _design_size(dp)
 
 
 def _scan_families(values, valid, flags, aux, p, dp, rounding, projected):
-    """A calibrated arm's wrist families near theta5 = 0 or pi: the calibration breaks the ideal wrist's self-motion
-    into up to four solutions, of which the ideal stages' two sets (a wrist's mirror pair, sets 2P and 2P + 1) reach
-    at most two. Where one of them is within CALIBRATED_WRIST_SEARCH of singular, the family is scanned from it
-    (_family_scan), and each solution that is none of the sets kept (_indistinct: one solution where the pose cannot
-    tell them apart; the merge ran before, so a pair searched onto one solution left a slot) takes the family's next
-    free slot of 2P, 2P + 1, _STAGE_SETS + 2P and + 1 (MAX_IK is twice the stages' sets), flagged singular as the
-    stages flag theirs (and `projected`); more than the family's four: the first ones."""
+    """A calibrated arm's families near a self-motion of its ideal geometry (the wrist's at theta5 = 0 or pi, the
+    shoulder's with the wrist centre on axis 1): the calibration breaks each into up to four solutions, of which the
+    ideal stages' two sets (a wrist's mirror pair, sets 2P and 2P + 1) reach at most two. Where one of them is within
+    CALIBRATED_WRIST_SEARCH of the wrist's singularity, the family is scanned from it along q4, and where the pose is
+    within CALIBRATED_SHOULDER_SEARCH of the shoulder's (_shoulder_near), from the first valid one along q1
+    (_family_scan); each solution that is none of the sets kept (_indistinct: one solution where the pose cannot tell
+    them apart; the merge ran before, so a pair searched onto one solution left a slot) takes the family's next free
+    slot of 2P, 2P + 1, _STAGE_SETS + 2P and + 1 (MAX_IK is twice the stages' sets), flagged singular as the stages
+    flag theirs (and `projected`); more than the family's four: the first ones."""
     floor = _runtime.fk_rounding(max(abs(p[3]), abs(p[7]), abs(p[11])))
+    shoulder = _shoulder_near(p, dp)
     for fam in range(_STAGE_SETS // 2):
-        start = next((k for k in (2 * fam, 2 * fam + 1)
-                      if valid[k] and abs(math.sin(values[k][_WRIST_BEND])) <= CALIBRATED_WRIST_SEARCH), -1)
-        if start < 0:
-            continue
-        slots = [k for k in (2 * fam, 2 * fam + 1, _STAGE_SETS + 2 * fam, _STAGE_SETS + 2 * fam + 1) if not valid[k]]
-        for x, err in _family_scan(list(values[start]), p, dp, rounding) if slots else ():
-            if any(valid[k] and _indistinct(x, err, values[k], float(aux[k][0]), p, dp, floor) for k in range(MAX_IK)):
-                continue
-            k = slots.pop(0)
-            values[k], aux[k][0], valid[k] = x, err, True
-            flags[k] = (FLAG_SINGULAR_INVERSE if abs(math.sin(x[_WRIST_BEND])) <= SINGULAR_EPS else 0) | projected
-            if not slots:
-                break
+        own = (2 * fam, 2 * fam + 1)
+        starts = [(k, _WRIST_JOINTS[0]) for k in own
+                  if valid[k] and abs(math.sin(values[k][_WRIST_BEND])) <= CALIBRATED_WRIST_SEARCH][:1]
+        if shoulder:
+            starts += [(k, _SHOULDER_FAMILY[0]) for k in own if valid[k]][:1]
+        slots = [k for k in (*own, _STAGE_SETS + 2 * fam, _STAGE_SETS + 2 * fam + 1) if not valid[k]]
+        for start, hold in starts:
+            for x, err in _family_scan(list(values[start]), p, dp, rounding, hold) if slots else ():
+                if any(valid[k] and _indistinct(x, err, values[k], float(aux[k][0]), p, dp, floor)
+                       for k in range(MAX_IK)):
+                    continue
+                k = slots.pop(0)
+                values[k], aux[k][0], valid[k] = x, err, True
+                flags[k] = (FLAG_SINGULAR_INVERSE if abs(math.sin(x[_WRIST_BEND])) <= SINGULAR_EPS else 0) | projected
+                if not slots:
+                    break
 
 
 def ik(pose, design=None, previous=None) -> Solutions:

@@ -79,6 +79,7 @@ _WRIST_STAGE = 3
 _WRIST_BEND = 4
 _STAGE_SETS = 8  # the stages' sets (MAX_IK but for a calibrated arm's wrist family scan: twice this)
 _FAMILY_SCAN = False  # a calibrated arm whose wrist is its last stage: its near-singular families scanned
+_SHOULDER_FAMILY = None  # such an arm's (q1, its first stage's kernel) when that stage reads q1 from the wrist centre
 
 # the numpy path: no extension (the generated module binds these from wristkin._native when it is built)
 _C = None

@@ -149,17 +149,17 @@ FAMILY_SCAN_POINTS = 36
 FAMILY_PARTNER_PROBE = 1e-3
 
 
-def _family_scan(q, pose, dp, target):
-    """The true chain's solutions along a calibrated arm's wrist family: near theta5 = 0 or pi its ideal wrist's
-    self-motion (q4 and q6 turning together) is broken by the calibration into isolated solutions, up to four of them
-    (the bench's sweep: four at one pose 1e-8 from singular, a fold's pair among them, where the ideal stages' two
-    sets reached one). q4 is set
-    to FAMILY_SCAN_POINTS points round the circle from q's, the other joints fitted with it held (each from the
-    fit before: the family moves them little); where the fit's residual has a local minimum along the circle the set
-    is searched along the near-null direction to `target` (_along_null), and from the fold's other root estimated
-    about the solution it finds. Returns [(set, residual)], each verified (IK_VERIFY_TOL) and distinct
-    (_runtime.same_set), FAMILY_SCAN_POINTS at most."""
-    hold = _WRIST_JOINTS[0]
+def _family_scan(q, pose, dp, target, hold):
+    """The true chain's solutions along a calibrated arm's family through set q, parametrised by joint `hold`: near a
+    self-motion of its ideal geometry (the wrist's at theta5 = 0 or pi, q4 and q6 turning together: hold q4; the
+    shoulder's with the wrist centre on axis 1, q1 and the wrist turning together: hold q1) the calibration breaks
+    the family into isolated solutions, up to four of them (the bench's sweep: four at one wrist 1e-8 from singular,
+    a fold's pair among them, where the ideal stages' two sets reached one; two 0.08 rad apart at a shoulder 1e-8
+    from singular, the stages' set on the far one). Joint `hold` is set to FAMILY_SCAN_POINTS points round the
+    circle from q's, the other joints fitted with it held (each from the fit before: the family moves them little);
+    where the fit's residual has a local minimum along the circle the set is searched along the near-null direction
+    to `target` (_along_null), and from the fold's other root estimated about the solution it finds. Returns [(set,
+    residual)], each verified (IK_VERIFY_TOL) and distinct (_runtime.same_set), FAMILY_SCAN_POINTS at most."""
     x, pts = list(q), []
     for i in range(FAMILY_SCAN_POINTS):
         x[hold] = _wrap(q[hold] + 2.0 * math.pi * i / FAMILY_SCAN_POINTS)

@@ -63,7 +63,7 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 
 import numpy as np
-from scipy.optimize import least_squares
+from scipy.optimize import least_squares, minimize_scalar
 
 PI = math.pi
 TWO_PI = 2.0 * math.pi
@@ -729,6 +729,42 @@ def ik_all(fk: Callable, n: int, T: np.ndarray, limits: Sequence[tuple[float, fl
 # ----------------------------------------------------------------------------------------------------------
 # how many real IK solutions a pose has, by geometry (the truth ik_all is measured against)
 # ----------------------------------------------------------------------------------------------------------
+
+def family_solutions(fk: Callable, T: np.ndarray, start, hold: int, points: int = 360,
+                     tol: float = 1e-13) -> list[np.ndarray]:
+    """The solutions along a one-parameter family of near solutions through joints ``start`` of a 6-joint chain
+    (a calibrated arm's broken self-motion): joint ``hold`` at ``points`` values round the circle, the other five
+    fitted by Levenberg-Marquardt with it held (each from the fit before); each local minimum of the fit's pose
+    residual (max entry of [R | p]) refined by a bounded 1-D minimisation over the held joint within a grid step,
+    kept when its residual is within ``tol``. A grid ten times finer than the module's scan and no search along a
+    near-null direction: an independent reading of the same question."""
+    T = np.asarray(T, dtype=float)
+    start = np.asarray(start, dtype=float)
+
+    def fit(v, x0):
+        def res(x):
+            Tq = fk(np.insert(x, hold, v))
+            return np.concatenate([(Tq[:3, :3] - T[:3, :3]).ravel(), Tq[:3, 3] - T[:3, 3]])
+        sol = least_squares(res, x0, xtol=1e-15, ftol=1e-15, gtol=1e-15, method="lm", max_nfev=400)
+        return sol.x, float(np.max(np.abs(res(sol.x))))
+
+    step = 2.0 * PI / points
+    grid = start[hold] + step * np.arange(points)
+    x, fits = np.delete(start, hold), []
+    for v in grid:
+        x, e = fit(v, x)
+        fits.append((e, x))
+    out = []
+    for i, (e, x) in enumerate(fits):
+        if not (e <= fits[i - 1][0] and e <= fits[(i + 1) % points][0]):
+            continue
+        best = minimize_scalar(lambda v, x=x: fit(v, x)[1], bounds=(grid[i] - step, grid[i] + step),
+                               method="bounded", options={"xatol": 1e-12})
+        xv, ev = fit(best.x, x)
+        if ev <= tol:
+            out.append(wrap_angle(np.insert(xv, hold, best.x)))
+    return out
+
 
 def offset_wrist_solution_count(T: np.ndarray, d1: float, a1: float, a2: float, a3: float, d4: float,
                                 d6: float, lateral: float = 0.0) -> int:

@@ -268,6 +268,11 @@ class _DerivedRobot(SerialMechanism):
                 # each family (a mirror pair, sets 2P and 2P + 1) is scanned, after the merge, into its free slots and
                 # two more of its own after the stages' sets (serial_ik._scan_families)
                 extra.update(family_scan=True, stage_sets=2 ** bits, max_ik=2 ** (bits + 1))
+                first = self.spec.stages[0]
+                if first.kind == "trig_linear" and not first.factored and sp.sympify(first.exprs[2]) == 0:
+                    # q1 read from the wrist centre's (x, y) (C = 0): the centre on axis 1 is a self-motion of the
+                    # ideal geometry, broken by the calibration as the wrist's: scanned along q1 too
+                    extra["shoulder_family"] = first.joints[0]
         if held:  # the held joint's value: the design, named as the joint
             extra.update(held=held[0], n_lengths=0, design_names=[self.joint_names[held[0]]])
             checks = self._held_checks()

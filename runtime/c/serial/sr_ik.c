@@ -60,40 +60,82 @@ static double sr_compensated(int k, const double *pose, double *qk, const double
 #endif
 
 #if SR_FAMILY_SCAN
-/* A calibrated arm's wrist families near theta5 = 0 or pi (Python's _scan_families says why): where set 2P or 2P + 1
- * is within SR_CALIBRATED_WRIST_SEARCH of singular, the family is scanned from it, and each solution that is none of
- * the sets kept (sr_indistinct) takes the family's next free slot of 2P, 2P + 1, SR_STAGE_SETS + 2P and + 1 (flagged
- * as Python's, and `projected`). Returns the sets added. */
+/* Python's CALIBRATED_SHOULDER_SEARCH says why */
+#define SR_CALIBRATED_SHOULDER_SEARCH 1e-4
+
+/* whether the pose puts the ideal geometry's wrist centre within SR_CALIBRATED_SHOULDER_SEARCH (times the design's
+ * size) of axis 1: the first stage's A, B (the centre's y, x; it reads no joints; Python's _shoulder_near) */
+static int sr_shoulder_near(const double *pose, const double *dp)
+{
+#if SR_SHOULDER_JOINT >= 0
+    double q[SR_N], c[SR_N], s[SR_N], out[3];
+    int j;
+    for (j = 0; j < SR_N; ++j) {
+        q[j] = s[j] = 0.0;
+        c[j] = 1.0;
+    }
+    sr_k_stage1(pose, q, c, s, dp, out);
+    return hypot(out[0], out[1]) <= SR_CALIBRATED_SHOULDER_SEARCH * sr_design_size(dp);
+#else
+    (void)pose;
+    (void)dp;
+    return 0;
+#endif
+}
+
+/* A calibrated arm's families near a self-motion of its ideal geometry (Python's _scan_families says why): where set
+ * 2P or 2P + 1 is within SR_CALIBRATED_WRIST_SEARCH of the wrist's singularity, the family is scanned from it along
+ * q4, and where the pose is near the shoulder's (sr_shoulder_near), from the first valid one along q1; each solution
+ * that is none of the sets kept (sr_indistinct) takes the family's next free slot of 2P, 2P + 1, SR_STAGE_SETS + 2P
+ * and + 1 (flagged as Python's, and `projected`). Returns the sets added. */
 static int sr_scan_families(const double *pose, const double *dp, double rounding, unsigned projected,
                             sr_ik_solutions *out)
 {
     double found[SR_FAMILY_SCAN_POINTS][SR_N], res[SR_FAMILY_SCAN_POINTS];
     const double floor_ = wk_fk_rounding(fmax(fabs(pose[3]), fmax(fabs(pose[7]), fabs(pose[11]))));
+    const int shoulder = sr_shoulder_near(pose, dp);
     sr_fit fit;
     int fam, added = 0;
     fit.pose = pose;
     fit.dp = dp;
     for (fam = 0; fam < SR_STAGE_SETS / 2; ++fam) {
         const int own[4] = { 2 * fam, 2 * fam + 1, SR_STAGE_SETS + 2 * fam, SR_STAGE_SETS + 2 * fam + 1 };
-        int start = -1, slots[4], n_slots = 0, slot = 0, i, j, k, n;
-        for (k = 2 * fam; k <= 2 * fam + 1 && start < 0; ++k)
-            if (out->valid[k] && sr_wrist_bent(out->values[k])) start = k;
+        int starts[2], holds[2], n_starts = 0, slots[4], n_slots = 0, slot = 0, i, j, k, n, t;
+        for (k = 2 * fam; k <= 2 * fam + 1; ++k)
+            if (out->valid[k] && sr_wrist_bent(out->values[k])) {
+                starts[n_starts] = k;
+                holds[n_starts++] = SR_WRIST_J4;
+                break;
+            }
+#if SR_SHOULDER_JOINT >= 0
+        for (k = 2 * fam; k <= 2 * fam + 1 && shoulder; ++k)
+            if (out->valid[k]) {
+                starts[n_starts] = k;
+                holds[n_starts++] = SR_SHOULDER_JOINT;
+                break;
+            }
+#else
+        (void)shoulder;
+#endif
         for (i = 0; i < 4; ++i)
             if (!out->valid[own[i]]) slots[n_slots++] = own[i];
-        if (start < 0 || n_slots == 0) continue;
-        n = sr_family_scan(out->values[start], pose, dp, rounding, SR_FAMILY_SCAN_POINTS, found, res);
-        for (i = 0; i < n && slot < n_slots; ++i) {
-            int same = 0;
-            for (k = 0; k < SR_MAX_IK && !same; ++k)
-                same = out->valid[k] && sr_indistinct(found[i], res[i], out->values[k], out->aux[k][0], &fit, floor_);
-            if (same) continue;
-            k = slots[slot++];
-            for (j = 0; j < SR_N; ++j) out->values[k][j] = found[i][j];
-            out->aux[k][0] = res[i];
-            out->valid[k] = 1;
-            out->flags[k] = (fabs(sin(found[i][SR_WRIST_J5])) <= SR_SINGULAR_EPS ? WK_FLAG_SINGULAR_INVERSE : 0u) |
-                            projected;
-            ++added;
+        for (t = 0; t < n_starts && slot < n_slots; ++t) {
+            n = sr_family_scan(out->values[starts[t]], holds[t], pose, dp, rounding, SR_FAMILY_SCAN_POINTS, found,
+                               res);
+            for (i = 0; i < n && slot < n_slots; ++i) {
+                int same = 0;
+                for (k = 0; k < SR_MAX_IK && !same; ++k)
+                    same = out->valid[k] &&
+                           sr_indistinct(found[i], res[i], out->values[k], out->aux[k][0], &fit, floor_);
+                if (same) continue;
+                k = slots[slot++];
+                for (j = 0; j < SR_N; ++j) out->values[k][j] = found[i][j];
+                out->aux[k][0] = res[i];
+                out->valid[k] = 1;
+                out->flags[k] = (fabs(sin(found[i][SR_WRIST_J5])) <= SR_SINGULAR_EPS ? WK_FLAG_SINGULAR_INVERSE : 0u) |
+                                projected;
+                ++added;
+            }
         }
     }
     return added;

@@ -302,7 +302,7 @@ static int sr_indistinct(const double *x, double ex, const double *y, double ey,
 #endif
 
 #if SR_FAMILY_SCAN
-/* a calibrated arm's wrist family scan (Python's FAMILY_SCAN_POINTS) */
+/* a calibrated arm's family scan (Python's FAMILY_SCAN_POINTS) */
 #define SR_FAMILY_SCAN_POINTS 36
 #define SR_FAMILY_PARTNER_PROBE 1e-3
 
@@ -319,17 +319,17 @@ static int sr_scan_keep(const double *x, double err, double (*out)[SR_N], double
     return n + 1;
 }
 
-/* The true chain's solutions along a calibrated arm's wrist family from set q (Python's _family_scan says why): q4 at
- * SR_FAMILY_SCAN_POINTS points round the circle, the others fitted with it held; each local minimum of the fit's
- * residual searched along the near-null direction to `target`, and from a fold's other root estimated about the
- * solution found (its residual a probe either side: Python's reasons). Up to `max_out` verified, distinct sets
- * into out (their residuals into res); returns their count. */
-static int sr_family_scan(const double *q, const double *pose, const double *dp, double target, int max_out,
+/* The true chain's solutions along a calibrated arm's family through set q, parametrised by joint `hold` (q4: the
+ * wrist's; q1: the shoulder's; Python's _family_scan says why): `hold` at SR_FAMILY_SCAN_POINTS points round the
+ * circle, the others fitted with it held; each local minimum of the fit's residual searched along the near-null
+ * direction to `target`, and from a fold's other root estimated about the solution found (its residual a probe
+ * either side: Python's reasons). Up to `max_out` verified, distinct sets into out (their residuals into res);
+ * returns their count. */
+static int sr_family_scan(const double *q, int hold, const double *pose, const double *dp, double target, int max_out,
                           double (*out)[SR_N], double *res)
 {
     double pts[SR_FAMILY_SCAN_POINTS][SR_N], errs[SR_FAMILY_SCAN_POINTS], x[SR_N], root[SR_N], e[6];
     const double spacing = 2.0 * SR_PI / SR_FAMILY_SCAN_POINTS;
-    const int hold = SR_WRIST_J4;
     int i, j, n = 0;
     for (j = 0; j < SR_N; ++j) x[j] = q[j];
     for (i = 0; i < SR_FAMILY_SCAN_POINTS; ++i) {
