@@ -365,14 +365,15 @@ def _singular_joints(chain, rng):
                 return q0 + 0.5 * (lo + hi) * d
 
 
-def _double_root_allowance(chain, q, pose) -> float:
+def _double_root_allowance(chain, q, pose, delta=None) -> float:
     """How well a double root q is determined. Along J's null direction v the pose moves as kappa h^2 / 2 along the
     left null direction u0 (the first-order term vanishes, and a pose change inside J's range is undone by a
     transverse move of the joints: so only u0's component counts), so every joint vector within sqrt(2 delta /
     kappa) of q reproduces the pose to its rounding delta ~ eps (1 + |p|_1): that is the conditioning,
     sqrt(eps)-level. kappa from the pose change at h = 1e-4 as a 6-vector (position, rotation vector: J's rows).
     A factor 10 over sqrt(delta / kappa) covers the max-norm over joints and Newton stopping where the pose error
-    reaches rounding (measured: up to 1.7 over 18 poses of 6 random arms)."""
+    reaches rounding (measured: up to 1.7 over 18 poses of 6 random arms). `delta`: another pose error than
+    rounding (the multistart's tolerance: how far its points at the double root may lie)."""
     u, _, vt = np.linalg.svd(chain.jacobian(q))
     h = 1e-4
     moved = chain.fk(q + h * vt[-1])
@@ -380,7 +381,9 @@ def _double_root_allowance(chain, q, pose) -> float:
     change = np.concatenate([moved[:3, 3] - pose[:3, 3], 0.5 * np.array([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0],
                                                                           r[1, 0] - r[0, 1]])])
     kappa = 2.0 * abs(float(u[:, -1] @ change)) / h**2
-    return 10.0 * math.sqrt(np.finfo(float).eps * (1.0 + float(np.sum(np.abs(pose[:3, 3])))) / kappa)
+    if delta is None:
+        delta = np.finfo(float).eps * (1.0 + float(np.sum(np.abs(pose[:3, 3]))))
+    return 10.0 * math.sqrt(delta / kappa)
 
 
 @pytest.mark.parametrize("backend", ["numpy", "c"])
@@ -413,6 +416,8 @@ def test_at_a_double_root_the_generating_joints_are_returned_once(request, backe
             assert all(_distance(s, q) <= allowance for s in near)
             assert len(near) == 1 or allowance > 5e-7, "a double root returned twice"
             # the reference keeps a point at pose error < 1e-10, which at the double root allows sqrt(2e-10 /
-            # kappa) ~ 3e-5 rad: its points near q stand for the double root, checked against q itself above
+            # kappa) ~ 3e-5 rad, near a cusp (kappa -> 0) more (1.5e-3 at test seed 88213): its points within that
+            # of q stand for the double root, checked against q itself above
+            window = max(1e-3, _double_root_allowance(chain, q, pose, 2.0 * ref.POSE_TOL))
             for x in ref.ik_all(reference, 6, pose, starts=60, seed=3 * arm + case):
-                assert _distance(x, q) < 1e-3 or min(_distance(x, s) for s in sets) < 1e-6, x
+                assert _distance(x, q) < window or min(_distance(x, s) for s in sets) < 1e-6, (x, window)
