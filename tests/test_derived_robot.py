@@ -525,7 +525,8 @@ def test_a_calibrated_shoulder_family_returns_every_solution_along_it(tmp_path):
     solution of an independent scan along q1 (tests/reference/chain.family_solutions: 360 points, a 1-D minimisation
     at each minimum, residual within 1e-13) is among the sets, C and numpy, within the conditioning allowance
     1e-6 + 1e-13 / delta (or one solution where the pose cannot tell them apart: tests/reference/distinct.py); no two
-    sets are one solution; every set on the reference's pose."""
+    sets are one solution; every set on the reference's pose; the C strict and clean under ASan/UBSan on these poses
+    and at 1e-12 and 1e-4 (the scan's q1 path), returning the module's counts."""
     path = _file("kr6_calibrated", "urdf")
     derived_cache.derive(path, tmp_path / "d", name="kr6c", native=True)
     m, py = own_robot.import_solver(tmp_path / "d", "kr6c"), own_robot.import_solver(tmp_path / "d", "kr6c", "numpy")
@@ -562,6 +563,14 @@ def test_a_calibrated_shoulder_family_returns_every_solution_along_it(tmp_path):
             for f in along:
                 assert any(_gap(v, f) <= 1e-6 + 1e-13 / delta or indistinct_pairs([v, f], err, size) for v in sets), \
                     (*where, f)
+    poses = []
+    for offset in (1e-12, -1e-8, 1e-8, 1e-4):
+        q = base.copy()
+        q[1] = lo + offset
+        poses.append(reference(q)[:3].ravel())
+    _, counts = _sanitized_driver_run(m, tmp_path / "d", case_rng(2342), 2, poses)
+    for p, (count, _status, _chosen) in zip(poses, counts[2:], strict=False):
+        assert count == m.ik(np.vstack([p.reshape(3, 4), [0, 0, 0, 1]])).count
 
 
 NULL_DESIGN_DRIVER = r"""
