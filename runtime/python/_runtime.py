@@ -401,6 +401,7 @@ def fk_rounding(scale):
 
 
 SAME_SET = 1e-9  # two valid sets within this in every joint are one (wristkin_common.h's WK_SAME_SET)
+CARRIED_MOVE = 1e-6  # a set its checks moved further than this from its stages' answer was carried (WK_CARRIED_MOVE)
 
 
 def set_gap(x, y, revolute=None, stop=math.inf):
@@ -439,7 +440,6 @@ def pair_indistinct(x, rx, y, ry, revolute, refit, floor):
     accept = max(rx, ry) + floor
     rm = refit(mid, 0.125 * span, accept)  # a midpoint on the pose takes no step
     return (rm, mid) if rm <= accept else None
-CARRIED_MOVE = 1e-6  # a set its checks moved further than this from its stages' answer was carried (WK_CARRIED_MOVE)
 
 
 def drop_carried(values, valid, flags, aux, carried, revolute):

@@ -71,11 +71,12 @@ static int sr_g6_same(const double *x, double err, const double *kept, double ke
 }
 
 /* The verified candidates of one reading of the loop (`clusters`: reading its clusters' subspaces,
- * wk_g6_solve_clusters) appended to ws's first n (at most SR_MAX_IK; their residuals to errs), each unless it is one solution with a kept one (sr_g6_same; then the
- * better fit stands for it); returns the new count, in *merged how many of its candidates met one of its own and in
- * *near whether the reading needs the others (a kept set within SR_G6_NEAR_SINGULAR of singular, an eigenvalue pair
- * near the real axis, a candidate that is no solution, two on one solution; Python's _g6_reading): out = the stage kernel's axes (18), points
- * (18) and target [R | p] (12); q carries the joints solved before the stage (a held joint's value) */
+ * wk_g6_solve_clusters) appended to ws's first n (at most SR_MAX_IK; their residuals to errs), each unless it is one
+ * solution with a kept one (sr_g6_same; then the better fit stands for it); returns the new count, in *merged how many
+ * of its candidates met one of its own and in *near whether the reading needs the others (a kept set within
+ * SR_G6_NEAR_SINGULAR of singular, an eigenvalue pair near the real axis, a candidate that is no solution, two on one
+ * solution; Python's _g6_reading): out = the stage kernel's axes (18), points (18) and target [R | p] (12); q carries
+ * the joints solved before the stage (a held joint's value) */
 static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, int clusters, const int *joints,
                          const double *q, const double *pose, const double *dp, sr_ws *ws, double *errs, int n,
                          int *merged, int *near)
@@ -167,9 +168,9 @@ static int sr_g6_candidates(const double *out, const int (*readings)[3], int n, 
     return found;
 }
 
-/* Set k's candidate: `kernel` the stage's (axes, points, target), `parent` the set index's prefix above the stage's bits (the candidates are recomputed when it
- * changes), `idx` the candidate, `readings` the loop's readings in the order they are tried; 0 when there is no such
- * candidate */
+/* Set k's candidate: `kernel` the stage's (axes, points, target), `parent` the set index's prefix above the stage's
+ * bits (the candidates are recomputed when it changes), `idx` the candidate, `readings` the loop's readings in the
+ * order they are tried; 0 when there is no such candidate */
 static int sr_general6r(sr_stage_kernel kernel, long parent, int idx, const int (*readings)[3], int n_readings,
                         const int *joints, double *q, double *c, double *s, const double *pose, const double *dp,
                         sr_ws *ws, unsigned *f)
