@@ -5,7 +5,8 @@
  * calculation of eigenvalues and eigenvectors" (1969); Householder reduction to Hessenberg form and the Francis
  * implicit double-shift QR step (Golub & Van Loan, Matrix Computations, 4th ed., 7.4-7.5); the companion
  * linearisation of a quadratic matrix polynomial (Tisseur & Meerbergen, SIAM Review 43, 2001) with the
- * Fan-Lin-Van Dooren parameter scaling; Hestenes' one-sided Jacobi SVD (Demmel & Veselic 1992).
+ * Fan-Lin-Van Dooren parameter scaling; Hestenes' one-sided Jacobi SVD (Demmel & Veselic 1992) with
+ * Drmac and Veselic's QR preconditioner (2008).
  * Contracts in wk_eigen.h.
  */
 #include "wk_eigen.h"
@@ -670,45 +671,105 @@ int wk_generalized_quadratic_eig(int m, const double *A, const double *B, const 
 
 /* ------------------------------------------------------------------ null vector */
 
-/* Hestenes' one-sided Jacobi: rotate pairs of columns of W = M (scaled to max entry ~ 1) until all are
- * mutually orthogonal to working precision (|w_p . w_q| <= m eps |w_p| |w_q|), accumulating the rotations in V;
- * then W = U Sigma and the column norms are the singular values, V's columns the right singular vectors.
- * v is taken from V (accumulated rotations, orthogonal to working precision), not from a normalised column
- * of W, which for sigma ~ 0 would be rounding noise. Each sigma is within ~ c m eps sigma_max (relatively
- * accurate when M is a well-conditioned matrix times a column scaling: Demmel & Veselic). At most 60 sweeps
- * (quadratic convergence: ~6-8 at m = 12, ~20 us on the bench machine). */
-/* The one-sided Jacobi sweeps of wk_null_vector: V (m x m, row-major) receives the right singular vectors as its
- * columns and sig the singular values of M / 2^e (unordered; e an exact power-of-two scaling, the same for all). */
+/* Hestenes' one-sided Jacobi with Drmac and Veselic's QR preconditioner (SIAM J. Matrix Anal. Appl. 29, 2008):
+ * M^T Pi = Q R by Householder QR with column pivoting (Pi picks M's rows by decreasing remaining norm), so that
+ * M = Pi R^T Q^T; then pairs of columns of X = R^T are rotated until all are mutually orthogonal to working
+ * precision (|x_p . x_q| <= m eps |x_p| |x_q|), the rotations accumulated in W. Then X W = U Sigma, the column norms
+ * are the singular values (M's: only orthogonal factors moved), and M's right singular vectors are Q W's columns.
+ * Why the detour: X^T X = R R^T is nearly diagonal for a pivoted R (its rows decay), so fewer sweeps converge: on
+ * the xArm6's general 6R cluster reads (12 x 12 M(x), 354 of them) 7-11 sweeps on M itself (9 mostly), 5-6 on X,
+ * the last of them only checking; with the column norms carried through the rotations, 265k -> 169k instructions
+ * a call there, 27.7 -> 23.7 us on random 12 x 12 (bench/eigen.py, side by side). The vectors are taken from Q W
+ * (orthogonal factors, accumulated), not from a normalised column of X, which for sigma ~ 0 would be rounding
+ * noise. Each sigma is within ~ c m eps sigma_max. At most WK_NULL_SWEEPS sweeps. */
+/* x . y over m entries */
+static double wk_jacobi_dot(int m, const double *x, const double *y)
+{
+    double s = 0.0;
+    int i;
+    for (i = 0; i < m; ++i)
+        s += x[i] * y[i];
+    return s;
+}
+
+/* The preconditioned one-sided Jacobi of wk_null_vector: V (m x m, row-major) receives the right singular vectors
+ * as its columns and sig the singular values of M / 2^e (unordered; e an exact power-of-two scaling, the same for
+ * all). */
 static int wk_jacobi_right(int m, const double *M, double *V, double *sig)
 {
-    /* columns stored contiguously (wt + p m is column p of W, vt + p m of V): the pair loops run down two
-     * contiguous arrays, which the compiler can vectorise, instead of striding through rows */
-    double wt[WK_NULL_MAXM * WK_NULL_MAXM], vt[WK_NULL_MAXM * WK_NULL_MAXM];
-    int i, j, p, q, sweep, rotated = 1, e;
+    /* a: M^T / 2^e column-major (column c of a is row c of M), then R in its upper triangle and the reflectors'
+     * vectors below it; wt, vt: X's and W's columns stored contiguously (the pair loops run down two contiguous
+     * arrays, which the compiler can vectorise) */
+    double a[WK_NULL_MAXM * WK_NULL_MAXM], wt[WK_NULL_MAXM * WK_NULL_MAXM], vt[WK_NULL_MAXM * WK_NULL_MAXM];
+    double tau[WK_NULL_MAXM], nrm2[WK_NULL_MAXM];
+    int i, j, k, p, q, sweep, rotated = 1, e;
     e = wk_eig_exponent(m * m, M);
-    for (i = 0; i < m; ++i)
-        for (j = 0; j < m; ++j) {
-            wt[j * m + i] = ldexp(M[i * m + j], -e);
+    for (i = 0; i < m * m; ++i)
+        a[i] = ldexp(M[i], -e);
+    for (k = 0; k < m; ++k) { /* Householder QR of M^T with column pivoting */
+        double *ak, best = -1.0, alpha, xnorm = 0.0, beta;
+        int piv = k;
+        for (j = k; j < m; ++j) { /* remaining column norms, recomputed (m <= 24: cheaper than downdating) */
+            double s2 = 0.0;
+            for (i = k; i < m; ++i)
+                s2 += a[j * m + i] * a[j * m + i];
+            if (s2 > best) {
+                best = s2;
+                piv = j;
+            }
+        }
+        if (piv != k)
+            for (i = 0; i < m; ++i) {
+                const double t = a[k * m + i];
+                a[k * m + i] = a[piv * m + i];
+                a[piv * m + i] = t;
+            }
+        ak = a + k * m;
+        alpha = ak[k];
+        for (i = k + 1; i < m; ++i)
+            xnorm += ak[i] * ak[i];
+        tau[k] = 0.0;
+        if (xnorm == 0.0)
+            continue; /* already triangular in this column: H = I */
+        beta = -copysign(sqrt(alpha * alpha + xnorm), alpha);
+        tau[k] = (beta - alpha) / beta;
+        {
+            const double inv = 1.0 / (alpha - beta); /* |alpha - beta| >= |beta| > 0 */
+            for (i = k + 1; i < m; ++i)
+                ak[i] *= inv;
+        }
+        ak[k] = beta;
+        for (j = k + 1; j < m; ++j) { /* H = I - tau (1, v)(1, v)^T on the later columns */
+            double *aj = a + j * m, d = aj[k];
+            for (i = k + 1; i < m; ++i)
+                d += ak[i] * aj[i];
+            d *= tau[k];
+            aj[k] -= d;
+            for (i = k + 1; i < m; ++i)
+                aj[i] -= d * ak[i];
+        }
+    }
+    for (j = 0; j < m; ++j) /* column j of X = R^T is row j of R */
+        for (i = 0; i < m; ++i) {
+            wt[j * m + i] = i >= j ? a[i * m + j] : 0.0;
             vt[j * m + i] = (i == j) ? 1.0 : 0.0;
         }
     for (sweep = 0; sweep < WK_NULL_SWEEPS && rotated; ++sweep) {
         rotated = 0;
+        for (j = 0; j < m; ++j) /* the squared column norms, exact at each sweep's start, updated by the rotations */
+            nrm2[j] = wk_jacobi_dot(m, wt + j * m, wt + j * m);
         for (p = 0; p < m - 1; ++p)
             for (q = p + 1; q < m; ++q) {
                 double *wp = wt + p * m, *wq = wt + q * m, *vp = vt + p * m, *vq = vt + q * m;
-                double al = 0.0, be = 0.0, ga = 0.0, zeta, t, cs, sn;
-                for (i = 0; i < m; ++i) {
-                    al += wp[i] * wp[i];
-                    be += wq[i] * wq[i];
-                    ga += wp[i] * wq[i];
-                }
+                const double al = nrm2[p], be = nrm2[q], ga = wk_jacobi_dot(m, wp, wq);
+                double zeta, t, cs, sn;
                 /* orthogonal to m eps, not eps: at eps a pair whose rotation angle is below one ulp of 1
                  * (cos rounds to 1, sin ~ eps) changes nothing and is "rotated" again every sweep until the cap
                  * (WRISTKIN_TEST_SEED=526, m = 11; 524, m = 17): the sigmas are unaffected at that level */
                 if (ga == 0.0 || fabs(ga) <= m * WK_EIG_EPS * sqrt(al) * sqrt(be))
                     continue;
                 rotated = 1;
-                /* the rotation that zeroes the (p, q) entry of W^T W: t = tan of its angle, the smaller root
+                /* the rotation that zeroes the (p, q) entry of X^T X: t = tan of its angle, the smaller root
                  * of t^2 + 2 zeta t - 1 = 0 (for huge zeta, t ~ 1 / (2 zeta) avoids squaring it) */
                 zeta = (be - al) / (2.0 * ga);
                 if (fabs(zeta) > 1e150)
@@ -718,16 +779,39 @@ static int wk_jacobi_right(int m, const double *M, double *V, double *sig)
                 cs = 1.0 / sqrt(1.0 + t * t);
                 sn = cs * t;
                 for (i = 0; i < m; ++i) {
-                    const double a = wp[i], b = wq[i], c = vp[i], d = vq[i];
-                    wp[i] = cs * a - sn * b;
-                    wq[i] = sn * a + cs * b;
+                    const double x = wp[i], y = wq[i], c = vp[i], d = vq[i];
+                    wp[i] = cs * x - sn * y;
+                    wq[i] = sn * x + cs * y;
                     vp[i] = cs * c - sn * d;
                     vq[i] = sn * c + cs * d;
                 }
+                /* the new norms are al - t ga and be + t ga (the rotation moves t ga from the smaller column to
+                 * the larger); the one that shrinks below half of what it was has cancelled bits, so it is summed
+                 * again (a column converging onto the null space shrinks by orders of magnitude per rotation) */
+                nrm2[p] = al - t * ga;
+                nrm2[q] = be + t * ga;
+                if (!(nrm2[p] >= 0.5 * al))
+                    nrm2[p] = wk_jacobi_dot(m, wp, wp);
+                if (!(nrm2[q] >= 0.5 * be))
+                    nrm2[q] = wk_jacobi_dot(m, wq, wq);
             }
     }
     if (rotated)
         return WK_EIG_ERR_NOCONV;
+    for (k = m - 1; k >= 0; --k) { /* W := Q W = H_0 H_1 ... H_{m-1} W, the last reflector first */
+        const double *ak = a + k * m;
+        if (tau[k] == 0.0)
+            continue;
+        for (j = 0; j < m; ++j) {
+            double *w = vt + j * m, d = w[k];
+            for (i = k + 1; i < m; ++i)
+                d += ak[i] * w[i];
+            d *= tau[k];
+            w[k] -= d;
+            for (i = k + 1; i < m; ++i)
+                w[i] -= d * ak[i];
+        }
+    }
     for (j = 0; j < m; ++j) {
         const double *w = wt + j * m;
         double amax = 0.0, ss = 0.0;
