@@ -41,6 +41,9 @@ G6_ORDER_TOL = 1e-6
 # and go in pairs and a reading can miss a pair (the KR 6 1e-5 from special with its wrist 1e-5 from singular: one
 # reading's 8 verified sets, another's 10); every reading is then solved and their sets joined
 G6_NEAR_SINGULAR = 1e-3
+# why a reading asks for more (_g6_reading's bits): a kept set within G6_NEAR_SINGULAR of singular; an eigenvalue pair
+# near the real axis; a candidate that is no solution, or two on one solution
+G6_NEAR_SET, G6_NEAR_PAIR, G6_NEAR_ROOTS = 1, 2, 4
 
 
 def _g6_conditioning(q, dp, joints):
@@ -70,14 +73,19 @@ def _g6_candidates(out, readings, joints, q, pose, dp):
     this reading missed (a near-special arm near its singularities: the KR 6 1e-5 from special), which another
     reading, hiding another joint, finds. Not where two of the reading's candidates met in one set (a double root:
     its two eigenvalues, one solution), and once at most: such a pose costs one reading, any other two at most.
-    The first pass reads no cluster subspaces (each costs an SVD in C); near a singularity (a kept set's sigma_min /
-    sigma_max within G6_NEAR_SINGULAR), where a reading's clusters may hide solutions and a reading can miss a pair,
-    or where the reading shows a cluster (a pair near the real axis, a root whose candidate is no solution or meets
-    another's: the near-special KR 6's far members; numpy lost four of its solutions so, C none), every reading is
-    solved again with them."""
-    kept, errs, tried_odd, near = [], [], False, False
+    The first pass reads no cluster subspaces (each costs an SVD in C). A reading whose only trouble is an
+    eigenvalue pair near the real axis (G6_NEAR_PAIR) is read once more with them, the pair read as a root: such a
+    pair is a real double root or a cluster's members that rounding moved off the axis, and this reading's clusters
+    hold them; or an ordinary complex pair (the xArm6 shows one within 1e-2 of the axis on 18 % of random poses, which
+    cost it every reading with clusters: 15-20x its median call). Near a singularity (a kept set's sigma_min /
+    sigma_max within G6_NEAR_SINGULAR, then or in that second read), where a reading can miss a pair of solutions, or
+    where the reading's candidates are no solution or meet (the near-special KR 6's far members; numpy lost four of
+    its solutions so, C none), every reading is solved again with them."""
+    kept, errs, tried_odd, near = [], [], False, 0
     for labelling in readings:
         merged, near = _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, False)
+        if near == G6_NEAR_PAIR:  # this reading with its clusters; their copies and far members are expected there
+            near = _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, True)[1] & G6_NEAR_SET
         if near or kept and (len(kept) % 2 == 0 or tried_odd or merged):
             break
         tried_odd = bool(kept)
@@ -97,8 +105,9 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, clusters):
     """The verified candidates of one reading of the loop appended to kept ((joint values of `joints`, flags), at
     most MAX_IK; their residuals to errs), each unless it is one solution with a
     kept one (_g6_same; then the better fit stands for it); returns how many of its candidates met one of its own
-    and whether the reading needs the others (a kept set within G6_NEAR_SINGULAR of singular, an eigenvalue pair
-    near the real axis: general6r.py's G6_CLUSTER_IM_TOL, a candidate that is no solution, two on one solution):
+    and the G6_NEAR_* bits of why the reading asks for more (a kept set within G6_NEAR_SINGULAR of singular, an
+    eigenvalue pair near the real axis: general6r.py's G6_CLUSTER_IM_TOL, a candidate that is no solution or two on
+    one solution):
     out = the stage kernel's axes (18), points (18) and target [R | p] (12); q carries the joints solved before the
     stage (a held joint's value); `clusters`: the elimination reads its clusters' subspaces (general6r.py's
     g6_solve)."""
@@ -109,7 +118,8 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, clusters):
     size = max(abs(pose[3]), abs(pose[7]), abs(pose[11]))
     target, floor = DOUBLE_ROOT_POLISH_TOL * max(1.0, size), _runtime.fk_rounding(size)
     first, merged = len(kept), 0
-    cands, near = g6_solve_flagged(frames, np.eye(4), g4, shift, bool(reverse), hidden, clusters)
+    cands, pair = g6_solve_flagged(frames, np.eye(4), g4, shift, bool(reverse), hidden, clusters)
+    near = G6_NEAR_PAIR if pair else 0
     for cand in cands:
         x = list(q)
         for j, v in zip(joints, cand, strict=True):
@@ -118,7 +128,7 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, clusters):
         if not err <= target:
             x, err = _polish(x, pose, dp, target=target)
         if not err <= IK_VERIFY_TOL:
-            near = True  # a root that is no solution: a cluster's far member, or a reading degenerating here
+            near |= G6_NEAR_ROOTS  # a root that is no solution: a cluster's far member, or a reading degenerating
             continue
         for j in joints:
             x[j] = _wrap(x[j])
@@ -127,14 +137,15 @@ def _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, clusters):
         dup = next((m for m, (other, _) in enumerate(kept)
                     if _g6_same(x, err, other, errs[m], joints, q, pose, dp, floor)), -1)
         if dup >= 0:  # one solution found twice: the better fit stands for it
-            merged += dup >= first
-            near = near or dup >= first  # two of its roots on one solution: a double root, or a cluster's
+            if dup >= first:  # two of its roots on one solution: a double root, or a cluster's
+                merged += 1
+                near |= G6_NEAR_ROOTS
             if err < errs[dup]:
                 kept[dup], errs[dup] = (vals, kept[dup][1]), err
             continue
         if len(kept) == MAX_IK:  # more than 16: a degenerate pose's family, the first 16 kept
             continue
-        near = near or ratio <= G6_NEAR_SINGULAR
+        near |= G6_NEAR_SET if ratio <= G6_NEAR_SINGULAR else 0
         kept.append((vals, FLAG_SINGULAR_INVERSE if ratio <= SINGULAR_EPS else 0))
         errs.append(err)
     return merged, near

@@ -42,6 +42,12 @@ static void sr_g6_sort(sr_ws *ws, int n)
  * a pair of solutions; every reading is then solved and their sets joined (Python's G6_NEAR_SINGULAR) */
 #define SR_G6_NEAR_SINGULAR 1e-3
 
+/* why a reading asks for more (sr_g6_reading's *near, Python's G6_NEAR_*): a kept set within SR_G6_NEAR_SINGULAR of
+ * singular; an eigenvalue pair near the real axis; a candidate that is no solution, or two on one solution */
+#define SR_G6_NEAR_SET 1
+#define SR_G6_NEAR_PAIR 2
+#define SR_G6_NEAR_ROOTS 4
+
 /* sigma_min / sigma_max of the solved joints' Jacobian (a held joint's column left out; a Cholesky bound proves most
  * sets above SR_G6_NEAR_SINGULAR, sr_gram_spectrum decides the rest: Python's eigvalsh through serial_fk's _spectrum),
  * 1 where proven above (Python's _g6_conditioning) */
@@ -73,10 +79,9 @@ static int sr_g6_same(const double *x, double err, const double *kept, double ke
 /* The verified candidates of one reading of the loop (`clusters`: reading its clusters' subspaces,
  * wk_g6_solve_clusters) appended to ws's first n (at most SR_MAX_IK; their residuals to errs), each unless it is one
  * solution with a kept one (sr_g6_same; then the better fit stands for it); returns the new count, in *merged how many
- * of its candidates met one of its own and in *near whether the reading needs the others (a kept set within
- * SR_G6_NEAR_SINGULAR of singular, an eigenvalue pair near the real axis, a candidate that is no solution, two on one
- * solution; Python's _g6_reading): out = the stage kernel's axes (18), points (18) and target [R | p] (12); q carries
- * the joints solved before the stage (a held joint's value) */
+ * of its candidates met one of its own and in *near the SR_G6_NEAR_* bits of why the reading asks for more (Python's
+ * _g6_reading): out = the stage kernel's axes (18), points (18) and target [R | p] (12); q carries the joints solved
+ * before the stage (a held joint's value) */
 static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, int clusters, const int *joints,
                          const double *q, const double *pose, const double *dp, sr_ws *ws, double *errs, int n,
                          int *merged, int *near)
@@ -97,7 +102,7 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
     g4[15] = 1.0;
     nr = wk_g6_solve_clusters(frames, id4, g4, shift, reverse, hidden, clusters, &near_pair, cand,
                               WK_G6_MAX_CANDIDATES);
-    *near |= near_pair;
+    if (near_pair) *near |= SR_G6_NEAR_PAIR;
     for (i = 0; i < nr; ++i) {
         double x[SR_N], t[12], vals[6], err, ratio;
         int dup = -1;
@@ -111,7 +116,7 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
         }
         if (!(err <= target)) err = sr_polish(x, pose, dp, target);
         if (!(err <= SR_IK_VERIFY_TOL)) { /* a root that is no solution: a cluster's far member, or a degeneracy */
-            *near = 1;
+            *near |= SR_G6_NEAR_ROOTS;
             continue;
         }
         for (j = 0; j < 6; ++j) {
@@ -124,7 +129,7 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
         if (dup >= 0) { /* one solution found twice: the better fit stands for it */
             if (dup >= first) { /* two of its roots on one solution: a double root, or a cluster's */
                 ++*merged;
-                *near = 1;
+                *near |= SR_G6_NEAR_ROOTS;
             }
             if (err < errs[dup]) {
                 for (j = 0; j < 6; ++j) ws->q[dup][j] = x[joints[j]];
@@ -136,7 +141,7 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
         for (j = 0; j < 6; ++j) ws->q[n][j] = vals[j];
         errs[n] = err;
         ws->f[n] = ratio <= SR_SINGULAR_EPS ? WK_FLAG_SINGULAR_INVERSE : 0u;
-        *near |= ratio <= SR_G6_NEAR_SINGULAR;
+        if (ratio <= SR_G6_NEAR_SINGULAR) *near |= SR_G6_NEAR_SET;
         ++n;
     }
     return n;
@@ -147,8 +152,10 @@ static int sr_g6_reading(const double *out, int shift, int reverse, int hidden, 
  * Real solutions come in pairs (the determinant's real roots, counted with multiplicity, are even in number), so an
  * odd count is a double root the pose cannot split or a solution this reading missed (a near-special arm near its
  * singularities), which another reading finds; not where two of the reading's candidates met in one set (a double
- * root), and once at most. That first pass reads no cluster subspaces (an SVD each); near a singularity (a kept set
- * within SR_G6_NEAR_SINGULAR) every reading is solved again with them (Python's _g6_candidates) */
+ * root), and once at most. That first pass reads no cluster subspaces (an SVD each). A reading whose only trouble is
+ * an eigenvalue pair near the real axis is read once more with them (the pair read as a root); near a singularity (a
+ * kept set within SR_G6_NEAR_SINGULAR, then or in that second read) or where candidates are no solution or meet,
+ * every reading is solved again with them (Python's _g6_candidates says why) */
 static int sr_g6_candidates(const double *out, const int (*readings)[3], int n, const int *joints, const double *q,
                             const double *pose, const double *dp, sr_ws *ws)
 {
@@ -157,6 +164,12 @@ static int sr_g6_candidates(const double *out, const int (*readings)[3], int n, 
     for (i = 0; i < n; ++i) {
         found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], 0, joints, q, pose, dp, ws, errs,
                               found, &merged, &near);
+        if (near == SR_G6_NEAR_PAIR) { /* this reading with its clusters; their copies and far members expected */
+            int again = 0, copies = 0;
+            found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], 1, joints, q, pose, dp, ws,
+                                  errs, found, &copies, &again);
+            near = again & SR_G6_NEAR_SET;
+        }
         if (near || (found > 0 && (found % 2 == 0 || tried_odd || merged))) break;
         tried_odd = found > 0;
     }
