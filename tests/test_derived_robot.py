@@ -1002,6 +1002,40 @@ def test_a_spherical_wrist_derives_its_centre_and_reads_its_band_from_it(robot):
         assert min(np.max(np.abs(fd - jac[:, list(p)])) for p in itertools.permutations(range(3))) <= 1e-8, (robot, q)
 
 
+
+@pytest.mark.parametrize("robot", ["irb120", "kr6", "lrmate", "tx2_60"])
+def test_a_first_stage_reading_the_wrist_centre_is_a_checked_step(robot):
+    """The shoulder family a calibrated robot scans (serial_ik._shoulder_near: hypot(A, B) of its first stage within
+    CALIBRATED_SHOULDER_SEARCH of the size) rests on that stage reading q1 from the wrist centre's position off axis
+    1: a derivation step whose two checks passed (C = 0 proven; hypot(A, B) the centre's distance from axis 1 on the
+    FK), the same reading the calibrated KR 6's module takes (_SHOULDER_FAMILY), and numbers the independent
+    reference agrees with: hypot(A, B) of the module's stage-1 kernel equals half the distance between the URDF's
+    wrist centre (the point of the end frame joints 4-6 do not move) at q and at q1 + pi (a half turn about axis 1
+    carries a point across its circle) at random joints, to the rounding of the sizes (~1 m: 1e-12). The IRB 120
+    and the TX2-60 solve their elbow first: no such step."""
+    m, py, out = derived(robot)
+    audit = (out / "audit" / f"{robot}_urdf_derived.md").read_text()
+    head = re.search(r"### \d+\. Stage 1 reads (\S+) from the wrist centre.*?\n(.*?)\n\n", audit, re.S)
+    if robot in ("irb120", "tx2_60"):
+        assert head is None and "(`shoulder_family`)" not in audit
+        return
+    assert head and head.group(2).count("passed") == 1 and "proven" in head.group(2) and "failed" not in head.group(2)
+    reference = ref.load(_file(robot, "urdf"))
+    rng = case_rng(2270)
+    centre = ref_centre.centre_in_end_frame(reference, rng.uniform(-2.0, 2.0, 6), rng)
+
+    def point(x):
+        t = np.asarray(reference(x), float)
+        return t[:3, :3] @ centre + t[:3, 3]
+    zeros = [0.0] * 6
+    for _ in range(5):
+        q = rng.uniform(-math.pi, math.pi, 6)
+        a, b = py._k_stage1(py.fk_matrix(q)[:3].ravel(), zeros, [1.0] * 6, zeros, list(py.DESIGN_DEFAULT))[:2]
+        turned = q.copy()
+        turned[0] += math.pi
+        assert abs(math.hypot(a, b) - 0.5 * np.linalg.norm(point(q) - point(turned))) <= 1e-12, (robot, q)
+
+
 # poses 1e-12 rad from a wrist singularity that the wrist's family band (WRIST_EXACT_TOL x the stages'
 # amplification) took for the singularity itself: the family's member came back, 0.4-2 rad from the generating joints
 # (drawn by a sweep of random arms, numpy default_rng(5), regular elsewhere as _regular_elsewhere requires, q5 = 1e-12;

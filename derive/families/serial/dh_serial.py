@@ -29,6 +29,7 @@ from ...kinematics.general6r import steps as elimination_steps
 from ...kinematics.poe import Chain, rot
 from ...model import Check, Derivation, Finding, Step
 from ...serial_core.stages import POSE_SYMBOLS, Stage, stage_output_names
+from .shoulder_family import shoulder_step
 from .wrist_centre import centre_steps
 
 
@@ -147,8 +148,9 @@ def derive_spec(spec: SerialSpec) -> Derivation:
     _jacobian_step(dv, spec, plain, ts[-1])
     _ik_steps(dv, spec, fT)
     # the wrist centre's candidates: the frames' origins (a spherical wrist's is one of them)
-    centre_steps(dv, spec, joint_axes(spec, plain), [_base(spec)[:3, 3]] + [f[:3, 3] for f in plain],
-                 lambda rng: _draw(spec, rng))
+    axes = joint_axes(spec, plain)
+    centre_steps(dv, spec, axes, [_base(spec)[:3, 3]] + [f[:3, 3] for f in plain], lambda rng: _draw(spec, rng))
+    shoulder_step(dv, spec, fT, axes, lambda rng: _draw(spec, rng))
     dv.exports["T"] = T
     dv.exports["frames"] = ts
     return dv

@@ -31,6 +31,7 @@ from .dh_serial import SerialSpec
 from .mechanism import SerialMechanism
 from .planned import SUPPORTED, PlanError
 from .planned import stages as planned_stages
+from .shoulder_family import shoulder_family_joint
 
 # an angle of the table (twist, offset) within this of a multiple of pi / 36 (5 degrees) is that multiple: the
 # decomposition's structure (parallel, perpendicular axes) must be exact for the stages, and exact offsets keep the
@@ -268,11 +269,12 @@ class _DerivedRobot(SerialMechanism):
                 # each family (a mirror pair, sets 2P and 2P + 1) is scanned, after the merge, into its free slots and
                 # two more of its own after the stages' sets (serial_ik._scan_families)
                 extra.update(family_scan=True, stage_sets=2 ** bits, max_ik=2 ** (bits + 1))
-                first = self.spec.stages[0]
-                if first.kind == "trig_linear" and not first.factored and sp.sympify(first.exprs[2]) == 0:
-                    # q1 read from the wrist centre's (x, y) (C = 0): the centre on axis 1 is a self-motion of the
-                    # ideal geometry, broken by the calibration as the wrist's: scanned along q1 too
-                    extra["shoulder_family"] = first.joints[0]
+                shoulder = shoulder_family_joint(self.spec)
+                if shoulder is not None:
+                    # q1 read from the wrist centre's (x, y) (C = 0, the derivation's shoulder_family step): the
+                    # centre on axis 1 is a self-motion of the ideal geometry, broken by the calibration as the
+                    # wrist's: scanned along q1 too
+                    extra["shoulder_family"] = shoulder
         if held:  # the held joint's value: the design, named as the joint
             extra.update(held=held[0], n_lengths=0, design_names=[self.joint_names[held[0]]])
             checks = self._held_checks()

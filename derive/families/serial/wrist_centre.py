@@ -90,6 +90,7 @@ def centre_steps(dv: Derivation, spec, axes, candidates, draw) -> None:
                      numeric_predicate(fd, "J_c equals central differences of p_c (h = 1e-6, relative to the size)",
                                        samples=20, tol=1e-7))))
         dv.exports.setdefault("wrist_centre", {})[k] = jac
+        dv.exports.setdefault("wrist_centre_point", {})[k] = centre
         solved.extend(st.joints)
 
 
