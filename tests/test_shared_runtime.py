@@ -300,6 +300,32 @@ def test_the_python_square_step_is_the_c_one_to_the_bit(py, lib):
     assert solve(a, b, 1e-6) is None
 
 
+
+def test_the_damped_normal_step_solves_its_system_and_leaves_a_zeroed_column_still(lib):
+    """wk_normal_solve (the Gauss-Newton step where J is not square or regular, and every held fit's: a calibrated
+    arm's scans take ~1,500 of them a call): x = (J^T J + d I)^-1 J^T e, numpy's solve of that system to rounding
+    times its conditioning (1e-13 * cond relative), for 6 x n J, n = 5..7 (7 with a held joint, as a 7-joint arm
+    calls it: with 7 columns J^T J is singular and d, 1e-12, below its rounding); a zeroed column (a held joint's)
+    gets a step of exactly 0 and the others solve J without it (the same system's other unknowns: its row and column
+    hold only d); without damping a zeroed column is singular (0) and x is left as it was."""
+    lib.wk_normal_solve.argtypes = [D, ctypes.c_int, D, ctypes.c_double, D]
+    lib.wk_normal_solve.restype = ctypes.c_int
+    rng = case_rng(2218)
+    for n in (5, 6, 7):
+        x = np.zeros(n)
+        for trial in range(30):
+            j, e = rng.normal(size=(6, n)) * rng.uniform(1e-2, 1e2), rng.normal(size=6)
+            zeroed = [int(rng.integers(n))] if trial % 2 or n == 7 else []  # 7: a 7-joint arm's held joint
+            j[:, zeroed] = 0.0
+            assert lib.wk_normal_solve(_p(j), n, _p(e), 1e-12, _p(x)) == 1
+            g = j.T @ j + 1e-12 * np.eye(n)
+            ref = np.linalg.solve(g, j.T @ e)
+            assert np.max(np.abs(x - ref)) <= 1e-13 * np.linalg.cond(g) * max(1.0, np.max(np.abs(ref))), (n, trial)
+            assert all(x[z] == 0.0 for z in zeroed)
+        j[:, 0] = 0.0
+        x[:] = 7.25
+        assert lib.wk_normal_solve(_p(j), n, _p(e), 0.0, _p(x)) == 0 and np.all(x == 7.25)
+
 def test_one_lu_solves_each_right_hand_side_as_the_square_step_does(lib):
     """wk_lu_factor once, then wk_lu_solve per right-hand side (a calibrated arm's chord steps, and its wrist mirror's
     step on the same LU): each solution the bits of wk_square_solve's on that side (the same operations in the same

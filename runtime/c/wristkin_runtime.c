@@ -496,37 +496,52 @@ int wk_square_solve(const double *a, int n, const double *b, double rel_pivot, d
 
 int wk_normal_solve(const double *jac, int n, const double *e, double damping, double *x)
 {
-    double g[WK_MAX_DIM][WK_MAX_DIM + 1];
-    int i, j, k;
+    /* a column of J that is exactly 0 (a held joint's, zeroed by the caller) is left out: its row and column of
+     * J^T J + damping I hold the damping alone, so its step is 0 and the others' elimination is the same operations
+     * on the remaining m x m system (a pivot search never takes that row: its entry is 0 where another's is not).
+     * G is symmetric: its upper triangle is summed and mirrored (the same products in the same order) */
+    double g[WK_MAX_DIM][WK_MAX_DIM + 1], xs[WK_MAX_DIM], a[WK_MAX_DIM][6];
+    int col[WK_MAX_DIM], i, j, k, m = 0;
     if (n < 1 || n > WK_MAX_DIM) return 0;
-    for (i = 0; i < n; ++i) {
-        for (j = 0; j < n; ++j) {
-            g[i][j] = i == j ? damping : 0.0;
-            for (k = 0; k < 6; ++k) g[i][j] += jac[k * n + i] * jac[k * n + j];
+    for (j = 0; j < n; ++j) { /* the kept columns, each contiguous */
+        int zero = 1;
+        for (k = 0; k < 6; ++k) {
+            a[m][k] = jac[k * n + j];
+            zero &= a[m][k] == 0.0;
         }
-        g[i][n] = 0.0;
-        for (k = 0; k < 6; ++k) g[i][n] += jac[k * n + i] * e[k];
+        if (!zero || !(damping > 0.0)) col[m++] = j; /* undamped, a zero column makes the system singular */
+        xs[j] = 0.0;
     }
-    for (i = 0; i < n; ++i) {
+    for (i = 0; i < m; ++i) {
+        for (j = i; j < m; ++j) {
+            double acc = i == j ? damping : 0.0;
+            for (k = 0; k < 6; ++k) acc += a[i][k] * a[j][k];
+            g[i][j] = g[j][i] = acc;
+        }
+        g[i][m] = 0.0;
+        for (k = 0; k < 6; ++k) g[i][m] += a[i][k] * e[k];
+    }
+    for (i = 0; i < m; ++i) {
         int piv = i;
-        for (k = i + 1; k < n; ++k)
+        for (k = i + 1; k < m; ++k)
             if (fabs(g[k][i]) > fabs(g[piv][i])) piv = k;
         if (g[piv][i] == 0.0) return 0;
-        for (j = 0; j <= n; ++j) {
+        for (j = 0; j <= m; ++j) {
             const double t = g[i][j];
             g[i][j] = g[piv][j];
             g[piv][j] = t;
         }
-        for (k = i + 1; k < n; ++k) {
+        for (k = i + 1; k < m; ++k) {
             const double f = g[k][i] / g[i][i];
-            for (j = i; j <= n; ++j) g[k][j] -= f * g[i][j];
+            for (j = i; j <= m; ++j) g[k][j] -= f * g[i][j];
         }
     }
-    for (i = n - 1; i >= 0; --i) {
-        double acc = g[i][n];
-        for (j = i + 1; j < n; ++j) acc -= g[i][j] * x[j];
-        x[i] = acc / g[i][i];
+    for (i = m - 1; i >= 0; --i) {
+        double acc = g[i][m];
+        for (j = i + 1; j < m; ++j) acc -= g[i][j] * xs[col[j]];
+        xs[col[i]] = acc / g[i][i];
     }
+    for (j = 0; j < n; ++j) x[j] = xs[j];
     return 1;
 }
 

@@ -47,7 +47,7 @@ static int sr_gn_solve(double *jac, const double *e, double *dq, int hold)
         if (hold >= 0) jac[j * SR_N + hold] = 0.0;
     }
 #if SR_N == 6
-    if (wk_square_solve(jac, 6, e, 1e-6, dq)) return 1;
+    if (hold < 0 && wk_square_solve(jac, 6, e, 1e-6, dq)) return 1; /* a zeroed column: no regular square J */
 #endif
     return wk_normal_solve(jac, SR_N, e, 1e-12, dq);
 }
