@@ -692,6 +692,20 @@ static double wk_jacobi_dot(int m, const double *x, const double *y)
     return s;
 }
 
+/* x := H x for the Householder reflector H = I - tau (1, v)(1, v)^T acting on entries k..m-1 (v[k+1..m-1] holds the
+ * vector's tail, its head is 1) */
+static void wk_reflect(int m, int k, const double *v, double tau, double *x)
+{
+    double d = x[k];
+    int i;
+    for (i = k + 1; i < m; ++i)
+        d += v[i] * x[i];
+    d *= tau;
+    x[k] -= d;
+    for (i = k + 1; i < m; ++i)
+        x[i] -= d * v[i];
+}
+
 /* The preconditioned one-sided Jacobi of wk_null_vector: V (m x m, row-major) receives the right singular vectors
  * as its columns and sig the singular values of M / 2^e (unordered; e an exact power-of-two scaling, the same for
  * all). */
@@ -739,15 +753,8 @@ static int wk_jacobi_right(int m, const double *M, double *V, double *sig)
                 ak[i] *= inv;
         }
         ak[k] = beta;
-        for (j = k + 1; j < m; ++j) { /* H = I - tau (1, v)(1, v)^T on the later columns */
-            double *aj = a + j * m, d = aj[k];
-            for (i = k + 1; i < m; ++i)
-                d += ak[i] * aj[i];
-            d *= tau[k];
-            aj[k] -= d;
-            for (i = k + 1; i < m; ++i)
-                aj[i] -= d * ak[i];
-        }
+        for (j = k + 1; j < m; ++j) /* H on the later columns */
+            wk_reflect(m, k, ak, tau[k], a + j * m);
     }
     for (j = 0; j < m; ++j) /* column j of X = R^T is row j of R */
         for (i = 0; i < m; ++i) {
@@ -802,15 +809,8 @@ static int wk_jacobi_right(int m, const double *M, double *V, double *sig)
         const double *ak = a + k * m;
         if (tau[k] == 0.0)
             continue;
-        for (j = 0; j < m; ++j) {
-            double *w = vt + j * m, d = w[k];
-            for (i = k + 1; i < m; ++i)
-                d += ak[i] * w[i];
-            d *= tau[k];
-            w[k] -= d;
-            for (i = k + 1; i < m; ++i)
-                w[i] -= d * ak[i];
-        }
+        for (j = 0; j < m; ++j)
+            wk_reflect(m, k, ak, tau[k], vt + j * m);
     }
     for (j = 0; j < m; ++j) {
         const double *w = wt + j * m;
