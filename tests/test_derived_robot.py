@@ -1002,13 +1002,12 @@ def test_a_spherical_wrist_derives_its_centre_and_reads_its_band_from_it(robot):
         assert min(np.max(np.abs(fd - jac[:, list(p)])) for p in itertools.permutations(range(3))) <= 1e-8, (robot, q)
 
 
-
 @pytest.mark.parametrize("robot", ["irb120", "kr6", "lrmate", "tx2_60"])
 def test_a_first_stage_reading_the_wrist_centre_is_a_checked_step(robot):
     """The shoulder family a calibrated robot scans (serial_ik._shoulder_near: hypot(A, B) of its first stage within
     CALIBRATED_SHOULDER_SEARCH of the size) rests on that stage reading q1 from the wrist centre's position off axis
     1: a derivation step whose two checks passed (C = 0 proven; hypot(A, B) the centre's distance from axis 1 on the
-    FK), the same reading the calibrated KR 6's module takes (_SHOULDER_FAMILY), and numbers the independent
+    FK; the calibrated KR 6's _SHOULDER_FAMILY is that step's joint: its shoulder test), and numbers the independent
     reference agrees with: hypot(A, B) of the module's stage-1 kernel equals half the distance between the URDF's
     wrist centre (the point of the end frame joints 4-6 do not move) at q and at q1 + pi (a half turn about axis 1
     carries a point across its circle) at random joints, to the rounding of the sizes (~1 m: 1e-12). The IRB 120

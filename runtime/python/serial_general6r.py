@@ -81,17 +81,19 @@ def _g6_candidates(out, readings, joints, q, pose, dp):
     sigma_max within G6_NEAR_SINGULAR, then or in that second read), where a reading can miss a pair of solutions, or
     where the reading's candidates are no solution or meet (the near-special KR 6's far members; numpy lost four of
     its solutions so, C none), every reading is solved again with them."""
-    kept, errs, tried_odd, near = [], [], False, 0
-    for labelling in readings:
+    kept, errs, tried_odd, near, clustered = [], [], False, 0, -1
+    for i, labelling in enumerate(readings):
         merged, near = _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, False)
         if near == G6_NEAR_PAIR:  # this reading with its clusters; their copies and far members are expected there
             near = _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, True)[1] & G6_NEAR_SET
+            clustered = i
         if near or kept and (len(kept) % 2 == 0 or tried_odd or merged):
             break
         tried_odd = bool(kept)
-    if near:  # every reading, with its clusters' subspaces (a set kept already is kept once)
-        for labelling in readings:
-            _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, True)
+    if near:  # every reading, with its clusters' subspaces (a set kept already is kept once; the one read so already
+        for i, labelling in enumerate(readings):  # gives its candidates again: skipped)
+            if i != clustered:
+                _g6_reading(out, labelling, joints, q, pose, dp, kept, errs, True)
     for i in range(1, len(kept)):  # insertion sort by _g6_order, as the C runtime's (stable)
         item, j = kept[i], i
         while j > 0 and _g6_order(kept[j - 1], item) > 0:

@@ -31,7 +31,6 @@ from .dh_serial import SerialSpec
 from .mechanism import SerialMechanism
 from .planned import SUPPORTED, PlanError
 from .planned import stages as planned_stages
-from .shoulder_family import shoulder_family_joint
 
 # an angle of the table (twist, offset) within this of a multiple of pi / 36 (5 degrees) is that multiple: the
 # decomposition's structure (parallel, perpendicular axes) must be exact for the stages, and exact offsets keep the
@@ -208,6 +207,7 @@ class _DerivedRobot(SerialMechanism):
         self.description_fk, self.description_tol, self.api = description_fk, description_tol, api
         self.joint_names, self.degenerate_held = tuple(joint_names), tuple(degenerate_held)
         self.true_chain = true_chain  # a calibrated robot's: its FK, Jacobian and polish (the stages: the ideal)
+        self._shoulder_family = None  # the joint of the derivation's shoulder_family step, once derived
 
     def _held_checks(self) -> list:
         """(what, expression, value) per held value the IK refuses: 2 sin((v_held - v) / 2), |.| = the angle's distance
@@ -269,12 +269,11 @@ class _DerivedRobot(SerialMechanism):
                 # each family (a mirror pair, sets 2P and 2P + 1) is scanned, after the merge, into its free slots and
                 # two more of its own after the stages' sets (serial_ik._scan_families)
                 extra.update(family_scan=True, stage_sets=2 ** bits, max_ik=2 ** (bits + 1))
-                shoulder = shoulder_family_joint(self.spec)
-                if shoulder is not None:
-                    # q1 read from the wrist centre's (x, y) (C = 0, the derivation's shoulder_family step): the
-                    # centre on axis 1 is a self-motion of the ideal geometry, broken by the calibration as the
-                    # wrist's: scanned along q1 too
-                    extra["shoulder_family"] = shoulder
+                if self._shoulder_family is not None:
+                    # q1 read from the wrist centre's (x, y) (C = 0: the derivation's shoulder_family step, its checks
+                    # passed): the centre on axis 1 is a self-motion of the ideal geometry, broken by the calibration
+                    # as the wrist's: scanned along q1 too
+                    extra["shoulder_family"] = self._shoulder_family
         if held:  # the held joint's value: the design, named as the joint
             extra.update(held=held[0], n_lengths=0, design_names=[self.joint_names[held[0]]])
             checks = self._held_checks()
@@ -315,6 +314,7 @@ class _DerivedRobot(SerialMechanism):
     def derive(self):
         dv = super().derive()
         spec = self.spec
+        self._shoulder_family = dv.exports.get("shoulder_family")  # recorded only where its step was derived
         if self.true_chain is not None:
             self._true_chain_step(dv)
         at = {d: sp.sympify(v) for d, v in zip(spec.design, spec.design_default, strict=True)}

@@ -35,6 +35,7 @@ def shoulder_step(dv: Derivation, spec, fT, axes, draw) -> None:
     if j is None or len(spec.stages) not in centres:
         return
     first = spec.stages[0]
+    c = sp.sympify(first.exprs[2])
     args = (*spec.joints, *spec.design)
     f_ab = sp.lambdify((*POSE_SYMBOLS, *args), list(first.exprs[:2]), "numpy")
     f_c = sampler(args, centres[len(spec.stages)])
@@ -57,8 +58,8 @@ def shoulder_step(dv: Derivation, spec, fT, axes, draw) -> None:
                 f"coordinates normal to axis {j + 1}; at A = B = 0 (the centre on the axis) every {name} solves it, "
                 "the ideal geometry's shoulder self-motion, which a calibration breaks and a calibrated robot's "
                 "runtime scans where hypot(A, B) is within CALIBRATED_SHOULDER_SEARCH of the design's size",
-                ("T", "ik_stage1", f"wrist_centre{len(spec.stages)}"), {"C": sp.sympify(first.exprs[2])},
-                (symbolic_identity(sp.sympify(first.exprs[2]), sp.Integer(0), "C = 0"),
+                ("T", "ik_stage1", f"wrist_centre{len(spec.stages)}"), {"C": c},
+                (symbolic_identity(c, sp.Integer(0), "C = 0"),
                  numeric_predicate(distance_error, "hypot(A, B) on the FK equals the wrist centre's distance from "
                                    f"axis {j + 1} (relative to the robot's size)", samples=50, tol=1e-12))))
-    dv.exports["shoulder_family"] = j
+    dv.exports["shoulder_family"] = j  # what a calibrated robot's module scans (from_table's own_context)

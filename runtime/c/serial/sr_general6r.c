@@ -160,7 +160,7 @@ static int sr_g6_candidates(const double *out, const int (*readings)[3], int n, 
                             const double *pose, const double *dp, sr_ws *ws)
 {
     double errs[SR_MAX_IK];
-    int i, found = 0, tried_odd = 0, merged = 0, near = 0;
+    int i, found = 0, tried_odd = 0, merged = 0, near = 0, clustered = -1;
     for (i = 0; i < n; ++i) {
         found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], 0, joints, q, pose, dp, ws, errs,
                               found, &merged, &near);
@@ -169,14 +169,17 @@ static int sr_g6_candidates(const double *out, const int (*readings)[3], int n, 
             found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], 1, joints, q, pose, dp, ws,
                                   errs, found, &copies, &again);
             near = again & SR_G6_NEAR_SET;
+            clustered = i;
         }
         if (near || (found > 0 && (found % 2 == 0 || tried_odd || merged))) break;
         tried_odd = found > 0;
     }
-    if (near) /* every reading, with its clusters' subspaces (a set kept already is kept once) */
+    if (near) /* every reading, with its clusters' subspaces (a set kept already is kept once; the one read so already
+               gives its candidates again: skipped) */
         for (i = 0; i < n; ++i)
-            found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], 1, joints, q, pose, dp, ws,
-                                  errs, found, &merged, &near);
+            if (i != clustered)
+                found = sr_g6_reading(out, readings[i][0], readings[i][1], readings[i][2], 1, joints, q, pose, dp,
+                                      ws, errs, found, &merged, &near);
     sr_g6_sort(ws, found);
     return found;
 }
